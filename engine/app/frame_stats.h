@@ -1,0 +1,34 @@
+#pragma once
+// Frame times of a run, summarised as median / p95 / max and written as JSON for
+// `--bench`. Medians, not means: these machines are noisy.
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace engine {
+
+struct FrameSummary {
+  int frames = 0;
+  double medianMs = 0.0;
+  double p95Ms = 0.0;
+  double maxMs = 0.0;
+  double minMs = 0.0;
+};
+
+FrameSummary summarize(std::vector<double> frameMs);
+
+struct BenchReport {
+  FrameSummary summary;
+  std::string backend;
+  std::string renderer;
+  std::string glVersion;
+  int width = 0;
+  int height = 0;
+  int msaa = 1;
+  std::string command;
+};
+
+Status writeBenchJson(const std::string& path, const BenchReport& report);
+
+}  // namespace engine

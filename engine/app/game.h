@@ -1,0 +1,33 @@
+#pragma once
+// What a program plugs into the runners (sokol's shape: initialise, then per frame
+// update and draw, then shut down by destruction).
+#include "core/result.h"
+#include "render/camera.h"
+
+namespace engine {
+
+class RenderTarget;
+
+struct FrameInfo {
+  double time = 0.0;  // scene time of this frame, seconds
+  int width = 0;
+  int height = 0;
+};
+
+class Game {
+ public:
+  virtual ~Game() = default;
+  // Called once with a current GL context, before any frame.
+  virtual Status init() = 0;
+  // Advances the simulation to `time` by one fixed step `dt`.
+  virtual void update(double time, double dt) = 0;
+  // Draws the frame into the bound render target.
+  virtual void render(const FrameInfo& frame) = 0;
+  // The camera the interactive controls move.
+  virtual Camera& camera() = 0;
+  // Releases GL objects while the context is still current; the runners call it
+  // before the context goes away.
+  virtual void shutdown() = 0;
+};
+
+}  // namespace engine

@@ -1,0 +1,48 @@
+#pragma once
+// The two loops: interactive (a GLFW window) and headless (N frames at a fixed step
+// into an offscreen framebuffer, read back to a PNG). Both call the same Game and
+// draw into the same kind of RenderTarget, so the frame at time T is the same image
+// whichever way it was made.
+#include <optional>
+#include <string>
+
+#include "app/game.h"
+#include "core/image.h"
+#include "platform/gl_context.h"
+
+namespace engine {
+
+struct RunOptions {
+  int width = 1280;
+  int height = 720;
+  double dt = 1.0 / 60.0;
+  // Headless: scene time of the last (captured) frame; default (frames-1)*dt.
+  // Window: the time the clock starts at.
+  std::optional<double> time;
+  // Headless: frames rendered, the last one at `time`. Window: 0 = until closed.
+  int frames = 1;
+  int msaa = 1;
+  std::string screenshot;  // PNG of the last frame; empty = none
+  std::string benchFile;   // frame-time JSON; empty = none
+  std::string command;     // the command line, recorded in the bench report
+  bool vsync = true;
+  bool debugGl = false;
+};
+
+// Scene time of headless frame `index` out of `options.frames`.
+double headlessFrameTime(const RunOptions& options, int index);
+
+// Renders headlessly through `backend` (Egl or OsMesa). When `captured` is not null
+// the last frame is also returned there.
+Status runHeadless(Backend backend, Game& game, const RunOptions& options,
+                   Image* captured = nullptr);
+
+// Opens a window and runs until it is closed (or `frames` frames were shown).
+Status runWindow(Game& game, const RunOptions& options);
+
+// glibc returns freed memory above the trim threshold to the kernel; llvmpipe frees
+// and re-allocates its per-frame buffers, so with the default every page faults back
+// in each frame (3x slower frames measured at 50 characters). Called by the runners.
+void keepFreedMemory();
+
+}  // namespace engine

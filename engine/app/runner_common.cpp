@@ -1,0 +1,51 @@
+#include "app/runner_common.h"
+
+#include <malloc.h>
+
+#include "app/frame_stats.h"
+#include "gl/debug.h"
+
+namespace engine {
+
+void keepFreedMemory() {
+  // 1 GiB: far above any per-frame allocation, far below the machine's memory.
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+}
+
+Result<RunSetup> startRun(Backend backend, Game& game, const RunOptions& options) {
+  keepFreedMemory();
+  ContextOptions contextOptions;
+  contextOptions.width = options.width;
+  contextOptions.height = options.height;
+  contextOptions.vsync = options.vsync;
+  contextOptions.debug = options.debugGl;
+  auto context = createContext(backend, contextOptions);
+  if (!context) return context.error();
+  if (options.debugGl) gl::enableDebugOutput();
+  if (auto status = game.init(); !status) return status.error();
+  auto target = RenderTarget::create(options.width, options.height, options.msaa);
+  if (!target) return target.error();
+  return RunSetup{std::move(context).value(), std::move(target).value()};
+}
+
+Status finishRun(const GlContext& context, const RunOptions& options,
+                 std::vector<double> frameMs, const Image* lastFrame) {
+  if (!options.benchFile.empty()) {
+    BenchReport report;
+    report.summary = summarize(std::move(frameMs));
+    report.backend = std::string(backendName(context.backend()));
+    report.renderer = context.renderer();
+    report.glVersion = context.version();
+    report.width = options.width;
+    report.height = options.height;
+    report.msaa = options.msaa;
+    report.command = options.command;
+    if (auto s = writeBenchJson(options.benchFile, report); !s) return s;
+  }
+  if (!options.screenshot.empty() && lastFrame) {
+    if (auto s = writePng(options.screenshot, *lastFrame); !s) return s;
+  }
+  return Ok{};
+}
+
+}  // namespace engine

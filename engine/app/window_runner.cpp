@@ -1,0 +1,106 @@
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <glm/glm.hpp>
+
+#include "app/camera_controller.h"
+#include "app/clock.h"
+#include "app/runner_common.h"
+
+namespace engine {
+namespace {
+
+struct WindowState {
+  CameraController controller;
+  bool vsync = true;
+};
+
+void onKey(GLFWwindow* window, int key, int, int action, int) {
+  if (action != GLFW_PRESS) return;
+  auto* state = static_cast<WindowState*>(glfwGetWindowUserPointer(window));
+  if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, GLFW_TRUE);
+  if (key == GLFW_KEY_V) {
+    state->vsync = !state->vsync;
+    glfwSwapInterval(state->vsync ? 1 : 0);
+  }
+  if (key == GLFW_KEY_F) state->controller.toggleMode();
+}
+
+void onScroll(GLFWwindow* window, double, double y) {
+  static_cast<WindowState*>(glfwGetWindowUserPointer(window))->controller.onScroll(y);
+}
+
+void showFrameTime(GLFWwindow* window, double frameMs, const WindowState& state) {
+  char title[160];
+  std::snprintf(title, sizeof title, "demo | %.2f ms (%.0f fps) | vsync %s [V] | %s camera [F]",
+                frameMs, frameMs > 0 ? 1000.0 / frameMs : 0.0, state.vsync ? "on" : "off",
+                state.controller.mode() == CameraController::Mode::Orbit ? "orbit" : "fly");
+  glfwSetWindowTitle(window, title);
+}
+
+}  // namespace
+
+Status runWindow(Game& game, const RunOptions& options) {
+  auto setup = startRun(Backend::Window, game, options);
+  if (!setup) return setup.error();
+  GLFWwindow* window = setup->context->window();
+  WindowState state;
+  state.vsync = options.vsync;
+  state.controller.attach(game.camera(), glm::length(game.camera().position));
+  glfwSetWindowUserPointer(window, &state);
+  glfwSetKeyCallback(window, onKey);
+  glfwSetScrollCallback(window, onScroll);
+
+  FixedStepClock clock(options.dt, options.time.value_or(0.0));
+  using Clock = std::chrono::steady_clock;
+  auto last = Clock::now();
+  double titleTimer = 0.0;
+  std::vector<double> frameMs;
+  Image lastFrame;
+  for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
+    if (options.frames > 0 && frame >= options.frames) break;
+    glfwPollEvents();
+    const auto now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - last).count();
+    last = now;
+
+    // Fixed-step simulation, variable-rate drawing.
+    for (int steps = clock.advance(elapsed); steps > 0; --steps) {
+      clock.step();
+      game.update(clock.time(), clock.dt());
+    }
+    state.controller.update(window, game.camera(), elapsed);
+
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window, &width, &height);
+    if (width == 0 || height == 0) continue;  // minimised
+    if (width != setup->target.width() || height != setup->target.height()) {
+      auto resized = RenderTarget::create(width, height, options.msaa);
+      if (!resized) return resized.error();
+      setup->target = std::move(resized).value();
+    }
+    setup->target.bind();
+    game.render({clock.time(), width, height});
+    setup->target.resolve();
+    setup->target.blitToDefault(width, height);
+    setup->context->swapBuffers();
+
+    frameMs.push_back(elapsed * 1000.0);
+    titleTimer += elapsed;
+    if (titleTimer > 0.5) {
+      showFrameTime(window, elapsed * 1000.0, state);
+      titleTimer = 0.0;
+    }
+  }
+  if (!options.screenshot.empty()) lastFrame = setup->target.readPixels();
+  // The first interval includes start-up; leave it out of the statistics.
+  if (!frameMs.empty()) frameMs.erase(frameMs.begin());
+  auto status = finishRun(*setup->context, options, std::move(frameMs),
+                          lastFrame.empty() ? nullptr : &lastFrame);
+  game.shutdown();
+  return status;
+}
+
+}  // namespace engine

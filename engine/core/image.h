@@ -1,0 +1,47 @@
+#pragma once
+// 8-bit RGBA images in memory, PNG read/write (stb) and image comparison. Rows are
+// stored top to bottom, as PNG stores them.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace engine {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> pixels;  // width * height * 4, RGBA, top row first
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), pixels(static_cast<size_t>(w) * h * 4, 0) {}
+  std::uint8_t* at(int x, int y) { return &pixels[(static_cast<size_t>(y) * width + x) * 4]; }
+  const std::uint8_t* at(int x, int y) const {
+    return &pixels[(static_cast<size_t>(y) * width + x) * 4];
+  }
+  bool empty() const { return width == 0 || height == 0; }
+};
+
+// Reverses the row order (GL reads bottom row first).
+void flipVertically(Image& image);
+
+Result<Image> readPng(const std::string& path);
+// Writes to a temporary file beside `path` and renames it, so a failure never
+// leaves a half-written PNG behind.
+Status writePng(const std::string& path, const Image& image);
+
+// Comparison over the RGB channels (alpha is ignored: it carries no picture).
+struct ImageDiff {
+  int maxAbs = 0;             // largest channel difference, 0..255
+  double meanAbs = 0.0;       // mean channel difference, 0..255
+  double psnr = 0.0;          // dB; +infinity when identical
+  double shareOver = 0.0;     // share of pixels with some channel over `threshold`
+  int threshold = 0;
+};
+
+Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold = 8);
+// A visual diff: black where equal, brighter where different (x4 gain).
+Image diffImage(const Image& a, const Image& b);
+
+}  // namespace engine

@@ -1,0 +1,107 @@
+#include "gl/resources.h"
+
+namespace engine::gl {
+
+Buffer Buffer::create(std::size_t bytes, const void* data, GLbitfield flags) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
+  Buffer buffer(id);
+  buffer.size_ = bytes;
+  return buffer;
+}
+
+void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) const {
+  glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+
+VertexArray VertexArray::create() {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  return VertexArray(id);
+}
+
+void VertexArray::attribute(GLuint location, GLuint binding, GLint components, GLuint offset,
+                            GLenum type, bool normalized) const {
+  glEnableVertexArrayAttrib(id(), location);
+  glVertexArrayAttribFormat(id(), location, components, type, normalized ? GL_TRUE : GL_FALSE, offset);
+  glVertexArrayAttribBinding(id(), location, binding);
+}
+
+void VertexArray::integerAttribute(GLuint location, GLuint binding, GLint components,
+                                   GLuint offset, GLenum type) const {
+  glEnableVertexArrayAttrib(id(), location);
+  glVertexArrayAttribIFormat(id(), location, components, type, offset);
+  glVertexArrayAttribBinding(id(), location, binding);
+}
+
+void VertexArray::vertexBuffer(GLuint binding, const Buffer& buffer, GLsizei stride,
+                               GLintptr offset) const {
+  glVertexArrayVertexBuffer(id(), binding, buffer.id(), offset, stride);
+}
+
+void VertexArray::indexBuffer(const Buffer& buffer) const {
+  glVertexArrayElementBuffer(id(), buffer.id());
+}
+
+Texture Texture::create2D(GLenum format, int width, int height, int levels) {
+  if (levels <= 0) {
+    levels = 1;
+    for (int size = width > height ? width : height; size > 1; size /= 2) ++levels;
+  }
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  glTextureStorage2D(id, levels, format, width, height);
+  Texture texture(id);
+  texture.width_ = width;
+  texture.height_ = height;
+  return texture;
+}
+
+Texture Texture::create2DMultisample(GLenum format, int width, int height, int samples) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &id);
+  // Fixed sample locations keep resolves identical between runs and backends.
+  glTextureStorage2DMultisample(id, samples, format, width, height, GL_TRUE);
+  Texture texture(id);
+  texture.width_ = width;
+  texture.height_ = height;
+  return texture;
+}
+
+void Texture::uploadRgba8(const void* pixels) const {
+  glTextureSubImage2D(id(), 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+}
+
+Renderbuffer Renderbuffer::create(GLenum format, int width, int height, int samples) {
+  GLuint id = 0;
+  glCreateRenderbuffers(1, &id);
+  if (samples > 1) {
+    glNamedRenderbufferStorageMultisample(id, samples, format, width, height);
+  } else {
+    glNamedRenderbufferStorage(id, format, width, height);
+  }
+  return Renderbuffer(id);
+}
+
+Framebuffer Framebuffer::create() {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  return Framebuffer(id);
+}
+
+void Framebuffer::attach(GLenum attachment, const Texture& texture, int level) const {
+  glNamedFramebufferTexture(id(), attachment, texture.id(), level);
+}
+
+void Framebuffer::attach(GLenum attachment, const Renderbuffer& renderbuffer) const {
+  glNamedFramebufferRenderbuffer(id(), attachment, GL_RENDERBUFFER, renderbuffer.id());
+}
+
+bool Framebuffer::complete(GLenum* status) const {
+  const GLenum s = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
+  if (status) *status = s;
+  return s == GL_FRAMEBUFFER_COMPLETE;
+}
+
+}  // namespace engine::gl

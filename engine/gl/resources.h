@@ -1,0 +1,89 @@
+#pragma once
+// Buffers, vertex arrays, textures, renderbuffers and framebuffers.
+#include <cstddef>
+#include <span>
+
+#include "gl/object.h"
+
+namespace engine::gl {
+
+class Buffer : public Object<BufferDeleter> {
+ public:
+  Buffer() = default;
+  // Immutable storage (glNamedBufferStorage) of `bytes` bytes, optionally filled.
+  static Buffer create(std::size_t bytes, const void* data = nullptr,
+                       GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+  template <typename T>
+  static Buffer fromSpan(std::span<const T> items, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
+    return create(items.size_bytes(), items.data(), flags);
+  }
+  void upload(std::size_t offset, std::size_t bytes, const void* data) const;
+  std::size_t size() const { return size_; }
+
+ private:
+  using Object::Object;
+  std::size_t size_ = 0;
+};
+
+class VertexArray : public Object<VertexArrayDeleter> {
+ public:
+  VertexArray() = default;
+  static VertexArray create();
+  // Float attribute `location` read from `buffer` binding slot `binding`.
+  void attribute(GLuint location, GLuint binding, GLint components, GLuint offset,
+                 GLenum type = GL_FLOAT, bool normalized = false) const;
+  // Integer attribute (joint indices).
+  void integerAttribute(GLuint location, GLuint binding, GLint components, GLuint offset,
+                        GLenum type) const;
+  void vertexBuffer(GLuint binding, const Buffer& buffer, GLsizei stride, GLintptr offset = 0) const;
+  void indexBuffer(const Buffer& buffer) const;
+  void bind() const { glBindVertexArray(id()); }
+
+ private:
+  using Object::Object;
+};
+
+class Texture : public Object<TextureDeleter> {
+ public:
+  Texture() = default;
+  // 2D texture with `levels` mip levels (0: full chain) of `format` (e.g. GL_SRGB8_ALPHA8).
+  static Texture create2D(GLenum format, int width, int height, int levels = 1);
+  static Texture create2DMultisample(GLenum format, int width, int height, int samples);
+  // Uploads RGBA8 pixels, bottom row first (GL's order), into level 0.
+  void uploadRgba8(const void* pixels) const;
+  void generateMipmaps() const { glGenerateTextureMipmap(id()); }
+  void parameter(GLenum name, GLint value) const { glTextureParameteri(id(), name, value); }
+  void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  using Object::Object;
+  int width_ = 0;
+  int height_ = 0;
+};
+
+class Renderbuffer : public Object<RenderbufferDeleter> {
+ public:
+  Renderbuffer() = default;
+  static Renderbuffer create(GLenum format, int width, int height, int samples = 0);
+
+ private:
+  using Object::Object;
+};
+
+class Framebuffer : public Object<FramebufferDeleter> {
+ public:
+  Framebuffer() = default;
+  static Framebuffer create();
+  void attach(GLenum attachment, const Texture& texture, int level = 0) const;
+  void attach(GLenum attachment, const Renderbuffer& renderbuffer) const;
+  // True when complete; otherwise fills `status` with the GL status code.
+  bool complete(GLenum* status = nullptr) const;
+  void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }
+
+ private:
+  using Object::Object;
+};
+
+}  // namespace engine::gl

@@ -1,0 +1,90 @@
+#include "render/mesh.h"
+
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+#include <span>
+
+namespace engine {
+
+MeshData makePlane(float size, int cells, float uvRepeat) {
+  MeshData mesh;
+  const float half = size * 0.5f;
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i) {
+      const float u = float(i) / float(cells), v = float(j) / float(cells);
+      mesh.vertices.push_back(
+          {{-half + u * size, 0.0f, -half + v * size}, {0, 1, 0}, {u * uvRepeat, v * uvRepeat}});
+    }
+  }
+  const auto row = static_cast<std::uint32_t>(cells + 1);
+  for (std::uint32_t j = 0; j < std::uint32_t(cells); ++j) {
+    for (std::uint32_t i = 0; i < std::uint32_t(cells); ++i) {
+      const std::uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
+      // Counter-clockwise seen from +y.
+      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
+    }
+  }
+  return mesh;
+}
+
+MeshData makeCube(float size) {
+  MeshData mesh;
+  const float h = size * 0.5f;
+  // Each face: normal, and two axes spanning it (u, v) with u x v = normal.
+  const glm::vec3 faces[6][3] = {
+      {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+      {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+      {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}}};
+  for (const auto& f : faces) {
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (const auto& c : corners) {
+      const glm::vec3 p = (f[0] + f[1] * (c.x * 2 - 1) + f[2] * (c.y * 2 - 1)) * h;
+      mesh.vertices.push_back({p, f[0], c});
+    }
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  return mesh;
+}
+
+MeshData makeSphere(float radius, int rings, int segments) {
+  MeshData mesh;
+  for (int r = 0; r <= rings; ++r) {
+    const float v = float(r) / float(rings);
+    const float theta = v * glm::pi<float>();
+    for (int s = 0; s <= segments; ++s) {
+      const float u = float(s) / float(segments);
+      const float phi = u * glm::two_pi<float>();
+      const glm::vec3 n(std::sin(theta) * std::sin(phi), std::cos(theta),
+                        std::sin(theta) * std::cos(phi));
+      mesh.vertices.push_back({n * radius, n, {u, v}});
+    }
+  }
+  const auto row = static_cast<std::uint32_t>(segments + 1);
+  for (std::uint32_t r = 0; r < std::uint32_t(rings); ++r) {
+    for (std::uint32_t s = 0; s < std::uint32_t(segments); ++s) {
+      const std::uint32_t a = r * row + s, b = a + 1, c = a + row, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
+    }
+  }
+  return mesh;
+}
+
+GpuMesh::GpuMesh(const MeshData& data)
+    : vertices_(gl::Buffer::fromSpan(std::span<const Vertex>(data.vertices))),
+      indices_(gl::Buffer::fromSpan(std::span<const std::uint32_t>(data.indices))),
+      vao_(gl::VertexArray::create()),
+      indexCount_(static_cast<GLsizei>(data.indices.size())) {
+  vao_.vertexBuffer(0, vertices_, sizeof(Vertex));
+  vao_.indexBuffer(indices_);
+  vao_.attribute(kPositionLocation, 0, 3, offsetof(Vertex, position));
+  vao_.attribute(kNormalLocation, 0, 3, offsetof(Vertex, normal));
+  vao_.attribute(kUvLocation, 0, 2, offsetof(Vertex, uv));
+}
+
+void GpuMesh::draw() const {
+  vao_.bind();
+  glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace engine

@@ -1,0 +1,48 @@
+#pragma once
+// Triangle meshes: CPU data, procedural shapes, and their GPU copy.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "gl/resources.h"
+
+namespace engine {
+
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+
+struct MeshData {
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;
+};
+
+// A square in the y = 0 plane, `size` wide, `cells` x `cells` quads, uv repeating
+// `uvRepeat` times across.
+MeshData makePlane(float size, int cells, float uvRepeat);
+// An axis-aligned cube of edge `size` centred on the origin, one uv square per face.
+MeshData makeCube(float size);
+// A UV sphere: `rings` x `segments` quads.
+MeshData makeSphere(float radius, int rings, int segments);
+
+// Vertex attribute locations shared with shaders/common/vertex.glsl.
+inline constexpr GLuint kPositionLocation = 0;
+inline constexpr GLuint kNormalLocation = 1;
+inline constexpr GLuint kUvLocation = 2;
+
+class GpuMesh {
+ public:
+  explicit GpuMesh(const MeshData& data);
+  void draw() const;
+  GLsizei indexCount() const { return indexCount_; }
+
+ private:
+  gl::Buffer vertices_;
+  gl::Buffer indices_;
+  gl::VertexArray vao_;
+  GLsizei indexCount_ = 0;
+};
+
+}  // namespace engine

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# One command-line case of the programs: cli_case.sh BIN_DIR WORK_DIR CASE
+# Each case checks the exit code and that the message names what was wrong.
+set -u
+BIN="$1"; WORK="$2"; CASE="$3"
+mkdir -p "$WORK" && cd "$WORK" || exit 1
+OUT="$WORK/$CASE.out"; ERR="$WORK/$CASE.err"
+
+# expect CODE PATTERN -- COMMAND...: runs COMMAND, checks its exit code and that
+# stderr+stdout match PATTERN (grep -E).
+expect() {
+  local code="$1" pattern="$2"; shift 3
+  "$@" >"$OUT" 2>"$ERR"; local got=$?
+  if [ "$got" -ne "$code" ]; then
+    echo "FAIL: '$*' exited $got, expected $code"; cat "$OUT" "$ERR"; exit 1
+  fi
+  if ! cat "$OUT" "$ERR" | grep -Eq -- "$pattern"; then
+    echo "FAIL: '$*' output does not match '$pattern'"; cat "$OUT" "$ERR"; exit 1
+  fi
+  echo "ok: '$*' -> $got"
+}
+
+case "$CASE" in
+  help) expect 0 "--offscreen" -- "$BIN/demo" --help ;;
+  bad_option) expect 2 "--bogus" -- "$BIN/demo" --bogus ;;
+  bad_backend) expect 2 "offscreen" -- "$BIN/demo" --offscreen=vulkan ;;
+  malformed_size) expect 2 "--size 12x" -- "$BIN/demo" --offscreen --size 12x ;;
+  zero_size) expect 2 "--size 0x10" -- "$BIN/demo" --offscreen --size 0x10 ;;
+  bad_number) expect 2 "--time" -- "$BIN/demo" --offscreen --time soon ;;
+  bad_msaa) expect 2 "--msaa" -- "$BIN/demo" --offscreen --msaa 3 ;;
+  missing_scene) expect 2 "nope\.json" -- "$BIN/demo" nope.json --offscreen ;;
+  bad_scene_json)
+    echo '{"camera": {"position": [1, 2]}}' > bad_scene.json
+    expect 2 "bad_scene\.json: /camera/position" -- "$BIN/demo" bad_scene.json --offscreen ;;
+  unwritable_screenshot)
+    expect 2 "/nonexistent/dir/a\.png" -- "$BIN/demo" --offscreen --screenshot /nonexistent/dir/a.png
+    [ ! -e /nonexistent/dir/a.png ] || { echo "FAIL: file written"; exit 1; } ;;
+  no_display) expect 2 "use --offscreen" -- env -u DISPLAY -u WAYLAND_DISPLAY "$BIN/demo" ;;
+  egl_osmesa_identical)
+    # The same frame through both backends must be the same bytes (FBO rendering).
+    rm -f egl.png osmesa.png
+    expect 0 "egl\.png" -- "$BIN/demo" --offscreen=egl --time 1 --size 640x360 --screenshot egl.png
+    expect 0 "osmesa\.png" -- "$BIN/demo" --offscreen=osmesa --time 1 --size 640x360 --screenshot osmesa.png
+    cmp egl.png osmesa.png || { echo "FAIL: EGL and OSMesa frames differ"; exit 1; }
+    echo "ok: identical bytes" ;;
+  msaa_identical)
+    rm -f egl4.png osmesa4.png
+    expect 0 "egl4" -- "$BIN/demo" --offscreen=egl --msaa 4 --time 0.5 --size 320x180 --screenshot egl4.png
+    expect 0 "osmesa4" -- "$BIN/demo" --offscreen=osmesa --msaa 4 --time 0.5 --size 320x180 --screenshot osmesa4.png
+    cmp egl4.png osmesa4.png || { echo "FAIL: EGL and OSMesa MSAA frames differ"; exit 1; } ;;
+  bench_json)
+    rm -f bench.json
+    expect 0 "shot\.png" -- "$BIN/demo" --offscreen --frames 5 --size 320x180 --bench bench.json --screenshot shot.png
+    grep -q '"median"' bench.json && grep -q '"p95"' bench.json && grep -q '"renderer"' bench.json \
+      || { echo "FAIL: bench.json lacks fields"; cat bench.json; exit 1; } ;;
+  imgdiff)
+    "$BIN/demo" --offscreen --time 0 --size 160x90 --screenshot t0.png >/dev/null || exit 1
+    "$BIN/demo" --offscreen --time 2 --size 160x90 --screenshot t2.png >/dev/null || exit 1
+    expect 0 "psnr inf" -- "$BIN/imgdiff" t0.png t0.png --max-mean 0
+    expect 1 "over the limit" -- "$BIN/imgdiff" t0.png t2.png --max-mean 0.01 --diff d.png
+    [ -s d.png ] || { echo "FAIL: no diff image"; exit 1; }
+    expect 2 "missing\.png" -- "$BIN/imgdiff" t0.png missing.png ;;
+  *) echo "unknown case $CASE"; exit 1 ;;
+esac

@@ -1,0 +1,142 @@
+// GL layer against a real offscreen context, through EGL and OSMesa.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <type_traits>
+
+#include "../support/gl_test.h"
+#include "gl/resources.h"
+#include "gl/shader.h"
+#include "render/render_target.h"
+
+using namespace engine;
+using engine::test::GlTest;
+
+// Magnum's habit: GL owners are move-only.
+static_assert(!std::is_copy_constructible_v<gl::Buffer>);
+static_assert(!std::is_copy_assignable_v<gl::Texture>);
+static_assert(std::is_nothrow_move_constructible_v<gl::Framebuffer>);
+static_assert(!std::is_copy_constructible_v<gl::Program>);
+
+class GlObjects : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(GlObjects);
+
+TEST_P(GlObjects, ContextIsOpenGl45Core) {
+  GLint major = 0, minor = 0, profile = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+  EXPECT_GE(major * 10 + minor, 45);
+  EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+  EXPECT_FALSE(context_->renderer().empty());
+}
+
+TEST_P(GlObjects, BufferHoldsItsDataAndMovesOwnership) {
+  const float data[4] = {1.0f, 2.0f, 3.0f, 4.0f};
+  gl::Buffer a = gl::Buffer::create(sizeof data, data);
+  const GLuint id = a.id();
+  ASSERT_NE(id, 0u);
+  gl::Buffer b = std::move(a);
+  EXPECT_EQ(a.id(), 0u);
+  EXPECT_EQ(b.id(), id);
+  float back[4] = {};
+  glGetNamedBufferSubData(b.id(), 0, sizeof back, back);
+  EXPECT_EQ(back[2], 3.0f);
+  b.reset();
+  EXPECT_FALSE(glIsBuffer(id));
+}
+
+TEST_P(GlObjects, DestructorDeletesTheName) {
+  GLuint id = 0;
+  {
+    gl::Texture t = gl::Texture::create2D(GL_RGBA8, 4, 4);
+    id = t.id();
+    EXPECT_TRUE(glIsTexture(id));
+  }
+  EXPECT_FALSE(glIsTexture(id));
+}
+
+TEST_P(GlObjects, RenderTargetReadsBackTheClearColour) {
+  auto target = RenderTarget::create(8, 4, 1);
+  ASSERT_TRUE(target.ok()) << target.error().message;
+  target->bind();
+  // sRGB target: linear 0.5 is stored as 188 (the sRGB curve), 1.0 as 255.
+  glClearColor(1.0f, 0.5f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  const Image image = target->readPixels();
+  EXPECT_EQ(image.width, 8);
+  EXPECT_EQ(image.at(3, 2)[0], 255);
+  EXPECT_NEAR(image.at(3, 2)[1], 188, 1);
+  EXPECT_EQ(image.at(3, 2)[2], 0);
+}
+
+TEST_P(GlObjects, MultisampledTargetResolves) {
+  auto target = RenderTarget::create(8, 8, 4);
+  ASSERT_TRUE(target.ok()) << target.error().message;
+  target->bind();
+  glClearColor(0.0f, 0.0f, 1.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  target->resolve();
+  EXPECT_EQ(target->readPixels().at(7, 7)[2], 255);
+}
+
+TEST_P(GlObjects, ImpossibleSampleCountIsAnError) {
+  auto target = RenderTarget::create(8, 8, 1024);
+  ASSERT_FALSE(target.ok());
+  EXPECT_NE(target.error().message.find("1024"), std::string::npos);
+}
+
+TEST_P(GlObjects, DebugOutputCountsErrors) {
+  glBindBuffer(GL_ARRAY_BUFFER, 123456);  // not a buffer name: GL_INVALID_OPERATION
+  EXPECT_GT(gl::errorCount(), 0);
+  gl::resetErrorCount();
+}
+
+TEST_P(GlObjects, ProjectShadersCompile) {
+  for (const auto& pair : std::vector<std::pair<std::string, std::string>>{
+           {"lit.vert", "lit.frag"}, {"sky.vert", "sky.frag"}}) {
+    auto program = gl::Program::build(test::shaderDir(), {{GL_VERTEX_SHADER, pair.first},
+                                                          {GL_FRAGMENT_SHADER, pair.second}});
+    EXPECT_TRUE(program.ok()) << program.error().message;
+  }
+}
+
+class ShaderErrors : public GlTest {
+ protected:
+  void SetUp() override {
+    GlTest::SetUp();
+    dir_ = std::filesystem::temp_directory_path() /
+           ("engine_gl_shaders_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::filesystem::remove_all(dir_);
+    GlTest::TearDown();
+  }
+  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  std::filesystem::path dir_;
+};
+ENGINE_INSTANTIATE_OFFSCREEN(ShaderErrors);
+
+TEST_P(ShaderErrors, CompileErrorNamesTheIncludedFileAndLine) {
+  write("helper.glsl", "float helper() {\n  return undefinedThing;\n}\n");
+  write("main.frag",
+        "#version 450 core\n#include \"helper.glsl\"\nout vec4 c;\nvoid main() { c = vec4(helper()); }\n");
+  write("main.vert", "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n");
+  auto program = gl::Program::build(dir_.string(), {{GL_VERTEX_SHADER, "main.vert"},
+                                                    {GL_FRAGMENT_SHADER, "main.frag"}});
+  ASSERT_FALSE(program.ok());
+  EXPECT_NE(program.error().message.find("helper.glsl:2"), std::string::npos)
+      << program.error().message;
+}
+
+TEST_P(ShaderErrors, LinkErrorNamesTheStages) {
+  write("a.vert", "#version 450 core\nout vec3 v_x;\nvoid main() { v_x = vec3(1.0); gl_Position = vec4(0.0); }\n");
+  write("a.frag", "#version 450 core\nin vec4 v_x;\nout vec4 c;\nvoid main() { c = v_x; }\n");
+  auto program = gl::Program::build(dir_.string(), {{GL_VERTEX_SHADER, "a.vert"},
+                                                    {GL_FRAGMENT_SHADER, "a.frag"}});
+  ASSERT_FALSE(program.ok());
+  EXPECT_NE(program.error().message.find("a.vert + a.frag: link failed"), std::string::npos)
+      << program.error().message;
+}

@@ -1,0 +1,97 @@
+// Golden images of the demo scene, rendered into an FBO through EGL and OSMesa and
+// compared with tests/golden/*.png (one golden per case, shared by both backends).
+//
+// On a failure the actual image and a diff (x4 gain) are written under
+// build/golden-failures/. To accept new goldens after looking at them:
+//   ENGINE_UPDATE_GOLDENS=1 ctest --test-dir build -L golden
+// then view tests/golden/*.png and commit them with a note on why each is right.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <tuple>
+
+#include "app/runner.h"
+#include "core/image.h"
+#include "gl/debug.h"
+#include "procedural_scene.h"
+
+using namespace engine;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct GoldenCase {
+  const char* name;
+  double time;
+  int msaa;
+};
+
+const GoldenCase kCases[] = {{"demo_t0.5", 0.5, 1}, {"demo_t2", 2.0, 1}, {"demo_t1_msaa4", 1.0, 4}};
+
+// Tolerances. FBO rendering is byte-identical across EGL, OSMesa and llvmpipe thread
+// counts (tests/cli checks that exactly), so on the machine that made the goldens
+// the difference is 0. The margin is for another Mesa/LLVM build: it may round a
+// texel fetch or an edge coverage differently, moving single pixels on triangle and
+// texture edges by a large step but leaving the mean almost untouched. A max of 64
+// allows one edge pixel to flip between neighbours of the checker; a mean of 0.25
+// (of 255) allows about 1% of pixels to move by 25, and fails on any real change of
+// lighting, camera or animation (those move the mean by several units).
+constexpr int kMaxAbs = 64;
+constexpr double kMaxMean = 0.25;
+
+using Param = std::tuple<Backend, int>;
+
+class Golden : public ::testing::TestWithParam<Param> {};
+
+TEST_P(Golden, MatchesTheGoldenImage) {
+  const Backend backend = std::get<0>(GetParam());
+  const GoldenCase& c = kCases[std::get<1>(GetParam())];
+  demo::ProceduralScene scene(std::string(ENGINE_SOURCE_DIR) + "/shaders", demo::defaultSceneSettings());
+  RunOptions options;
+  options.width = 640;
+  options.height = 360;
+  options.time = c.time;
+  options.frames = 3;  // a few frames before the captured one, as the demo runs
+  options.msaa = c.msaa;
+  options.debugGl = true;
+  Image actual;
+  auto status = runHeadless(backend, scene, options, &actual);
+  ASSERT_TRUE(status.ok()) << status.error().message;
+
+  const fs::path golden = fs::path(ENGINE_SOURCE_DIR) / "tests/golden" / (std::string(c.name) + ".png");
+  if (std::getenv("ENGINE_UPDATE_GOLDENS")) {
+    ASSERT_TRUE(writePng(golden.string(), actual).ok());
+    GTEST_SKIP() << "wrote " << golden << "; look at it before committing";
+  }
+  auto expected = readPng(golden.string());
+  ASSERT_TRUE(expected.ok()) << expected.error().message
+                             << " (make it with ENGINE_UPDATE_GOLDENS=1, see the top of this file)";
+  auto diff = compareImages(*expected, actual);
+  ASSERT_TRUE(diff.ok()) << diff.error().message;
+  const bool pass = diff->maxAbs <= kMaxAbs && diff->meanAbs <= kMaxMean;
+  if (!pass) {
+    const fs::path out = fs::path(ENGINE_BINARY_DIR) / "golden-failures";
+    fs::create_directories(out);
+    const std::string stem = std::string(c.name) + "_" + std::string(backendName(backend));
+    (void)writePng((out / (stem + "_actual.png")).string(), actual);
+    (void)writePng((out / (stem + "_diff.png")).string(), diffImage(*expected, actual));
+  }
+  EXPECT_TRUE(pass) << c.name << " through " << backendName(backend) << ": max " << diff->maxAbs
+                    << " (limit " << kMaxAbs << "), mean " << diff->meanAbs << " (limit " << kMaxMean
+                    << "), PSNR " << diff->psnr << " dB; actual and diff written to build/golden-failures/";
+}
+
+std::string caseName(const ::testing::TestParamInfo<Param>& info) {
+  std::string name = std::string(backendName(std::get<0>(info.param))) + "_" + kCases[std::get<1>(info.param)].name;
+  for (char& ch : name)
+    if (ch == '.') ch = '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(DemoScene, Golden,
+                         ::testing::Combine(::testing::Values(Backend::Egl, Backend::OsMesa),
+                                            ::testing::Range(0, int(std::size(kCases)))),
+                         caseName);
+
+}  // namespace

@@ -1,0 +1,94 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/image.h"
+
+using namespace engine;
+
+namespace {
+Image solid(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      auto* p = image.at(x, y);
+      p[0] = r, p[1] = g, p[2] = b, p[3] = 255;
+    }
+  return image;
+}
+std::string tempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("engine_unit_" + name)).string();
+}
+}  // namespace
+
+TEST(Image, IdenticalImagesHaveInfinitePsnr) {
+  const Image a = solid(4, 3, 10, 20, 30);
+  auto d = compareImages(a, a);
+  ASSERT_TRUE(d.ok());
+  EXPECT_EQ(d->maxAbs, 0);
+  EXPECT_EQ(d->meanAbs, 0.0);
+  EXPECT_TRUE(std::isinf(d->psnr));
+  EXPECT_EQ(d->shareOver, 0.0);
+}
+
+TEST(Image, DifferenceStatistics) {
+  Image a = solid(2, 1, 100, 100, 100), b = a;
+  b.at(1, 0)[0] = 160;  // one channel of one pixel off by 60
+  auto d = compareImages(a, b, 8);
+  ASSERT_TRUE(d.ok());
+  EXPECT_EQ(d->maxAbs, 60);
+  EXPECT_DOUBLE_EQ(d->meanAbs, 60.0 / 6.0);
+  EXPECT_DOUBLE_EQ(d->shareOver, 0.5);
+  // MSE = 3600 / 6 = 600.
+  EXPECT_NEAR(d->psnr, 10.0 * std::log10(255.0 * 255.0 / 600.0), 1e-9);
+}
+
+TEST(Image, AlphaIsIgnored) {
+  Image a = solid(1, 1, 1, 2, 3), b = a;
+  b.at(0, 0)[3] = 0;
+  EXPECT_EQ(compareImages(a, b)->maxAbs, 0);
+}
+
+TEST(Image, SizeMismatchIsAnError) {
+  auto d = compareImages(Image(2, 2), Image(2, 3));
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.error().message.find("2x2 vs 2x3"), std::string::npos);
+}
+
+TEST(Image, PngRoundTrip) {
+  Image a(3, 2);
+  for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = static_cast<std::uint8_t>(i * 11);
+  const std::string path = tempPath("roundtrip.png");
+  ASSERT_TRUE(writePng(path, a).ok());
+  auto b = readPng(path);
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  EXPECT_EQ(b->width, 3);
+  EXPECT_EQ(b->height, 2);
+  EXPECT_EQ(b->pixels, a.pixels);
+  std::filesystem::remove(path);
+}
+
+TEST(Image, UnwritablePathLeavesNothing) {
+  auto s = writePng("/nonexistent-folder/x.png", solid(1, 1, 0, 0, 0));
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("/nonexistent-folder/x.png"), std::string::npos);
+}
+
+TEST(Image, UnreadableFileNamesThePath) {
+  const std::string path = tempPath("not_a_png.png");
+  { std::FILE* f = std::fopen(path.c_str(), "wb"); std::fputs("hello", f); std::fclose(f); }
+  auto r = readPng(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find(path), std::string::npos);
+  std::filesystem::remove(path);
+}
+
+TEST(Image, FlipVerticallySwapsRows) {
+  Image a(1, 3);
+  for (int y = 0; y < 3; ++y) a.at(0, y)[0] = static_cast<std::uint8_t>(y);
+  flipVertically(a);
+  EXPECT_EQ(a.at(0, 0)[0], 2);
+  EXPECT_EQ(a.at(0, 1)[0], 1);
+  EXPECT_EQ(a.at(0, 2)[0], 0);
+}

@@ -1,0 +1,78 @@
+// The shader preprocessor needs no GL: includes, defines, #line bookkeeping and the
+// translation of driver logs back to file names.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "gl/shader.h"
+
+using namespace engine;
+namespace fs = std::filesystem;
+
+class ShaderSource : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("engine_shaders_" + std::to_string(::getpid()));
+    fs::create_directories(dir_ / "inc");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+  }
+  fs::path dir_;
+};
+
+TEST_F(ShaderSource, IncludesOnceWithLineDirectives) {
+  write("inc/a.glsl", "float a() { return 1.0; }\n");
+  write("main.frag", "#version 450 core\n#include \"inc/a.glsl\"\n#include \"inc/a.glsl\"\nvoid main() {}\n");
+  auto src = gl::preprocessShader(dir_.string(), "main.frag", {"SKINNED 1"});
+  ASSERT_TRUE(src.ok()) << src.error().message;
+  EXPECT_EQ(src->text.rfind("#version 450 core\n#define SKINNED 1\n", 0), 0u);
+  EXPECT_EQ(src->files, (std::vector<std::string>{"main.frag", "inc/a.glsl"}));
+  // a.glsl's body appears once, and main.frag resumes at its line 4 afterwards.
+  const auto first = src->text.find("float a()");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(src->text.find("float a()", first + 1), std::string::npos);
+  EXPECT_NE(src->text.find("#line 1 1\nfloat a()"), std::string::npos);
+  EXPECT_NE(src->text.find("#line 4 0\nvoid main()"), std::string::npos);
+}
+
+TEST_F(ShaderSource, CycleIsAnError) {
+  write("x.glsl", "#include \"y.glsl\"\n");
+  write("y.glsl", "#include \"x.glsl\"\n");
+  write("main.vert", "#version 450 core\n#include \"x.glsl\"\n");
+  auto src = gl::preprocessShader(dir_.string(), "main.vert");
+  ASSERT_FALSE(src.ok());
+  EXPECT_NE(src.error().message.find("y.glsl:1: include cycle"), std::string::npos) << src.error().message;
+}
+
+TEST_F(ShaderSource, MissingIncludeNamesFileAndLine) {
+  write("main.vert", "#version 450 core\n\n#include \"nowhere.glsl\"\n");
+  auto src = gl::preprocessShader(dir_.string(), "main.vert");
+  ASSERT_FALSE(src.ok());
+  EXPECT_NE(src.error().message.find("main.vert:3: cannot include \"nowhere.glsl\""), std::string::npos)
+      << src.error().message;
+}
+
+TEST_F(ShaderSource, IncludeMayNotLeaveTheFolder) {
+  write("main.vert", "#version 450 core\n#include \"../secret.glsl\"\n");
+  auto src = gl::preprocessShader(dir_.string(), "main.vert");
+  ASSERT_FALSE(src.ok());
+  EXPECT_NE(src.error().message.find("leaves the shader folder"), std::string::npos);
+}
+
+TEST_F(ShaderSource, VersionMustComeFirst) {
+  write("main.vert", "void main() {}\n");
+  auto src = gl::preprocessShader(dir_.string(), "main.vert");
+  ASSERT_FALSE(src.ok());
+  EXPECT_NE(src.error().message.find("main.vert:1"), std::string::npos);
+}
+
+TEST(ShaderLog, MesaAndNvidiaFormatsGetFileNames) {
+  const std::vector<std::string> files = {"lit.frag", "common/lighting.glsl"};
+  EXPECT_EQ(gl::translateShaderLog("0:12(5): error: bad\n1:3(1): error: worse\n", files),
+            "lit.frag:12(5): error: bad\ncommon/lighting.glsl:3(1): error: worse");
+  EXPECT_EQ(gl::translateShaderLog("1(7) : error C0000: syntax error", files),
+            "common/lighting.glsl:7 : error C0000: syntax error");
+}
