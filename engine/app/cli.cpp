@@ -18,8 +18,9 @@ void addCommonOptions(CLI::App& app, CommonOptions& o) {
   app.add_option("--dt", o.run.dt, "Fixed simulation step, seconds")
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 10.0));
-  app.add_option("--frames", o.run.frames,
-                 "Frames to run (offscreen: the last is captured; window: 0 = until closed)")
+  app.add_option("--frames", o.frames,
+                 "Frames to run at the fixed step, the last one at --time (default: 1 "
+                 "offscreen; in a window, until it is closed)")
       ->check(CLI::Range(0, 10000000));
   app.add_option("--screenshot", o.run.screenshot, "Write the last frame to this PNG");
   app.add_option("--msaa", o.run.msaa, "Multisample anti-aliasing samples")
@@ -58,6 +59,7 @@ Status finishCommonOptions(CommonOptions& o, int argc, char** argv) {
     return makeError("--size " + o.size + ": each side must be within 1..16384");
   }
   if (o.run.time && !std::isfinite(*o.run.time)) return makeError("--time: must be a finite number");
+  o.run.frames = o.frames.value_or(o.offscreen.empty() ? 0 : 1);
   if (o.run.frames == 0 && !o.offscreen.empty()) {
     return makeError("--frames 0 (run until closed) only makes sense in a window");
   }

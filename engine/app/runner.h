@@ -16,10 +16,11 @@ struct RunOptions {
   int width = 1280;
   int height = 720;
   double dt = 1.0 / 60.0;
-  // Headless: scene time of the last (captured) frame; default (frames-1)*dt.
-  // Window: the time the clock starts at.
+  // Scene time of the last (captured) frame; default (frames-1)*dt. In a real-time
+  // window: the time the clock starts at.
   std::optional<double> time;
-  // Headless: frames rendered, the last one at `time`. Window: 0 = until closed.
+  // Frames rendered, the last one at `time`, each at a fixed step (a window then
+  // shows exactly what headless renders). Window only: 0 = real time until closed.
   int frames = 1;
   int msaa = 1;
   std::string screenshot;  // PNG of the last frame; empty = none

@@ -54,6 +54,7 @@ Status runWindow(Game& game, const RunOptions& options) {
   glfwSetScrollCallback(window, onScroll);
 
   FixedStepClock clock(options.dt, options.time.value_or(0.0));
+  const bool scripted = options.frames > 0;
   using Clock = std::chrono::steady_clock;
   auto last = Clock::now();
   double titleTimer = 0.0;
@@ -66,12 +67,21 @@ Status runWindow(Game& game, const RunOptions& options) {
     const double elapsed = std::chrono::duration<double>(now - last).count();
     last = now;
 
-    // Fixed-step simulation, variable-rate drawing.
-    for (int steps = clock.advance(elapsed); steps > 0; --steps) {
-      clock.step();
-      game.update(clock.time(), clock.dt());
+    double time = clock.time();
+    if (scripted) {
+      // A fixed number of frames is a recording: each frame at the headless
+      // schedule's time, so the window shows exactly what --offscreen renders.
+      time = headlessFrameTime(options, frame);
+      game.update(time, options.dt);
+    } else {
+      // Fixed-step simulation, variable-rate drawing.
+      for (int steps = clock.advance(elapsed); steps > 0; --steps) {
+        clock.step();
+        game.update(clock.time(), clock.dt());
+      }
+      time = clock.time();
     }
-    state.controller.update(window, game.camera(), elapsed);
+    if (!scripted) state.controller.update(window, game.camera(), elapsed);
 
     int width = 0, height = 0;
     glfwGetFramebufferSize(window, &width, &height);
@@ -82,7 +92,7 @@ Status runWindow(Game& game, const RunOptions& options) {
       setup->target = std::move(resized).value();
     }
     setup->target.bind();
-    game.render({clock.time(), width, height});
+    game.render({time, width, height});
     setup->target.resolve();
     setup->target.blitToDefault(width, height);
     setup->context->swapBuffers();

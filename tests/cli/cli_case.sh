@@ -43,6 +43,14 @@ case "$CASE" in
     expect 0 "osmesa\.png" -- "$BIN/demo" --offscreen=osmesa --time 1 --size 640x360 --screenshot osmesa.png
     cmp egl.png osmesa.png || { echo "FAIL: EGL and OSMesa frames differ"; exit 1; }
     echo "ok: identical bytes" ;;
+  window_identical)
+    # A GLFW window under Xvfb draws into the same FBO: the same bytes as EGL.
+    command -v xvfb-run >/dev/null || { echo "xvfb-run missing: skipped"; exit 77; }
+    rm -f win.png egl_w.png
+    expect 0 "egl_w\.png" -- "$BIN/demo" --offscreen=egl --time 1 --size 640x360 --screenshot egl_w.png
+    expect 0 "win\.png" -- xvfb-run -a "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
+    cmp egl_w.png win.png || { echo "FAIL: window and EGL frames differ"; exit 1; }
+    echo "ok: identical bytes" ;;
   msaa_identical)
     rm -f egl4.png osmesa4.png
     expect 0 "egl4" -- "$BIN/demo" --offscreen=egl --msaa 4 --time 0.5 --size 320x180 --screenshot egl4.png
