@@ -1,0 +1,116 @@
+#include "anim/clip.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace engine {
+namespace {
+
+glm::quat toQuat(const glm::vec4& v) { return glm::quat(v.w, v.x, v.y, v.z); }
+
+Status validateTrack(const Track& track, std::size_t index, int rawJointCount) {
+  std::string name = "track " + std::to_string(index);
+  if (track.joint < 0 || track.joint >= rawJointCount)
+    return makeError(name + ": joint " + std::to_string(track.joint) + " does not exist");
+  if (track.times.empty()) return makeError(name + ": has no keys");
+  std::size_t perKey = track.interpolation == Interpolation::CubicSpline ? 3 : 1;
+  if (track.values.size() != track.times.size() * perKey)
+    return makeError(name + ": " + std::to_string(track.values.size()) + " values for " +
+                     std::to_string(track.times.size()) + " keys");
+  for (std::size_t k = 0; k < track.times.size(); ++k) {
+    float t = track.times[k];
+    if (!std::isfinite(t) || t < 0.0f || (k > 0 && t < track.times[k - 1]))
+      return makeError(name + ": key " + std::to_string(k) + " time is NaN, negative or unsorted");
+  }
+  for (std::size_t v = 0; v < track.values.size(); ++v) {
+    const glm::vec4& x = track.values[v];
+    if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z) || !std::isfinite(x.w))
+      return makeError(name + ": value " + std::to_string(v) + " is NaN or infinite");
+  }
+  return Ok{};
+}
+
+// The keys around `time`: first == second when the time is outside the keys and
+// the nearest end value is held.
+struct KeyPair {
+  std::size_t first = 0;
+  std::size_t second = 0;
+  float u = 0.0f;  // 0 at first, 1 at second
+  double interval = 0.0;
+};
+
+KeyPair findKeys(const std::vector<float>& times, double time) {
+  auto it = std::upper_bound(times.begin(), times.end(), time,
+                             [](double t, float key) { return t < static_cast<double>(key); });
+  std::size_t i = static_cast<std::size_t>(it - times.begin());
+  if (i == 0) return {};
+  if (i == times.size()) return {i - 1, i - 1, 0.0f, 0.0};
+  // upper_bound skips equal times, so t0 < t1 and the division is safe.
+  double t0 = times[i - 1], t1 = times[i];
+  return {i - 1, i, static_cast<float>((time - t0) / (t1 - t0)), t1 - t0};
+}
+
+// glTF cubic Hermite: tangents are per second, so they scale with the key interval.
+glm::vec4 hermite(const Track& track, const KeyPair& keys) {
+  float s = keys.u, s2 = s * s, s3 = s2 * s;
+  float dt = static_cast<float>(keys.interval);
+  const glm::vec4& v0 = track.values[keys.first * 3 + 1];
+  const glm::vec4& b0 = track.values[keys.first * 3 + 2];
+  const glm::vec4& a1 = track.values[keys.second * 3];
+  const glm::vec4& v1 = track.values[keys.second * 3 + 1];
+  return (2 * s3 - 3 * s2 + 1) * v0 + (s3 - 2 * s2 + s) * dt * b0 + (-2 * s3 + 3 * s2) * v1 +
+         (s3 - s2) * dt * a1;
+}
+
+std::size_t valueIndex(const Track& track, std::size_t key) {
+  return track.interpolation == Interpolation::CubicSpline ? key * 3 + 1 : key;
+}
+
+}  // namespace
+
+Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton) {
+  Clip clip;
+  clip.name_ = raw.name;
+  std::string prefix = "clip \"" + raw.name + "\": ";
+  for (std::size_t i = 0; i < raw.tracks.size(); ++i) {
+    if (Status s = validateTrack(raw.tracks[i], i, skeleton.jointCount()); !s)
+      return makeError(prefix + s.error().message);
+    Track track = raw.tracks[i];
+    track.joint = skeleton.jointOfRaw(track.joint);
+    if (track.path == AnimPath::Rotation && track.interpolation != Interpolation::CubicSpline)
+      for (glm::vec4& v : track.values) {
+        glm::quat q = safeNormalize(toQuat(v));
+        v = glm::vec4(q.x, q.y, q.z, q.w);
+      }
+    clip.duration_ = std::max(clip.duration_, static_cast<double>(track.times.back()));
+    clip.tracks_.push_back(std::move(track));
+  }
+  return clip;
+}
+
+glm::vec3 sampleVec3(const Track& track, double time) {
+  KeyPair keys = findKeys(track.times, time);
+  if (keys.first == keys.second || track.interpolation == Interpolation::Step)
+    return glm::vec3(track.values[valueIndex(track, keys.first)]);
+  if (track.interpolation == Interpolation::CubicSpline) return glm::vec3(hermite(track, keys));
+  glm::vec3 a(track.values[keys.first]), b(track.values[keys.second]);
+  return a + (b - a) * keys.u;
+}
+
+glm::quat sampleQuat(const Track& track, double time) {
+  KeyPair keys = findKeys(track.times, time);
+  if (keys.first == keys.second || track.interpolation == Interpolation::Step)
+    return safeNormalize(toQuat(track.values[valueIndex(track, keys.first)]));
+  if (track.interpolation == Interpolation::CubicSpline) return safeNormalize(toQuat(hermite(track, keys)));
+  return slerp(toQuat(track.values[keys.first]), toQuat(track.values[keys.second]), keys.u);
+}
+
+void applyTrack(const Track& track, double time, Srt& srt) {
+  switch (track.path) {
+    case AnimPath::Translation: srt.translation = sampleVec3(track, time); break;
+    case AnimPath::Rotation: srt.rotation = sampleQuat(track, time); break;
+    case AnimPath::Scale: srt.scale = sampleVec3(track, time); break;
+  }
+}
+
+}  // namespace engine

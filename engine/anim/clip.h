@@ -1,0 +1,60 @@
+#pragma once
+// Keyframed animation of a skeleton's local transforms, and its sampling.
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "anim/skeleton.h"
+#include "core/keyframe.h"
+#include "core/math.h"
+#include "core/result.h"
+
+namespace engine {
+
+// One animated part of one joint. `values` has one entry per key (three for
+// CubicSpline: in-tangent, value, out-tangent); translation and scale use xyz,
+// rotation is x, y, z, w as in glTF.
+struct Track {
+  int joint = -1;
+  AnimPath path = AnimPath::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;
+  std::vector<glm::vec4> values;
+};
+
+// Offline clip: tracks name joints by RawSkeleton index.
+struct RawClip {
+  std::string name;
+  std::vector<Track> tracks;
+};
+
+class Clip {
+ public:
+  // Validates every track (keys sorted, finite, >= 0; value counts match) and
+  // maps joints to runtime indices. Rotation keys of Step/Linear tracks are
+  // normalised so that interpolation starts from true rotations.
+  static Result<Clip> build(const RawClip& raw, const Skeleton& skeleton);
+
+  const std::string& name() const { return name_; }
+  // Largest last key time of any track (three.js AnimationClip.duration): the
+  // period of a repeating clip. Zero for a clip without keys past 0.
+  double duration() const { return duration_; }
+  std::span<const Track> tracks() const { return tracks_; }
+
+ private:
+  std::string name_;
+  double duration_ = 0.0;
+  std::vector<Track> tracks_;
+};
+
+// Value of a track at clip-local `time`: the first value before the first key,
+// the last after the last key; O(log keys).
+glm::vec3 sampleVec3(const Track& track, double time);
+glm::quat sampleQuat(const Track& track, double time);  // unit length
+
+// Writes the track's value at `time` into the matching part of `srt`.
+void applyTrack(const Track& track, double time, Srt& srt);
+
+}  // namespace engine

@@ -1,0 +1,174 @@
+#include "anim/jobs.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace engine {
+namespace {
+
+// Normal transform without an inverse: the cofactor matrix is the inverse
+// transpose times the determinant, so after normalising it handles non-uniform
+// scale, and a zero scale gives a zero vector instead of NaNs.
+glm::vec3 transformNormal(const glm::mat4& m, const glm::vec3& n) {
+  glm::vec3 c0(m[0]), c1(m[1]), c2(m[2]);
+  glm::mat3 cofactor(glm::cross(c1, c2), glm::cross(c2, c0), glm::cross(c0, c1));
+  glm::vec3 r = cofactor * n;
+  float len2 = glm::dot(r, r);
+  return len2 > 0.0f ? r / std::sqrt(len2) : glm::vec3(0.0f);
+}
+
+bool usable(std::uint16_t joint, float weight, std::size_t paletteSize) {
+  return weight != 0.0f && joint < paletteSize;
+}
+
+void skinLinear(const SkinningJob& job) {
+  std::size_t k = static_cast<std::size_t>(job.influences);
+  bool withNormals = !job.normals.empty();
+  for (std::size_t v = 0; v < job.positions.size(); ++v) {
+    const std::uint16_t* joints = &job.joints[v * k];
+    const float* weights = &job.weights[v * k];
+    glm::mat4 m(0.0f);
+    for (std::size_t i = 0; i < k; ++i)
+      if (usable(joints[i], weights[i], job.palette.size())) m += job.palette[joints[i]] * weights[i];
+    job.outPositions[v] = glm::vec3(m * glm::vec4(job.positions[v], 1.0f));
+    if (withNormals) job.outNormals[v] = transformNormal(m, job.normals[v]);
+  }
+}
+
+void skinDualQuat(const SkinningJob& job) {
+  std::size_t k = static_cast<std::size_t>(job.influences);
+  bool withNormals = !job.normals.empty();
+  for (std::size_t v = 0; v < job.positions.size(); ++v) {
+    const std::uint16_t* joints = &job.joints[v * k];
+    const float* weights = &job.weights[v * k];
+    DualQuat sum{glm::quat(0.0f, 0.0f, 0.0f, 0.0f), glm::quat(0.0f, 0.0f, 0.0f, 0.0f)};
+    bool first = true;
+    for (std::size_t i = 0; i < k; ++i) {
+      if (!usable(joints[i], weights[i], job.dualQuats.size())) continue;
+      const DualQuat& dq = job.dualQuats[joints[i]];
+      // The first influence sets the hemisphere the others are flipped into.
+      if (first) {
+        sum.real = dq.real * weights[i];
+        sum.dual = dq.dual * weights[i];
+        first = false;
+      } else {
+        accumulate(sum, dq, weights[i]);
+      }
+    }
+    DualQuat n = normalize(sum);
+    job.outPositions[v] = transformPoint(n, job.positions[v]);
+    if (withNormals) job.outNormals[v] = n.real * job.normals[v];
+  }
+}
+
+}  // namespace
+
+bool SamplingJob::validate() const {
+  if (clip == nullptr || !std::isfinite(time) || output.size() != restPose.size()) return false;
+  for (const Track& track : clip->tracks())
+    if (track.joint < 0 || static_cast<std::size_t>(track.joint) >= output.size()) return false;
+  return true;
+}
+
+bool SamplingJob::run() const {
+  if (!validate()) return false;
+  std::copy(restPose.begin(), restPose.end(), output.begin());
+  for (const Track& track : clip->tracks()) applyTrack(track, time, output[static_cast<std::size_t>(track.joint)]);
+  return true;
+}
+
+bool BlendingJob::validate() const {
+  if (output.size() != restPose.size()) return false;
+  for (const Layer& layer : layers)
+    if (layer.pose.size() != output.size() || !(layer.weight >= 0.0f) || !std::isfinite(layer.weight))
+      return false;
+  return true;
+}
+
+bool BlendingJob::run() const {
+  if (!validate()) return false;
+  float total = 0.0f;
+  for (const Layer& layer : layers) total += layer.weight;
+  if (total < 1e-6f) {
+    std::copy(restPose.begin(), restPose.end(), output.begin());
+    return true;
+  }
+  for (std::size_t j = 0; j < output.size(); ++j) {
+    Srt out{glm::vec3(0.0f), glm::quat(0.0f, 0.0f, 0.0f, 0.0f), glm::vec3(0.0f)};
+    bool first = true;
+    for (const Layer& layer : layers) {
+      if (layer.weight == 0.0f) continue;
+      float w = layer.weight / total;
+      const Srt& in = layer.pose[j];
+      out.translation += in.translation * w;
+      out.scale += in.scale * w;
+      // Flip into the first layer's hemisphere so opposite signs do not cancel.
+      float sign = (!first && glm::dot(out.rotation, in.rotation) < 0.0f) ? -1.0f : 1.0f;
+      out.rotation += in.rotation * (w * sign);
+      first = false;
+    }
+    out.rotation = safeNormalize(out.rotation);
+    output[j] = out;
+  }
+  return true;
+}
+
+bool LocalToModelJob::validate() const {
+  if (locals.size() != parents.size() || models.size() != parents.size()) return false;
+  for (std::size_t i = 0; i < parents.size(); ++i)
+    if (parents[i] < -1 || parents[i] >= static_cast<int>(i)) return false;
+  return true;
+}
+
+bool LocalToModelJob::run() const {
+  if (!validate()) return false;
+  for (std::size_t i = 0; i < parents.size(); ++i) {
+    glm::mat4 local = toMatrix(locals[i]);
+    models[i] = parents[i] < 0 ? root * local : models[static_cast<std::size_t>(parents[i])] * local;
+  }
+  return true;
+}
+
+bool SkinningPaletteJob::validate() const {
+  if (joints.size() != inverseBinds.size() || palette.size() != joints.size()) return false;
+  for (int j : joints)
+    if (j < 0 || static_cast<std::size_t>(j) >= models.size()) return false;
+  return true;
+}
+
+bool SkinningPaletteJob::run() const {
+  if (!validate()) return false;
+  for (std::size_t k = 0; k < joints.size(); ++k)
+    palette[k] = models[static_cast<std::size_t>(joints[k])] * inverseBinds[k];
+  return true;
+}
+
+bool DualQuatPaletteJob::validate() const { return output.size() == palette.size(); }
+
+bool DualQuatPaletteJob::run() const {
+  if (!validate()) return false;
+  for (std::size_t k = 0; k < palette.size(); ++k) output[k] = makeDualQuat(palette[k]);
+  return true;
+}
+
+bool SkinningJob::validate() const {
+  if (influences < 1 || influences > 8) return false;
+  std::size_t count = positions.size();
+  std::size_t k = static_cast<std::size_t>(influences);
+  if (joints.size() != count * k || weights.size() != count * k) return false;
+  if (outPositions.size() != count) return false;
+  if (!normals.empty() && (normals.size() != count || outNormals.size() != count)) return false;
+  return method == SkinningMethod::Linear ? !palette.empty() : !dualQuats.empty();
+}
+
+bool SkinningJob::run() const {
+  if (!validate()) return false;
+  if (method == SkinningMethod::Linear) {
+    skinLinear(*this);
+  } else {
+    skinDualQuat(*this);
+  }
+  return true;
+}
+
+}  // namespace engine

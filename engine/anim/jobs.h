@@ -1,0 +1,102 @@
+#pragma once
+// Per-frame animation work as small job structs (after ozz-animation): the caller
+// owns every buffer and passes spans; validate() checks the spans fit, run()
+// validates then computes. No job allocates, so a frame costs no heap traffic.
+//
+// The chain for one character:
+//   SamplingJob (clip, t) -> local Srt[] -> [BlendingJob] -> LocalToModelJob -> model[]
+//   -> SkinningPaletteJob -> palette[] -> SkinningJob (CPU) or upload (GPU).
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "anim/clip.h"
+#include "core/math.h"
+
+namespace engine {
+
+// Writes the clip's pose at clip-local `time` (already wrapped, see Player).
+// Joints without a track keep their rest transform.
+struct SamplingJob {
+  const Clip* clip = nullptr;
+  double time = 0.0;
+  std::span<const Srt> restPose;
+  std::span<Srt> output;
+
+  bool validate() const;
+  bool run() const;
+};
+
+// Weighted blend of whole poses: lerp for translation and scale, nlerp for
+// rotation (order independent, which slerp is not). Weights need not sum to 1;
+// they are normalised. When all weights are ~0 the rest pose is written.
+struct BlendingJob {
+  struct Layer {
+    std::span<const Srt> pose;
+    float weight = 0.0f;
+  };
+  std::span<const Layer> layers;
+  std::span<const Srt> restPose;
+  std::span<Srt> output;
+
+  bool validate() const;
+  bool run() const;
+};
+
+// model[i] = root * ... * local[parent] * local[i]; needs parents[i] < i.
+struct LocalToModelJob {
+  std::span<const int> parents;
+  std::span<const Srt> locals;
+  glm::mat4 root{1.0f};
+  std::span<glm::mat4> models;
+
+  bool validate() const;
+  bool run() const;
+};
+
+// palette[k] = models[joints[k]] * inverseBinds[k]: takes a vertex from bind
+// space to where its joint has moved it.
+struct SkinningPaletteJob {
+  std::span<const glm::mat4> models;
+  std::span<const int> joints;
+  std::span<const glm::mat4> inverseBinds;
+  std::span<glm::mat4> palette;
+
+  bool validate() const;
+  bool run() const;
+};
+
+// Converts a palette to dual quaternions for DQS. Scale in the palette is lost.
+struct DualQuatPaletteJob {
+  std::span<const glm::mat4> palette;
+  std::span<DualQuat> output;
+
+  bool validate() const;
+  bool run() const;
+};
+
+enum class SkinningMethod { Linear, DualQuat };
+
+// CPU skinning of positions (and optionally normals) with `influences` joints per
+// vertex (1..8; glTF gives 4 or 8). Linear blends matrices (LBS); DualQuat blends
+// dual quaternions (DQS), which keeps volume at twisting joints. Influences with
+// zero weight or a joint past the palette are skipped, so padding entries of
+// JOINTS_n never read outside the palette.
+struct SkinningJob {
+  SkinningMethod method = SkinningMethod::Linear;
+  int influences = 4;
+  std::span<const glm::vec3> positions;
+  std::span<const glm::vec3> normals;  // optional
+  std::span<const std::uint16_t> joints;  // influences per vertex
+  std::span<const float> weights;         // influences per vertex
+  std::span<const glm::mat4> palette;     // for Linear
+  std::span<const DualQuat> dualQuats;    // for DualQuat
+  std::span<glm::vec3> outPositions;
+  std::span<glm::vec3> outNormals;  // needed when normals are given
+
+  bool validate() const;
+  bool run() const;
+};
+
+}  // namespace engine

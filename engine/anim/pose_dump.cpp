@@ -1,0 +1,111 @@
+#include "anim/pose_dump.h"
+
+#include <vector>
+
+#include "anim/jobs.h"
+#include "anim/model_builder.h"
+
+namespace engine {
+namespace {
+
+nlohmann::json matrixJson(const glm::mat4& m) {
+  nlohmann::json out = nlohmann::json::array();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out.push_back(m[c][r]);
+  return out;
+}
+
+nlohmann::json positionsJson(const std::vector<glm::vec3>& positions) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const glm::vec3& p : positions) {
+    out.push_back(p.x);
+    out.push_back(p.y);
+    out.push_back(p.z);
+  }
+  return out;
+}
+
+// Skinned primitives go through the same palette and job the renderer uses.
+std::vector<glm::vec3> skinnedPositions(const PrimitiveData& prim, const Skin& skin,
+                                        std::span<const glm::mat4> models) {
+  std::vector<glm::mat4> palette(skin.joints.size());
+  SkinningPaletteJob paletteJob{models, skin.joints, skin.inverseBinds, palette};
+  std::vector<glm::vec3> out(prim.positions.size());
+  SkinningJob skinning;
+  skinning.influences = prim.influences;
+  skinning.positions = prim.positions;
+  skinning.joints = prim.joints;
+  skinning.weights = prim.weights;
+  skinning.palette = palette;
+  skinning.outPositions = out;
+  if (!paletteJob.run() || !skinning.run()) return {};
+  return out;
+}
+
+std::vector<glm::vec3> rigidPositions(const PrimitiveData& prim, const glm::mat4& world) {
+  std::vector<glm::vec3> out;
+  out.reserve(prim.positions.size());
+  for (const glm::vec3& p : prim.positions) out.push_back(glm::vec3(world * glm::vec4(p, 1.0f)));
+  return out;
+}
+
+}  // namespace
+
+Result<nlohmann::json> dumpPose(const ModelData& model, int animation, double time, LoopMode loop) {
+  auto built = buildAnimatedModel(model);
+  if (!built) return built.error();
+  const Skeleton& skeleton = built->skeleton;
+  if (animation < -1 || animation >= static_cast<int>(built->clips.size()))
+    return makeError(model.path + ": animation " + std::to_string(animation) + " does not exist (" +
+                     std::to_string(built->clips.size()) + " animations)");
+
+  std::size_t count = static_cast<std::size_t>(skeleton.jointCount());
+  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
+  nlohmann::json out;
+  out["time"] = time;
+  out["anim"] = animation;
+  if (animation >= 0) {
+    const Clip& clip = built->clips[static_cast<std::size_t>(animation)];
+    double local = wrapTime(time, clip.duration(), loop);
+    SamplingJob sample{&clip, local, skeleton.restPose(), locals};
+    if (!sample.run()) return makeError(model.path + ": sampling failed");
+    out["animation"] = {{"duration", clip.duration()},
+                        {"localTime", local},
+                        {"loop", loop == LoopMode::Clamp ? "clamp" : loop == LoopMode::PingPong ? "pingpong" : "repeat"}};
+  }
+  std::vector<glm::mat4> models(count);
+  LocalToModelJob toModel{skeleton.parents(), locals, glm::mat4(1.0f), models};
+  if (!toModel.run()) return makeError(model.path + ": local-to-model failed");
+
+  auto world = [&](std::size_t node) -> const glm::mat4& {
+    return models[static_cast<std::size_t>(skeleton.jointOfRaw(static_cast<int>(node)))];
+  };
+  out["nodes"] = nlohmann::json::array();
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    out["nodes"].push_back({{"node", n}, {"world", matrixJson(world(n))}});
+
+  out["meshes"] = nlohmann::json::array();
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    const NodeData& node = model.nodes[n];
+    if (node.mesh < 0) continue;
+    const MeshData& mesh = model.meshes[static_cast<std::size_t>(node.mesh)];
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const PrimitiveData& prim = mesh.primitives[p];
+      bool skinned = node.skin >= 0 && prim.influences > 0;
+      auto positions = skinned ? skinnedPositions(prim, built->skins[static_cast<std::size_t>(node.skin)], models)
+                               : rigidPositions(prim, world(n));
+      if (positions.size() != prim.positions.size())
+        return makeError(model.path + ": node " + std::to_string(n) + " primitive " + std::to_string(p) +
+                         ": skinning failed");
+      out["meshes"].push_back({{"node", n},
+                               {"mesh", node.mesh},
+                               {"primitive", p},
+                               {"skinned", skinned},
+                               {"count", positions.size()},
+                               {"positions", positionsJson(positions)}});
+    }
+  }
+  return out;
+}
+
+}  // namespace engine

@@ -1,0 +1,739 @@
+#include "asset/gltf_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include "asset/gltf_accessor.h"
+#include "core/log.h"
+#include "core/math.h"
+
+namespace engine {
+namespace {
+
+namespace fs = std::filesystem;
+using gltf::AccessorValues;
+using gltf::readAccessor;
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67;      // "glTF"
+constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
+
+std::string str(std::size_t i) { return std::to_string(i); }
+std::string str(int i) { return std::to_string(i); }
+
+bool validIndex(int index, std::size_t size) {
+  return index >= 0 && static_cast<std::size_t>(index) < size;
+}
+
+Result<std::vector<unsigned char>> readFileBytes(const std::string& path) {
+  std::error_code ec;
+  std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) return makeError(path + ": cannot open: " + ec.message());
+  if (size > kMaxModelFileBytes)
+    return makeError(path + ": file is " + std::to_string(size) + " bytes, the limit is " +
+                     std::to_string(kMaxModelFileBytes));
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+    return makeError(path + ": cannot read the file");
+  return bytes;
+}
+
+std::uint32_t readU32(const std::vector<unsigned char>& bytes, std::size_t offset) {
+  std::uint32_t v = 0;
+  std::memcpy(&v, bytes.data() + offset, 4);
+  return v;  // GLB is little-endian, as is every platform we build for
+}
+
+// Checks the GLB container before tinygltf sees it, so that a truncated file gets
+// a message saying what is missing, and returns the JSON chunk's text.
+Result<std::string> glbJson(const std::vector<unsigned char>& bytes, const std::string& path) {
+  if (bytes.size() < 20) return makeError(path + ": truncated GLB: " + str(bytes.size()) + " bytes, the header needs 20");
+  if (readU32(bytes, 0) != kGlbMagic) return makeError(path + ": not a GLB file (bad magic)");
+  if (readU32(bytes, 4) != 2) return makeError(path + ": GLB version " + std::to_string(readU32(bytes, 4)) + " is not 2");
+  std::uint64_t length = readU32(bytes, 8);
+  if (length > bytes.size())
+    return makeError(path + ": truncated GLB: header says " + std::to_string(length) +
+                     " bytes, the file has " + str(bytes.size()));
+  std::uint64_t jsonLength = readU32(bytes, 12);
+  if (readU32(bytes, 16) != kGlbJsonChunk) return makeError(path + ": GLB chunk 0 is not JSON");
+  if (20 + jsonLength > length)
+    return makeError(path + ": truncated GLB: JSON chunk of " + std::to_string(jsonLength) +
+                     " bytes runs past the end");
+  std::uint64_t binStart = 20 + ((jsonLength + 3) & ~std::uint64_t{3});
+  if (binStart + 8 <= length) {
+    std::uint64_t binLength = readU32(bytes, static_cast<std::size_t>(binStart));
+    if (binStart + 8 + binLength > length)
+      return makeError(path + ": truncated GLB: BIN chunk of " + std::to_string(binLength) +
+                       " bytes runs past the end");
+  }
+  return std::string(reinterpret_cast<const char*>(bytes.data() + 20), static_cast<std::size_t>(jsonLength));
+}
+
+std::string percentDecode(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
+      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+// A model may only read files in or below its own folder: a URI with a scheme,
+// an absolute path or a ".." segment could make a downloaded model read any file.
+bool uriStaysInFolder(const std::string& uri) {
+  if (uri.rfind("data:", 0) == 0) return true;
+  std::string path = percentDecode(uri);
+  if (path.empty() || path[0] == '/' || path[0] == '\\') return false;
+  if (path.find(':') != std::string::npos) return false;  // scheme or drive letter
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    std::size_t end = path.find_first_of("/\\", start);
+    if (end == std::string::npos) end = path.size();
+    if (path.compare(start, end - start, "..") == 0 && end - start == 2) return false;
+    start = end + 1;
+  }
+  return true;
+}
+
+// Looks at the raw JSON before tinygltf follows any URI.
+Status checkUris(const std::string& jsonText, const std::string& path) {
+  nlohmann::json doc = nlohmann::json::parse(jsonText, nullptr, false);
+  if (doc.is_discarded()) return makeError(path + ": invalid JSON");
+  if (!doc.is_object()) return makeError(path + ": the top-level JSON value is not an object");
+  for (const char* kind : {"buffers", "images"}) {
+    auto list = doc.find(kind);
+    if (list == doc.end() || !list->is_array()) continue;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const auto& item = (*list)[i];
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      std::string uri = item["uri"].get<std::string>();
+      if (!uriStaysInFolder(uri))
+        return makeError(path + ": " + std::string(kind, std::strlen(kind) - 1) + " " + str(i) +
+                         ": uri \"" + uri + "\" leaves the model's folder; refused");
+    }
+  }
+  return Ok{};
+}
+
+// tinygltf's file reader, restricted to the model's folder: the second line of
+// defence after checkUris (tinygltf also searches the working directory).
+bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err,
+                          const std::string& filepath, void* userData) {
+  const fs::path& folder = *static_cast<const fs::path*>(userData);
+  std::error_code ec;
+  fs::path full = fs::weakly_canonical(filepath, ec);
+  if (ec) {
+    if (err) *err += "cannot resolve " + filepath;
+    return false;
+  }
+  auto rel = full.lexically_relative(folder);
+  if (rel.empty() || *rel.begin() == "..") {
+    if (err) *err += filepath + " is outside the model's folder";
+    return false;
+  }
+  auto size = fs::file_size(full, ec);
+  if (ec || size > kMaxModelFileBytes) {
+    if (err) *err += filepath + (ec ? " cannot be read" : " is too large");
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, err, full.string(), nullptr);
+}
+
+constexpr std::uint32_t kMaxImageSide = 16384;
+
+std::uint32_t bigEndian(const unsigned char* p, int bytes) {
+  std::uint32_t v = 0;
+  for (int i = 0; i < bytes; ++i) v = (v << 8) | p[i];
+  return v;
+}
+
+// Width and height from a PNG or JPEG header, or {0, 0} when not found. Read
+// before decoding so that a tiny file claiming 60000 x 60000 pixels is refused
+// instead of allocating gigabytes.
+std::pair<std::uint32_t, std::uint32_t> imageSize(const unsigned char* bytes, std::size_t size) {
+  static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (size >= 24 && std::memcmp(bytes, kPng, 8) == 0) return {bigEndian(bytes + 16, 4), bigEndian(bytes + 20, 4)};
+  if (size < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return {0, 0};
+  std::size_t at = 2;
+  while (at + 9 < size && bytes[at] == 0xFF) {
+    unsigned char marker = bytes[at + 1];
+    bool startOfFrame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (startOfFrame) return {bigEndian(bytes + at + 7, 2), bigEndian(bytes + at + 5, 2)};
+    at += 2 + bigEndian(bytes + at + 2, 2);
+  }
+  return {0, 0};
+}
+
+// Decoding failures only warn: a model without its texture is still worth showing.
+bool tolerantImageLoader(tinygltf::Image* image, const int imageIndex, std::string* err,
+                         std::string* warn, int reqWidth, int reqHeight,
+                         const unsigned char* bytes, int size, void*) {
+  auto [width, height] = imageSize(bytes, size > 0 ? static_cast<std::size_t>(size) : 0);
+  if (width > kMaxImageSide || height > kMaxImageSide) {
+    if (warn) *warn += "image " + std::to_string(imageIndex) + ": " + std::to_string(width) + " x " +
+                       std::to_string(height) + " pixels is over the limit of " + std::to_string(kMaxImageSide) + "\n";
+    image->image.clear();
+    return true;
+  }
+  std::string decodeError;
+  if (tinygltf::LoadImageData(image, imageIndex, &decodeError, warn, reqWidth, reqHeight,
+                              bytes, size, nullptr))
+    return true;
+  image->image.clear();
+  if (warn) *warn += "image " + std::to_string(imageIndex) + ": cannot decode: " + decodeError + "\n";
+  (void)err;
+  return true;
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    if (end > start) lines.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return lines;
+}
+
+Result<tinygltf::Model> parseWithTinygltf(const std::string& path, ModelData& out) {
+  auto bytes = readFileBytes(path);
+  if (!bytes) return bytes.error();
+  bool binary = bytes->size() >= 4 && readU32(*bytes, 0) == kGlbMagic;
+  std::string jsonText;
+  if (binary) {
+    auto json = glbJson(*bytes, path);
+    if (!json) return json.error();
+    jsonText = std::move(json.value());
+  } else {
+    jsonText.assign(bytes->begin(), bytes->end());
+  }
+  Status uris = checkUris(jsonText, path);
+  if (!uris) return uris.error();
+
+  std::error_code ec;
+  fs::path folder = fs::weakly_canonical(fs::absolute(path).parent_path(), ec);
+  tinygltf::TinyGLTF loader;
+  tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
+                                  &guardedReadWholeFile, &tinygltf::WriteWholeFile, &folder};
+  loader.SetFsCallbacks(callbacks);
+  loader.SetImageLoader(&tolerantImageLoader, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(),
+                                                 static_cast<unsigned int>(bytes->size()),
+                                                 folder.string())
+                   : loader.LoadASCIIFromString(&model, &err, &warn, jsonText.c_str(),
+                                                static_cast<unsigned int>(jsonText.size()),
+                                                folder.string());
+  for (const std::string& line : splitLines(warn)) out.warnings.push_back(path + ": " + line);
+  if (!ok) {
+    auto lines = splitLines(err);
+    std::string message = lines.empty() ? "cannot parse glTF" : lines.front();
+    for (std::size_t i = 1; i < lines.size(); ++i) message += "; " + lines[i];
+    return makeError(path + ": " + message);
+  }
+  return model;
+}
+
+class Converter {
+ public:
+  Converter(const tinygltf::Model& gltf, ModelData& out) : gltf_(gltf), out_(out), file_(out.path) {}
+
+  Status run() {
+    if (Status s = checkLimits(); !s) return s;
+    if (Status s = convertNodes(); !s) return s;
+    if (Status s = convertImages(); !s) return s;
+    if (Status s = convertMaterials(); !s) return s;
+    if (Status s = convertMeshes(); !s) return s;
+    if (Status s = convertSkins(); !s) return s;
+    if (Status s = checkSkinnedMeshes(); !s) return s;
+    return convertAnimations();
+  }
+
+ private:
+  Error error(const std::string& message) const { return makeError(file_ + ": " + message); }
+  void warn(const std::string& message) { out_.warnings.push_back(file_ + ": " + message); }
+
+  Status checkLimits() {
+    if (gltf_.nodes.size() > kMaxNodes)
+      return error(str(gltf_.nodes.size()) + " nodes, the limit is " + str(kMaxNodes));
+    for (std::size_t i = 0; i < gltf_.skins.size(); ++i)
+      if (gltf_.skins[i].joints.size() > kMaxSkinJoints)
+        return error("skin " + str(i) + ": " + str(gltf_.skins[i].joints.size()) +
+                     " joints, the limit is " + str(kMaxSkinJoints));
+    return Ok{};
+  }
+
+  Status convertNodes() {
+    std::size_t count = gltf_.nodes.size();
+    out_.nodes.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (Status s = convertNode(i); !s) return s;
+    }
+    if (Status s = checkTree(); !s) return s;
+    findSceneRoots();
+    return Ok{};
+  }
+
+  Status convertNode(std::size_t i) {
+    const tinygltf::Node& src = gltf_.nodes[i];
+    NodeData& node = out_.nodes[i];
+    std::string name = "node " + str(i);
+    node.name = src.name;
+    if (src.mesh != -1 && !validIndex(src.mesh, gltf_.meshes.size()))
+      return error(name + ": mesh " + str(src.mesh) + " does not exist");
+    if (src.skin != -1 && !validIndex(src.skin, gltf_.skins.size()))
+      return error(name + ": skin " + str(src.skin) + " does not exist");
+    node.mesh = src.mesh;
+    node.skin = src.skin;
+    for (int child : src.children) {
+      if (!validIndex(child, gltf_.nodes.size()))
+        return error(name + ": child " + str(child) + " does not exist");
+      std::size_t c = static_cast<std::size_t>(child);
+      if (c == i) return error(name + ": is its own child (cycle)");
+      if (out_.nodes[c].parent != -1)
+        return error("node " + str(c) + " has two parents (nodes " + str(out_.nodes[c].parent) +
+                     " and " + str(i) + ")");
+      out_.nodes[c].parent = static_cast<int>(i);
+      node.children.push_back(child);
+    }
+    return readNodeTransform(src, node, name);
+  }
+
+  Status readNodeTransform(const tinygltf::Node& src, NodeData& node, const std::string& name) {
+    auto finite = [](const std::vector<double>& v) {
+      return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+    };
+    if (!finite(src.matrix) || !finite(src.translation) || !finite(src.rotation) || !finite(src.scale))
+      return error(name + ": transform has a NaN or infinite value");
+    if (src.matrix.size() == 16) {
+      glm::mat4 m;
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) m[c][r] = static_cast<float>(src.matrix[static_cast<std::size_t>(c * 4 + r)]);
+      Srt srt = decompose(m);
+      node.translation = srt.translation;
+      node.rotation = srt.rotation;
+      node.scale = srt.scale;
+      return Ok{};
+    }
+    if (!src.matrix.empty()) return error(name + ": matrix must have 16 numbers");
+    if (src.translation.size() == 3)
+      node.translation = glm::vec3(src.translation[0], src.translation[1], src.translation[2]);
+    if (src.scale.size() == 3) node.scale = glm::vec3(src.scale[0], src.scale[1], src.scale[2]);
+    if (src.rotation.size() == 4)
+      node.rotation = safeNormalize(glm::quat(static_cast<float>(src.rotation[3]), static_cast<float>(src.rotation[0]),
+                                              static_cast<float>(src.rotation[1]), static_cast<float>(src.rotation[2])));
+    return Ok{};
+  }
+
+  // With at most one parent per node (checked above), a node that cannot be
+  // reached from a root sits on a cycle.
+  Status checkTree() {
+    std::vector<char> reached(out_.nodes.size(), 0);
+    std::vector<int> stack;
+    for (std::size_t i = 0; i < out_.nodes.size(); ++i)
+      if (out_.nodes[i].parent == -1) stack.push_back(static_cast<int>(i));
+    while (!stack.empty()) {
+      int n = stack.back();
+      stack.pop_back();
+      reached[static_cast<std::size_t>(n)] = 1;
+      for (int c : out_.nodes[static_cast<std::size_t>(n)].children) stack.push_back(c);
+    }
+    for (std::size_t i = 0; i < reached.size(); ++i)
+      if (!reached[i]) return error("node " + str(i) + ": is part of a cycle in the node tree");
+    return Ok{};
+  }
+
+  void findSceneRoots() {
+    int scene = gltf_.defaultScene >= 0 ? gltf_.defaultScene : 0;
+    if (validIndex(scene, gltf_.scenes.size())) {
+      for (int n : gltf_.scenes[static_cast<std::size_t>(scene)].nodes)
+        if (validIndex(n, out_.nodes.size()) && out_.nodes[static_cast<std::size_t>(n)].parent == -1)
+          out_.sceneRoots.push_back(n);
+      if (!out_.sceneRoots.empty()) return;
+    }
+    for (std::size_t i = 0; i < out_.nodes.size(); ++i)
+      if (out_.nodes[i].parent == -1) out_.sceneRoots.push_back(static_cast<int>(i));
+  }
+
+  Status convertImages() {
+    for (std::size_t i = 0; i < gltf_.images.size(); ++i) {
+      const tinygltf::Image& src = gltf_.images[i];
+      ImageData image;
+      image.name = src.name;
+      if (src.uri.rfind("data:", 0) != 0) image.uri = src.uri;
+      if (!toRgba8(src, image.image)) {
+        warn("image " + str(i) + " (" + (src.uri.empty() ? src.name : src.uri) +
+             "): missing or undecodable, using a white 1x1 fallback");
+        image.missing = true;
+        image.image = Image(1, 1);
+        std::fill(image.image.pixels.begin(), image.image.pixels.end(), std::uint8_t{255});
+      }
+      out_.images.push_back(std::move(image));
+    }
+    return Ok{};
+  }
+
+  static bool toRgba8(const tinygltf::Image& src, Image& dst) {
+    if (src.width <= 0 || src.height <= 0 || src.component < 1 || src.component > 4) return false;
+    std::size_t pixels = static_cast<std::size_t>(src.width) * static_cast<std::size_t>(src.height);
+    std::size_t bytesPerChannel = src.bits == 16 ? 2 : 1;
+    if (src.bits != 8 && src.bits != 16) return false;
+    if (src.image.size() < pixels * static_cast<std::size_t>(src.component) * bytesPerChannel) return false;
+    dst = Image(src.width, src.height);
+    for (std::size_t p = 0; p < pixels; ++p) {
+      std::uint8_t rgba[4] = {0, 0, 0, 255};
+      for (int c = 0; c < src.component; ++c) {
+        std::size_t at = (p * static_cast<std::size_t>(src.component) + static_cast<std::size_t>(c)) * bytesPerChannel;
+        // 16-bit samples are little-endian as stb returns them; keep the high byte.
+        rgba[c] = bytesPerChannel == 2 ? src.image[at + 1] : src.image[at];
+      }
+      // Grey and grey+alpha images spread the grey over RGB.
+      if (src.component <= 2) {
+        std::uint8_t alpha = src.component == 2 ? rgba[1] : std::uint8_t{255};
+        rgba[1] = rgba[2] = rgba[0];
+        rgba[3] = alpha;
+      }
+      std::memcpy(&dst.pixels[p * 4], rgba, 4);
+    }
+    return true;
+  }
+
+  int textureImage(int texture) const {
+    if (!validIndex(texture, gltf_.textures.size())) return -1;
+    int source = gltf_.textures[static_cast<std::size_t>(texture)].source;
+    return validIndex(source, out_.images.size()) ? source : -1;
+  }
+
+  Status convertMaterials() {
+    for (const tinygltf::Material& src : gltf_.materials) {
+      MaterialData m;
+      m.name = src.name;
+      const auto& pbr = src.pbrMetallicRoughness;
+      if (pbr.baseColorFactor.size() == 4)
+        m.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1],
+                                      pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
+      m.baseColorImage = textureImage(pbr.baseColorTexture.index);
+      m.metallicFactor = static_cast<float>(pbr.metallicFactor);
+      m.roughnessFactor = static_cast<float>(pbr.roughnessFactor);
+      m.normalImage = textureImage(src.normalTexture.index);
+      if (src.emissiveFactor.size() == 3)
+        m.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
+      m.doubleSided = src.doubleSided;
+      m.alphaBlend = src.alphaMode == "BLEND";
+      out_.materials.push_back(std::move(m));
+    }
+    return Ok{};
+  }
+
+  // Reads an attribute that must have `components` per element and `count`
+  // elements (0 = any), as floats.
+  Result<std::vector<float>> readFloats(int accessor, int components, std::size_t count,
+                                        const std::string& context) {
+    auto values = readAccessor(gltf_, accessor, file_ + ": " + context);
+    if (!values) return values.error();
+    if (values->components != components)
+      return error(context + ": expected " + str(components) + " components per element, got " +
+                   str(values->components));
+    if (count != 0 && values->count != count)
+      return error(context + ": has " + str(values->count) + " elements, expected " + str(count));
+    std::vector<float> out(values->values.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      out[i] = static_cast<float>(values->values[i]);
+      if (!std::isfinite(out[i])) return error(context + ": element " + str(i / static_cast<std::size_t>(components)) + " is NaN or infinite");
+    }
+    return out;
+  }
+
+  template <typename Vec>
+  static std::vector<Vec> toVectors(const std::vector<float>& flat) {
+    constexpr int n = Vec::length();
+    std::vector<Vec> out(flat.size() / n);
+    for (std::size_t i = 0; i < out.size(); ++i)
+      for (int c = 0; c < n; ++c) out[i][c] = flat[i * n + static_cast<std::size_t>(c)];
+    return out;
+  }
+
+  Status convertMeshes() {
+    for (std::size_t m = 0; m < gltf_.meshes.size(); ++m) {
+      MeshData mesh;
+      mesh.name = gltf_.meshes[m].name;
+      for (std::size_t p = 0; p < gltf_.meshes[m].primitives.size(); ++p) {
+        PrimitiveData prim;
+        std::string name = "mesh " + str(m) + " primitive " + str(p);
+        if (Status s = convertPrimitive(gltf_.meshes[m].primitives[p], prim, name); !s) return s;
+        mesh.primitives.push_back(std::move(prim));
+      }
+      out_.meshes.push_back(std::move(mesh));
+    }
+    return Ok{};
+  }
+
+  static int attribute(const tinygltf::Primitive& src, const char* name) {
+    auto it = src.attributes.find(name);
+    return it == src.attributes.end() ? -1 : it->second;
+  }
+
+  Status convertPrimitive(const tinygltf::Primitive& src, PrimitiveData& prim, const std::string& name) {
+    int position = attribute(src, "POSITION");
+    if (position < 0) return error(name + ": has no POSITION");
+    auto positions = readFloats(position, 3, 0, name + " POSITION");
+    if (!positions) return positions.error();
+    prim.positions = toVectors<glm::vec3>(*positions);
+    std::size_t count = prim.positions.size();
+    if (int a = attribute(src, "NORMAL"); a >= 0) {
+      auto v = readFloats(a, 3, count, name + " NORMAL");
+      if (!v) return v.error();
+      prim.normals = toVectors<glm::vec3>(*v);
+    }
+    if (int a = attribute(src, "TEXCOORD_0"); a >= 0) {
+      auto v = readFloats(a, 2, count, name + " TEXCOORD_0");
+      if (!v) return v.error();
+      prim.uvs = toVectors<glm::vec2>(*v);
+    }
+    if (int a = attribute(src, "TANGENT"); a >= 0) {
+      auto v = readFloats(a, 4, count, name + " TANGENT");
+      if (!v) return v.error();
+      prim.tangents = toVectors<glm::vec4>(*v);
+    }
+    if (!src.targets.empty()) warn(name + ": morph targets are not supported; ignored");
+    if (src.material != -1 && !validIndex(src.material, out_.materials.size()))
+      return error(name + ": material " + str(src.material) + " does not exist");
+    prim.material = src.material;
+    prim.mode = src.mode < 0 ? 4 : src.mode;
+    if (Status s = readIndices(src, prim, name); !s) return s;
+    return readSkinAttributes(src, prim, name);
+  }
+
+  Status readIndices(const tinygltf::Primitive& src, PrimitiveData& prim, const std::string& name) {
+    if (src.indices < 0) return Ok{};
+    auto values = readAccessor(gltf_, src.indices, file_ + ": " + name + " indices");
+    if (!values) return values.error();
+    if (values->components != 1) return error(name + " indices: must be SCALAR");
+    prim.indices.resize(values->count);
+    for (std::size_t i = 0; i < values->count; ++i) {
+      double v = values->values[i];
+      if (!(v >= 0.0) || v >= static_cast<double>(prim.positions.size()))
+        return error(name + " indices: index " + str(i) + " = " + std::to_string(v) +
+                     " is past the " + str(prim.positions.size()) + " vertices");
+      prim.indices[i] = static_cast<std::uint32_t>(v);
+    }
+    return Ok{};
+  }
+
+  Status readSkinAttributes(const tinygltf::Primitive& src, PrimitiveData& prim, const std::string& name) {
+    int sets = 0;
+    for (int set = 0; set < 2; ++set) {
+      std::string suffix = "_" + str(set);
+      bool hasJoints = attribute(src, ("JOINTS" + suffix).c_str()) >= 0;
+      bool hasWeights = attribute(src, ("WEIGHTS" + suffix).c_str()) >= 0;
+      if (hasJoints != hasWeights) return error(name + ": JOINTS" + suffix + " and WEIGHTS" + suffix + " must come together");
+      if (!hasJoints) break;
+      sets = set + 1;
+    }
+    if (sets == 0) return Ok{};
+    std::size_t count = prim.positions.size();
+    prim.influences = sets * 4;
+    std::size_t stride = static_cast<std::size_t>(prim.influences);
+    prim.joints.assign(count * stride, 0);
+    prim.weights.assign(count * stride, 0.0f);
+    for (int set = 0; set < sets; ++set) {
+      std::string jointsName = name + " JOINTS_" + str(set);
+      auto joints = readAccessor(gltf_, attribute(src, ("JOINTS_" + str(set)).c_str()), file_ + ": " + jointsName);
+      if (!joints) return joints.error();
+      if (joints->components != 4 || joints->count != count)
+        return error(jointsName + ": must be VEC4 with one element per vertex");
+      auto weights = readFloats(attribute(src, ("WEIGHTS_" + str(set)).c_str()), 4, count, name + " WEIGHTS_" + str(set));
+      if (!weights) return weights.error();
+      for (std::size_t v = 0; v < count; ++v)
+        for (std::size_t k = 0; k < 4; ++k) {
+          double j = joints->values[v * 4 + k];
+          if (!(j >= 0.0) || j > 65535.0) return error(jointsName + ": vertex " + str(v) + " has joint " + std::to_string(j));
+          float w = (*weights)[v * 4 + k];
+          if (w < 0.0f) return error(name + " WEIGHTS_" + str(set) + ": vertex " + str(v) + " has a negative weight");
+          prim.joints[v * stride + static_cast<std::size_t>(set) * 4 + k] = static_cast<std::uint16_t>(j);
+          prim.weights[v * stride + static_cast<std::size_t>(set) * 4 + k] = w;
+        }
+    }
+    normaliseWeights(prim);
+    return Ok{};
+  }
+
+  // Exporters often write weights that sum to 0.999 or 1.01; skinning assumes 1.
+  // An all-zero vertex follows its first joint, as three.js does.
+  static void normaliseWeights(PrimitiveData& prim) {
+    std::size_t stride = static_cast<std::size_t>(prim.influences);
+    for (std::size_t v = 0; v < prim.positions.size(); ++v) {
+      float* w = &prim.weights[v * stride];
+      float sum = 0.0f;
+      for (std::size_t k = 0; k < stride; ++k) sum += w[k];
+      if (sum > 0.0f) {
+        for (std::size_t k = 0; k < stride; ++k) w[k] /= sum;
+      } else {
+        w[0] = 1.0f;
+      }
+    }
+  }
+
+  Status convertSkins() {
+    for (std::size_t s = 0; s < gltf_.skins.size(); ++s) {
+      const tinygltf::Skin& src = gltf_.skins[s];
+      std::string name = "skin " + str(s);
+      SkinData skin;
+      skin.name = src.name;
+      if (src.joints.empty()) return error(name + ": has no joints");
+      for (std::size_t j = 0; j < src.joints.size(); ++j)
+        if (!validIndex(src.joints[j], out_.nodes.size()))
+          return error(name + ": joint " + str(j) + " has no node (node " + str(src.joints[j]) + ")");
+      skin.joints = src.joints;
+      skin.skeleton = validIndex(src.skeleton, out_.nodes.size()) ? src.skeleton : -1;
+      skin.inverseBinds.assign(src.joints.size(), glm::mat4(1.0f));
+      if (src.inverseBindMatrices >= 0) {
+        auto m = readFloats(src.inverseBindMatrices, 16, 0, name + " inverseBindMatrices");
+        if (!m) return m.error();
+        if (m->size() / 16 < src.joints.size())
+          return error(name + " inverseBindMatrices: " + str(m->size() / 16) + " matrices for " +
+                       str(src.joints.size()) + " joints");
+        for (std::size_t j = 0; j < src.joints.size(); ++j)
+          for (int c = 0; c < 16; ++c) skin.inverseBinds[j][c / 4][c % 4] = (*m)[j * 16 + static_cast<std::size_t>(c)];
+      }
+      out_.skins.push_back(std::move(skin));
+    }
+    return Ok{};
+  }
+
+  // A vertex that names a joint past its skin's list would read outside the palette.
+  Status checkSkinnedMeshes() {
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      const NodeData& node = out_.nodes[n];
+      if (node.mesh < 0 || node.skin < 0) continue;
+      std::size_t jointCount = out_.skins[static_cast<std::size_t>(node.skin)].joints.size();
+      const MeshData& mesh = out_.meshes[static_cast<std::size_t>(node.mesh)];
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const PrimitiveData& prim = mesh.primitives[p];
+        for (std::size_t i = 0; i < prim.joints.size(); ++i)
+          if (prim.joints[i] >= jointCount && prim.weights[i] > 0.0f)
+            return error("node " + str(n) + ": mesh " + str(node.mesh) + " primitive " + str(p) +
+                         ": vertex " + str(i / static_cast<std::size_t>(prim.influences)) + " uses joint " +
+                         str(static_cast<std::size_t>(prim.joints[i])) + " past skin " + str(node.skin) +
+                         " of " + str(jointCount) + " joints");
+      }
+    }
+    return Ok{};
+  }
+
+  Status convertAnimations() {
+    for (std::size_t a = 0; a < gltf_.animations.size(); ++a) {
+      AnimationData anim;
+      anim.name = gltf_.animations[a].name;
+      for (std::size_t c = 0; c < gltf_.animations[a].channels.size(); ++c) {
+        std::string name = "animation " + str(a) + " channel " + str(c);
+        ChannelData channel;
+        bool keep = false;
+        if (Status s = convertChannel(gltf_.animations[a], c, channel, keep, name); !s) return s;
+        if (!keep) continue;
+        anim.duration = std::max(anim.duration, channel.times.back());
+        anim.channels.push_back(std::move(channel));
+      }
+      out_.animations.push_back(std::move(anim));
+    }
+    return Ok{};
+  }
+
+  Status convertChannel(const tinygltf::Animation& src, std::size_t c, ChannelData& channel,
+                        bool& keep, const std::string& name) {
+    const tinygltf::AnimationChannel& ch = src.channels[c];
+    if (ch.target_path == "weights") {
+      warn(name + ": morph target weights are not supported; ignored");
+      return Ok{};
+    }
+    if (ch.target_node < 0) {
+      warn(name + ": has no target node; ignored");
+      return Ok{};
+    }
+    if (!validIndex(ch.target_node, out_.nodes.size()))
+      return error(name + ": target node " + str(ch.target_node) + " does not exist");
+    channel.node = ch.target_node;
+    if (ch.target_path == "translation") channel.path = AnimPath::Translation;
+    else if (ch.target_path == "rotation") channel.path = AnimPath::Rotation;
+    else if (ch.target_path == "scale") channel.path = AnimPath::Scale;
+    else return error(name + ": unknown path \"" + ch.target_path + "\"");
+    if (!validIndex(ch.sampler, src.samplers.size()))
+      return error(name + ": sampler " + str(ch.sampler) + " does not exist");
+    const tinygltf::AnimationSampler& sampler = src.samplers[static_cast<std::size_t>(ch.sampler)];
+    std::string samplerName = name + " sampler " + str(ch.sampler);
+    if (sampler.interpolation == "STEP") channel.interpolation = Interpolation::Step;
+    else if (sampler.interpolation == "CUBICSPLINE") channel.interpolation = Interpolation::CubicSpline;
+    else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") channel.interpolation = Interpolation::Linear;
+    else return error(samplerName + ": unknown interpolation \"" + sampler.interpolation + "\"");
+    if (Status s = readTimes(sampler.input, channel, samplerName + " input"); !s) return s;
+    if (Status s = readValues(sampler.output, channel, samplerName + " output"); !s) return s;
+    keep = true;
+    return Ok{};
+  }
+
+  Status readTimes(int accessor, ChannelData& channel, const std::string& name) {
+    auto times = readAccessor(gltf_, accessor, file_ + ": " + name);
+    if (!times) return times.error();
+    if (times->components != 1) return error(name + ": key times must be SCALAR");
+    channel.times.resize(times->count);
+    for (std::size_t k = 0; k < times->count; ++k) {
+      float t = static_cast<float>(times->values[k]);
+      if (!std::isfinite(t)) return error(name + ": key " + str(k) + " time is NaN or infinite");
+      if (t < 0.0f) return error(name + ": key " + str(k) + " time " + std::to_string(t) + " is negative");
+      if (k > 0 && t < channel.times[k - 1])
+        return error(name + ": key " + str(k) + " time " + std::to_string(t) +
+                     " is before the previous key (times must be sorted)");
+      channel.times[k] = t;
+    }
+    return Ok{};
+  }
+
+  Status readValues(int accessor, ChannelData& channel, const std::string& name) {
+    int components = channel.path == AnimPath::Rotation ? 4 : 3;
+    std::size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    auto values = readFloats(accessor, components, channel.times.size() * perKey, name);
+    if (!values) return values.error();
+    std::size_t count = values->size() / static_cast<std::size_t>(components);
+    channel.values.resize(count, glm::vec4(0.0f));
+    for (std::size_t i = 0; i < count; ++i)
+      for (int c = 0; c < components; ++c)
+        channel.values[i][c] = (*values)[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)];
+    return Ok{};
+  }
+
+  const tinygltf::Model& gltf_;
+  ModelData& out_;
+  std::string file_;
+};
+
+}  // namespace
+
+Result<ModelData> loadGltf(const std::string& path) {
+  ModelData model;
+  model.path = path;
+  auto gltf = parseWithTinygltf(path, model);
+  if (!gltf) return gltf.error();
+  Converter converter(*gltf, model);
+  if (Status s = converter.run(); !s) return s.error();
+  for (const std::string& w : model.warnings) logWarning(w);
+  return model;
+}
+
+}  // namespace engine

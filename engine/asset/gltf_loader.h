@@ -1,0 +1,24 @@
+#pragma once
+// glTF 2.0 (.gltf with external or embedded buffers, .glb) into ModelData.
+// The file is untrusted: every problem comes back as an Error naming the file and
+// the element ("hero.glb: skin 0: joint 7 has no node"); nothing aborts.
+#include <cstdint>
+#include <string>
+
+#include "asset/model_data.h"
+#include "core/result.h"
+
+namespace engine {
+
+// Limits that keep a hostile file from exhausting memory.
+inline constexpr std::uint64_t kMaxModelFileBytes = 512ull * 1024 * 1024;
+inline constexpr std::size_t kMaxSkinJoints = 65536;
+inline constexpr std::size_t kMaxNodes = 1u << 20;
+inline constexpr std::size_t kMaxAccessorElements = 1u << 26;
+
+// Refuses URIs that leave the model's folder ("..", absolute paths, other
+// schemes than data:). Missing or undecodable images only warn and get a 1x1
+// white fallback; missing buffers are errors.
+Result<ModelData> loadGltf(const std::string& path);
+
+}  // namespace engine

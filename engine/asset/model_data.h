@@ -1,0 +1,103 @@
+#pragma once
+// The engine's own plain copy of a glTF model: what the loader hands to anim and
+// render, so that no other folder sees tinygltf. Everything is validated on load:
+// indices are in range, times sorted, weights normalised.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "core/image.h"
+#include "core/keyframe.h"
+
+namespace engine {
+
+struct NodeData {
+  std::string name;
+  int parent = -1;  // -1 for a root
+  std::vector<int> children;
+  // Local transform; a glTF `matrix` is decomposed into these on load.
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // glm order w, x, y, z; normalised
+  glm::vec3 scale{1.0f};
+  int mesh = -1;
+  int skin = -1;
+};
+
+struct PrimitiveData {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   // empty or one per position
+  std::vector<glm::vec2> uvs;       // TEXCOORD_0; empty or one per position
+  std::vector<glm::vec4> tangents;  // empty or one per position
+  std::vector<std::uint32_t> indices;  // empty for non-indexed primitives
+  // Skinning: `influences` (0, 4 or 8) entries per vertex in `joints` and
+  // `weights`; JOINTS_1/WEIGHTS_1 give the last four. Weights sum to 1.
+  int influences = 0;
+  std::vector<std::uint16_t> joints;
+  std::vector<float> weights;
+  int material = -1;
+  int mode = 4;  // glTF primitive mode, 4 = triangles
+};
+
+struct MeshData {
+  std::string name;
+  std::vector<PrimitiveData> primitives;
+};
+
+struct MaterialData {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};
+  int baseColorImage = -1;  // index into ModelData::images, -1 = none
+  float metallicFactor = 1.0f;
+  float roughnessFactor = 1.0f;
+  int normalImage = -1;
+  glm::vec3 emissiveFactor{0.0f};
+  bool doubleSided = false;
+  bool alphaBlend = false;  // alphaMode BLEND
+};
+
+struct ImageData {
+  std::string name;
+  std::string uri;       // empty for embedded images
+  bool missing = false;  // could not be read or decoded: `image` is a 1x1 white fallback
+  Image image;           // RGBA8
+};
+
+struct SkinData {
+  std::string name;
+  std::vector<int> joints;              // node indices
+  std::vector<glm::mat4> inverseBinds;  // one per joint (identity when absent)
+  int skeleton = -1;                    // node index, informational
+};
+
+struct ChannelData {
+  int node = -1;
+  AnimPath path = AnimPath::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;  // >= 0, non-decreasing, finite
+  // One value per key (three for CUBICSPLINE: in-tangent, value, out-tangent).
+  // Translation and scale use xyz; rotation is glTF order x, y, z, w.
+  std::vector<glm::vec4> values;
+};
+
+struct AnimationData {
+  std::string name;
+  std::vector<ChannelData> channels;
+  float duration = 0.0f;  // largest last key time of any channel
+};
+
+struct ModelData {
+  std::string path;
+  std::vector<NodeData> nodes;
+  std::vector<int> sceneRoots;  // roots of the default scene (all roots if none)
+  std::vector<MeshData> meshes;
+  std::vector<MaterialData> materials;
+  std::vector<ImageData> images;
+  std::vector<SkinData> skins;
+  std::vector<AnimationData> animations;
+  std::vector<std::string> warnings;  // also logged; kept for tests and tools
+};
+
+}  // namespace engine

@@ -1,0 +1,138 @@
+#pragma once
+// Math on GLM shared by asset, anim and render: Srt transforms, quaternion
+// interpolation and dual quaternions. Header-only so that engine_core's build
+// needs no change; every function is small enough to inline.
+//
+// Matrices are column-major and act on column vectors (glTF/OpenGL order), so a
+// local matrix is T * R * S. The course writes the same matrix in row-vector
+// order as Scale * Rotation * Translation.
+#include <cmath>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace engine {
+
+// Scale, rotation, translation: a node's local transform, kept apart so that
+// animation can interpolate each part on its own.
+struct Srt {
+  glm::vec3 scale{1.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // glm order: w, x, y, z
+  glm::vec3 translation{0.0f};
+};
+
+inline glm::mat4 toMatrix(const Srt& srt) {
+  glm::mat3 r = glm::mat3_cast(srt.rotation);
+  glm::mat4 m(1.0f);
+  m[0] = glm::vec4(r[0] * srt.scale.x, 0.0f);
+  m[1] = glm::vec4(r[1] * srt.scale.y, 0.0f);
+  m[2] = glm::vec4(r[2] * srt.scale.z, 0.0f);
+  m[3] = glm::vec4(srt.translation, 1.0f);
+  return m;
+}
+
+// Splits an affine matrix into Srt the way three.js does: scale = column lengths,
+// a negative determinant flips the x scale, rotation from the unscaled columns.
+// Shear cannot be represented and is lost (glTF forbids it on animated nodes).
+inline Srt decompose(const glm::mat4& m) {
+  Srt srt;
+  srt.translation = glm::vec3(m[3]);
+  glm::vec3 c0(m[0]), c1(m[1]), c2(m[2]);
+  srt.scale = {glm::length(c0), glm::length(c1), glm::length(c2)};
+  if (glm::determinant(glm::mat3(m)) < 0.0f) srt.scale.x = -srt.scale.x;
+  // A zero scale leaves no rotation to recover; identity is as good as any.
+  if (srt.scale.x == 0.0f || srt.scale.y == 0.0f || srt.scale.z == 0.0f) return srt;
+  glm::mat3 r(c0 / srt.scale.x, c1 / srt.scale.y, c2 / srt.scale.z);
+  srt.rotation = glm::normalize(glm::quat_cast(r));
+  return srt;
+}
+
+// Normalises, falling back to identity for a zero quaternion so that bad data
+// yields a valid rotation instead of NaNs.
+inline glm::quat safeNormalize(const glm::quat& q) {
+  float len2 = glm::dot(q, q);
+  if (!(len2 > 0.0f) || !std::isfinite(len2)) return glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+  return q * (1.0f / std::sqrt(len2));
+}
+
+// Normalised lerp along the shortest arc: cheap, and the right tool for blending
+// several poses, where the exact angular speed does not matter.
+inline glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
+  if (glm::dot(a, b) < 0.0f) b = -b;
+  return safeNormalize(a * (1.0f - t) + b * t);
+}
+
+// Spherical lerp along the shortest arc (b is negated when the dot is negative, as
+// q and -q are the same rotation). When the two are within 1e-7 of each other in
+// dot product, sin(theta) is too small to divide by and nlerp is exact to float
+// precision. The angle comes from atan2 of |a-b| and |a+b|, which stays accurate
+// for tiny angles where acos(dot) does not. The result is renormalised so that
+// keys a little off unit length still give a rotation.
+inline glm::quat slerp(const glm::quat& a, glm::quat b, float t) {
+  float d = glm::dot(a, b);
+  if (d < 0.0f) {
+    b = -b;
+    d = -d;
+  }
+  if (d > 1.0f - 1e-7f) return safeNormalize(a * (1.0f - t) + b * t);
+  float halfAngle = 2.0f * std::atan2(glm::length(a - b), glm::length(a + b));
+  float s = std::sin(halfAngle);
+  float wa = std::sin((1.0f - t) * halfAngle) / s;
+  float wb = std::sin(t * halfAngle) / s;
+  return safeNormalize(a * wa + b * wb);
+}
+
+// Dual quaternion: real part = rotation, dual part = 0.5 * translation * rotation.
+// Blending these instead of matrices (DQS) keeps the skin's volume at twisted
+// joints; it represents rotation and translation only, no scale.
+struct DualQuat {
+  glm::quat real{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::quat dual{0.0f, 0.0f, 0.0f, 0.0f};
+};
+
+inline DualQuat makeDualQuat(const glm::quat& rotation, const glm::vec3& translation) {
+  glm::quat t(0.0f, translation.x, translation.y, translation.z);
+  return {rotation, (t * rotation) * 0.5f};
+}
+
+// Builds from a rigid matrix; any scale in the columns is divided out first.
+inline DualQuat makeDualQuat(const glm::mat4& m) {
+  glm::mat3 r(glm::normalize(glm::vec3(m[0])), glm::normalize(glm::vec3(m[1])),
+              glm::normalize(glm::vec3(m[2])));
+  return makeDualQuat(glm::normalize(glm::quat_cast(r)), glm::vec3(m[3]));
+}
+
+// Adds w * dq to acc, flipping dq into acc's hemisphere so that the sum does not
+// cancel (q and -q are the same rotation). Start acc at zero and the first add
+// sets the hemisphere.
+inline void accumulate(DualQuat& acc, const DualQuat& dq, float w) {
+  if (glm::dot(acc.real, dq.real) < 0.0f) w = -w;
+  acc.real += dq.real * w;
+  acc.dual += dq.dual * w;
+}
+
+inline DualQuat normalize(const DualQuat& dq) {
+  float len = glm::length(dq.real);
+  if (!(len > 0.0f)) return DualQuat{};
+  return {dq.real * (1.0f / len), dq.dual * (1.0f / len)};
+}
+
+// Expects a normalised dual quaternion.
+inline glm::vec3 translationOf(const DualQuat& dq) {
+  glm::quat t = (dq.dual * 2.0f) * glm::conjugate(dq.real);
+  return {t.x, t.y, t.z};
+}
+
+inline glm::mat4 toMatrix(const DualQuat& dq) {
+  DualQuat n = normalize(dq);
+  glm::mat4 m = glm::mat4_cast(n.real);
+  m[3] = glm::vec4(translationOf(n), 1.0f);
+  return m;
+}
+
+// Applies a normalised dual quaternion to a point without building a matrix.
+inline glm::vec3 transformPoint(const DualQuat& dq, const glm::vec3& p) {
+  return dq.real * p + translationOf(dq);
+}
+
+}  // namespace engine

@@ -1,0 +1,391 @@
+// loadGltf on a small skinned model written by the test itself, then on broken
+// variants of it: each must fail with a message that names the element.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "anim/model_builder.h"
+#include "anim/pose_dump.h"
+#include "asset/gltf_loader.h"
+
+namespace engine {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Buffer layout of the test model (byte offsets):
+//   0 positions 3 x vec3 | 36 joints 3 x u8vec4 | 48 weights 3 x vec4
+//   96 indices 3 x u16 (+2 pad) | 104 inverse binds 2 x mat4
+//   232 key times 2 x f32 | 240 rotation keys 2 x vec4   (272 bytes)
+struct TestModel {
+  json doc;
+  std::vector<unsigned char> bin = std::vector<unsigned char>(272, 0);
+
+  TestModel() {
+
+    float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    put(0, positions, sizeof positions);
+    unsigned char joints[12] = {0, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0};
+    put(36, joints, sizeof joints);
+    // Sums 0.75, 1 and 2: the loader must normalise them.
+    float weights[12] = {0.5f, 0.25f, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0};
+    put(48, weights, sizeof weights);
+    std::uint16_t indices[3] = {0, 1, 2};
+    put(96, indices, sizeof indices);
+    float ibm[32] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
+    put(104, ibm, sizeof ibm);
+    float times[2] = {0.0f, 1.0f};
+    put(232, times, sizeof times);
+    float rotations[8] = {0, 0, 0, 1, 0, 0, 0.7071068f, 0.7071068f};
+    put(240, rotations, sizeof rotations);
+
+    auto view = [](int offset, int length) { return json{{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}}; };
+    auto accessor = [](int viewIndex, int componentType, int count, const char* type) {
+      return json{{"bufferView", viewIndex}, {"componentType", componentType}, {"count", count}, {"type", type}};
+    };
+    doc = {
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0, 1}}}}},
+        {"nodes",
+         {{{"mesh", 0}, {"skin", 0}, {"name", "body"}},
+          {{"children", {2}}, {"name", "hip"}},
+          {{"translation", {0, 1, 0}}, {"name", "spine"}}}},
+        {"meshes",
+         {{{"primitives",
+            {{{"attributes", {{"POSITION", 0}, {"JOINTS_0", 1}, {"WEIGHTS_0", 2}}}, {"indices", 3}}}}}}},
+        {"skins", {{{"joints", {1, 2}}, {"inverseBindMatrices", 4}}}},
+        {"animations",
+         {{{"channels", {{{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}}}},
+           {"samplers", {{{"input", 5}, {"output", 6}, {"interpolation", "LINEAR"}}}}}}},
+        {"buffers", {{{"byteLength", 272}, {"uri", "model.bin"}}}},
+        {"bufferViews", {view(0, 36), view(36, 12), view(48, 48), view(96, 6), view(104, 128), view(232, 8), view(240, 32)}},
+        {"accessors",
+         {accessor(0, 5126, 3, "VEC3"), accessor(1, 5121, 3, "VEC4"), accessor(2, 5126, 3, "VEC4"),
+          accessor(3, 5123, 3, "SCALAR"), accessor(4, 5126, 2, "MAT4"), accessor(5, 5126, 2, "SCALAR"),
+          accessor(6, 5126, 2, "VEC4")}},
+    };
+    doc["accessors"][0]["min"] = {0, 0, 0};
+    doc["accessors"][0]["max"] = {1, 1, 0};
+    doc["accessors"][5]["min"] = {0};
+    doc["accessors"][5]["max"] = {1};
+  }
+
+  void put(std::size_t offset, const void* data, std::size_t size) { std::memcpy(bin.data() + offset, data, size); }
+  void putFloat(std::size_t offset, float v) { put(offset, &v, 4); }
+
+  std::vector<unsigned char> glb() const {
+    std::string text = doc.dump();
+    while (text.size() % 4) text += ' ';
+    std::uint32_t header[5] = {0x46546C67, 2, static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + bin.size()),
+                               static_cast<std::uint32_t>(text.size()), 0x4E4F534A};
+    std::uint32_t binHeader[2] = {static_cast<std::uint32_t>(bin.size()), 0x004E4942};
+    // Sized up front and filled with memcpy: GCC 12 warns falsely on vector::insert here.
+    std::vector<unsigned char> out(sizeof header + text.size() + sizeof binHeader + bin.size());
+    unsigned char* p = out.data();
+    std::memcpy(p, header, sizeof header);
+    p += sizeof header;
+    std::memcpy(p, text.data(), text.size());
+    p += text.size();
+    std::memcpy(p, binHeader, sizeof binHeader);
+    p += sizeof binHeader;
+    std::memcpy(p, bin.data(), bin.size());
+    return out;
+  }
+};
+
+class LoaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("engine_loader_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "models");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const TestModel& m, const std::string& name = "model.gltf") {
+    writeBytes(dir_ / "models" / "model.bin", m.bin);
+    std::ofstream(dir_ / "models" / name) << m.doc.dump(1);
+    return (dir_ / "models" / name).string();
+  }
+  void writeBytes(const fs::path& path, const std::vector<unsigned char>& bytes) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  }
+  // Loads and expects failure whose message contains every needle.
+  void expectError(const std::string& path, std::initializer_list<std::string> needles) {
+    auto model = loadGltf(path);
+    ASSERT_FALSE(model.ok()) << "loaded although broken: " << path;
+    const std::string& message = model.error().message;
+    EXPECT_NE(message.find(fs::path(path).filename().string()), std::string::npos) << message;
+    for (const std::string& needle : needles) EXPECT_NE(message.find(needle), std::string::npos) << message;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(LoaderTest, LoadsTheValidModel) {
+  TestModel m;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  ASSERT_EQ(model->nodes.size(), 3u);
+  EXPECT_EQ(model->nodes[2].parent, 1);
+  EXPECT_EQ(model->sceneRoots, (std::vector<int>{0, 1}));
+  const PrimitiveData& prim = model->meshes[0].primitives[0];
+  EXPECT_EQ(prim.influences, 4);
+  EXPECT_EQ(prim.indices, (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_NEAR(prim.weights[0], 2.0f / 3.0f, 1e-6f);  // 0.5 / 0.75
+  EXPECT_NEAR(prim.weights[1], 1.0f / 3.0f, 1e-6f);
+  EXPECT_NEAR(prim.weights[8], 0.5f, 1e-6f);  // 1 / 2
+  EXPECT_EQ(model->skins[0].inverseBinds[1][3][1], -1.0f);
+  ASSERT_EQ(model->animations.size(), 1u);
+  EXPECT_EQ(model->animations[0].duration, 1.0f);
+  EXPECT_EQ(model->animations[0].channels[0].path, AnimPath::Rotation);
+}
+
+TEST_F(LoaderTest, LoadsTheSameModelAsGlb) {
+  TestModel m;
+  m.doc["buffers"][0].erase("uri");
+  writeBytes(dir_ / "models" / "model.glb", m.glb());
+  auto model = loadGltf((dir_ / "models" / "model.glb").string());
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->meshes[0].primitives[0].positions[1], glm::vec3(1, 0, 0));
+}
+
+TEST_F(LoaderTest, PoseDumpSkinsWithTheWorldOfTheJoints) {
+  TestModel m;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok());
+  // At t = 1 the spine (joint at (0,1,0)) is rotated 90 degrees about z.
+  // Vertex 1 (1,0,0) follows the spine only: (1,-1) from the joint turns to
+  // (1,1), so it lands at (1,2,0). Vertex 0 (origin) is 2/3 hip (unmoved) and
+  // 1/3 spine (which takes it to (1,1,0)): (1/3, 1/3, 0).
+  auto pose = dumpPose(*model, 0, 1.0, LoopMode::Clamp);
+  ASSERT_TRUE(pose.ok()) << pose.error().message;
+  const json& positions = (*pose)["meshes"][0]["positions"];
+  EXPECT_NEAR(positions[3].get<double>(), 1.0, 1e-6);
+  EXPECT_NEAR(positions[4].get<double>(), 2.0, 1e-6);
+  EXPECT_NEAR(positions[0].get<double>(), 1.0 / 3.0, 1e-6);
+  EXPECT_NEAR(positions[1].get<double>(), 1.0 / 3.0, 1e-6);
+  EXPECT_EQ((*pose)["nodes"].size(), 3u);
+  EXPECT_EQ((*pose)["nodes"][2]["world"].size(), 16u);
+  EXPECT_FALSE(dumpPose(*model, 3, 0.0).ok());
+}
+
+TEST_F(LoaderTest, ReadsSparseAndNormalisedAccessors) {
+  TestModel m;
+  // Sparse: one substitution, index 0 (the first u16 of the index data) with the
+  // value (0, 1, 0) (floats 2..4 of the rotation keys).
+  m.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 2}});   // index: u16 0
+  m.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 248}, {"byteLength", 12}}); // values (0, 1, 0)
+  m.doc["accessors"][0]["sparse"] = {{"count", 1},
+                                     {"indices", {{"bufferView", 7}, {"componentType", 5123}}},
+                                     {"values", {{"bufferView", 8}}}};
+  // Weights as normalised unsigned bytes read from the joints bytes.
+  m.doc["accessors"][2] = {{"bufferView", 1}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC4"}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const PrimitiveData& prim = model->meshes[0].primitives[0];
+  EXPECT_EQ(prim.positions[0], glm::vec3(0, 1, 0));
+  EXPECT_EQ(prim.positions[1], glm::vec3(1, 0, 0));
+  EXPECT_NEAR(prim.weights[4 * 2 + 0], 0.5f, 1e-6f);  // bytes (1, 1, 0, 0) / 255, normalised
+}
+
+TEST_F(LoaderTest, InterleavedByteStride) {
+  TestModel m;
+  // Read POSITION x,y,z with a 12-byte stride explicitly, and weights with 16.
+  m.doc["bufferViews"][0]["byteStride"] = 12;
+  m.doc["bufferViews"][2]["byteStride"] = 16;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  m.doc["bufferViews"][0]["byteStride"] = 8;  // smaller than a vec3
+  expectError(write(m), {"bufferView 0", "byteStride"});
+}
+
+TEST_F(LoaderTest, TruncatedGlb) {
+  TestModel m;
+  m.doc["buffers"][0].erase("uri");
+  auto bytes = m.glb();
+  bytes.resize(bytes.size() - 40);
+  writeBytes(dir_ / "models" / "cut.glb", bytes);
+  expectError((dir_ / "models" / "cut.glb").string(), {"truncated"});
+  bytes.resize(10);
+  writeBytes(dir_ / "models" / "cut.glb", bytes);
+  expectError((dir_ / "models" / "cut.glb").string(), {"truncated"});
+}
+
+TEST_F(LoaderTest, AccessorPastItsBufferView) {
+  TestModel m;
+  m.doc["accessors"][0]["count"] = 4;
+  expectError(write(m), {"accessor 0", "bufferView 0"});
+  TestModel n;
+  n.doc["accessors"][5]["byteOffset"] = 8;
+  expectError(write(n), {"accessor 5"});
+}
+
+TEST_F(LoaderTest, BufferViewPastItsBuffer) {
+  TestModel m;
+  m.doc["bufferViews"][6]["byteLength"] = 4000;
+  expectError(write(m), {"bufferView 6"});
+}
+
+TEST_F(LoaderTest, SkinJointWithoutNode) {
+  TestModel m;
+  m.doc["skins"][0]["joints"] = {1, 9};
+  expectError(write(m), {"skin 0", "joint 1"});
+}
+
+TEST_F(LoaderTest, VertexJointPastTheSkin) {
+  TestModel m;
+  unsigned char j = 5;
+  m.put(36 + 4, &j, 1);  // vertex 1's first joint
+  expectError(write(m), {"vertex 1", "joint 5", "skin 0"});
+}
+
+TEST_F(LoaderTest, BadKeyTimes) {
+  TestModel nan;
+  nan.putFloat(236, std::numeric_limits<float>::quiet_NaN());
+  nan.doc["accessors"][5].erase("max");
+  expectError(write(nan), {"animation 0", "key 1", "NaN"});
+  TestModel negative;
+  negative.putFloat(232, -0.5f);
+  negative.doc["accessors"][5]["min"] = {-0.5};
+  expectError(write(negative), {"animation 0", "key 0", "negative"});
+  TestModel unsorted;
+  unsorted.putFloat(232, 2.0f);
+  unsorted.doc["accessors"][5]["min"] = {1};
+  unsorted.doc["accessors"][5]["max"] = {2};
+  expectError(write(unsorted), {"animation 0", "key 1", "sorted"});
+}
+
+TEST_F(LoaderTest, NaNKeyValue) {
+  TestModel m;
+  m.putFloat(244, std::numeric_limits<float>::quiet_NaN());
+  expectError(write(m), {"animation 0", "output", "element 0"});
+}
+
+TEST_F(LoaderTest, CyclesAndTwoParents) {
+  TestModel cycle;
+  cycle.doc["nodes"][2]["children"] = {1};
+  cycle.doc["scenes"][0]["nodes"] = {0};
+  expectError(write(cycle), {"cycle"});
+  TestModel self;
+  self.doc["nodes"][1]["children"] = {1};
+  expectError(write(self), {"node 1", "cycle"});
+  TestModel twoParents;
+  twoParents.doc["nodes"][0]["children"] = {2};
+  expectError(write(twoParents), {"node 2", "two parents"});
+}
+
+TEST_F(LoaderTest, UrisThatLeaveTheFolderAreRefused) {
+  for (const char* uri : {"../model.bin", "/etc/passwd", "sub/../../x.bin", "%2e%2e/model.bin", "file:///etc/passwd"}) {
+    TestModel m;
+    m.doc["buffers"][0]["uri"] = uri;
+    expectError(write(m), {"buffer 0", "leaves the model's folder"});
+  }
+  TestModel image;
+  image.doc["images"] = {{{"uri", "../secret.png"}}};
+  expectError(write(image), {"image 0", "leaves"});
+}
+
+TEST_F(LoaderTest, MissingBufferIsAnError) {
+  TestModel m;
+  m.doc["buffers"][0]["uri"] = "nothere.bin";
+  expectError(write(m), {"nothere.bin"});
+}
+
+TEST_F(LoaderTest, MissingTextureWarnsAndFallsBack) {
+  TestModel m;
+  m.doc["images"] = {{{"uri", "missing.png"}}};
+  m.doc["textures"] = {{{"source", 0}}};
+  m.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  m.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  ASSERT_EQ(model->images.size(), 1u);
+  EXPECT_TRUE(model->images[0].missing);
+  EXPECT_EQ(model->images[0].image.width, 1);
+  EXPECT_EQ(model->materials[0].baseColorImage, 0);
+  EXPECT_FALSE(model->warnings.empty());
+}
+
+TEST_F(LoaderTest, HugeImageIsRefusedBeforeDecoding) {
+  // A PNG header claiming 60000 x 60000 pixels (14 GB decoded), nothing more.
+  std::vector<unsigned char> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                 0, 0, 0xEA, 0x60, 0, 0, 0xEA, 0x60, 8, 6, 0, 0, 0};
+  writeBytes(dir_ / "models" / "huge.png", png);
+  TestModel m;
+  m.doc["images"] = {{{"uri", "huge.png"}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(model->images[0].missing);
+}
+
+// Every truncation and a few thousand corrupted bytes of a GLB: any outcome but a
+// crash (or a sanitizer report) is acceptable.
+TEST_F(LoaderTest, SurvivesTruncatedAndCorruptedGlb) {
+  TestModel m;
+  m.doc["buffers"][0].erase("uri");
+  const std::vector<unsigned char> good = m.glb();
+  fs::path path = dir_ / "models" / "fuzz.glb";
+  for (std::size_t length = 0; length < good.size(); length += 5) {
+    writeBytes(path, std::vector<unsigned char>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(length)));
+    EXPECT_FALSE(loadGltf(path.string()).ok()) << length;
+  }
+  std::uint32_t state = 12345;
+  auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+  for (int round = 0; round < 400; ++round) {
+    std::vector<unsigned char> bytes = good;
+    for (int k = 0; k < 3; ++k) bytes[next() % bytes.size()] = static_cast<unsigned char>(next() >> 24);
+    writeBytes(path, bytes);
+    auto model = loadGltf(path.string());
+    if (model.ok()) (void)dumpPose(*model, model->animations.empty() ? -1 : 0, 0.5);
+  }
+}
+
+TEST_F(LoaderTest, TooManyJoints) {
+  TestModel m;
+  m.doc["skins"][0]["joints"] = json(std::vector<int>(kMaxSkinJoints + 1, 1));
+  expectError(write(m), {"skin 0", "limit"});
+}
+
+TEST_F(LoaderTest, MissingFileAndBadJson) {
+  expectError((dir_ / "models" / "nope.gltf").string(), {"cannot open"});
+  std::ofstream(dir_ / "models" / "bad.gltf") << "{ not json";
+  expectError((dir_ / "models" / "bad.gltf").string(), {"JSON"});
+}
+
+TEST_F(LoaderTest, MatrixNodesAreDecomposed) {
+  TestModel m;
+  m.doc["nodes"][2].erase("translation");
+  m.doc["nodes"][2]["matrix"] = {0, 2, 0, 0, -2, 0, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const NodeData& n = model->nodes[2];
+  EXPECT_LT(glm::distance(n.scale, glm::vec3(2)), 1e-6f);
+  EXPECT_LT(glm::distance(n.translation, glm::vec3(1, 2, 3)), 1e-6f);
+  EXPECT_NEAR(glm::angle(n.rotation), 1.5707963f, 1e-5f);
+}
+
+TEST_F(LoaderTest, MorphWeightsChannelIsIgnoredWithAWarning) {
+  TestModel m;
+  m.doc["animations"][0]["channels"].push_back({{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}});
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->animations[0].channels.size(), 1u);
+  EXPECT_FALSE(model->warnings.empty());
+  auto built = buildAnimatedModel(*model);
+  ASSERT_TRUE(built.ok());
+  EXPECT_EQ(built->clips.size(), 1u);
+}
+
+}  // namespace
+}  // namespace engine
