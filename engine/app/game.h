@@ -28,6 +28,10 @@ class Game {
   // Releases GL objects while the context is still current; the runners call it
   // before the context goes away.
   virtual void shutdown() = 0;
+  // A Dear ImGui panel, drawn over the frame in a window only (never in the
+  // captured image). Games without one leave wantsUi() false.
+  virtual bool wantsUi() const { return false; }
+  virtual void drawUi() {}
 };
 
 }  // namespace engine

@@ -27,7 +27,11 @@ struct RunOptions {
   std::string benchFile;   // frame-time JSON; empty = none
   std::string command;     // the command line, recorded in the bench report
   bool vsync = true;
+#ifdef NDEBUG
   bool debugGl = false;
+#else
+  bool debugGl = true;  // debug builds report every GL error
+#endif
 };
 
 // Scene time of headless frame `index` out of `options.frames`.

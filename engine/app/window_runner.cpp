@@ -7,6 +7,7 @@
 
 #include "app/camera_controller.h"
 #include "app/clock.h"
+#include "app/imgui_layer.h"
 #include "app/runner_common.h"
 
 namespace engine {
@@ -52,6 +53,8 @@ Status runWindow(Game& game, const RunOptions& options) {
   glfwSetWindowUserPointer(window, &state);
   glfwSetKeyCallback(window, onKey);
   glfwSetScrollCallback(window, onScroll);
+  std::unique_ptr<ImGuiLayer> ui;
+  if (game.wantsUi()) ui = std::make_unique<ImGuiLayer>(window);
 
   FixedStepClock clock(options.dt, options.time.value_or(0.0));
   const bool scripted = options.frames > 0;
@@ -81,7 +84,9 @@ Status runWindow(Game& game, const RunOptions& options) {
       }
       time = clock.time();
     }
-    if (!scripted) state.controller.update(window, game.camera(), elapsed);
+    if (!scripted && !(ui && ui->wantsMouse())) {
+      state.controller.update(window, game.camera(), elapsed);
+    }
 
     int width = 0, height = 0;
     glfwGetFramebufferSize(window, &width, &height);
@@ -95,6 +100,11 @@ Status runWindow(Game& game, const RunOptions& options) {
     game.render({time, width, height});
     setup->target.resolve();
     setup->target.blitToDefault(width, height);
+    if (ui) {
+      ui->beginFrame();
+      game.drawUi();
+      ui->endFrame(width, height);
+    }
     setup->context->swapBuffers();
 
     frameMs.push_back(elapsed * 1000.0);
@@ -109,6 +119,7 @@ Status runWindow(Game& game, const RunOptions& options) {
   if (!frameMs.empty()) frameMs.erase(frameMs.begin());
   auto status = finishRun(*setup->context, options, std::move(frameMs),
                           lastFrame.empty() ? nullptr : &lastFrame);
+  ui.reset();
   game.shutdown();
   return status;
 }

@@ -136,7 +136,8 @@ std::string translateShaderLog(const std::string& log, const std::vector<std::st
 }
 
 Result<Program> Program::build(const std::string& shaderDir, const std::vector<ShaderStage>& stages,
-                               const std::vector<std::string>& defines) {
+                               const std::vector<std::string>& defines,
+                               const std::vector<std::string>& feedbackVaryings) {
   std::vector<GLuint> shaders;
   auto cleanup = [&] {
     for (GLuint s : shaders) glDeleteShader(s);
@@ -158,6 +159,12 @@ Result<Program> Program::build(const std::string& shaderDir, const std::vector<S
   }
   Program program(glCreateProgram());
   for (GLuint s : shaders) glAttachShader(program.id(), s);
+  if (!feedbackVaryings.empty()) {
+    std::vector<const char*> varyings;
+    for (const auto& v : feedbackVaryings) varyings.push_back(v.c_str());
+    glTransformFeedbackVaryings(program.id(), GLsizei(varyings.size()), varyings.data(),
+                                GL_INTERLEAVED_ATTRIBS);
+  }
   glLinkProgram(program.id());
   cleanup();
   GLint ok = GL_FALSE;

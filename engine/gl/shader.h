@@ -36,8 +36,10 @@ struct ShaderStage {
 class Program : public Object<ProgramDeleter> {
  public:
   Program() = default;
+  // `feedbackVaryings`: outputs captured by transform feedback (interleaved).
   static Result<Program> build(const std::string& shaderDir, const std::vector<ShaderStage>& stages,
-                               const std::vector<std::string>& defines = {});
+                               const std::vector<std::string>& defines = {},
+                               const std::vector<std::string>& feedbackVaryings = {});
 
   void use() const { glUseProgram(id()); }
   GLint location(const char* name) const;

@@ -6,8 +6,8 @@
 
 namespace engine {
 
-MeshData makePlane(float size, int cells, float uvRepeat) {
-  MeshData mesh;
+ShapeData makePlane(float size, int cells, float uvRepeat) {
+  ShapeData mesh;
   const float half = size * 0.5f;
   for (int j = 0; j <= cells; ++j) {
     for (int i = 0; i <= cells; ++i) {
@@ -27,8 +27,8 @@ MeshData makePlane(float size, int cells, float uvRepeat) {
   return mesh;
 }
 
-MeshData makeCube(float size) {
-  MeshData mesh;
+ShapeData makeCube(float size) {
+  ShapeData mesh;
   const float h = size * 0.5f;
   // Each face: normal, and two axes spanning it (u, v) with u x v = normal.
   const glm::vec3 faces[6][3] = {
@@ -47,8 +47,8 @@ MeshData makeCube(float size) {
   return mesh;
 }
 
-MeshData makeSphere(float radius, int rings, int segments) {
-  MeshData mesh;
+ShapeData makeSphere(float radius, int rings, int segments) {
+  ShapeData mesh;
   for (int r = 0; r <= rings; ++r) {
     const float v = float(r) / float(rings);
     const float theta = v * glm::pi<float>();
@@ -70,7 +70,7 @@ MeshData makeSphere(float radius, int rings, int segments) {
   return mesh;
 }
 
-GpuMesh::GpuMesh(const MeshData& data)
+GpuMesh::GpuMesh(const ShapeData& data)
     : vertices_(gl::Buffer::fromSpan(std::span<const Vertex>(data.vertices))),
       indices_(gl::Buffer::fromSpan(std::span<const std::uint32_t>(data.indices))),
       vao_(gl::VertexArray::create()),

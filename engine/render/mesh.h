@@ -14,18 +14,18 @@ struct Vertex {
   glm::vec2 uv;
 };
 
-struct MeshData {
+struct ShapeData {
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> indices;
 };
 
 // A square in the y = 0 plane, `size` wide, `cells` x `cells` quads, uv repeating
 // `uvRepeat` times across.
-MeshData makePlane(float size, int cells, float uvRepeat);
+ShapeData makePlane(float size, int cells, float uvRepeat);
 // An axis-aligned cube of edge `size` centred on the origin, one uv square per face.
-MeshData makeCube(float size);
+ShapeData makeCube(float size);
 // A UV sphere: `rings` x `segments` quads.
-MeshData makeSphere(float radius, int rings, int segments);
+ShapeData makeSphere(float radius, int rings, int segments);
 
 // Vertex attribute locations shared with shaders/common/vertex.glsl.
 inline constexpr GLuint kPositionLocation = 0;
@@ -34,7 +34,7 @@ inline constexpr GLuint kUvLocation = 2;
 
 class GpuMesh {
  public:
-  explicit GpuMesh(const MeshData& data);
+  explicit GpuMesh(const ShapeData& data);
   void draw() const;
   GLsizei indexCount() const { return indexCount_; }
 

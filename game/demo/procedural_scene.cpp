@@ -70,7 +70,7 @@ Result<SceneSettings> loadSceneSettings(const std::string& path) {
     auto v = readVec3(j["sun"].value("direction", nlohmann::json()), path + ": /sun/direction");
     if (!v) return v.error();
     if (glm::length(*v) == 0.0) return makeError(path + ": /sun/direction: must not be zero");
-    s.sunDirection = glm::vec3(glm::normalize(*v));
+    s.lighting.sunDirection = glm::vec3(glm::normalize(*v));
   }
   s.camera.position += s.origin;
   s.cameraTarget += s.origin;
@@ -122,10 +122,7 @@ void ProceduralScene::drawSky(const glm::mat4& viewProjection) const {
   const auto& sky = gpu_->sky;
   sky.use();
   sky.set("u_inverseViewProjection", glm::inverse(viewProjection));
-  sky.set("u_sunDirection", glm::normalize(settings_.sunDirection));
-  sky.set("u_skyColor", glm::vec3(0.15f, 0.35f, 1.0f));
-  sky.set("u_horizonColor", glm::vec3(0.6f, 0.7f, 0.85f));
-  sky.set("u_groundColor", glm::vec3(0.3f, 0.28f, 0.25f));
+  engine::setSkyUniforms(sky, settings_.lighting);
   gpu_->emptyVao.bind();
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -164,12 +161,7 @@ void ProceduralScene::render(const engine::FrameInfo& frame) {
 
   const auto& lit = gpu_->lit;
   lit.use();
-  lit.set("u_sunDirection", glm::normalize(settings_.sunDirection));
-  lit.set("u_sunColor", glm::vec3(1.3f, 1.22f, 1.1f));
-  lit.set("u_skyColor", glm::vec3(0.22f, 0.28f, 0.38f));
-  lit.set("u_groundColor", glm::vec3(0.1f, 0.09f, 0.07f));
-  lit.set("u_fogColor", glm::vec3(0.6f, 0.7f, 0.85f));  // the sky's horizon colour
-  lit.set("u_fogDensity", 0.02f);
+  engine::setLightingUniforms(lit, settings_.lighting);
   lit.set("u_baseColorFactor", glm::vec4(1.0f));
   lit.set("u_specular", 0.0f);
   lit.set("u_shininess", 16.0f);

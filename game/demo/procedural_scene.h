@@ -9,6 +9,7 @@
 
 #include "app/game.h"
 #include "gl/shader.h"
+#include "render/lighting.h"
 #include "render/mesh.h"
 
 namespace demo {
@@ -16,7 +17,7 @@ namespace demo {
 struct SceneSettings {
   engine::Camera camera;
   glm::dvec3 cameraTarget{0.0, 0.8, 0.0};
-  glm::vec3 sunDirection{0.5f, 0.8f, 0.3f};  // toward the sun
+  engine::Lighting lighting;
   // Where the whole scene sits in the world; far values test precision.
   glm::dvec3 origin{0.0};
 };

@@ -1,0 +1,124 @@
+// viewer: plays the animations of any glTF 2.0 file. In a window with an ImGui
+// panel (clips, play/pause, scrub, speed, loop, skeleton, bind pose, LBS/DQS);
+// offscreen to a PNG; or, with --dump-pose, writes the pose at --time as JSON in
+// the format of the conformance reference poses.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "anim/pose_dump.h"
+#include "app/cli.h"
+#include "asset/gltf_loader.h"
+#include "viewer_scene.h"
+
+namespace {
+
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "viewer: %s\n", message.c_str());
+  return code;
+}
+
+// --anim takes an index (-1 = rest pose) or a clip name.
+engine::Result<int> resolveClip(const std::string& wanted, const engine::ModelData& model) {
+  const int count = int(model.animations.size());
+  if (wanted.empty()) return count > 0 ? 0 : -1;
+  try {
+    size_t used = 0;
+    const int index = std::stoi(wanted, &used);
+    if (used == wanted.size()) {
+      if (index < -1 || index >= count) {
+        return engine::makeError(model.path + ": --anim " + wanted + ": no such animation (" +
+                                 std::to_string(count) + " animations; -1 is the rest pose)");
+      }
+      return index;
+    }
+  } catch (const std::exception&) {
+  }
+  std::string names;
+  for (int i = 0; i < count; ++i) {
+    if (model.animations[size_t(i)].name == wanted) return i;
+    names += (i ? ", " : "") + model.animations[size_t(i)].name;
+  }
+  return engine::makeError(model.path + ": --anim: no clip \"" + wanted + "\"; clips are: " +
+                           (names.empty() ? "(none)" : names));
+}
+
+engine::Status writeJson(const std::string& path, const nlohmann::json& json) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << json.dump() << "\n";
+    if (!out) return engine::makeError(path + ": cannot write the pose");
+  }
+  std::filesystem::rename(tmp, path);
+  return engine::Ok{};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Animation playback viewer for glTF 2.0 files.", "viewer"};
+  engine::CommonOptions options;
+  std::string modelPath, anim, loop = "repeat", dumpPosePath;
+  double speed = 1.0;
+  bool dualQuat = false, skeleton = false;
+  app.add_option("model", modelPath, "glTF file (.gltf or .glb)")->required();
+  app.add_option("--anim", anim, "Animation index or name (-1: rest pose; default: the first)");
+  app.add_option("--speed", speed, "Playback speed (negative plays backwards)")->capture_default_str();
+  app.add_option("--loop", loop, "Loop mode")->check(CLI::IsMember({"repeat", "clamp", "pingpong"}))
+      ->capture_default_str();
+  app.add_flag("--dq", dualQuat, "Dual-quaternion skinning instead of linear blend");
+  app.add_flag("--skeleton", skeleton, "Draw the skeleton over the model");
+  app.add_option("--dump-pose", dumpPosePath, "Write the pose at --time as JSON and exit");
+  engine::addCommonOptions(app, options);
+  if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
+  if (!std::isfinite(speed)) return fail(engine::kExitBadInput, "--speed: must be finite");
+
+  if (!dumpPosePath.empty()) {
+    if (auto s = engine::checkWritable(dumpPosePath, "--dump-pose"); !s) {
+      return fail(engine::kExitBadInput, s.error().message);
+    }
+  }
+  auto model = engine::loadGltf(modelPath);
+  if (!model) return fail(engine::kExitBadInput, model.error().message);
+  auto clip = resolveClip(anim, *model);
+  if (!clip) return fail(engine::kExitBadInput, clip.error().message);
+  const engine::LoopMode loopMode = loop == "clamp"      ? engine::LoopMode::Clamp
+                                    : loop == "pingpong" ? engine::LoopMode::PingPong
+                                                         : engine::LoopMode::Repeat;
+  if (!dumpPosePath.empty()) {
+    auto pose = engine::dumpPose(*model, *clip, options.run.time.value_or(0.0) * speed, loopMode);
+    if (!pose) return fail(engine::kExitBadInput, pose.error().message);
+    if (auto s = writeJson(dumpPosePath, *pose); !s) return fail(engine::kExitBadInput, s.error().message);
+    std::printf("%s\n", dumpPosePath.c_str());
+    return 0;
+  }
+
+  const bool offscreen = !options.offscreen.empty();
+  if (offscreen && options.run.screenshot.empty()) {
+    std::filesystem::create_directories("out");
+    options.run.screenshot = "out/viewer.png";
+  }
+  if (auto s = engine::finishCommonOptions(options, argc, argv); !s) {
+    return fail(engine::kExitBadInput, s.error().message);
+  }
+  auto animated = engine::buildAnimatedModel(*model);
+  if (!animated) return fail(engine::kExitBadInput, animated.error().message);
+  viewer::ViewerSettings settings;
+  settings.clip = *clip;
+  settings.speed = speed;
+  settings.loop = loopMode;
+  settings.skinMode = dualQuat ? engine::SkinMode::DualQuat : engine::SkinMode::Linear;
+  settings.skeleton = skeleton;
+  viewer::ViewerScene scene(options.shaderDir, std::move(model).value(), std::move(animated).value(), settings);
+
+  const engine::Backend backend = engine::chosenBackend(options);
+  if (backend == engine::Backend::Window && !engine::displayAvailable()) {
+    return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
+  }
+  const auto status = backend == engine::Backend::Window ? engine::runWindow(scene, options.run)
+                                                         : engine::runHeadless(backend, scene, options.run);
+  if (!status) return fail(engine::kExitFailure, status.error().message);
+  if (!options.run.screenshot.empty()) std::printf("%s\n", options.run.screenshot.c_str());
+  return 0;
+}

@@ -1,0 +1,70 @@
+#pragma once
+// The animation viewer's scene: one glTF model, animated by a Player, skinned on
+// the GPU (linear blend or dual quaternions), over a ground plane under the sky,
+// with an optional skeleton overlay and an ImGui panel in the window.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "anim/model_builder.h"
+#include "anim/player.h"
+#include "app/game.h"
+#include "asset/model_data.h"
+#include "render/lighting.h"
+#include "render/model_renderer.h"
+
+namespace viewer {
+
+struct ViewerSettings {
+  int clip = 0;  // -1: the rest pose
+  double speed = 1.0;
+  engine::LoopMode loop = engine::LoopMode::Repeat;
+  engine::SkinMode skinMode = engine::SkinMode::Linear;
+  bool skeleton = false;
+  bool bindPose = false;
+};
+
+class ViewerScene final : public engine::Game {
+ public:
+  ViewerScene(std::string shaderDir, engine::ModelData model, engine::AnimatedModel animated,
+              ViewerSettings settings);
+  ~ViewerScene() override;
+
+  engine::Status init() override;
+  void update(double time, double dt) override;
+  void render(const engine::FrameInfo& frame) override;
+  engine::Camera& camera() override { return camera_; }
+  void shutdown() override;
+  bool wantsUi() const override { return true; }
+  void drawUi() override;
+
+  // The shader variants built so far ("static", "lbs4", "dqs8", ...).
+  std::vector<std::string> builtVariants() const;
+
+ private:
+  struct Gpu;
+  void startClip(int clip, double fadeSeconds);
+  void computePose();
+  void uploadPalettes();
+  void frameCamera();
+  void drawGround(const glm::mat4& viewProjection);
+  void drawSkeleton(const glm::mat4& viewProjection);
+
+  std::string shaderDir_;
+  engine::ModelData model_;
+  engine::AnimatedModel animated_;
+  ViewerSettings settings_;
+  engine::Player player_;
+  engine::Camera camera_;
+  engine::Lighting lighting_;
+  bool playing_ = true;
+  bool started_ = false;
+  double groundHeight_ = 0.0;
+  double groundSize_ = 10.0;
+  std::vector<engine::Srt> locals_;
+  std::vector<glm::mat4> models_;      // per runtime joint
+  std::vector<glm::mat4> nodeWorlds_;  // per glTF node
+  std::unique_ptr<Gpu> gpu_;
+};
+
+}  // namespace viewer

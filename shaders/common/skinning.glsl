@@ -1,0 +1,67 @@
+// GPU skinning. The palette lives in a shader storage buffer, so a skin may have
+// any number of joints. Variants, chosen per mesh by the renderer:
+//   INFLUENCES 4 or 8      joints per vertex (8 when the file has JOINTS_1)
+//   DUAL_QUAT              dual-quaternion skinning instead of linear blend
+#ifdef DUAL_QUAT
+// Two vec4 per joint: the real part (rotation) and the dual part (translation).
+layout(std430, binding = 0) readonly buffer SkinDualQuats { vec4 u_dualQuats[]; };
+#else
+layout(std430, binding = 0) readonly buffer SkinPalette { mat4 u_palette[]; };
+#endif
+
+layout(location = 3) in uvec4 a_joints0;
+layout(location = 4) in vec4 a_weights0;
+#if INFLUENCES == 8
+layout(location = 5) in uvec4 a_joints1;
+layout(location = 6) in vec4 a_weights1;
+#endif
+
+#ifdef DUAL_QUAT
+void addDualQuat(inout vec4 real, inout vec4 dual, uint joint, float weight) {
+  vec4 r = u_dualQuats[2u * joint];
+  vec4 d = u_dualQuats[2u * joint + 1u];
+  // q and -q are the same rotation; keep every one in the hemisphere of the sum
+  // so far (as the CPU path does), or opposite signs cancel out.
+  if (dot(real, r) < 0.0) weight = -weight;
+  real += weight * r;
+  dual += weight * d;
+}
+
+vec3 rotateByQuat(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
+
+// Skins a position and a normal by the blended, normalised dual quaternion.
+void skin(inout vec3 position, inout vec3 normal) {
+  vec4 real = vec4(0.0), dual = vec4(0.0);
+  addDualQuat(real, dual, a_joints0.x, a_weights0.x);
+  addDualQuat(real, dual, a_joints0.y, a_weights0.y);
+  addDualQuat(real, dual, a_joints0.z, a_weights0.z);
+  addDualQuat(real, dual, a_joints0.w, a_weights0.w);
+#if INFLUENCES == 8
+  addDualQuat(real, dual, a_joints1.x, a_weights1.x);
+  addDualQuat(real, dual, a_joints1.y, a_weights1.y);
+  addDualQuat(real, dual, a_joints1.z, a_weights1.z);
+  addDualQuat(real, dual, a_joints1.w, a_weights1.w);
+#endif
+  float len = length(real);
+  real /= len;
+  dual /= len;
+  // Translation t = 2 * dual * conjugate(real).
+  vec3 t = 2.0 * (real.w * dual.xyz - dual.w * real.xyz + cross(real.xyz, dual.xyz));
+  position = rotateByQuat(real, position) + t;
+  normal = rotateByQuat(real, normal);
+}
+#else
+// Linear blend skinning: the weighted sum of the joints' palette matrices.
+void skin(inout vec3 position, inout vec3 normal) {
+  mat4 m = a_weights0.x * u_palette[a_joints0.x] + a_weights0.y * u_palette[a_joints0.y] +
+           a_weights0.z * u_palette[a_joints0.z] + a_weights0.w * u_palette[a_joints0.w];
+#if INFLUENCES == 8
+  m += a_weights1.x * u_palette[a_joints1.x] + a_weights1.y * u_palette[a_joints1.y] +
+       a_weights1.z * u_palette[a_joints1.z] + a_weights1.w * u_palette[a_joints1.w];
+#endif
+  position = (m * vec4(position, 1.0)).xyz;
+  // Inverse transpose would be exact for non-uniform scale; skins rarely scale
+  // non-uniformly and the cost is per vertex.
+  normal = mat3(m) * normal;
+}
+#endif

@@ -1,0 +1,32 @@
+#version 450 core
+// glTF meshes: static, or skinned on the GPU (see common/skinning.glsl). For a
+// skinned mesh u_model holds only the camera offset: the palette already places
+// the vertices in the world, and glTF says the mesh node's own transform is ignored.
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+
+#ifdef SKINNED
+#include "common/skinning.glsl"
+#endif
+
+uniform mat4 u_model;
+uniform mat3 u_normalMatrix;
+uniform mat4 u_viewProjection;
+
+out vec3 v_position;  // camera-relative world position
+out vec3 v_normal;
+out vec2 v_uv;
+
+void main() {
+  vec3 position = a_position;
+  vec3 normal = a_normal;
+#ifdef SKINNED
+  skin(position, normal);
+#endif
+  vec4 world = u_model * vec4(position, 1.0);
+  v_position = world.xyz;
+  v_normal = u_normalMatrix * normal;
+  v_uv = a_uv;
+  gl_Position = u_viewProjection * world;
+}
