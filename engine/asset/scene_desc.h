@@ -1,0 +1,136 @@
+#pragma once
+// A scene as its file describes it (assets/scenes/*.json): camera, lights, sky,
+// fog, terrain, glTF models, analytic primitives with materials, render settings.
+// Plain data: the rasterizer and the ray tracer each build what they need from it,
+// and only what the scene contains.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace engine {
+
+struct CameraDesc {
+  glm::dvec3 position{0.0, 1.5, 5.0};
+  glm::dvec3 forward{0.0, 0.0, -1.0};  // normalised
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fovyDegrees = 60.0;
+  double nearPlane = 0.05;
+  double farPlane = 1000.0;
+  // The course's room is left-handed (camera looks along +z, +x on the right);
+  // glTF and GL are right-handed. The screen's right is cross(up, forward) for a
+  // left-handed scene and cross(forward, up) for a right-handed one.
+  bool leftHanded = false;
+  glm::dvec3 right() const;
+};
+
+enum class LightType { Sun, Point, Area };
+
+struct LightDesc {
+  LightType type = LightType::Sun;
+  glm::dvec3 direction{0.0, 1.0, 0.0};  // Sun: toward the light, normalised
+  glm::dvec3 position{0.0};             // Point and Area (the centre)
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  bool falloff = false;     // Point: 1/d^2 when true, none when false (the course)
+  bool shadows = true;
+  glm::dvec3 edgeU{1.0, 0.0, 0.0};  // Area: the two edge vectors, full length
+  glm::dvec3 edgeV{0.0, 0.0, 1.0};
+};
+
+// The classic model of the course, and glTF's metallic-roughness.
+struct MaterialDesc {
+  std::string name;
+  glm::vec3 color{0.8f};
+  float ambient = 0.1f;     // classic: colour * ambient, unshadowed
+  float diffuse = 0.9f;     // classic: colour * diffuse * N.L * visibility
+  float specular = 0.0f;    // classic Blinn-Phong highlight weight
+  float shininess = 32.0f;
+  float reflection = 0.0f;  // mirror weight of the reflected ray
+  float metallic = 0.0f;
+  float roughness = 0.6f;
+  std::string texture;      // "" | "checker" | an image path (relative to the scene)
+  float textureScale = 1.0f;
+};
+
+enum class PrimitiveType { Sphere, Plane, Box };
+
+struct PrimitiveDesc {
+  PrimitiveType type = PrimitiveType::Sphere;
+  glm::dvec3 center{0.0};   // Sphere
+  double radius = 1.0;      // Sphere
+  glm::dvec3 point{0.0};    // Plane: a point on it
+  glm::dvec3 normal{0.0, 1.0, 0.0};  // Plane, normalised
+  double extent = 0.0;      // Plane: half size for the rasterizer (0 = scene's far)
+  glm::dvec3 min{0.0}, max{1.0};     // Box
+  int material = 0;         // index into SceneDesc::materials
+};
+
+struct ModelDesc {
+  std::string path;  // resolved against the scene file's folder
+  glm::dvec3 position{0.0};
+  glm::dvec3 rotationDegrees{0.0};  // applied as Z * Y * X... see scene_file.cpp
+  glm::dvec3 scale{1.0};
+  std::string clip;     // "" = the first clip; a name or an index
+  double speed = 1.0;
+  double start = 0.0;   // clip time at scene time 0
+  bool dualQuat = false;
+};
+
+struct SkyDesc {
+  bool enabled = true;  // false: the background colour
+  glm::vec3 zenith{0.15f, 0.35f, 1.0f};
+  glm::vec3 horizon{0.6f, 0.7f, 0.85f};
+  glm::vec3 ground{0.3f, 0.28f, 0.25f};
+  glm::vec3 background{0.0f};
+  bool sunDisk = true;
+};
+
+struct FogDesc {
+  bool enabled = false;
+  float density = 0.02f;
+  glm::vec3 color{0.6f, 0.7f, 0.85f};
+};
+
+enum class Shading { Classic, Pbr };
+enum class ShadowFilter { Hard, Pcf };
+enum class ToneMap { None, Reinhard, Aces };
+enum class OutputCurve { Srgb, Gamma22 };
+
+struct RenderDesc {
+  int msaa = 1;
+  int supersample = 1;  // render N x N times larger, average down
+  Shading shading = Shading::Pbr;
+  int shadowMapSize = 2048;
+  ShadowFilter shadowFilter = ShadowFilter::Pcf;
+  int pcfKernel = 3;
+  float exposure = 1.0f;
+  ToneMap toneMap = ToneMap::Aces;
+  OutputCurve output = OutputCurve::Srgb;
+};
+
+struct TerrainDesc {
+  bool enabled = false;
+  std::string heightmap;  // image path, or "" for procedural
+  unsigned seed = 1;
+  double size = 256.0;
+  double heightScale = 20.0;
+  glm::dvec3 origin{0.0};
+};
+
+struct SceneDesc {
+  std::string path;
+  CameraDesc camera;
+  std::vector<LightDesc> lights;
+  std::vector<MaterialDesc> materials;
+  std::vector<PrimitiveDesc> primitives;
+  std::vector<ModelDesc> models;
+  SkyDesc sky;
+  FogDesc fog;
+  TerrainDesc terrain;
+  RenderDesc render;
+  float ambient = 0.1f;  // classic shading's ambient term when a material has none
+};
+
+}  // namespace engine

@@ -1,0 +1,374 @@
+#include "asset/scene_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace engine {
+namespace {
+using nlohmann::json;
+
+// A JSON value with the file name and its path, for messages, and the keys it
+// may hold, so that unknown keys are reported.
+class Node {
+ public:
+  Node(const json& value, std::string file, std::string path)
+      : value_(value), file_(std::move(file)), path_(std::move(path)) {}
+
+  Error error(const std::string& what) const {
+    return makeError(file_ + ": " + (path_.empty() ? "/" : path_) + ": " + what);
+  }
+  bool has(const char* key) const { return value_.is_object() && value_.contains(key); }
+  Node at(const char* key) const { return Node(value_.at(key), file_, path_ + "/" + key); }
+  Node at(size_t i) const { return Node(value_.at(i), file_, path_ + "/" + std::to_string(i)); }
+  const json& value() const { return value_; }
+  const std::string& file() const { return file_; }
+
+  Status expectObject(std::initializer_list<const char*> allowed) const {
+    if (!value_.is_object()) return error("expected an object");
+    std::set<std::string> keys(allowed.begin(), allowed.end());
+    for (const auto& item : value_.items()) {
+      if (!keys.count(item.key())) {
+        std::string list;
+        for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
+        return Node(item.value(), file_, path_ + "/" + item.key()).error("unknown key; expected one of: " + list);
+      }
+    }
+    return Ok{};
+  }
+  Result<size_t> arraySize() const {
+    if (!value_.is_array()) return error("expected an array");
+    return value_.size();
+  }
+
+ private:
+  const json& value_;
+  std::string file_;
+  std::string path_;
+};
+
+#define TRY(expr)                        \
+  do {                                   \
+    if (auto s_ = (expr); !s_) return s_.error(); \
+  } while (0)
+
+Status readNumber(const Node& parent, const char* key, double& out, double lo, double hi) {
+  if (!parent.has(key)) return Ok{};
+  const Node n = parent.at(key);
+  if (!n.value().is_number()) return n.error("expected a number");
+  const double v = n.value().get<double>();
+  if (!std::isfinite(v) || v < lo || v > hi) {
+    std::ostringstream ss;
+    ss << "expected a number in [" << lo << ", " << hi << "], got " << v;
+    return n.error(ss.str());
+  }
+  out = v;
+  return Ok{};
+}
+
+Status readFloat(const Node& parent, const char* key, float& out, double lo, double hi) {
+  double v = out;
+  TRY(readNumber(parent, key, v, lo, hi));
+  out = float(v);
+  return Ok{};
+}
+
+Status readInt(const Node& parent, const char* key, int& out, int lo, int hi) {
+  if (!parent.has(key)) return Ok{};
+  const Node n = parent.at(key);
+  if (!n.value().is_number_integer()) return n.error("expected an integer");
+  const auto v = n.value().get<long long>();
+  if (v < lo || v > hi) return n.error("expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  out = int(v);
+  return Ok{};
+}
+
+Status readBool(const Node& parent, const char* key, bool& out) {
+  if (!parent.has(key)) return Ok{};
+  const Node n = parent.at(key);
+  if (!n.value().is_boolean()) return n.error("expected true or false");
+  out = n.value().get<bool>();
+  return Ok{};
+}
+
+Status readString(const Node& parent, const char* key, std::string& out) {
+  if (!parent.has(key)) return Ok{};
+  const Node n = parent.at(key);
+  if (!n.value().is_string()) return n.error("expected a string");
+  out = n.value().get<std::string>();
+  return Ok{};
+}
+
+template <typename Vec>
+Status readVec3(const Node& parent, const char* key, Vec& out) {
+  if (!parent.has(key)) return Ok{};
+  const Node n = parent.at(key);
+  if (!n.value().is_array() || n.value().size() != 3) return n.error("expected an array of 3 numbers");
+  for (size_t i = 0; i < 3; ++i) {
+    const Node c = n.at(i);
+    if (!c.value().is_number() || !std::isfinite(c.value().get<double>())) return c.error("expected a finite number");
+    out[int(i)] = typename Vec::value_type(c.value().get<double>());
+  }
+  return Ok{};
+}
+
+template <typename Vec>
+Status readDirection(const Node& parent, const char* key, Vec& out) {
+  TRY(readVec3(parent, key, out));
+  if (parent.has(key)) {
+    if (glm::length(glm::dvec3(out)) == 0.0) return parent.at(key).error("a direction must not be zero");
+    out = glm::normalize(out);
+  }
+  return Ok{};
+}
+
+template <typename Enum>
+Status readEnum(const Node& parent, const char* key, Enum& out, const std::map<std::string, Enum>& names) {
+  if (!parent.has(key)) return Ok{};
+  const Node n = parent.at(key);
+  std::string list;
+  for (const auto& [name, value] : names) list += (list.empty() ? "" : ", ") + name;
+  if (!n.value().is_string()) return n.error("expected one of: " + list);
+  auto it = names.find(n.value().get<std::string>());
+  if (it == names.end()) return n.error("\"" + n.value().get<std::string>() + "\" is not one of: " + list);
+  out = it->second;
+  return Ok{};
+}
+
+Status readCamera(const Node& n, CameraDesc& c) {
+  TRY(n.expectObject({"position", "target", "direction", "up", "fovy", "near", "far", "handedness"}));
+  TRY(readVec3(n, "position", c.position));
+  if (n.has("target") && n.has("direction")) return n.error("give either target or direction, not both");
+  if (n.has("target")) {
+    glm::dvec3 target(0.0);
+    TRY(readVec3(n, "target", target));
+    if (target == c.position) return n.at("target").error("the target is the camera position");
+    c.forward = glm::normalize(target - c.position);
+  }
+  TRY(readDirection(n, "direction", c.forward));
+  TRY(readDirection(n, "up", c.up));
+  if (glm::length(glm::cross(c.forward, c.up)) < 1e-9) return n.error("up is parallel to the view direction");
+  TRY(readNumber(n, "fovy", c.fovyDegrees, 1.0, 179.0));
+  TRY(readNumber(n, "near", c.nearPlane, 1e-6, 1e9));
+  TRY(readNumber(n, "far", c.farPlane, 1e-6, 1e12));
+  if (c.farPlane <= c.nearPlane) return n.error("far must be greater than near");
+  std::string handedness = c.leftHanded ? "left" : "right";
+  TRY(readEnum(n, "handedness", handedness, std::map<std::string, std::string>{{"left", "left"}, {"right", "right"}}));
+  c.leftHanded = handedness == "left";
+  return Ok{};
+}
+
+Status readLight(const Node& n, LightDesc& l) {
+  TRY(n.expectObject({"type", "direction", "position", "color", "intensity", "falloff", "shadows", "u", "v"}));
+  if (!n.has("type")) return n.error("missing \"type\" (sun, point or area)");
+  TRY(readEnum(n, "type", l.type, std::map<std::string, LightType>{{"sun", LightType::Sun}, {"point", LightType::Point}, {"area", LightType::Area}}));
+  TRY(readDirection(n, "direction", l.direction));
+  TRY(readVec3(n, "position", l.position));
+  TRY(readVec3(n, "color", l.color));
+  TRY(readFloat(n, "intensity", l.intensity, 0.0, 1e9));
+  TRY(readBool(n, "falloff", l.falloff));
+  TRY(readBool(n, "shadows", l.shadows));
+  TRY(readVec3(n, "u", l.edgeU));
+  TRY(readVec3(n, "v", l.edgeV));
+  if (l.type == LightType::Area && glm::length(glm::cross(l.edgeU, l.edgeV)) == 0.0) {
+    return n.error("an area light needs two edges u and v that span a rectangle");
+  }
+  return Ok{};
+}
+
+Status readMaterial(const Node& n, MaterialDesc& m) {
+  TRY(n.expectObject({"color", "ambient", "diffuse", "specular", "shininess", "reflection", "metallic", "roughness", "texture", "texture_scale"}));
+  TRY(readVec3(n, "color", m.color));
+  TRY(readFloat(n, "ambient", m.ambient, 0.0, 1.0));
+  TRY(readFloat(n, "diffuse", m.diffuse, 0.0, 1.0));
+  TRY(readFloat(n, "specular", m.specular, 0.0, 1.0));
+  TRY(readFloat(n, "shininess", m.shininess, 1.0, 10000.0));
+  TRY(readFloat(n, "reflection", m.reflection, 0.0, 1.0));
+  TRY(readFloat(n, "metallic", m.metallic, 0.0, 1.0));
+  TRY(readFloat(n, "roughness", m.roughness, 0.0, 1.0));
+  TRY(readString(n, "texture", m.texture));
+  TRY(readFloat(n, "texture_scale", m.textureScale, 1e-6, 1e6));
+  return Ok{};
+}
+
+Status readPrimitive(const Node& n, PrimitiveDesc& p, const std::map<std::string, int>& materials) {
+  TRY(n.expectObject({"type", "center", "radius", "point", "normal", "extent", "min", "max", "material"}));
+  if (!n.has("type")) return n.error("missing \"type\" (sphere, plane or box)");
+  TRY(readEnum(n, "type", p.type, std::map<std::string, PrimitiveType>{{"sphere", PrimitiveType::Sphere}, {"plane", PrimitiveType::Plane}, {"box", PrimitiveType::Box}}));
+  TRY(readVec3(n, "center", p.center));
+  TRY(readNumber(n, "radius", p.radius, 1e-9, 1e12));
+  TRY(readVec3(n, "point", p.point));
+  TRY(readDirection(n, "normal", p.normal));
+  TRY(readNumber(n, "extent", p.extent, 0.0, 1e12));
+  TRY(readVec3(n, "min", p.min));
+  TRY(readVec3(n, "max", p.max));
+  if (p.type == PrimitiveType::Box && !(p.min.x < p.max.x && p.min.y < p.max.y && p.min.z < p.max.z)) {
+    return n.error("a box needs min < max on every axis");
+  }
+  std::string material;
+  TRY(readString(n, "material", material));
+  if (!material.empty()) {
+    auto it = materials.find(material);
+    if (it == materials.end()) return n.at("material").error("no material \"" + material + "\" in /materials");
+    p.material = it->second;
+  }
+  return Ok{};
+}
+
+Status readModel(const Node& n, ModelDesc& m, const std::filesystem::path& folder) {
+  TRY(n.expectObject({"path", "position", "rotation", "scale", "clip", "speed", "start", "skinning"}));
+  if (!n.has("path")) return n.error("missing \"path\" of the glTF file");
+  TRY(readString(n, "path", m.path));
+  m.path = (folder / m.path).lexically_normal().string();
+  TRY(readVec3(n, "position", m.position));
+  TRY(readVec3(n, "rotation", m.rotationDegrees));
+  if (n.has("scale") && n.at("scale").value().is_number()) {
+    double s = 1.0;
+    TRY(readNumber(n, "scale", s, 1e-9, 1e9));
+    m.scale = glm::dvec3(s);
+  } else {
+    TRY(readVec3(n, "scale", m.scale));
+  }
+  if (n.has("clip") && n.at("clip").value().is_number_integer()) {
+    m.clip = std::to_string(n.at("clip").value().get<long long>());
+  } else {
+    TRY(readString(n, "clip", m.clip));
+  }
+  TRY(readNumber(n, "speed", m.speed, -1e3, 1e3));
+  TRY(readNumber(n, "start", m.start, -1e9, 1e9));
+  std::string skinning = "lbs";
+  TRY(readEnum(n, "skinning", skinning, std::map<std::string, std::string>{{"lbs", "lbs"}, {"dqs", "dqs"}}));
+  m.dualQuat = skinning == "dqs";
+  return Ok{};
+}
+
+Status readSky(const Node& n, SkyDesc& s) {
+  if (n.value().is_null() || (n.value().is_boolean() && !n.value().get<bool>())) {
+    s.enabled = false;
+    return Ok{};
+  }
+  TRY(n.expectObject({"zenith", "horizon", "ground", "sun_disk", "background", "enabled"}));
+  TRY(readBool(n, "enabled", s.enabled));
+  TRY(readVec3(n, "zenith", s.zenith));
+  TRY(readVec3(n, "horizon", s.horizon));
+  TRY(readVec3(n, "ground", s.ground));
+  TRY(readVec3(n, "background", s.background));
+  TRY(readBool(n, "sun_disk", s.sunDisk));
+  return Ok{};
+}
+
+Status readRender(const Node& n, RenderDesc& r) {
+  TRY(n.expectObject({"msaa", "supersample", "shading", "shadow_map", "shadow_filter", "pcf_kernel", "exposure", "tonemap", "output"}));
+  TRY(readInt(n, "msaa", r.msaa, 1, 16));
+  if (r.msaa & (r.msaa - 1)) return n.at("msaa").error("expected 1, 2, 4, 8 or 16");
+  TRY(readInt(n, "supersample", r.supersample, 1, 4));
+  TRY(readEnum(n, "shading", r.shading, std::map<std::string, Shading>{{"classic", Shading::Classic}, {"pbr", Shading::Pbr}}));
+  TRY(readInt(n, "shadow_map", r.shadowMapSize, 64, 8192));
+  TRY(readEnum(n, "shadow_filter", r.shadowFilter, std::map<std::string, ShadowFilter>{{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}}));
+  TRY(readInt(n, "pcf_kernel", r.pcfKernel, 1, 15));
+  if (r.pcfKernel % 2 == 0) return n.at("pcf_kernel").error("expected an odd kernel width");
+  TRY(readFloat(n, "exposure", r.exposure, 1e-6, 1e6));
+  TRY(readEnum(n, "tonemap", r.toneMap, std::map<std::string, ToneMap>{{"none", ToneMap::None}, {"reinhard", ToneMap::Reinhard}, {"aces", ToneMap::Aces}}));
+  TRY(readEnum(n, "output", r.output, std::map<std::string, OutputCurve>{{"srgb", OutputCurve::Srgb}, {"gamma2.2", OutputCurve::Gamma22}}));
+  return Ok{};
+}
+
+Status readTerrain(const Node& n, TerrainDesc& t, const std::filesystem::path& folder) {
+  TRY(n.expectObject({"heightmap", "seed", "size", "height_scale", "origin"}));
+  t.enabled = true;
+  TRY(readString(n, "heightmap", t.heightmap));
+  if (!t.heightmap.empty()) t.heightmap = (folder / t.heightmap).lexically_normal().string();
+  int seed = int(t.seed);
+  TRY(readInt(n, "seed", seed, 0, 1 << 30));
+  t.seed = unsigned(seed);
+  TRY(readNumber(n, "size", t.size, 1e-3, 1e7));
+  TRY(readNumber(n, "height_scale", t.heightScale, 0.0, 1e6));
+  TRY(readVec3(n, "origin", t.origin));
+  return Ok{};
+}
+
+template <typename T, typename F>
+Status readArray(const Node& root, const char* key, std::vector<T>& out, F&& readOne) {
+  if (!root.has(key)) return Ok{};
+  const Node arr = root.at(key);
+  auto size = arr.arraySize();
+  if (!size) return size.error();
+  for (size_t i = 0; i < *size; ++i) {
+    T item;
+    TRY(readOne(arr.at(i), item));
+    out.push_back(std::move(item));
+  }
+  return Ok{};
+}
+
+}  // namespace
+
+glm::dvec3 CameraDesc::right() const {
+  return glm::normalize(leftHanded ? glm::cross(up, forward) : glm::cross(forward, up));
+}
+
+Result<SceneDesc> parseScene(const std::string& text, const std::string& name) {
+  const json j = json::parse(text, nullptr, false);
+  if (j.is_discarded()) return makeError(name + ": not valid JSON");
+  const Node root(j, name, "");
+  TRY(root.expectObject({"camera", "lights", "materials", "primitives", "models", "sky", "fog", "terrain", "render", "ambient", "comment"}));
+  SceneDesc scene;
+  scene.path = name;
+  const auto folder = std::filesystem::path(name).parent_path();
+  if (root.has("camera")) TRY(readCamera(root.at("camera"), scene.camera));
+  TRY(readArray(root, "lights", scene.lights, readLight));
+
+  // Materials are an object of name -> material; primitives refer to them by name.
+  std::map<std::string, int> materialIndex;
+  MaterialDesc fallback;
+  fallback.name = "default";
+  scene.materials.push_back(fallback);
+  materialIndex["default"] = 0;
+  if (root.has("materials")) {
+    const Node mats = root.at("materials");
+    if (!mats.value().is_object()) return mats.error("expected an object of name: material");
+    for (const auto& item : mats.value().items()) {
+      MaterialDesc m;
+      m.name = item.key();
+      TRY(readMaterial(mats.at(item.key().c_str()), m));
+      if (materialIndex.count(m.name)) {
+        scene.materials[size_t(materialIndex[m.name])] = m;
+      } else {
+        materialIndex[m.name] = int(scene.materials.size());
+        scene.materials.push_back(m);
+      }
+    }
+  }
+  TRY(readArray(root, "primitives", scene.primitives,
+                [&](const Node& n, PrimitiveDesc& p) { return readPrimitive(n, p, materialIndex); }));
+  TRY(readArray(root, "models", scene.models,
+                [&](const Node& n, ModelDesc& m) { return readModel(n, m, folder); }));
+  if (root.has("sky")) TRY(readSky(root.at("sky"), scene.sky));
+  if (root.has("fog")) {
+    const Node fog = root.at("fog");
+    TRY(fog.expectObject({"density", "color"}));
+    scene.fog.enabled = true;
+    TRY(readFloat(fog, "density", scene.fog.density, 0.0, 100.0));
+    TRY(readVec3(fog, "color", scene.fog.color));
+  }
+  if (root.has("terrain")) TRY(readTerrain(root.at("terrain"), scene.terrain, folder));
+  if (root.has("render")) TRY(readRender(root.at("render"), scene.render));
+  TRY(readFloat(root, "ambient", scene.ambient, 0.0, 1.0));
+  return scene;
+}
+
+Result<SceneDesc> loadSceneFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return makeError(path + ": cannot open scene file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  // Scene files are small; a huge one is a mistake, not a scene.
+  if (ss.str().size() > (64u << 20)) return makeError(path + ": scene file larger than 64 MiB");
+  return parseScene(ss.str(), path);
+}
+
+}  // namespace engine

@@ -1,0 +1,17 @@
+#pragma once
+// Reads a scene file (JSON, see the README's "Scene files") into a SceneDesc.
+// Every error names the file, the JSON path and what was expected:
+//   "demo.json: /models/2/speed: expected a number".
+// Unknown keys are errors too, so a typo does not silently fall back to a default.
+#include <string>
+
+#include "asset/scene_desc.h"
+#include "core/result.h"
+
+namespace engine {
+
+Result<SceneDesc> loadSceneFile(const std::string& path);
+// Parses scene JSON text; `name` is used in messages and to resolve relative paths.
+Result<SceneDesc> parseScene(const std::string& text, const std::string& name);
+
+}  // namespace engine

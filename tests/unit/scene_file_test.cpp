@@ -1,0 +1,90 @@
+// Scene files: the course room reads back exactly, and every error names the file,
+// the JSON path and what was expected.
+#include <gtest/gtest.h>
+
+#include "asset/scene_file.h"
+
+using namespace engine;
+
+namespace {
+std::string errorOf(const std::string& text) {
+  auto scene = parseScene(text, "s.json");
+  return scene ? std::string("no error") : scene.error().message;
+}
+}  // namespace
+
+TEST(SceneFile, CornellRoomIsTheCourseRoom) {
+  auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_EQ(scene->camera.position, glm::dvec3(0, 1.5, -3));
+  EXPECT_EQ(scene->camera.forward, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(scene->camera.fovyDegrees, 60.0);
+  EXPECT_TRUE(scene->camera.leftHanded);
+  // Left-handed, looking along +z: +x is on the screen's right.
+  EXPECT_EQ(scene->camera.right(), glm::dvec3(1, 0, 0));
+  ASSERT_EQ(scene->lights.size(), 1u);
+  EXPECT_EQ(scene->lights[0].type, LightType::Point);
+  EXPECT_EQ(scene->lights[0].position, glm::dvec3(0, 2.8, 2.0));
+  EXPECT_FALSE(scene->lights[0].falloff);
+  ASSERT_EQ(scene->primitives.size(), 8u);
+  const PrimitiveDesc& mirror = scene->primitives[6];
+  EXPECT_EQ(mirror.type, PrimitiveType::Sphere);
+  EXPECT_EQ(mirror.center, glm::dvec3(0.9, 0.9, 3.4));
+  EXPECT_EQ(mirror.radius, 0.9);
+  const MaterialDesc& m = scene->materials[size_t(mirror.material)];
+  EXPECT_FLOAT_EQ(m.reflection, 0.8f);
+  EXPECT_FLOAT_EQ(m.diffuse, 0.2f);
+  EXPECT_FLOAT_EQ(m.ambient, 0.0f);
+  const MaterialDesc& red = scene->materials[size_t(scene->primitives[3].material)];
+  EXPECT_EQ(red.color, glm::vec3(0.75f, 0.15f, 0.15f));
+  EXPECT_EQ(scene->render.shading, Shading::Classic);
+  EXPECT_EQ(scene->render.output, OutputCurve::Gamma22);
+  EXPECT_EQ(scene->render.toneMap, ToneMap::None);
+  EXPECT_FALSE(scene->sky.enabled);
+}
+
+TEST(SceneFile, ErrorsNameFilePathAndExpectation) {
+  EXPECT_EQ(errorOf("{"), "s.json: not valid JSON");
+  EXPECT_EQ(errorOf("[]"), "s.json: /: expected an object");
+  EXPECT_EQ(errorOf(R"({"camera": {"fovy": "wide"}})"), "s.json: /camera/fovy: expected a number");
+  EXPECT_EQ(errorOf(R"({"camera": {"position": [1, 2]}})"),
+            "s.json: /camera/position: expected an array of 3 numbers");
+  EXPECT_EQ(errorOf(R"({"models": [{"path": "a.glb"}, {"path": "b.glb", "speed": "fast"}]})"),
+            "s.json: /models/1/speed: expected a number");
+  EXPECT_EQ(errorOf(R"({"lights": [{"type": "laser"}]})"),
+            "s.json: /lights/0/type: \"laser\" is not one of: area, point, sun");
+  EXPECT_EQ(errorOf(R"({"primitives": [{"type": "sphere", "material": "gold"}]})"),
+            "s.json: /primitives/0/material: no material \"gold\" in /materials");
+  EXPECT_EQ(errorOf(R"({"render": {"pcf_kernel": 4}})"), "s.json: /render/pcf_kernel: expected an odd kernel width");
+  EXPECT_EQ(errorOf(R"({"primitives": [{"type": "sphere", "radius": -1}]})"),
+            "s.json: /primitives/0/radius: expected a number in [1e-09, 1e+12], got -1");
+}
+
+TEST(SceneFile, UnknownKeysAreErrors) {
+  const std::string e = errorOf(R"({"camera": {"fov": 60}})");
+  EXPECT_EQ(e.rfind("s.json: /camera/fov: unknown key; expected one of:", 0), 0u) << e;
+}
+
+TEST(SceneFile, DegenerateGeometryIsRefused) {
+  EXPECT_EQ(errorOf(R"({"camera": {"direction": [0, 0, 0]}})"),
+            "s.json: /camera/direction: a direction must not be zero");
+  EXPECT_EQ(errorOf(R"({"camera": {"direction": [0, 1, 0]}})"), "s.json: /camera: up is parallel to the view direction");
+  EXPECT_EQ(errorOf(R"({"primitives": [{"type": "box", "min": [0, 0, 0], "max": [1, 0, 1]}]})"),
+            "s.json: /primitives/0: a box needs min < max on every axis");
+  EXPECT_EQ(errorOf(R"({"camera": {"near": 10, "far": 1}})"), "s.json: /camera: far must be greater than near");
+}
+
+TEST(SceneFile, ModelPathsAreRelativeToTheSceneFile) {
+  auto scene = parseScene(R"({"models": [{"path": "../models/c.gltf", "clip": 2, "scale": 2}]})",
+                          "assets/scenes/s.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_EQ(scene->models[0].path, "assets/models/c.gltf");
+  EXPECT_EQ(scene->models[0].clip, "2");
+  EXPECT_EQ(scene->models[0].scale, glm::dvec3(2.0));
+}
+
+TEST(SceneFile, MissingFileNamesIt) {
+  auto scene = loadSceneFile("/nonexistent/x.json");
+  ASSERT_FALSE(scene.ok());
+  EXPECT_EQ(scene.error().message, "/nonexistent/x.json: cannot open scene file");
+}
