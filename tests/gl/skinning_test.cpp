@@ -1,0 +1,206 @@
+// GPU skinning (shaders/common/skinning.glsl) against the CPU SkinningJob: the
+// skinned positions are captured with transform feedback and must agree to 1e-5 of
+// the model's size, for linear blend and dual quaternions, 4 and 8 influences.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "../support/gl_test.h"
+#include "anim/jobs.h"
+#include "anim/model_builder.h"
+#include "asset/gltf_loader.h"
+#include "gl/resources.h"
+#include "render/model_renderer.h"
+#include "render/render_target.h"
+
+using namespace engine;
+using engine::test::GlTest;
+
+namespace {
+
+// Float GPU and CPU sum the same products in a different order: a few ulps of the
+// largest coordinate, far below 1e-5 of the size.
+constexpr double kRelativeTolerance = 1e-5;
+
+struct Posed {
+  std::vector<glm::mat4> palette;
+  std::vector<DualQuat> dualQuats;
+};
+
+Posed poseSkin(const AnimatedModel& animated, int clip, double time, int skin) {
+  const Skeleton& skeleton = animated.skeleton;
+  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
+  if (clip >= 0) {
+    SamplingJob sample{&animated.clips[size_t(clip)], time, skeleton.restPose(), locals};
+    EXPECT_TRUE(sample.run());
+  }
+  std::vector<glm::mat4> models(locals.size());
+  EXPECT_TRUE((LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run()));
+  const Skin& s = animated.skins[size_t(skin)];
+  Posed posed;
+  posed.palette.resize(s.joints.size());
+  posed.dualQuats.resize(s.joints.size());
+  EXPECT_TRUE((SkinningPaletteJob{models, s.joints, s.inverseBinds, posed.palette}.run()));
+  EXPECT_TRUE((DualQuatPaletteJob{posed.palette, posed.dualQuats}.run()));
+  return posed;
+}
+
+std::vector<glm::vec3> cpuSkin(const PrimitiveData& prim, const Posed& posed, SkinMode mode) {
+  std::vector<glm::vec3> out(prim.positions.size());
+  SkinningJob job;
+  job.method = mode == SkinMode::DualQuat ? SkinningMethod::DualQuat : SkinningMethod::Linear;
+  job.influences = prim.influences;
+  job.positions = prim.positions;
+  job.joints = prim.joints;
+  job.weights = prim.weights;
+  job.palette = posed.palette;
+  job.dualQuats = posed.dualQuats;
+  job.outPositions = out;
+  EXPECT_TRUE(job.run());
+  return out;
+}
+
+std::vector<glm::vec3> gpuSkin(ShaderVariants& variants, const GpuPrimitive& prim, const Posed& posed,
+                               SkinMode mode) {
+  auto program = variants.get({prim.influences, mode}, {"v_position"});
+  EXPECT_TRUE(program.ok()) << program.error().message;
+  if (!program) return {};
+  const gl::Program& p = **program;
+  p.use();
+  p.set("u_model", glm::mat4(1.0f));
+  p.set("u_normalMatrix", glm::mat3(1.0f));
+  p.set("u_viewProjection", glm::mat4(1.0f));
+  const gl::Buffer skin = mode == SkinMode::DualQuat
+                              ? gl::Buffer::fromSpan(std::span<const DualQuat>(posed.dualQuats))
+                              : gl::Buffer::fromSpan(std::span<const glm::mat4>(posed.palette));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, skin.id());
+  const gl::Buffer captured = gl::Buffer::create(size_t(prim.vertexCount) * sizeof(glm::vec3));
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
+  // EGL surfaceless has no default framebuffer; draws need one bound even when
+  // rasterisation is discarded.
+  auto target = RenderTarget::create(1, 1, 1);
+  EXPECT_TRUE(target.ok());
+  target->bind();
+  glEnable(GL_RASTERIZER_DISCARD);
+  prim.vao.bind();
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, prim.vertexCount);  // one output per vertex, in order
+  glEndTransformFeedback();
+  glDisable(GL_RASTERIZER_DISCARD);
+  std::vector<glm::vec3> out(size_t(prim.vertexCount));
+  glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec3)), out.data());
+  return out;
+}
+
+double sizeOf(const std::vector<glm::vec3>& points) {
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const auto& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return glm::length(hi - lo);
+}
+
+double largestRelativeError(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+  double worst = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(glm::length(a[i] - b[i])));
+  return worst / std::max(1e-12, sizeOf(b));
+}
+
+// Every skinned primitive of every node, at one time, both skinning methods.
+void compareModel(const ModelData& model, int clip, double time) {
+  auto animated = buildAnimatedModel(model);
+  ASSERT_TRUE(animated.ok()) << animated.error().message;
+  auto gpu = GpuModel::upload(model);
+  ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+  ShaderVariants variants(test::shaderDir());
+  int compared = 0;
+  for (const NodeData& node : model.nodes) {
+    if (node.mesh < 0 || node.skin < 0) continue;
+    const Posed posed = poseSkin(*animated, clip, time, node.skin);
+    const auto& prims = model.meshes[size_t(node.mesh)].primitives;
+    for (size_t p = 0; p < prims.size(); ++p) {
+      if (prims[p].influences == 0) continue;
+      for (SkinMode mode : {SkinMode::Linear, SkinMode::DualQuat}) {
+        const auto cpu = cpuSkin(prims[p], posed, mode);
+        const auto gpuOut = gpuSkin(variants, gpu->meshes()[size_t(node.mesh)][p], posed, mode);
+        ASSERT_EQ(cpu.size(), gpuOut.size());
+        const double error = largestRelativeError(gpuOut, cpu);
+        std::printf("%s %s influences %d: GPU vs CPU %.3g of the size\n", model.path.c_str(),
+                    mode == SkinMode::DualQuat ? "DQS" : "LBS", prims[p].influences, error);
+        EXPECT_LE(error, kRelativeTolerance) << (mode == SkinMode::DualQuat ? "DQS" : "LBS")
+                                             << " influences " << prims[p].influences;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 0) << "no skinned primitive was compared";
+}
+
+// A bent chain of 8 joints with every vertex weighted over all 8.
+ModelData eightInfluenceModel() {
+  ModelData model;
+  model.path = "eight.gltf";
+  for (int j = 0; j < 8; ++j) {
+    NodeData node;
+    node.parent = j - 1;
+    node.translation = j == 0 ? glm::vec3(0.0f) : glm::vec3(0.0f, 0.5f, 0.0f);
+    node.rotation = glm::angleAxis(0.2f * float(j), glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f)));
+    if (j < 7) node.children.push_back(j + 1);
+    model.nodes.push_back(node);
+  }
+  NodeData meshNode;
+  meshNode.mesh = 0;
+  meshNode.skin = 0;
+  model.nodes.push_back(meshNode);
+  model.sceneRoots = {0, 8};
+  SkinData skin;
+  for (int j = 0; j < 8; ++j) {
+    skin.joints.push_back(j);
+    skin.inverseBinds.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.5f * float(j), 0.0f)));
+  }
+  model.skins.push_back(skin);
+  PrimitiveData prim;
+  prim.influences = 8;
+  for (int v = 0; v < 64; ++v) {
+    prim.positions.push_back({0.1f * float(v % 4), 0.06f * float(v), 0.05f * float(v % 3)});
+    float total = 0.0f;
+    std::vector<float> w(8);
+    for (int k = 0; k < 8; ++k) total += (w[size_t(k)] = 1.0f / (1.0f + float(std::abs(v / 8 - k))));
+    for (int k = 0; k < 8; ++k) {
+      prim.joints.push_back(std::uint16_t(7 - k));
+      prim.weights.push_back(w[size_t(k)] / total);
+    }
+  }
+  MeshData mesh;
+  mesh.primitives.push_back(prim);
+  model.meshes.push_back(mesh);
+  return model;
+}
+
+std::string conformanceDir() {
+  if (const char* env = std::getenv("CONFORMANCE_DIR")) return env;
+  return std::string(ENGINE_SOURCE_DIR) + "/../shared/conformance";
+}
+
+}  // namespace
+
+class GpuSkinning : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(GpuSkinning);
+
+TEST_P(GpuSkinning, EightInfluencesMatchCpu) { compareModel(eightInfluenceModel(), -1, 0.0); }
+
+TEST_P(GpuSkinning, CesiumManMatchesCpu) {
+  const std::string path = conformanceDir() + "/assets/CesiumMan/glTF-Binary/CesiumMan.glb";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found (../shared/conformance absent)";
+  auto model = loadGltf(path);
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  for (double t : {0.0, 0.5005, 1.013}) compareModel(*model, 0, t);
+}
+
+TEST_P(GpuSkinning, ShippedCharacterMatchesCpu) {
+  const std::string path = std::string(ENGINE_SOURCE_DIR) + "/assets/models/character.gltf";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not generated yet";
+  auto model = loadGltf(path);
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  for (int clip = 0; clip < int(model->animations.size()); ++clip) compareModel(*model, clip, 0.37);
+}
