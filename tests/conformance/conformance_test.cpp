@@ -1,4 +1,5 @@
-// Compares dumpPose() with the three.js reference poses of
+// Compares `viewer --dump-pose` (the program, as a user runs it) with the three.js
+// reference poses of
 // ../shared/conformance/poses (see CONVENTIONS.md there): node world matrices and
 // skinned world-space vertex positions, for every pose whose model is present.
 #include <gtest/gtest.h>
@@ -73,17 +74,6 @@ json readJson(const fs::path& path) {
   return json::parse(in);
 }
 
-const engine::ModelData* loadCached(const fs::path& path) {
-  static std::map<std::string, engine::Result<engine::ModelData>> cache;
-  auto it = cache.find(path.string());
-  if (it == cache.end()) it = cache.emplace(path.string(), engine::loadGltf(path.string())).first;
-  if (!it->second) {
-    ADD_FAILURE() << it->second.error().message;
-    return nullptr;
-  }
-  return &it->second.value();
-}
-
 double bboxDiagonal(const json& ref) {
   const json& lo = ref["bbox"]["min"];
   const json& hi = ref["bbox"]["max"];
@@ -131,6 +121,23 @@ double positionError(const json& ours, const json& ref) {
   return worst;
 }
 
+// Runs the viewer binary; the pose file it writes, or an empty object on failure.
+json viewerPose(const fs::path& model, int anim, double time, engine::LoopMode loop) {
+  const fs::path out = fs::temp_directory_path() / ("engine_pose_" + std::to_string(::getpid()) + ".json");
+  char timeText[64];
+  std::snprintf(timeText, sizeof timeText, "%.17g", time);
+  const std::string command = std::string(ENGINE_BINARY_DIR) + "/bin/viewer '" + model.string() +
+                              "' --anim " + std::to_string(anim) + " --time " + timeText + " --loop " +
+                              (loop == engine::LoopMode::Clamp ? "clamp" : "repeat") + " --dump-pose '" +
+                              out.string() + "' > /dev/null";
+  const int rc = std::system(command.c_str());
+  EXPECT_EQ(rc, 0) << command;
+  if (rc != 0) return json::object();
+  json pose = readJson(out);
+  fs::remove(out);
+  return pose;
+}
+
 class ConformanceTest : public ::testing::TestWithParam<PoseCase> {};
 
 TEST_P(ConformanceTest, MatchesThreeJs) {
@@ -138,21 +145,18 @@ TEST_P(ConformanceTest, MatchesThreeJs) {
   json ref = readJson(pose.file);
   fs::path modelPath = conformanceDir() / ref["model"].get<std::string>();
   if (!fs::exists(modelPath)) GTEST_SKIP() << "model not present: " << modelPath;
-  const engine::ModelData* model = loadCached(modelPath);
-  ASSERT_NE(model, nullptr);
-
   int anim = ref["anim"].get<int>();
   double time = ref["time"].get<double>();
   engine::LoopMode loop = engine::LoopMode::Repeat;
   if (ref.contains("animation") && ref["animation"].is_object() &&
       ref["animation"].value("loop", "repeat") == "clamp")
     loop = engine::LoopMode::Clamp;
-  auto ours = engine::dumpPose(*model, anim, time, loop);
-  ASSERT_TRUE(ours.ok()) << ours.error().message;
+  const json ours = viewerPose(modelPath, anim, time, loop);
+  ASSERT_TRUE(ours.contains("nodes")) << "viewer --dump-pose failed for " << pose.file;
 
-  ASSERT_EQ((*ours)["nodes"].size(), ref["nodes"].size());
-  double matrixErr = nodeError(*ours, ref);
-  double relErr = positionError(*ours, ref) / bboxDiagonal(ref);
+  ASSERT_EQ(ours["nodes"].size(), ref["nodes"].size());
+  double matrixErr = nodeError(ours, ref);
+  double relErr = positionError(ours, ref) / bboxDiagonal(ref);
   // README: float32 engines land near 1e-6; 1e-4 of the bbox diagonal is the bar.
   // Node matrices are compared entry by entry, scaled by their largest entry.
   constexpr double limit = 1e-4;
