@@ -38,4 +38,23 @@ Result<AnimatedModel> buildAnimatedModel(const ModelData& model) {
   return out;
 }
 
+Result<int> findClip(const AnimatedModel& animated, const std::string& wanted, const std::string& modelPath) {
+  const int count = int(animated.clips.size());
+  if (wanted.empty()) return count > 0 ? 0 : -1;
+  const bool numeric = wanted.find_first_not_of("-0123456789") == std::string::npos;
+  if (numeric && wanted.size() < 10) {
+    const int index = std::stoi(wanted);
+    if (index >= -1 && index < count) return index;
+  }
+  std::string names;
+  for (int i = 0; i < count; ++i) {
+    const std::string& name = animated.clips[size_t(i)].name();
+    if (name == wanted) return i;
+    names += (i ? ", " : "") + name;
+  }
+  const std::string file = modelPath.substr(modelPath.find_last_of('/') + 1);
+  return makeError("no clip \"" + wanted + "\" in " + file + "; clips are: " + (names.empty() ? "(none)" : names) +
+                   " (or an index, -1 = rest pose)");
+}
+
 }  // namespace engine

@@ -21,4 +21,9 @@ RawSkeleton makeRawSkeleton(const ModelData& model);
 RawClip makeRawClip(const AnimationData& animation);
 Result<AnimatedModel> buildAnimatedModel(const ModelData& model);
 
+// The clip index for `wanted`: "" (the first clip, or -1 without clips), an index
+// (-1 = rest pose) or a name. The error names the model file and lists the clips:
+// `no clip "Run" in fox.glb; clips are: Survey, Walk`.
+Result<int> findClip(const AnimatedModel& animated, const std::string& wanted, const std::string& modelPath);
+
 }  // namespace engine

@@ -29,6 +29,7 @@ void addCommonOptions(CLI::App& app, CommonOptions& o) {
   app.add_option("--bench", o.run.benchFile,
                  "Write frame-time median, p95 and max to this JSON file");
   app.add_option("--shaders", o.shaderDir, "Folder of the GLSL sources");
+  app.add_option("--assets", o.assetDir, "Folder of the shipped assets (models, scenes)");
   app.add_flag("--no-vsync", [&o](std::int64_t) { o.run.vsync = false; }, "Window: do not wait for vsync");
   app.add_flag("--debug-gl", o.run.debugGl, "Turn on GL debug output (KHR_debug)");
   app.add_flag("--check-display", o.checkDisplay, "Exit 0 when a window can be opened here")
@@ -69,6 +70,10 @@ Status finishCommonOptions(CommonOptions& o, int argc, char** argv) {
   }
   if (!std::filesystem::is_directory(o.shaderDir)) {
     return makeError("shader folder " + o.shaderDir + " not found (use --shaders DIR)");
+  }
+  if (o.assetDir.empty()) {
+    const char* env = std::getenv("ENGINE_ASSET_DIR");
+    o.assetDir = env ? env : ENGINE_DEFAULT_ASSET_DIR;
   }
   if (!o.run.screenshot.empty()) {
     if (auto s = checkWritable(o.run.screenshot, "--screenshot"); !s) return s;

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
                                     : demo::loadSceneSettings(scenePath);
   if (!settings) return fail(engine::kExitBadInput, settings.error().message);
 
-  demo::ProceduralScene scene(options.shaderDir, std::move(settings).value());
+  demo::ProceduralScene scene(options.shaderDir, options.assetDir, std::move(settings).value());
   const engine::Backend backend = engine::chosenBackend(options);
   if (backend == engine::Backend::Window && !engine::displayAvailable()) {
     return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");

@@ -6,6 +6,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "asset/gltf_loader.h"
+#include "render/character.h"
 #include "render/textures.h"
 
 namespace demo {
@@ -67,13 +69,21 @@ Result<SceneSettings> loadSceneSettings(const std::string& path) {
     }
   }
   if (j.contains("sun")) {
+    // value() throws on a non-object, so the type is checked first.
+    if (!j["sun"].is_object()) return makeError(path + ": /sun: expected an object");
     auto v = readVec3(j["sun"].value("direction", nlohmann::json()), path + ": /sun/direction");
     if (!v) return v.error();
-    if (glm::length(*v) == 0.0) return makeError(path + ": /sun/direction: must not be zero");
-    s.lighting.sunDirection = glm::vec3(glm::normalize(*v));
+    // Scaled first: the length of (1e200, 0, 0) overflows to infinity.
+    const glm::dvec3 d = *v / glm::max(glm::abs(v->x), glm::max(glm::abs(v->y), glm::abs(v->z)));
+    if (!(glm::length(d) > 0.0)) return makeError(path + ": /sun/direction: must not be zero");
+    s.lighting.sunDirection = glm::vec3(glm::normalize(d));
   }
   s.camera.position += s.origin;
   s.cameraTarget += s.origin;
+  // Each value may be finite and the sum still overflow (origin 1e308 + position 1e308).
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(s.camera.position[i]) || !std::isfinite(s.cameraTarget[i]))
+      return makeError(path + ": /origin: camera position or target plus the origin is not finite");
   s.camera.lookAt(s.cameraTarget);
   return s;
 }
@@ -84,15 +94,24 @@ struct ProceduralScene::Gpu {
   engine::gl::VertexArray emptyVao;  // the sky's vertices come from gl_VertexID
   std::unique_ptr<engine::GpuMesh> ground, cube, sphere;
   engine::gl::Texture groundTexture, cubeTexture, sphereTexture;
+  engine::ShaderVariants variants;
+  std::vector<engine::CharacterInstance> robots;
+  explicit Gpu(std::string shaderDir) : variants(std::move(shaderDir)) {}
 };
 
-ProceduralScene::ProceduralScene(std::string shaderDir, SceneSettings settings)
-    : shaderDir_(std::move(shaderDir)), settings_(std::move(settings)) {}
+namespace {
+// The shipped robot: one walks a circle around the props, one waves beside them.
+constexpr double kWalkRadius = 2.6;
+constexpr double kWalkSpeed = 0.9;  // metres per second along the circle
+}  // namespace
+
+ProceduralScene::ProceduralScene(std::string shaderDir, std::string assetDir, SceneSettings settings)
+    : shaderDir_(std::move(shaderDir)), assetDir_(std::move(assetDir)), settings_(std::move(settings)) {}
 
 ProceduralScene::~ProceduralScene() = default;
 
 engine::Status ProceduralScene::init() {
-  auto gpu = std::make_unique<Gpu>();
+  auto gpu = std::make_unique<Gpu>(shaderDir_);
   auto lit = engine::gl::Program::build(
       shaderDir_, {{GL_VERTEX_SHADER, "lit.vert"}, {GL_FRAGMENT_SHADER, "lit.frag"}});
   if (!lit) return lit.error();
@@ -110,13 +129,45 @@ engine::Status ProceduralScene::init() {
   gpu->cubeTexture = engine::uploadTexture(engine::makeTiles(256, 4, {190, 90, 60}, {60, 50, 45}), true);
   gpu->sphereTexture =
       engine::uploadTexture(engine::makeChecker(256, 8, {230, 230, 240}, {50, 80, 160}), true);
+  auto model = engine::loadGltf(assetDir_ + "/models/character.gltf");
+  if (!model) return model.error();
+  auto robot = engine::CharacterAsset::create(std::move(model).value());
+  if (!robot) return robot.error();
+  for (const char* clip : {"Walk", "Wave"}) {
+    gpu->robots.emplace_back(*robot);
+    auto index = engine::findClip(robot.value()->animated, clip, "character.gltf");
+    if (!index) return index.error();
+    gpu->robots.back().play(*index);
+  }
   gpu_ = std::move(gpu);
   return engine::Ok{};
 }
 
 void ProceduralScene::shutdown() { gpu_.reset(); }
 
-void ProceduralScene::update(double time, double) { time_ = time; }
+void ProceduralScene::update(double time, double) {
+  time_ = time;
+  // The clips are sampled at the scene time itself, so a frame depends on its time
+  // only, never on how many frames came before it.
+  for (auto& robot : gpu_->robots) {
+    robot.player().seek(time);
+    robot.evaluate();
+  }
+}
+
+void ProceduralScene::drawCharacters(const glm::mat4& viewProjection) {
+  const glm::dmat4 origin = glm::translate(glm::dmat4(1.0), settings_.origin);
+  // Walker: along a circle, facing its direction of travel (the robot faces +z).
+  const double angle = std::fmod(time_ * kWalkSpeed / kWalkRadius, glm::two_pi<double>());
+  glm::dmat4 walker = glm::translate(origin, glm::dvec3(kWalkRadius * std::cos(angle), 0.0, -kWalkRadius * std::sin(angle)));
+  walker = glm::rotate(walker, angle + glm::pi<double>(), glm::dvec3(0.0, 1.0, 0.0));
+  const glm::dmat4 waver = glm::rotate(glm::translate(origin, glm::dvec3(0.4, 0.0, -1.6)), 0.35, glm::dvec3(0.0, 1.0, 0.0));
+  const glm::dmat4 transforms[] = {walker, waver};
+  for (size_t i = 0; i < gpu_->robots.size(); ++i) {
+    gpu_->robots[i].computeModels(transforms[i], settings_.camera.position);
+    (void)gpu_->robots[i].draw(gpu_->variants, viewProjection, engine::SkinMode::Linear, settings_.lighting);
+  }
+}
 
 void ProceduralScene::drawSky(const glm::mat4& viewProjection) const {
   const auto& sky = gpu_->sky;
@@ -183,6 +234,7 @@ void ProceduralScene::render(const engine::FrameInfo& frame) {
   glm::dmat4 sphere = glm::translate(origin, orbit);
   sphere = glm::rotate(sphere, -spin * 2.0, glm::dvec3(0.0, 1.0, 0.0));
   drawObject(*gpu_->sphere, sphere, viewProjection, 2);
+  drawCharacters(viewProjection);
 }
 
 }  // namespace demo

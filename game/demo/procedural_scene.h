@@ -30,7 +30,7 @@ SceneSettings defaultSceneSettings();
 
 class ProceduralScene final : public engine::Game {
  public:
-  ProceduralScene(std::string shaderDir, SceneSettings settings);
+  ProceduralScene(std::string shaderDir, std::string assetDir, SceneSettings settings);
   ~ProceduralScene() override;
 
   engine::Status init() override;
@@ -45,7 +45,10 @@ class ProceduralScene final : public engine::Game {
   void drawObject(const engine::GpuMesh& mesh, const glm::dmat4& model, const glm::mat4& viewProjection,
                   int texture) const;
 
+  void drawCharacters(const glm::mat4& viewProjection);
+
   std::string shaderDir_;
+  std::string assetDir_;
   SceneSettings settings_;
   double time_ = 0.0;
   std::unique_ptr<Gpu> gpu_;

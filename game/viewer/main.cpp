@@ -18,31 +18,6 @@ int fail(int code, const std::string& message) {
   return code;
 }
 
-// --anim takes an index (-1 = rest pose) or a clip name.
-engine::Result<int> resolveClip(const std::string& wanted, const engine::ModelData& model) {
-  const int count = int(model.animations.size());
-  if (wanted.empty()) return count > 0 ? 0 : -1;
-  try {
-    size_t used = 0;
-    const int index = std::stoi(wanted, &used);
-    if (used == wanted.size()) {
-      if (index < -1 || index >= count) {
-        return engine::makeError(model.path + ": --anim " + wanted + ": no such animation (" +
-                                 std::to_string(count) + " animations; -1 is the rest pose)");
-      }
-      return index;
-    }
-  } catch (const std::exception&) {
-  }
-  std::string names;
-  for (int i = 0; i < count; ++i) {
-    if (model.animations[size_t(i)].name == wanted) return i;
-    names += (i ? ", " : "") + model.animations[size_t(i)].name;
-  }
-  return engine::makeError(model.path + ": --anim: no clip \"" + wanted + "\"; clips are: " +
-                           (names.empty() ? "(none)" : names));
-}
-
 engine::Status writeJson(const std::string& path, const nlohmann::json& json) {
   const std::string tmp = path + ".tmp";
   {
@@ -81,8 +56,10 @@ int main(int argc, char** argv) {
   }
   auto model = engine::loadGltf(modelPath);
   if (!model) return fail(engine::kExitBadInput, model.error().message);
-  auto clip = resolveClip(anim, *model);
-  if (!clip) return fail(engine::kExitBadInput, clip.error().message);
+  auto animated = engine::buildAnimatedModel(*model);
+  if (!animated) return fail(engine::kExitBadInput, animated.error().message);
+  auto clip = engine::findClip(*animated, anim, modelPath);
+  if (!clip) return fail(engine::kExitBadInput, modelPath + ": --anim: " + clip.error().message);
   const engine::LoopMode loopMode = loop == "clamp"      ? engine::LoopMode::Clamp
                                     : loop == "pingpong" ? engine::LoopMode::PingPong
                                                          : engine::LoopMode::Repeat;
@@ -102,15 +79,13 @@ int main(int argc, char** argv) {
   if (auto s = engine::finishCommonOptions(options, argc, argv); !s) {
     return fail(engine::kExitBadInput, s.error().message);
   }
-  auto animated = engine::buildAnimatedModel(*model);
-  if (!animated) return fail(engine::kExitBadInput, animated.error().message);
   viewer::ViewerSettings settings;
   settings.clip = *clip;
   settings.speed = speed;
   settings.loop = loopMode;
   settings.skinMode = dualQuat ? engine::SkinMode::DualQuat : engine::SkinMode::Linear;
   settings.skeleton = skeleton;
-  viewer::ViewerScene scene(options.shaderDir, std::move(model).value(), std::move(animated).value(), settings);
+  viewer::ViewerScene scene(options.shaderDir, std::move(model).value(), settings);
 
   const engine::Backend backend = engine::chosenBackend(options);
   if (backend == engine::Backend::Window && !engine::displayAvailable()) {

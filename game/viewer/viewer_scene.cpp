@@ -15,65 +15,27 @@ namespace viewer {
 using namespace engine;
 
 struct ViewerScene::Gpu {
-  GpuModel model;
   ShaderVariants variants;
   gl::Program sky;
   gl::Program lines;
   gl::VertexArray emptyVao;
   gl::VertexArray lineVao;
   gl::Buffer lineBuffer;
-  std::vector<gl::Buffer> skinBuffers;
   std::unique_ptr<GpuMesh> ground;
   gl::Texture groundTexture;
   explicit Gpu(std::string shaderDir) : variants(std::move(shaderDir)) {}
 };
 
-ViewerScene::ViewerScene(std::string shaderDir, ModelData model, AnimatedModel animated,
-                         ViewerSettings settings)
-    : shaderDir_(std::move(shaderDir)),
-      model_(std::move(model)),
-      animated_(std::move(animated)),
-      settings_(settings),
-      player_(animated_.skeleton) {
-  const size_t joints = size_t(animated_.skeleton.jointCount());
-  locals_.resize(joints);
-  models_.resize(joints);
-  nodeWorlds_.resize(model_.nodes.size());
-  startClip(settings_.clip, 0.0);
-  computePose();
-  frameCamera();
+ViewerScene::ViewerScene(std::string shaderDir, ModelData model, ViewerSettings settings)
+    : shaderDir_(std::move(shaderDir)), model_(std::move(model)), settings_(settings) {
+  frameCamera(model_);
 }
 
 ViewerScene::~ViewerScene() = default;
 
-void ViewerScene::startClip(int clip, double fadeSeconds) {
-  settings_.clip = clip;
-  if (clip < 0 || clip >= int(animated_.clips.size())) return;
-  const Clip& c = animated_.clips[size_t(clip)];
-  if (fadeSeconds > 0.0 && player_.clip()) {
-    player_.crossFade(c, fadeSeconds, settings_.loop);
-  } else {
-    player_.play(c, settings_.loop);
-  }
-  player_.setSpeed(settings_.speed);
-}
-
-void ViewerScene::computePose() {
-  const Skeleton& skeleton = animated_.skeleton;
-  const bool animated = !settings_.bindPose && settings_.clip >= 0 && player_.clip();
-  if (!animated || !player_.evaluate(locals_)) {
-    std::copy(skeleton.restPose().begin(), skeleton.restPose().end(), locals_.begin());
-  }
-  LocalToModelJob toModel{skeleton.parents(), locals_, glm::mat4(1.0f), models_};
-  toModel.run();
-  for (size_t n = 0; n < nodeWorlds_.size(); ++n) {
-    nodeWorlds_[n] = models_[size_t(skeleton.jointOfRaw(int(n)))];
-  }
-}
-
-void ViewerScene::frameCamera() {
+void ViewerScene::frameCamera(const ModelData& model) {
   // Bounds of the posed, skinned vertices: the same numbers --dump-pose writes.
-  auto pose = dumpPose(model_, -1, 0.0);
+  auto pose = dumpPose(model, -1, 0.0);
   glm::vec3 lo(1e30f), hi(-1e30f);
   if (pose) {
     for (const auto& mesh : (*pose)["meshes"]) {
@@ -100,9 +62,11 @@ void ViewerScene::frameCamera() {
 
 Status ViewerScene::init() {
   auto gpu = std::make_unique<Gpu>(shaderDir_);
-  auto model = GpuModel::upload(model_);
-  if (!model) return model.error();
-  gpu->model = std::move(model).value();
+  auto asset = CharacterAsset::create(std::move(model_));
+  if (!asset) return asset.error();
+  character_ = std::make_unique<CharacterInstance>(std::move(asset).value());
+  character_->play(settings_.clip, settings_.loop);
+  character_->player().setSpeed(settings_.speed);
   auto sky = gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}});
   if (!sky) return sky.error();
   auto lines = gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, "lines.vert"}, {GL_FRAGMENT_SHADER, "lines.frag"}});
@@ -111,54 +75,34 @@ Status ViewerScene::init() {
   gpu->lines = std::move(lines).value();
   gpu->emptyVao = gl::VertexArray::create();
   // Two vertices (position, colour) per joint with a parent.
-  const size_t lineBytes = std::max<size_t>(1, models_.size()) * 2 * 2 * sizeof(glm::vec3);
-  gpu->lineBuffer = gl::Buffer::create(lineBytes);
+  const size_t joints = size_t(character_->asset().animated.skeleton.jointCount());
+  gpu->lineBuffer = gl::Buffer::create(std::max<size_t>(1, joints) * 2 * 2 * sizeof(glm::vec3));
   gpu->lineVao = gl::VertexArray::create();
   gpu->lineVao.vertexBuffer(0, gpu->lineBuffer, 2 * sizeof(glm::vec3));
   gpu->lineVao.attribute(0, 0, 3, 0);
   gpu->lineVao.attribute(1, 0, 3, sizeof(glm::vec3));
-  for (const Skin& skin : animated_.skins) {
-    // Room for either layout: a mat4 (LBS) or two vec4 (DQS) per joint.
-    gpu->skinBuffers.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * sizeof(glm::mat4)));
-  }
-  const float size = float(groundSize_);
-  gpu->ground = std::make_unique<GpuMesh>(makePlane(size, 8, 16.0f));
+  gpu->ground = std::make_unique<GpuMesh>(makePlane(float(groundSize_), 8, 16.0f));
   gpu->groundTexture = uploadTexture(makeChecker(128, 2, {170, 170, 165}, {120, 125, 120}), true);
   gpu_ = std::move(gpu);
   return Ok{};
 }
 
-void ViewerScene::shutdown() { gpu_.reset(); }
+void ViewerScene::shutdown() {
+  gpu_.reset();
+  character_.reset();
+}
 
 void ViewerScene::update(double time, double dt) {
+  Player& player = character_->player();
   if (!started_) {
     // The first update places the playhead at the scene time, so the frame at
     // time T shows the clip at T * speed whether or not frames came before.
-    player_.seek(time * settings_.speed);
+    player.seek(time * settings_.speed);
     started_ = true;
   } else if (playing_) {
-    player_.update(dt);
+    player.update(dt);
   }
-  computePose();
-}
-
-void ViewerScene::uploadPalettes() {
-  std::vector<glm::mat4> palette;
-  std::vector<DualQuat> dualQuats;
-  for (size_t s = 0; s < animated_.skins.size(); ++s) {
-    const Skin& skin = animated_.skins[s];
-    palette.resize(skin.joints.size());
-    SkinningPaletteJob job{models_, skin.joints, skin.inverseBinds, palette};
-    if (!job.run()) continue;
-    if (settings_.skinMode == SkinMode::DualQuat) {
-      dualQuats.resize(palette.size());
-      DualQuatPaletteJob dq{palette, dualQuats};
-      dq.run();
-      gpu_->skinBuffers[s].upload(0, dualQuats.size() * sizeof(DualQuat), dualQuats.data());
-    } else {
-      gpu_->skinBuffers[s].upload(0, palette.size() * sizeof(glm::mat4), palette.data());
-    }
-  }
+  character_->evaluate(settings_.bindPose);
 }
 
 void ViewerScene::drawGround(const glm::mat4& viewProjection) {
@@ -181,13 +125,14 @@ void ViewerScene::drawGround(const glm::mat4& viewProjection) {
 
 void ViewerScene::drawSkeleton(const glm::mat4& viewProjection) {
   std::vector<glm::vec3> vertices;
-  const auto parents = animated_.skeleton.parents();
-  for (size_t j = 0; j < models_.size(); ++j) {
+  const auto parents = character_->asset().animated.skeleton.parents();
+  const auto models = character_->models();  // camera-relative already
+  for (size_t j = 0; j < models.size(); ++j) {
     if (parents[j] < 0) continue;
     const glm::vec3 color = j % 2 ? glm::vec3(1.0f, 0.85f, 0.1f) : glm::vec3(1.0f, 0.4f, 0.1f);
-    vertices.push_back(glm::vec3(glm::dvec3(models_[j][3]) - camera_.position));
+    vertices.push_back(glm::vec3(models[j][3]));
     vertices.push_back(color);
-    vertices.push_back(glm::vec3(glm::dvec3(models_[size_t(parents[j])][3]) - camera_.position));
+    vertices.push_back(glm::vec3(models[size_t(parents[j])][3]));
     vertices.push_back(color);
   }
   if (vertices.empty()) return;
@@ -219,15 +164,8 @@ void ViewerScene::render(const FrameInfo& frame) {
   glEnable(GL_DEPTH_TEST);
 
   drawGround(viewProjection);
-  uploadPalettes();
-  ModelFrame mf;
-  mf.viewProjection = viewProjection;
-  mf.cameraPosition = camera_.position;
-  mf.nodeWorlds = nodeWorlds_;
-  mf.skinBuffers = gpu_->skinBuffers;
-  mf.skinMode = settings_.skinMode;
-  mf.lighting = lighting_;
-  (void)drawModel(gpu_->variants, model_, gpu_->model, mf);
+  character_->computeModels(glm::dmat4(1.0), camera_.position);
+  (void)character_->draw(gpu_->variants, viewProjection, settings_.skinMode, lighting_);
   if (settings_.skeleton) drawSkeleton(viewProjection);
 }
 
@@ -242,39 +180,39 @@ void ViewerScene::drawUi() {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Animation");
-  ImGui::Text("%s", model_.path.c_str());
-  ImGui::Text("%d joints, %zu clips", animated_.skeleton.jointCount(), animated_.clips.size());
+  const CharacterAsset& asset = character_->asset();
+  Player& player = character_->player();
+  ImGui::Text("%s", asset.model.path.c_str());
+  ImGui::Text("%d joints, %zu clips", asset.animated.skeleton.jointCount(), asset.animated.clips.size());
   if (ImGui::BeginListBox("clips", ImVec2(-1, 6 * ImGui::GetTextLineHeightWithSpacing()))) {
-    for (int i = 0; i < int(animated_.clips.size()); ++i) {
-      const Clip& clip = animated_.clips[size_t(i)];
+    for (int i = 0; i < int(asset.animated.clips.size()); ++i) {
+      const Clip& clip = asset.animated.clips[size_t(i)];
       const std::string label = (clip.name().empty() ? "clip " + std::to_string(i) : clip.name()) +
                                 " (" + std::to_string(clip.duration()).substr(0, 5) + " s)";
-      if (ImGui::Selectable(label.c_str(), settings_.clip == i)) startClip(i, 0.25);
+      if (ImGui::Selectable(label.c_str(), character_->clip() == i)) character_->crossFade(i, 0.25);
     }
     ImGui::EndListBox();
   }
   if (ImGui::Button(playing_ ? "Pause" : "Play")) playing_ = !playing_;
   ImGui::SameLine();
   ImGui::Checkbox("bind pose", &settings_.bindPose);
-  if (const Clip* clip = player_.clip()) {
-    float t = float(player_.localTime());
+  if (const Clip* clip = player.clip()) {
+    float t = float(player.localTime());
     if (ImGui::SliderFloat("time", &t, 0.0f, float(std::max(clip->duration(), 1e-3)), "%.3f s")) {
-      player_.seek(t);
-      computePose();
+      player.seek(t);
+      character_->evaluate(settings_.bindPose);
     }
   }
   float speed = float(settings_.speed);
   if (ImGui::SliderFloat("speed", &speed, -2.0f, 2.0f, "%.2fx")) {
     settings_.speed = speed;
-    player_.setSpeed(speed);
+    player.setSpeed(speed);
   }
   int loop = int(settings_.loop);
   const char* loops[] = {"repeat", "clamp", "ping-pong"};
   if (ImGui::Combo("loop", &loop, loops, 3)) {
     settings_.loop = LoopMode(loop);
-    const double t = player_.time();
-    startClip(settings_.clip, 0.0);
-    player_.seek(t);
+    character_->play(character_->clip(), settings_.loop, player.time());
   }
   int mode = int(settings_.skinMode);
   ImGui::RadioButton("LBS", &mode, int(SkinMode::Linear));

@@ -6,12 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "anim/model_builder.h"
-#include "anim/player.h"
 #include "app/game.h"
 #include "asset/model_data.h"
+#include "render/character.h"
 #include "render/lighting.h"
-#include "render/model_renderer.h"
 
 namespace viewer {
 
@@ -26,8 +24,7 @@ struct ViewerSettings {
 
 class ViewerScene final : public engine::Game {
  public:
-  ViewerScene(std::string shaderDir, engine::ModelData model, engine::AnimatedModel animated,
-              ViewerSettings settings);
+  ViewerScene(std::string shaderDir, engine::ModelData model, ViewerSettings settings);
   ~ViewerScene() override;
 
   engine::Status init() override;
@@ -43,27 +40,21 @@ class ViewerScene final : public engine::Game {
 
  private:
   struct Gpu;
-  void startClip(int clip, double fadeSeconds);
-  void computePose();
-  void uploadPalettes();
-  void frameCamera();
+  void frameCamera(const engine::ModelData& model);
   void drawGround(const glm::mat4& viewProjection);
   void drawSkeleton(const glm::mat4& viewProjection);
 
   std::string shaderDir_;
-  engine::ModelData model_;
-  engine::AnimatedModel animated_;
+  engine::ModelData model_;  // until init() moves it into the character asset
   ViewerSettings settings_;
-  engine::Player player_;
+  std::unique_ptr<engine::CharacterInstance> character_;
   engine::Camera camera_;
   engine::Lighting lighting_;
   bool playing_ = true;
   bool started_ = false;
   double groundHeight_ = 0.0;
   double groundSize_ = 10.0;
-  std::vector<engine::Srt> locals_;
-  std::vector<glm::mat4> models_;      // per runtime joint
-  std::vector<glm::mat4> nodeWorlds_;  // per glTF node
+  double startTime_ = 0.0;
   std::unique_ptr<Gpu> gpu_;
 };
 

@@ -14,20 +14,46 @@
 #include "app/runner.h"
 #include "core/image.h"
 #include "gl/debug.h"
+#include "asset/gltf_loader.h"
 #include "procedural_scene.h"
+#include "viewer_scene.h"
 
 using namespace engine;
 namespace fs = std::filesystem;
 
 namespace {
 
+enum class SceneKind { Demo, RobotWalk, RobotWaveDqs };
+
 struct GoldenCase {
   const char* name;
+  SceneKind scene;
   double time;
   int msaa;
 };
 
-const GoldenCase kCases[] = {{"demo_t0.5", 0.5, 1}, {"demo_t2", 2.0, 1}, {"demo_t1_msaa4", 1.0, 4}};
+// The demo scene (props and two skinned robots) and the viewer's skinned robot at
+// two times, the second with dual-quaternion skinning.
+const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5, 1},
+                             {"demo_t2", SceneKind::Demo, 2.0, 1},
+                             {"demo_t1_msaa4", SceneKind::Demo, 1.0, 4},
+                             {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3, 1},
+                             {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6, 1}};
+
+const std::string kShaders = std::string(ENGINE_SOURCE_DIR) + "/shaders";
+const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
+
+std::unique_ptr<Game> makeScene(SceneKind kind) {
+  if (kind == SceneKind::Demo) {
+    return std::make_unique<demo::ProceduralScene>(kShaders, kAssets, demo::defaultSceneSettings());
+  }
+  auto model = loadGltf(kAssets + "/models/character.gltf");
+  if (!model) return nullptr;
+  viewer::ViewerSettings settings;
+  settings.clip = kind == SceneKind::RobotWalk ? 1 : 2;  // Idle, Walk, Wave
+  settings.skinMode = kind == SceneKind::RobotWaveDqs ? SkinMode::DualQuat : SkinMode::Linear;
+  return std::make_unique<viewer::ViewerScene>(kShaders, std::move(model).value(), settings);
+}
 
 // Tolerances. FBO rendering is byte-identical across EGL, OSMesa and llvmpipe thread
 // counts (tests/cli checks that exactly), so on the machine that made the goldens
@@ -47,7 +73,8 @@ class Golden : public ::testing::TestWithParam<Param> {};
 TEST_P(Golden, MatchesTheGoldenImage) {
   const Backend backend = std::get<0>(GetParam());
   const GoldenCase& c = kCases[std::get<1>(GetParam())];
-  demo::ProceduralScene scene(std::string(ENGINE_SOURCE_DIR) + "/shaders", demo::defaultSceneSettings());
+  auto scene = makeScene(c.scene);
+  ASSERT_NE(scene, nullptr);
   RunOptions options;
   options.width = 640;
   options.height = 360;
@@ -56,7 +83,7 @@ TEST_P(Golden, MatchesTheGoldenImage) {
   options.msaa = c.msaa;
   options.debugGl = true;
   Image actual;
-  auto status = runHeadless(backend, scene, options, &actual);
+  auto status = runHeadless(backend, *scene, options, &actual);
   ASSERT_TRUE(status.ok()) << status.error().message;
 
   const fs::path golden = fs::path(ENGINE_SOURCE_DIR) / "tests/golden" / (std::string(c.name) + ".png");

@@ -1,0 +1,89 @@
+#include "render/character.h"
+
+#include <algorithm>
+
+#include "anim/jobs.h"
+
+namespace engine {
+
+Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(ModelData model) {
+  auto animated = buildAnimatedModel(model);
+  if (!animated) return animated.error();
+  auto gpu = GpuModel::upload(model);
+  if (!gpu) return gpu.error();
+  auto asset = std::make_shared<CharacterAsset>(
+      CharacterAsset{std::move(model), std::move(animated).value(), std::move(gpu).value()});
+  return std::shared_ptr<const CharacterAsset>(std::move(asset));
+}
+
+CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset)
+    : asset_(std::move(asset)), player_(asset_->animated.skeleton) {
+  const size_t joints = size_t(asset_->animated.skeleton.jointCount());
+  locals_.resize(joints);
+  models_.resize(joints);
+  nodeWorlds_.resize(asset_->model.nodes.size());
+  for (const Skin& skin : asset_->animated.skins) {
+    // Room for either layout: one mat4 (LBS) or two vec4 (DQS) per joint.
+    skinBuffers_.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * sizeof(glm::mat4)));
+  }
+}
+
+void CharacterInstance::play(int clip, LoopMode mode, double start) {
+  clip_ = clip;
+  if (clip < 0 || clip >= int(asset_->animated.clips.size())) return;
+  player_.play(asset_->animated.clips[size_t(clip)], mode);
+  player_.seek(start);
+}
+
+void CharacterInstance::crossFade(int clip, double seconds) {
+  if (clip < 0 || clip >= int(asset_->animated.clips.size()) || !player_.clip()) {
+    play(clip);
+    return;
+  }
+  clip_ = clip;
+  player_.crossFade(asset_->animated.clips[size_t(clip)], seconds);
+}
+
+void CharacterInstance::evaluate(bool bindPose) {
+  const auto rest = asset_->animated.skeleton.restPose();
+  if (bindPose || clip_ < 0 || !player_.evaluate(locals_)) std::copy(rest.begin(), rest.end(), locals_.begin());
+}
+
+void CharacterInstance::computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition) {
+  glm::dmat4 root = transform;
+  root[3] -= glm::dvec4(cameraPosition, 0.0);
+  const Skeleton& skeleton = asset_->animated.skeleton;
+  LocalToModelJob job{skeleton.parents(), locals_, glm::mat4(root), models_};
+  job.run();
+  for (size_t n = 0; n < nodeWorlds_.size(); ++n) nodeWorlds_[n] = models_[size_t(skeleton.jointOfRaw(int(n)))];
+}
+
+void CharacterInstance::uploadPalettes(SkinMode mode) {
+  const auto& skins = asset_->animated.skins;
+  for (size_t s = 0; s < skins.size(); ++s) {
+    palette_.resize(skins[s].joints.size());
+    if (!SkinningPaletteJob{models_, skins[s].joints, skins[s].inverseBinds, palette_}.run()) continue;
+    if (mode == SkinMode::DualQuat) {
+      dualQuats_.resize(palette_.size());
+      DualQuatPaletteJob{palette_, dualQuats_}.run();
+      skinBuffers_[s].upload(0, dualQuats_.size() * sizeof(DualQuat), dualQuats_.data());
+    } else {
+      skinBuffers_[s].upload(0, palette_.size() * sizeof(glm::mat4), palette_.data());
+    }
+  }
+}
+
+Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+                               const Lighting& lighting) {
+  uploadPalettes(mode);
+  ModelFrame frame;
+  frame.viewProjection = viewProjection;
+  frame.cameraPosition = glm::dvec3(0.0);  // the models are camera-relative already
+  frame.nodeWorlds = nodeWorlds_;
+  frame.skinBuffers = skinBuffers_;
+  frame.skinMode = mode;
+  frame.lighting = lighting;
+  return drawModel(variants, asset_->model, asset_->gpu, frame);
+}
+
+}  // namespace engine
