@@ -1,0 +1,314 @@
+#include "raytrace/integrator.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <optional>
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "raytrace/camera.h"
+#include "raytrace/rng.h"
+
+namespace engine::rt {
+namespace {
+
+// Splits N samples into an sx x sy grid with sx the largest divisor of N not above
+// sqrt(N): 4 -> 2 x 2, 8 -> 2 x 4, 7 -> 1 x 7.
+glm::ivec2 strataFor(int n) {
+  int sx = std::max(1, int(std::sqrt(double(n))));
+  while (n % sx != 0) --sx;
+  return {sx, n / sx};
+}
+
+template <typename T>
+struct LightSample {
+  glm::vec3 radiance{0.0f};  // colour * intensity (* fall-off)
+  Vec3<T> wi{0};             // unit, toward the light (its centre for an area light)
+  float visibility = 1.0f;
+};
+
+template <typename T>
+class Tracer {
+ public:
+  Tracer(const RtScene& scene, const RenderSettings& settings)
+      : scene_(scene), settings_(settings), camera_(scene.camera(), settings.width, settings.height),
+        strata_(strataFor(std::max(1, settings.samplesPerPixel))) {
+    for (const LightDesc& l : scene.lights()) {
+      if (l.type == LightType::Sun) sunDirection_ = glm::normalize(glm::vec3(l.direction));
+    }
+  }
+
+  glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
+    Pcg32 rng = Pcg32::forPixel(settings_.seed, x, y);
+    const int spp = std::max(1, settings_.samplesPerPixel);
+    if (spp == 1) {
+      ++counters.primary;
+      return Li(camera_.generateRay<T>(x + 0.5, y + 0.5), 0, rng, counters);
+    }
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < strata_.y; ++j) {
+      for (int i = 0; i < strata_.x; ++i) {
+        const double px = x + (i + double(rng.uniform())) / strata_.x;
+        const double py = y + (j + double(rng.uniform())) / strata_.y;
+        ++counters.primary;
+        sum += Li(camera_.generateRay<T>(px, py), 0, rng, counters);
+      }
+    }
+    return sum / float(spp);
+  }
+
+  glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters) const {
+    const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
+    if (!hit) return escaped(ray.d);
+    const MaterialDesc& m = scene_.materials()[std::size_t(hit->material)];
+    const Vec3<T> v = glm::normalize(ray.d);
+    // Surfaces are two-sided: shade with the normal that faces the viewer.
+    const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
+    glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, n, v, rng, counters)
+                                                              : shadeClassic(*hit, m, n, v, rng, counters);
+    if (m.reflection > 0.0f && depth < settings_.maxDepth) {
+      // The course's mirror: R = V + 2 N c1 with c1 = -N.V.
+      const T c1 = -glm::dot(n, v);
+      const Vec3<T> r = v + T(2) * c1 * n;
+      ++counters.reflection;
+      color += m.reflection * Li(hit->spawnRay(r), depth + 1, rng, counters);
+    }
+    return color;
+  }
+
+ private:
+  // colour * (ambient + diffuse * sum of light * max(N.L, 0) * visibility), plus an
+  // optional Blinn-Phong highlight; the mirror term is added by Li.
+  glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const MaterialDesc& m, const Vec3<T>& n,
+                         const Vec3<T>& v, Pcg32& rng, RayCounters& counters) const {
+    glm::vec3 diffuse(0.0f), specular(0.0f);
+    for (const LightDesc& light : scene_.lights()) {
+      const LightSample<T> ls = sampleLight(si, light, rng, counters);
+      const float nDotL = float(std::max(glm::dot(n, ls.wi), T(0)));
+      if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
+      diffuse += ls.radiance * (nDotL * ls.visibility);
+      if (m.specular > 0.0f) {
+        const Vec3<T> h = glm::normalize(ls.wi - v);
+        const float nDotH = float(std::max(glm::dot(n, h), T(0)));
+        specular += ls.radiance * (m.specular * std::pow(nDotH, m.shininess) * ls.visibility);
+      }
+    }
+    return m.color * (m.ambient + m.diffuse * diffuse) + specular;
+  }
+
+  // Lambert + GGX (Trowbridge-Reitz D, Smith-Schlick G, Schlick F) per light, and an
+  // ambient term from the sky's hemisphere (or white) scaled by the material's ambient.
+  glm::vec3 shadePbr(const SurfaceInteraction<T>& si, const MaterialDesc& m, const Vec3<T>& n, const Vec3<T>& v,
+                     Pcg32& rng, RayCounters& counters) const {
+    const glm::vec3 nf(n);
+    const glm::vec3 toEye = -glm::vec3(v);
+    const float alpha = std::max(m.roughness * m.roughness, 1e-3f);
+    const float a2 = alpha * alpha;
+    const float k = (m.roughness + 1.0f) * (m.roughness + 1.0f) / 8.0f;
+    const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), m.color, m.metallic);
+    const float nDotV = std::max(glm::dot(nf, toEye), 1e-4f);
+    glm::vec3 color(0.0f);
+    for (const LightDesc& light : scene_.lights()) {
+      const LightSample<T> ls = sampleLight(si, light, rng, counters);
+      const glm::vec3 l(ls.wi);
+      const float nDotL = glm::dot(nf, l);
+      if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
+      const glm::vec3 h = glm::normalize(l + toEye);
+      const float nDotH = std::max(glm::dot(nf, h), 0.0f);
+      const float vDotH = std::max(glm::dot(toEye, h), 0.0f);
+      const float dDenom = nDotH * nDotH * (a2 - 1.0f) + 1.0f;
+      const float d = a2 / (std::numbers::pi_v<float> * dDenom * dDenom);
+      const float g = (nDotV / (nDotV * (1.0f - k) + k)) * (nDotL / (nDotL * (1.0f - k) + k));
+      const glm::vec3 f = f0 + (glm::vec3(1.0f) - f0) * std::pow(1.0f - vDotH, 5.0f);
+      const glm::vec3 spec = d * g * f / (4.0f * nDotV * nDotL + 1e-4f);
+      const glm::vec3 kd = (glm::vec3(1.0f) - f) * (1.0f - m.metallic);
+      color += (kd * m.color / std::numbers::pi_v<float> + spec) * ls.radiance * (nDotL * ls.visibility);
+    }
+    const SkyDesc& sky = scene_.sky();
+    const glm::vec3 ambientLight = sky.enabled ? glm::mix(sky.ground, sky.zenith, 0.5f + 0.5f * nf.y) : glm::vec3(1.0f);
+    return color + m.color * m.ambient * ambientLight;
+  }
+
+  LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,
+                             RayCounters& counters) const {
+    LightSample<T> ls;
+    ls.radiance = light.color * light.intensity;
+    switch (light.type) {
+      case LightType::Sun: {
+        ls.wi = glm::normalize(Vec3<T>(light.direction));
+        if (light.shadows) {
+          ++counters.shadow;
+          ls.visibility = scene_.intersectAny(si.spawnRay(ls.wi)) ? 0.0f : 1.0f;
+        }
+        break;
+      }
+      case LightType::Point: {
+        const Vec3<T> target(light.position);
+        const Vec3<T> toLight = target - si.p;
+        const T dist2 = glm::dot(toLight, toLight);
+        ls.wi = toLight / std::sqrt(dist2);
+        if (light.falloff) ls.radiance /= float(dist2);
+        if (light.shadows) {
+          ++counters.shadow;
+          // The light is a point, not geometry: stop at it (tMax 1 on d = target - o).
+          ls.visibility = scene_.intersectAny(si.spawnRayTo(target, T(1))) ? 0.0f : 1.0f;
+        }
+        break;
+      }
+      case LightType::Area: {
+        const Vec3<T> center(light.position);
+        ls.wi = glm::normalize(center - si.p);
+        if (light.shadows) ls.visibility = areaVisibility(si, light, rng, counters);
+        break;
+      }
+    }
+    return ls;
+  }
+
+  // The share of N x N stratified, jittered points on the rectangle that the point sees.
+  float areaVisibility(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,
+                       RayCounters& counters) const {
+    const int n = std::max(1, settings_.shadowSamples);
+    const Vec3<T> center(light.position), edgeU(light.edgeU), edgeV(light.edgeV);
+    int visible = 0;
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const T u = (T(i) + T(rng.uniform())) / T(n) - T(0.5);
+        const T w = (T(j) + T(rng.uniform())) / T(n) - T(0.5);
+        const Vec3<T> target = center + u * edgeU + w * edgeV;
+        ++counters.shadow;
+        if (!scene_.intersectAny(si.spawnRayTo(target, T(1)))) ++visible;
+      }
+    }
+    return float(visible) / float(n * n);
+  }
+
+  // The sky's gradient (as shaders/sky.frag draws it, before its tone map) or the
+  // background colour (the course: black).
+  glm::vec3 escaped(const Vec3<T>& dir) const {
+    const SkyDesc& sky = scene_.sky();
+    if (!sky.enabled) return sky.background;
+    const glm::vec3 d = glm::normalize(glm::vec3(dir));
+    glm::vec3 color = d.y >= 0.0f ? glm::mix(sky.horizon, sky.zenith, std::sqrt(d.y))
+                                  : glm::mix(sky.horizon, sky.ground, std::sqrt(-d.y));
+    if (sky.sunDisk && sunDirection_) {
+      const float c = glm::dot(d, *sunDirection_);
+      const float s = std::clamp((c - 0.9995f) / (0.9998f - 0.9995f), 0.0f, 1.0f);
+      color += glm::vec3(4.0f, 3.6f, 3.0f) * (s * s * (3.0f - 2.0f * s));
+    }
+    return color;
+  }
+
+  const RtScene& scene_;
+  const RenderSettings& settings_;
+  PinholeCamera camera_;
+  glm::ivec2 strata_;
+  std::optional<glm::vec3> sunDirection_;
+};
+
+struct AtomicCounters {
+  std::atomic<std::uint64_t> primary{0}, shadow{0}, reflection{0};
+
+  void add(const RayCounters& c) {
+    primary.fetch_add(c.primary, std::memory_order_relaxed);
+    shadow.fetch_add(c.shadow, std::memory_order_relaxed);
+    reflection.fetch_add(c.reflection, std::memory_order_relaxed);
+  }
+  RayCounters load() const {
+    return RayCounters{primary.load(std::memory_order_relaxed), shadow.load(std::memory_order_relaxed),
+                       reflection.load(std::memory_order_relaxed)};
+  }
+};
+
+// TBB rather than std::thread or OpenMP: its work stealing balances tiles of very
+// different cost (a mirror tile traces six times the rays of a wall tile), it is a
+// Debian package the project already uses, and it needs no compiler flag. The image
+// does not depend on the schedule: each pixel has its own RNG seeded from
+// (seed, x, y), and each pixel is written by exactly one tile.
+template <typename T>
+RenderResult renderTiles(const RtScene& scene, const RenderSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  RenderResult result;
+  result.image = Framebuffer(settings.width, settings.height);
+  const Tracer<T> tracer(scene, settings);
+  const int tile = std::max(1, settings.tileSize);
+  const int tilesX = (settings.width + tile - 1) / tile;
+  const int tilesY = (settings.height + tile - 1) / tile;
+  const int tilesTotal = tilesX * tilesY;
+  AtomicCounters counters;
+  std::atomic<int> tilesDone{0};
+  std::atomic<bool> cancelled{false};
+  std::mutex progressMutex;
+
+  std::optional<tbb::global_control> limit;
+  if (settings.threads > 0) {
+    limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, tilesTotal, 1),
+      [&](const tbb::blocked_range<int>& range) {
+        for (int t = range.begin(); t != range.end(); ++t) {
+          if (cancelled.load(std::memory_order_relaxed)) return;
+          const int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
+          const int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
+          RayCounters local;
+          for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) result.image.at(x, y) = tracer.renderPixel(x, y, local);
+          }
+          counters.add(local);
+          const int done = tilesDone.fetch_add(1) + 1;
+          if (settings.progress) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            if (!settings.progress(RenderProgress{done, tilesTotal, counters.load(), elapsed()})) {
+              cancelled.store(true);
+            }
+          }
+        }
+      },
+      tbb::simple_partitioner());
+  result.rays = counters.load();
+  result.seconds = elapsed();
+  result.cancelled = cancelled.load();
+  return result;
+}
+
+}  // namespace
+
+Integrator::Integrator(const RtScene& scene, RenderSettings settings) : scene_(&scene), settings_(std::move(settings)) {}
+
+RenderResult Integrator::render() const {
+  return settings_.precision == Precision::Double ? renderTiles<double>(*scene_, settings_)
+                                                  : renderTiles<float>(*scene_, settings_);
+}
+
+glm::vec3 Integrator::renderPixel(int x, int y, RayCounters* counters) const {
+  RayCounters local;
+  const glm::vec3 c = settings_.precision == Precision::Double ? Tracer<double>(*scene_, settings_).renderPixel(x, y, local)
+                                                               : Tracer<float>(*scene_, settings_).renderPixel(x, y, local);
+  if (counters) *counters += local;
+  return c;
+}
+
+glm::vec3 Integrator::traceRay(const Ray<double>& ray, std::uint64_t seed, RayCounters* counters) const {
+  RayCounters local;
+  Pcg32 rng(mixBits(seed), 1);
+  glm::vec3 c;
+  if (settings_.precision == Precision::Double) {
+    c = Tracer<double>(*scene_, settings_).Li(ray, 0, rng, local);
+  } else {
+    const Ray<float> r{Vec3<float>(ray.o), Vec3<float>(ray.d), float(ray.tMax)};
+    c = Tracer<float>(*scene_, settings_).Li(r, 0, rng, local);
+  }
+  if (counters) *counters += local;
+  return c;
+}
+
+}  // namespace engine::rt

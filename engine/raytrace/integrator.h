@@ -1,0 +1,93 @@
+#pragma once
+// The Whitted-style integrator of the course: primary rays through stratified pixel
+// samples, direct light from point, sun and rectangular area lights with shadow rays,
+// perfect mirror reflection to a maximum depth, sky or background for rays that escape.
+// Shading::Classic is the course's model; Shading::Pbr a Lambert + GGX one. The output
+// is a linear float RGB framebuffer; tone_map.h turns it into an 8-bit image.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/ray.h"
+#include "raytrace/rt_scene.h"
+
+namespace engine::rt {
+
+struct RayCounters {
+  std::uint64_t primary = 0;
+  std::uint64_t shadow = 0;
+  std::uint64_t reflection = 0;
+
+  std::uint64_t total() const { return primary + shadow + reflection; }
+  RayCounters& operator+=(const RayCounters& o) {
+    primary += o.primary;
+    shadow += o.shadow;
+    reflection += o.reflection;
+    return *this;
+  }
+};
+
+struct RenderProgress {
+  int tilesDone = 0;
+  int tilesTotal = 0;
+  RayCounters rays;  // so far
+  double seconds = 0.0;
+};
+
+struct RenderSettings {
+  int width = 640;
+  int height = 480;
+  int samplesPerPixel = 1;  // 1: the pixel centre; N: N stratified jittered samples
+  int shadowSamples = 4;    // an area light gets N x N stratified jittered shadow rays
+  int maxDepth = 5;         // mirror bounces after the primary ray
+  std::uint64_t seed = 1;
+  Precision precision = Precision::Float;
+  int threads = 0;          // 0: TBB's default (every core); N: at most N workers
+  int tileSize = 16;
+  // Called after each finished tile, one call at a time (the integrator serialises
+  // them), from whichever worker finished it. Return false to stop the render early.
+  std::function<bool(const RenderProgress&)> progress;
+};
+
+// Linear RGB, top row first.
+struct Framebuffer {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> pixels;
+
+  Framebuffer() = default;
+  Framebuffer(int w, int h) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h), glm::vec3(0.0f)) {}
+  glm::vec3& at(int x, int y) { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+  const glm::vec3& at(int x, int y) const { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+};
+
+struct RenderResult {
+  Framebuffer image;
+  RayCounters rays;
+  double seconds = 0.0;
+  bool cancelled = false;
+};
+
+class Integrator {
+ public:
+  // The scene must outlive the integrator and stay unchanged while it renders.
+  Integrator(const RtScene& scene, RenderSettings settings);
+
+  // Renders every pixel over 16 x 16 tiles in parallel (TBB).
+  RenderResult render() const;
+  // One pixel's linear colour, exactly as render() computes it (same RNG stream).
+  glm::vec3 renderPixel(int x, int y, RayCounters* counters = nullptr) const;
+  // The radiance along one ray (as a reflected ray at depth 0 would see it), in the
+  // chosen precision; the RNG for area-light samples is seeded from `seed`.
+  glm::vec3 traceRay(const Ray<double>& ray, std::uint64_t seed = 0, RayCounters* counters = nullptr) const;
+
+  const RenderSettings& settings() const { return settings_; }
+
+ private:
+  const RtScene* scene_;
+  RenderSettings settings_;
+};
+
+}  // namespace engine::rt

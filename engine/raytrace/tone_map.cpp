@@ -1,0 +1,58 @@
+#include "raytrace/tone_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace engine::rt {
+namespace {
+
+// Narkowicz's fit of the ACES filmic curve (2015), the rasterizer's choice too.
+float aces(float x) {
+  return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+}
+
+float srgbEncode(float v) {
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+glm::vec3 toneMap(glm::vec3 c, const RenderDesc& render) {
+  c *= render.exposure;
+  switch (render.toneMap) {
+    case ToneMap::None:
+      break;
+    case ToneMap::Reinhard:
+      c = c / (glm::vec3(1.0f) + c);
+      break;
+    case ToneMap::Aces:
+      c = glm::vec3(aces(c.x), aces(c.y), aces(c.z));
+      break;
+  }
+  return c;
+}
+
+std::uint8_t encodeChannel(float v, OutputCurve curve) {
+  // NaN fails every comparison; treat it as black rather than as undefined.
+  if (!(v > 0.0f)) v = 0.0f;
+  v = std::min(v, 1.0f);
+  v = curve == OutputCurve::Gamma22 ? std::pow(v, 1.0f / 2.2f) : srgbEncode(v);
+  return std::uint8_t(int(v * 255.0f + 0.5f));
+}
+
+Image toImage(const Framebuffer& framebuffer, const RenderDesc& render) {
+  Image image(framebuffer.width, framebuffer.height);
+  for (int y = 0; y < framebuffer.height; ++y) {
+    for (int x = 0; x < framebuffer.width; ++x) {
+      const glm::vec3 c = toneMap(framebuffer.at(x, y), render);
+      std::uint8_t* px = image.at(x, y);
+      px[0] = encodeChannel(c.r, render.output);
+      px[1] = encodeChannel(c.g, render.output);
+      px[2] = encodeChannel(c.b, render.output);
+      px[3] = 255;
+    }
+  }
+  return image;
+}
+
+}  // namespace engine::rt

@@ -1,0 +1,157 @@
+// The BVH against brute force on random rays (nearest hit and any hit), after a
+// build, a refit to moved vertices and a rebuild; build and refit times of a
+// 10k-triangle mesh are printed for the record.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <random>
+
+#include "raytrace/bvh.h"
+#include "raytrace/rt_scene.h"
+
+namespace rt = engine::rt;
+
+namespace {
+
+// Small random triangles in a box, plus a few long thin ones that cross it (they
+// stress the SAH's bins and the refit's bounds).
+std::vector<rt::TriangleVerts> randomSoup(int count, std::mt19937& rng) {
+  std::uniform_real_distribution<float> pos(-10.0f, 10.0f), off(-0.8f, 0.8f);
+  std::vector<rt::TriangleVerts> tris;
+  for (int i = 0; i < count; ++i) {
+    const glm::vec3 c(pos(rng), pos(rng), pos(rng));
+    const float stretch = i % 50 == 0 ? 10.0f : 1.0f;
+    tris.push_back({c + glm::vec3(off(rng), off(rng), off(rng)) * stretch, c + glm::vec3(off(rng), off(rng), off(rng)),
+                    c + glm::vec3(off(rng), off(rng), off(rng))});
+  }
+  return tris;
+}
+
+template <typename T>
+std::optional<rt::BvhHit<T>> bruteForce(const std::vector<rt::TriangleVerts>& tris, rt::Ray<T> ray) {
+  std::optional<rt::BvhHit<T>> best;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    if (auto h = rt::intersectTriangle(ray, rt::Vec3<T>(tris[i].p0), rt::Vec3<T>(tris[i].p1), rt::Vec3<T>(tris[i].p2))) {
+      ray.tMax = h->t;
+      best = rt::BvhHit<T>{*h, std::uint32_t(i)};
+    }
+  }
+  return best;
+}
+
+template <typename T>
+void expectMatchesBruteForce(const rt::Bvh& bvh, const std::vector<rt::TriangleVerts>& tris, std::mt19937& rng,
+                             int rayCount) {
+  std::uniform_real_distribution<double> pos(-14.0, 14.0), dir(-1.0, 1.0), len(1.0, 30.0);
+  int hits = 0, mismatches = 0, anyMismatches = 0;
+  for (int i = 0; i < rayCount; ++i) {
+    rt::Ray<T> ray{rt::Vec3<T>(T(pos(rng)), T(pos(rng)), T(pos(rng))), rt::Vec3<T>(T(dir(rng)), T(dir(rng)), T(dir(rng)))};
+    if (i % 3 == 0) ray.tMax = T(len(rng) / glm::length(glm::dvec3(ray.d)));
+    const auto expected = bruteForce(tris, ray);
+    const auto actual = bvh.intersect(ray);
+    hits += expected ? 1 : 0;
+    if (bool(expected) != bool(actual) || (expected && expected->hit.t != actual->hit.t)) ++mismatches;
+    if (bvh.intersectAny(ray) != bool(expected)) ++anyMismatches;
+  }
+  EXPECT_EQ(mismatches, 0) << "of " << rayCount << " rays, " << hits << " hits";
+  EXPECT_EQ(anyMismatches, 0);
+  EXPECT_GT(hits, rayCount / 10) << "the rays should mostly hit something";
+}
+
+template <typename T>
+class BvhTest : public ::testing::Test {};
+using Precisions = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(BvhTest, Precisions);
+
+TYPED_TEST(BvhTest, MatchesBruteForceAfterBuildRefitAndRebuild) {
+  using T = TypeParam;
+  std::mt19937 rng(42);
+  std::vector<rt::TriangleVerts> tris = randomSoup(3000, rng);
+  rt::Bvh bvh;
+  bvh.build(tris);
+  EXPECT_EQ(bvh.triangleCount(), tris.size());
+  EXPECT_LE(bvh.depth(), 64);
+  expectMatchesBruteForce<T>(bvh, tris, rng, 4000);
+
+  // Move every vertex (as skinning would), refit, test; then rebuild and test again.
+  std::normal_distribution<float> jitter(0.0f, 0.5f);
+  for (auto& t : tris) {
+    const glm::vec3 shift(jitter(rng), jitter(rng), jitter(rng));
+    t.p0 += shift;
+    t.p1 += shift + glm::vec3(jitter(rng)) * 0.2f;
+    t.p2 += shift;
+  }
+  bvh.refit(tris);
+  expectMatchesBruteForce<T>(bvh, tris, rng, 4000);
+  bvh.build(tris);
+  expectMatchesBruteForce<T>(bvh, tris, rng, 2000);
+}
+
+TEST(Bvh, EmptyAndDegenerateInputs) {
+  rt::Bvh bvh;
+  bvh.build({});
+  EXPECT_TRUE(bvh.empty());
+  EXPECT_FALSE(bvh.intersect(rt::Ray<float>{}));
+  EXPECT_FALSE(bvh.intersectAny(rt::Ray<float>{}));
+  // 100 copies of one triangle (coincident centroids) and a zero-area one.
+  std::vector<rt::TriangleVerts> same(100, rt::TriangleVerts{{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}});
+  same.push_back({{0, 0, 3}, {0, 0, 3}, {0, 0, 3}});
+  bvh.build(same);
+  const auto hit = bvh.intersect(rt::Ray<float>{glm::vec3(0), glm::vec3(0, 0, 1)});
+  ASSERT_TRUE(hit);
+  EXPECT_FLOAT_EQ(hit->hit.t, 5.0f);
+}
+
+// A 10k-triangle grid (a wavy terrain patch): build and refit times for the report.
+TEST(Bvh, BuildAndRefitTimesOfA10kTriangleMesh) {
+  constexpr int kSide = 71;  // 70 x 70 quads = 9800 triangles
+  rt::RtMesh mesh;
+  for (int z = 0; z < kSide; ++z) {
+    for (int x = 0; x < kSide; ++x) mesh.positions.emplace_back(x * 0.1f, std::sin(x * 0.3f) * std::cos(z * 0.2f), z * 0.1f);
+  }
+  for (int z = 0; z + 1 < kSide; ++z) {
+    for (int x = 0; x + 1 < kSide; ++x) {
+      const std::uint32_t i = std::uint32_t(z * kSide + x);
+      mesh.indices.insert(mesh.indices.end(), {i, i + kSide, i + 1, i + 1, i + kSide, i + kSide + 1});
+    }
+  }
+  rt::RtScene scene;
+  auto id = scene.addMesh(mesh);
+  ASSERT_TRUE(id) << id.error().message;
+  const double build = scene.build();
+  for (auto& p : mesh.positions) p.y += 0.05f * std::sin(p.x + p.z);
+  ASSERT_TRUE(scene.updateMesh(*id, mesh.positions).ok());
+  const double refit = scene.refit();
+  std::printf("[ bvh      ] %zu triangles, %zu nodes, depth %d: build %.2f ms, refit %.2f ms\n", scene.triangleCount(),
+              scene.bvh().nodeCount(), scene.bvh().depth(), build * 1e3, refit * 1e3);
+  EXPECT_EQ(scene.triangleCount(), 9800u);
+  // Straight down onto a vertex: the ray lies in the planes of some boxes' faces.
+  const auto hit = scene.intersect(rt::Ray<float>{mesh.positions[35 * kSide + 35] + glm::vec3(0, 5, 0), glm::vec3(0, -1, 0)});
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->p.y, mesh.positions[35 * kSide + 35].y, 1e-5f);
+}
+
+TEST(RtScene, RejectsBadMeshes) {
+  rt::RtScene scene;
+  rt::RtMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.indices = {0, 1, 3};
+  EXPECT_FALSE(scene.addMesh(mesh).ok());
+  mesh.indices = {0, 1};
+  EXPECT_FALSE(scene.addMesh(mesh).ok());
+  mesh.indices = {0, 1, 2};
+  mesh.normals = {{0, 0, 1}};
+  EXPECT_FALSE(scene.addMesh(mesh).ok());
+  mesh.normals.clear();
+  mesh.material = 5;
+  EXPECT_FALSE(scene.addMesh(mesh).ok());
+  mesh.material = 0;
+  auto id = scene.addMesh(mesh);
+  ASSERT_TRUE(id.ok());
+  const std::vector<glm::vec3> wrong(2);
+  EXPECT_FALSE(scene.updateMesh(*id, wrong).ok());
+  EXPECT_FALSE(scene.updateMesh(*id + 1, mesh.positions).ok());
+}
+
+}  // namespace

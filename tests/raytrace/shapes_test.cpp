@@ -1,0 +1,186 @@
+// Shapes on their own: the sphere's stable quadratic at small, large and grazing
+// scales, the watertight triangle test on shared edges and vertices, and the ray
+// origin offset that keeps a surface from hitting itself at 1e5 from the origin.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "raytrace/shapes.h"
+
+namespace rt = engine::rt;
+
+namespace {
+
+template <typename T>
+class ShapesTest : public ::testing::Test {};
+using Precisions = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(ShapesTest, Precisions);
+
+template <typename T>
+rt::Vec3<T> randomUnit(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  glm::dvec3 v;
+  do {
+    v = glm::dvec3(n(rng), n(rng), n(rng));
+  } while (glm::length(v) < 1e-6);
+  return rt::Vec3<T>(glm::normalize(v));
+}
+
+TYPED_TEST(ShapesTest, SphereHitsAtTheClosedFormDistance) {
+  using T = TypeParam;
+  const rt::Sphere<T> sphere{rt::Vec3<T>(0, 0, 5), T(1), 0};
+  auto t = sphere.intersect(rt::Ray<T>{rt::Vec3<T>(0), rt::Vec3<T>(0, 0, 1)});
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(double(*t), 4.0, 1e-6);
+  // From inside, the far root.
+  t = sphere.intersect(rt::Ray<T>{rt::Vec3<T>(0, 0, 5), rt::Vec3<T>(0, 0, 1)});
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(double(*t), 1.0, 1e-6);
+  // Behind the origin: no hit; tMax short of it: no hit.
+  EXPECT_FALSE(sphere.intersect(rt::Ray<T>{rt::Vec3<T>(0), rt::Vec3<T>(0, 0, -1)}));
+  EXPECT_FALSE(sphere.intersect(rt::Ray<T>{rt::Vec3<T>(0), rt::Vec3<T>(0, 0, 1), T(3.9)}));
+}
+
+// Rays passing the centre at distances just inside and just outside the radius:
+// inside ones hit where the closed form says, outside ones miss, none gives NaN.
+TYPED_TEST(ShapesTest, GrazingRaysHitInsideAndMissOutside) {
+  using T = TypeParam;
+  const double r = 1.0, dist = 10.0;
+  const rt::Sphere<T> sphere{rt::Vec3<T>(0, 0, T(dist)), T(r), 0};
+  const double rel = sizeof(T) == 4 ? 1e-4 : 1e-10;
+  for (double f : {1.0 - 1e3 * rel, 1.0 - 10 * rel, 1.0 + 10 * rel, 1.0 + 1e3 * rel}) {
+    for (int k = 0; k < 64; ++k) {
+      const double phi = 2.0 * M_PI * k / 64.0;
+      // A ray parallel to z at distance f r from the centre's axis.
+      const glm::dvec3 o(f * r * std::cos(phi), f * r * std::sin(phi), 0.0);
+      const auto t = sphere.intersect(rt::Ray<T>{rt::Vec3<T>(o), rt::Vec3<T>(0, 0, 1)});
+      if (f < 1.0) {
+        ASSERT_TRUE(t) << "f " << f << " phi " << phi;
+        ASSERT_FALSE(std::isnan(double(*t)));
+        const double expected = dist - std::sqrt(r * r - f * f * r * r);
+        // The chord is short here, so t is sensitive: allow the float error of the
+        // discriminant (about sqrt(eps) r) in float.
+        EXPECT_NEAR(double(*t), expected, sizeof(T) == 4 ? 2e-3 : 1e-6);
+      } else {
+        EXPECT_FALSE(t) << "f " << f << " phi " << phi;
+      }
+    }
+  }
+}
+
+TYPED_TEST(ShapesTest, TinyAndHugeSpheres) {
+  using T = TypeParam;
+  const double tol = sizeof(T) == 4 ? 1e-5 : 1e-12;
+  // Radius 1e-3 at 3 m: t = 3 - 1e-3 to float's relative precision.
+  const rt::Sphere<T> tiny{rt::Vec3<T>(0, 0, 3), T(1e-3), 0};
+  auto t = tiny.intersect(rt::Ray<T>{rt::Vec3<T>(0), rt::Vec3<T>(0, 0, 1)});
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(double(*t), 3.0 - 1e-3, 3.0 * tol);
+  // Radius 1e5, a ray 1 m above its top pointing down: t = 1 within float's error at
+  // the scale of the sphere (its centre and radius are 1e5).
+  const rt::Sphere<T> huge{rt::Vec3<T>(0, T(-1e5), 0), T(1e5), 0};
+  const rt::Ray<T> down{rt::Vec3<T>(0, 1, 0), rt::Vec3<T>(0, -1, 0)};
+  t = huge.intersect(down);
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(double(*t), 1.0, 4.0 * 1e5 * double(std::numeric_limits<T>::epsilon()));
+  const auto si = huge.interaction(down, *t);
+  EXPECT_NEAR(double(si.n.y), 1.0, 1e-6);
+}
+
+// Two triangles sharing an edge, neither axis aligned: rays aimed at points along the
+// shared edge from many origins hit one of them, every time (Woop et al.'s property).
+TYPED_TEST(ShapesTest, RaysAtASharedEdgeNeverSlipThrough) {
+  using T = TypeParam;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int misses = 0, rays = 0;
+  for (int quad = 0; quad < 20; ++quad) {
+    const rt::Vec3<T> a = rt::Vec3<T>(T(u(rng) * 4 - 2), T(u(rng) * 4 - 2), T(u(rng) + 4));
+    const rt::Vec3<T> b = a + rt::Vec3<T>(T(u(rng) * 2 + 0.5), T(u(rng) * 2 - 1), T(u(rng) - 0.5));
+    // c and d on either side of the edge ab.
+    const rt::Vec3<T> side = rt::Vec3<T>(T(u(rng) - 0.5), T(u(rng) + 0.5), T(u(rng) - 0.5));
+    const rt::Vec3<T> c = (a + b) * T(0.5) + side;
+    const rt::Vec3<T> d = (a + b) * T(0.5) - side;
+    for (int i = 0; i < 500; ++i) {
+      const T s = T(u(rng));
+      const rt::Vec3<T> target = a + s * (b - a);
+      const rt::Vec3<T> origin = rt::Vec3<T>(T(u(rng) * 2 - 1), T(u(rng) * 2 - 1), T(u(rng) * 2 - 1));
+      const rt::Ray<T> ray{origin, target - origin};
+      const bool hit = rt::intersectTriangle(ray, a, b, c) || rt::intersectTriangle(ray, b, a, d);
+      misses += hit ? 0 : 1;
+      ++rays;
+    }
+  }
+  EXPECT_EQ(misses, 0) << "of " << rays << " rays";
+}
+
+// A fan of 12 triangles around one vertex: rays aimed at that vertex always hit.
+TYPED_TEST(ShapesTest, RaysAtASharedVertexNeverSlipThrough) {
+  using T = TypeParam;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const rt::Vec3<T> centre(T(0.3), T(-0.2), T(6.1));
+  std::vector<rt::Vec3<T>> rim;
+  for (int k = 0; k < 12; ++k) {
+    const double phi = 2 * M_PI * k / 12;
+    rim.push_back(centre + rt::Vec3<T>(T(std::cos(phi)), T(std::sin(phi)), T(0.3 * std::sin(3 * phi))));
+  }
+  int misses = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const rt::Vec3<T> origin(T(u(rng)), T(u(rng)), T(u(rng)));
+    const rt::Ray<T> ray{origin, centre - origin};
+    bool hit = false;
+    for (int k = 0; k < 12 && !hit; ++k) hit = bool(rt::intersectTriangle(ray, centre, rim[k], rim[(k + 1) % 12]));
+    misses += hit ? 0 : 1;
+  }
+  EXPECT_EQ(misses, 0);
+}
+
+// Points on a sphere, a plane and a triangle 1e5 from the origin: rays leaving them
+// into the outer hemisphere never hit the surface they leave (no self-shadowing).
+TYPED_TEST(ShapesTest, OffsetRaysNeverHitTheirOwnSurfaceFarFromTheOrigin) {
+  using T = TypeParam;
+  std::mt19937 rng(3);
+  const rt::Vec3<T> far(T(1e5), T(-1e5), T(1e5));
+  const rt::Sphere<T> sphere{far + rt::Vec3<T>(0, 0, 0), T(1.5), 0};
+  const rt::Vec3<T> pn = glm::normalize(rt::Vec3<T>(T(0.3), T(1), T(0.2)));
+  const rt::Plane<T> plane{pn, glm::dot(pn, far), 0};
+  const rt::Vec3<T> a = far + rt::Vec3<T>(-3, 0.1, -2), b = far + rt::Vec3<T>(4, -0.3, -1), c = far + rt::Vec3<T>(0, 0.2, 5);
+  int selfHits = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const rt::Vec3<T> toward = randomUnit<T>(rng);
+    // A primary ray from outside to each surface, then a ray leaving the hit point.
+    const rt::Vec3<T> eye = far + rt::Vec3<T>(20, 30, -25) + randomUnit<T>(rng);
+    {
+      const rt::Ray<T> ray{eye, sphere.center + toward * sphere.radius - eye};
+      if (auto t = sphere.intersect(ray)) {
+        const auto si = sphere.interaction(ray, *t);
+        rt::Vec3<T> w = randomUnit<T>(rng);
+        if (glm::dot(w, si.n) < 0) w = -w;
+        selfHits += sphere.intersect(si.spawnRay(w)) ? 1 : 0;
+      }
+    }
+    {
+      const rt::Ray<T> ray{eye, far + toward * T(10) - eye};
+      if (auto t = plane.intersect(ray)) {
+        const auto si = plane.interaction(ray, *t);
+        rt::Vec3<T> w = randomUnit<T>(rng);
+        if (glm::dot(w, glm::dot(si.n, ray.d) < 0 ? si.n : -si.n) < 0) w = -w;
+        selfHits += plane.intersect(si.spawnRay(w)) ? 1 : 0;
+      }
+    }
+    {
+      const rt::Ray<T> ray{eye, (a + b + c) / T(3) + toward - eye};
+      if (auto hit = rt::intersectTriangle(ray, a, b, c)) {
+        const auto si = rt::triangleInteraction(*hit, a, b, c);
+        rt::Vec3<T> w = randomUnit<T>(rng);
+        if (glm::dot(w, glm::dot(si.n, ray.d) < 0 ? si.n : -si.n) < 0) w = -w;
+        selfHits += rt::intersectTriangle(si.spawnRay(w), a, b, c) ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_EQ(selfHits, 0);
+}
+
+}  // namespace
