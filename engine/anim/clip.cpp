@@ -97,18 +97,19 @@ glm::vec3 sampleVec3(const Track& track, double time) {
   return a + (b - a) * keys.u;
 }
 
-glm::quat sampleQuat(const Track& track, double time) {
+glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) {
   KeyPair keys = findKeys(track.times, time);
   if (keys.first == keys.second || track.interpolation == Interpolation::Step)
     return safeNormalize(toQuat(track.values[valueIndex(track, keys.first)]));
   if (track.interpolation == Interpolation::CubicSpline) return safeNormalize(toQuat(hermite(track, keys)));
-  return slerp(toQuat(track.values[keys.first]), toQuat(track.values[keys.second]), keys.u);
+  const glm::quat a = toQuat(track.values[keys.first]), b = toQuat(track.values[keys.second]);
+  return method == QuatInterpolation::Nlerp ? nlerp(a, b, keys.u) : slerp(a, b, keys.u);
 }
 
-void applyTrack(const Track& track, double time, Srt& srt) {
+void applyTrack(const Track& track, double time, Srt& srt, QuatInterpolation method) {
   switch (track.path) {
     case AnimPath::Translation: srt.translation = sampleVec3(track, time); break;
-    case AnimPath::Rotation: srt.rotation = sampleQuat(track, time); break;
+    case AnimPath::Rotation: srt.rotation = sampleQuat(track, time, method); break;
     case AnimPath::Scale: srt.scale = sampleVec3(track, time); break;
   }
 }

@@ -51,10 +51,16 @@ class Clip {
 
 // Value of a track at clip-local `time`: the first value before the first key,
 // the last after the last key; O(log keys).
+// How LINEAR rotation keys are interpolated: slerp is exact (constant angular
+// speed); nlerp is the cheaper shortcut whose error the benchmarks measure.
+enum class QuatInterpolation { Slerp, Nlerp };
+
 glm::vec3 sampleVec3(const Track& track, double time);
-glm::quat sampleQuat(const Track& track, double time);  // unit length
+glm::quat sampleQuat(const Track& track, double time,
+                     QuatInterpolation method = QuatInterpolation::Slerp);  // unit length
 
 // Writes the track's value at `time` into the matching part of `srt`.
-void applyTrack(const Track& track, double time, Srt& srt);
+void applyTrack(const Track& track, double time, Srt& srt,
+                QuatInterpolation method = QuatInterpolation::Slerp);
 
 }  // namespace engine

@@ -73,7 +73,8 @@ bool SamplingJob::validate() const {
 bool SamplingJob::run() const {
   if (!validate()) return false;
   std::copy(restPose.begin(), restPose.end(), output.begin());
-  for (const Track& track : clip->tracks()) applyTrack(track, time, output[static_cast<std::size_t>(track.joint)]);
+  for (const Track& track : clip->tracks())
+    applyTrack(track, time, output[static_cast<std::size_t>(track.joint)], rotations);
   return true;
 }
 

@@ -23,6 +23,8 @@ struct SamplingJob {
   double time = 0.0;
   std::span<const Srt> restPose;
   std::span<Srt> output;
+  // Slerp is exact; nlerp is the shortcut whose error bench/ measures.
+  QuatInterpolation rotations = QuatInterpolation::Slerp;
 
   bool validate() const;
   bool run() const;
