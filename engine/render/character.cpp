@@ -56,6 +56,7 @@ void CharacterInstance::computeModels(const glm::dmat4& transform, const glm::dv
   LocalToModelJob job{skeleton.parents(), locals_, glm::mat4(root), models_};
   job.run();
   for (size_t n = 0; n < nodeWorlds_.size(); ++n) nodeWorlds_[n] = models_[size_t(skeleton.jointOfRaw(int(n)))];
+  palettesCurrent_ = false;
 }
 
 void CharacterInstance::uploadPalettes(SkinMode mode) {
@@ -74,16 +75,28 @@ void CharacterInstance::uploadPalettes(SkinMode mode) {
 }
 
 Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-                               const Lighting& lighting) {
-  uploadPalettes(mode);
+                               const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly) {
+  // Shadow passes draw the same pose: upload the palettes once per pose.
+  if (!palettesCurrent_ || uploadedMode_ != mode) {
+    uploadPalettes(mode);
+    palettesCurrent_ = true;
+    uploadedMode_ = mode;
+  }
   ModelFrame frame;
   frame.viewProjection = viewProjection;
   frame.cameraPosition = glm::dvec3(0.0);  // the models are camera-relative already
   frame.nodeWorlds = nodeWorlds_;
   frame.skinBuffers = skinBuffers_;
   frame.skinMode = mode;
-  frame.lighting = lighting;
+  frame.setUniforms = setUniforms;
+  frame.depthOnly = depthOnly;
   return drawModel(variants, asset_->model, asset_->gpu, frame);
+}
+
+Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+                               const Lighting& lighting) {
+  return draw(variants, viewProjection, mode,
+              [&lighting](const gl::Program& program) { setLightingUniforms(program, lighting); });
 }
 
 }  // namespace engine

@@ -37,7 +37,11 @@ class CharacterInstance {
   // Joint matrices relative to the camera: root = camera offset * `transform`,
   // composed in double so that characters far from the origin stay precise.
   void computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition);
-  // Uploads the skin palettes and draws every primitive.
+  // Uploads the skin palettes (once per computeModels) and draws every primitive.
+  // `setUniforms` sets the program's lights and shadows.
+  Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+              const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly = false);
+  // The same with lit.frag's lighting uniforms (the viewer).
   Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
               const Lighting& lighting);
 
@@ -56,6 +60,8 @@ class CharacterInstance {
   std::vector<glm::mat4> palette_;     // scratch, reused every frame
   std::vector<DualQuat> dualQuats_;    // scratch
   std::vector<gl::Buffer> skinBuffers_;
+  bool palettesCurrent_ = false;  // uploaded since the last computeModels
+  SkinMode uploadedMode_ = SkinMode::Linear;
 };
 
 }  // namespace engine

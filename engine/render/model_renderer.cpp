@@ -5,8 +5,12 @@
 namespace engine {
 
 std::string ShaderVariant::describe() const {
-  if (influences == 0) return "static";
-  return std::string(mode == SkinMode::DualQuat ? "dqs" : "lbs") + std::to_string(influences);
+  std::string name = influences == 0 ? "static"
+                                     : std::string(mode == SkinMode::DualQuat ? "dqs" : "lbs") +
+                                           std::to_string(influences);
+  if (textured) name += "+textured";
+  if (depthOnly) name += "+depth";
+  return name;
 }
 
 Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& variant,
@@ -14,15 +18,17 @@ Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& variant,
   if (feedback.empty()) {
     if (auto it = programs_.find(variant); it != programs_.end()) return &it->second;
   }
-  std::vector<std::string> defines;
+  std::vector<std::string> defines = defines_;
+  if (variant.textured) defines.push_back("TEXTURED 1");
+  if (variant.depthOnly) defines.push_back("DEPTH_ONLY 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
     if (variant.mode == SkinMode::DualQuat) defines.push_back("DUAL_QUAT 1");
   }
+  const std::string fragment = variant.depthOnly ? "depth.frag" : fragmentShader_;
   auto program = gl::Program::build(
-      shaderDir_, {{GL_VERTEX_SHADER, "model.vert"}, {GL_FRAGMENT_SHADER, "lit.frag"}}, defines,
-      feedback);
+      shaderDir_, {{GL_VERTEX_SHADER, vertexShader_}, {GL_FRAGMENT_SHADER, fragment}}, defines, feedback);
   if (!program) return program.error();
   // Programs with transform feedback are for one-off captures; keep them apart.
   auto [it, inserted] = programs_.insert_or_assign(variant, std::move(program).value());
@@ -37,6 +43,21 @@ std::vector<ShaderVariant> ShaderVariants::built() const {
 }
 
 namespace {
+
+// glTF's material for both shading models: PBR reads metallic and roughness; the
+// classic model turns roughness into a Blinn-Phong highlight.
+void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
+  const float roughness = material ? material->roughnessFactor : 1.0f;
+  pr.set("u_baseColorFactor", material ? material->baseColorFactor : glm::vec4(1.0f));
+  pr.set("u_metallic", material ? material->metallicFactor : 0.0f);
+  pr.set("u_roughness", roughness);
+  pr.set("u_emissive", material ? material->emissiveFactor : glm::vec3(0.0f));
+  pr.set("u_ambient", 0.1f);
+  pr.set("u_diffuse", 0.9f);
+  pr.set("u_specular", 0.5f * (1.0f - roughness));
+  pr.set("u_shininess", 32.0f);
+  pr.set("u_reflection", 0.0f);
+}
 
 template <typename T>
 const gl::Buffer& addBuffer(GpuPrimitive& prim, const std::vector<T>& data) {
@@ -126,26 +147,25 @@ Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuMode
     for (size_t p = 0; p < prims.size(); ++p) {
       const GpuPrimitive& prim = prims[p];
       const bool skinned = node.skin >= 0 && prim.influences > 0;
-      const ShaderVariant variant{skinned ? prim.influences : 0, frame.skinMode};
+      const MaterialData* material =
+          prim.material >= 0 ? &model.materials[size_t(prim.material)] : nullptr;
+      const bool textured = !frame.depthOnly && material && material->baseColorImage >= 0;
+      const ShaderVariant variant{skinned ? prim.influences : 0, frame.skinMode, textured, frame.depthOnly};
       auto program = variants.get(variant);
       if (!program) return program.error();
       const gl::Program& pr = **program;
       pr.use();
-      setLightingUniforms(pr, frame.lighting);
-      const MaterialData* material =
-          prim.material >= 0 ? &model.materials[size_t(prim.material)] : nullptr;
-      pr.set("u_baseColorFactor", material ? material->baseColorFactor : glm::vec4(1.0f));
-      pr.set("u_specular", material ? 0.5f * (1.0f - material->roughnessFactor) : 0.2f);
-      pr.set("u_shininess", 32.0f);
+      if (frame.setUniforms) frame.setUniforms(pr);
+      if (!frame.depthOnly) setMaterialUniforms(pr, material);
       const glm::mat4 model4 =
           skinned ? glm::mat4(toCamera) : glm::mat4(toCamera * glm::dmat4(frame.nodeWorlds[n]));
       pr.set("u_model", model4);
       pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
-      pr.set("u_viewProjection", frame.viewProjection);
+      if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
       if (skinned) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.skinBuffers[size_t(node.skin)].id());
       }
-      gpu.baseColor(prim.material).bind(0);
+      if (!frame.depthOnly) gpu.baseColor(prim.material).bind(0);
       if (material && material->doubleSided) glDisable(GL_CULL_FACE);
       prim.vao.bind();
       const GLenum mode = GLenum(model.meshes[size_t(node.mesh)].primitives[p].mode);

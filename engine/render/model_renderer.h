@@ -3,6 +3,7 @@
 // the shader variants the model needs. A static mesh is drawn without skinning
 // code; a skinned one with 4 or 8 influences, linear blend or dual quaternions,
 // each variant built only when first drawn.
+#include <functional>
 #include <map>
 #include <memory>
 #include <span>
@@ -22,14 +23,23 @@ enum class SkinMode { Linear, DualQuat };
 struct ShaderVariant {
   int influences = 0;  // 0 = static, 4 or 8
   SkinMode mode = SkinMode::Linear;
+  bool textured = false;   // samples a base colour texture
+  bool depthOnly = false;  // shadow passes
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
 
-// Builds and caches the programs of model.vert + lit.frag by variant.
+// Builds and caches the programs of one vertex + fragment shader pair by variant
+// (model.vert + lit.frag for the viewer, scene.vert + scene.frag for scenes), each
+// only when first asked for.
 class ShaderVariants {
  public:
-  explicit ShaderVariants(std::string shaderDir) : shaderDir_(std::move(shaderDir)) {}
+  explicit ShaderVariants(std::string shaderDir, std::string vertexShader = "model.vert",
+                          std::string fragmentShader = "lit.frag", std::vector<std::string> defines = {})
+      : shaderDir_(std::move(shaderDir)),
+        vertexShader_(std::move(vertexShader)),
+        fragmentShader_(std::move(fragmentShader)),
+        defines_(std::move(defines)) {}
   // `feedback` names varyings to capture with transform feedback (tests).
   Result<const gl::Program*> get(const ShaderVariant& variant,
                                  const std::vector<std::string>& feedback = {});
@@ -37,6 +47,9 @@ class ShaderVariants {
 
  private:
   std::string shaderDir_;
+  std::string vertexShader_;
+  std::string fragmentShader_;
+  std::vector<std::string> defines_;  // for every variant (shading model, shadows, fog)
   std::map<ShaderVariant, gl::Program> programs_;
 };
 
@@ -74,7 +87,9 @@ struct ModelFrame {
   // One storage buffer per skin: mat4 palette (Linear) or 2 vec4 per joint (DualQuat).
   std::span<const gl::Buffer> skinBuffers;
   SkinMode skinMode = SkinMode::Linear;
-  Lighting lighting;
+  // Sets what the program needs besides the mesh and material (lights, shadows).
+  std::function<void(const gl::Program&)> setUniforms;
+  bool depthOnly = false;  // shadow passes: no material, depth-only variant
 };
 
 // Draws every (node, primitive) instance of the model.

@@ -1,0 +1,16 @@
+// Per-frame data shared by every scene program (uniform block, binding 0), filled
+// once per frame by engine/render/scene_renderer.cpp. Positions are camera-relative.
+#define MAX_POINT_LIGHTS 4
+layout(std140, binding = 0) uniform Frame {
+  mat4 u_viewProjection;
+  mat4 u_sunShadowMatrix;   // camera-relative world -> shadow map [0,1]^3
+  vec4 u_sunDirection;      // toward the sun; w = 1 when there is a sun
+  vec4 u_sunColor;          // colour * intensity
+  vec4 u_pointPosition[MAX_POINT_LIGHTS];  // xyz; w = 1: 1/d^2 fall-off
+  vec4 u_pointColor[MAX_POINT_LIGHTS];     // colour * intensity; w = 1: casts shadows
+  vec4 u_ambientSky;        // hemispheric ambient (PBR); w = classic ambient weight
+  vec4 u_ambientGround;
+  vec4 u_fog;               // rgb colour, w = density (0 = none)
+  vec4 u_shadowParams;      // x: sun texel size, y: PCF radius in texels, z: point far, w: point texel angle
+  ivec4 u_counts;           // x: point lights
+};

@@ -1,0 +1,3 @@
+#version 450 core
+// Shadow passes write depth only.
+void main() {}

@@ -1,0 +1,38 @@
+#version 450 core
+// Every mesh of a scene: analytic primitives, glTF meshes (static or skinned on
+// the GPU), drawn camera-relative.
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+
+#include "common/frame.glsl"
+#ifdef SKINNED
+#include "common/skinning.glsl"
+#endif
+
+uniform mat4 u_model;        // camera offset included
+uniform mat3 u_normalMatrix;
+#ifdef DEPTH_ONLY
+uniform mat4 u_lightViewProjection;  // shadow passes draw from the light
+#endif
+
+out vec3 v_position;  // camera-relative world position
+out vec3 v_normal;
+out vec2 v_uv;
+
+void main() {
+  vec3 position = a_position;
+  vec3 normal = a_normal;
+#ifdef SKINNED
+  skin(position, normal);
+#endif
+  vec4 world = u_model * vec4(position, 1.0);
+  v_position = world.xyz;
+  v_normal = u_normalMatrix * normal;
+  v_uv = a_uv;
+#ifdef DEPTH_ONLY
+  gl_Position = u_lightViewProjection * world;
+#else
+  gl_Position = u_viewProjection * world;
+#endif
+}
