@@ -12,6 +12,7 @@ layout(location = 2) in vec2 a_uv;
 
 uniform mat4 u_model;        // camera offset included
 uniform mat3 u_normalMatrix;
+uniform vec2 u_uvScale = vec2(1.0);  // texture tiling of analytic shapes
 #ifdef DEPTH_ONLY
 uniform mat4 u_lightViewProjection;  // shadow passes draw from the light
 #endif
@@ -29,7 +30,7 @@ void main() {
   vec4 world = u_model * vec4(position, 1.0);
   v_position = world.xyz;
   v_normal = u_normalMatrix * normal;
-  v_uv = a_uv;
+  v_uv = a_uv * u_uvScale;
 #ifdef DEPTH_ONLY
   gl_Position = u_lightViewProjection * world;
 #else

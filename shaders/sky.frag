@@ -13,5 +13,9 @@ void main() {
                           : mix(u_horizonColor, u_groundColor, pow(-d.y, 0.5));
   float sun = smoothstep(0.9995, 0.9998, dot(d, u_sunDirection));
   color += vec3(4.0, 3.6, 3.0) * sun;
+#ifdef HDR_OUTPUT
+  o_color = vec4(color, 1.0);  // the post pass tone maps
+#else
   o_color = vec4(color / (1.0 + color), 1.0);
+#endif
 }

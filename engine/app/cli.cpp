@@ -23,8 +23,7 @@ void addCommonOptions(CLI::App& app, CommonOptions& o) {
                  "offscreen; in a window, until it is closed)")
       ->check(CLI::Range(0, 10000000));
   app.add_option("--screenshot", o.run.screenshot, "Write the last frame to this PNG");
-  app.add_option("--msaa", o.run.msaa, "Multisample anti-aliasing samples")
-      ->capture_default_str()
+  app.add_option("--msaa", o.msaa, "Multisample anti-aliasing samples (default 1)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
   app.add_option("--bench", o.run.benchFile,
                  "Write frame-time median, p95 and max to this JSON file");
@@ -61,6 +60,8 @@ Status finishCommonOptions(CommonOptions& o, int argc, char** argv) {
   }
   if (o.run.time && !std::isfinite(*o.run.time)) return makeError("--time: must be a finite number");
   o.run.frames = o.frames.value_or(o.offscreen.empty() ? 0 : 1);
+  o.run.msaa = o.msaa.value_or(1);
+  o.msaaGiven = o.msaa.has_value();
   if (o.run.frames == 0 && !o.offscreen.empty()) {
     return makeError("--frames 0 (run until closed) only makes sense in a window");
   }

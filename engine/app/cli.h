@@ -15,6 +15,8 @@ struct CommonOptions {
   std::string offscreen;     // "", "egl" or "osmesa"
   std::string size = "1280x720";
   std::optional<int> frames;  // default: 1 offscreen, 0 (until closed) in a window
+  std::optional<int> msaa;    // default 1
+  bool msaaGiven = false;
   std::string shaderDir;     // default: the source tree's shaders/
   std::string assetDir;      // default: the source tree's assets/
   bool checkDisplay = false; // exit 0 when a window can be opened, 1 otherwise

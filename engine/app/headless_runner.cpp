@@ -11,7 +11,8 @@ double headlessFrameTime(const RunOptions& options, int index) {
   return last - double(options.frames - 1 - index) * options.dt;
 }
 
-Status runHeadless(Backend backend, Game& game, const RunOptions& options, Image* captured) {
+Status runHeadless(Backend backend, Game& game, const RunOptions& options, Image* captured,
+                   const std::function<void()>& afterFrames) {
   auto setup = startRun(backend, game, options);
   if (!setup) return setup.error();
   const RenderTarget& target = setup->target;
@@ -31,6 +32,7 @@ Status runHeadless(Backend backend, Game& game, const RunOptions& options, Image
     frameMs.push_back(std::chrono::duration<double, std::milli>(end - start).count());
   }
   Image last = target.readPixels();
+  if (afterFrames) afterFrames();
   game.shutdown();
   auto status = finishRun(*setup->context, options, std::move(frameMs), &last);
   if (captured) *captured = std::move(last);

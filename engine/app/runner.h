@@ -3,6 +3,7 @@
 // into an offscreen framebuffer, read back to a PNG). Both call the same Game and
 // draw into the same kind of RenderTarget, so the frame at time T is the same image
 // whichever way it was made.
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -38,9 +39,10 @@ struct RunOptions {
 double headlessFrameTime(const RunOptions& options, int index);
 
 // Renders headlessly through `backend` (Egl or OsMesa). When `captured` is not null
-// the last frame is also returned there.
+// the last frame is also returned there; `afterFrames` runs while the context is
+// still alive (to report on what the game built).
 Status runHeadless(Backend backend, Game& game, const RunOptions& options,
-                   Image* captured = nullptr);
+                   Image* captured = nullptr, const std::function<void()>& afterFrames = {});
 
 // Opens a window and runs until it is closed (or `frames` frames were shown).
 Status runWindow(Game& game, const RunOptions& options);

@@ -49,6 +49,13 @@ class Texture : public Object<TextureDeleter> {
   // 2D texture with `levels` mip levels (0: full chain) of `format` (e.g. GL_SRGB8_ALPHA8).
   static Texture create2D(GLenum format, int width, int height, int levels = 1);
   static Texture create2DMultisample(GLenum format, int width, int height, int samples);
+  // Takes ownership of a texture made elsewhere (e.g. a cube map).
+  static Texture adopt(GLuint id, int width, int height) {
+    Texture texture(id);
+    texture.width_ = width;
+    texture.height_ = height;
+    return texture;
+  }
   // Uploads RGBA8 pixels, bottom row first (GL's order), into level 0.
   void uploadRgba8(const void* pixels) const;
   void generateMipmaps() const { glGenerateTextureMipmap(id()); }

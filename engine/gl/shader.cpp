@@ -187,6 +187,9 @@ GLint Program::location(const char* name) const {
   return loc;
 }
 
+void Program::set(const char* name, const glm::vec2& v) const {
+  glProgramUniform2fv(id(), location(name), 1, glm::value_ptr(v));
+}
 void Program::set(const char* name, const glm::vec3& v) const {
   glProgramUniform3fv(id(), location(name), 1, glm::value_ptr(v));
 }

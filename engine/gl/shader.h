@@ -45,6 +45,7 @@ class Program : public Object<ProgramDeleter> {
   GLint location(const char* name) const;
   void set(const char* name, int value) const { glProgramUniform1i(id(), location(name), value); }
   void set(const char* name, float value) const { glProgramUniform1f(id(), location(name), value); }
+  void set(const char* name, const glm::vec2& v) const;
   void set(const char* name, const glm::vec3& v) const;
   void set(const char* name, const glm::vec4& v) const;
   void set(const char* name, const glm::mat4& m) const;

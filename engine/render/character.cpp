@@ -16,6 +16,53 @@ Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(ModelData m
   return std::shared_ptr<const CharacterAsset>(std::move(asset));
 }
 
+CharacterAsset::Bounds CharacterAsset::boundsOfAllPoses(int samples) const {
+  Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
+  const Skeleton& skeleton = animated.skeleton;
+  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
+  std::vector<glm::mat4> models(locals.size()), palette;
+  std::vector<glm::vec3> skinned;
+  auto addPose = [&] {
+    LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run();
+    for (size_t n = 0; n < model.nodes.size(); ++n) {
+      const NodeData& node = model.nodes[n];
+      if (node.mesh < 0) continue;
+      const glm::mat4& world = models[size_t(skeleton.jointOfRaw(int(n)))];
+      for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
+        const bool isSkinned = node.skin >= 0 && prim.influences > 0;
+        if (isSkinned) {
+          const Skin& skin = animated.skins[size_t(node.skin)];
+          palette.resize(skin.joints.size());
+          SkinningPaletteJob{models, skin.joints, skin.inverseBinds, palette}.run();
+          skinned.resize(prim.positions.size());
+          SkinningJob job;
+          job.influences = prim.influences;
+          job.positions = prim.positions;
+          job.joints = prim.joints;
+          job.weights = prim.weights;
+          job.palette = palette;
+          job.outPositions = skinned;
+          job.run();
+        }
+        for (size_t v = 0; v < prim.positions.size(); ++v) {
+          const glm::vec3 p = isSkinned ? skinned[v] : glm::vec3(world * glm::vec4(prim.positions[v], 1.0f));
+          b.min = glm::min(b.min, p);
+          b.max = glm::max(b.max, p);
+        }
+      }
+    }
+  };
+  addPose();
+  for (const Clip& clip : animated.clips) {
+    for (int i = 0; i <= samples; ++i) {
+      SamplingJob{&clip, clip.duration() * double(i) / double(samples), skeleton.restPose(), locals}.run();
+      addPose();
+    }
+  }
+  if (b.min.x > b.max.x) b = Bounds{};
+  return b;
+}
+
 CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset)
     : asset_(std::move(asset)), player_(asset_->animated.skeleton) {
   const size_t joints = size_t(asset_->animated.skeleton.jointCount());

@@ -20,6 +20,12 @@ struct CharacterAsset {
 
   // Builds the runtime animation data and uploads the model (needs a context).
   static Result<std::shared_ptr<const CharacterAsset>> create(ModelData model);
+  // Model-space bounds that hold every pose of every clip (sampled `samples`
+  // times per clip, and the rest pose), for culling skinned meshes.
+  struct Bounds {
+    glm::vec3 min{0.0f}, max{0.0f};
+  };
+  Bounds boundsOfAllPoses(int samples = 24) const;
 };
 
 class CharacterInstance {

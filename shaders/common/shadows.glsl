@@ -47,9 +47,10 @@ float pointShadow(vec3 position, vec3 n) {
   float reference = cubeDepth(z);
   int r = int(u_shadowParams.y);
   if (r == 0) return texture(u_pointShadowMap, vec4(v, reference));
-  // PCF on the cube: offsets in the plane across the direction to the light.
-  vec3 axisU = normalize(cross(abs(v.y) < 0.99 * length(v) ? vec3(0, 1, 0) : vec3(1, 0, 0), v));
-  vec3 axisV = normalize(cross(v, axisU));
+  // PCF on the cube: sample points spread in the surface's own tangent plane, so
+  // that none of them dips behind the surface and shadows it.
+  vec3 axisU = normalize(cross(abs(n.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0), n));
+  vec3 axisV = cross(n, axisU);
   float sum = 0.0;
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) {

@@ -15,7 +15,8 @@
 #include "core/image.h"
 #include "gl/debug.h"
 #include "asset/gltf_loader.h"
-#include "procedural_scene.h"
+#include "asset/scene_file.h"
+#include "scene_game.h"
 #include "viewer_scene.h"
 
 using namespace engine;
@@ -23,35 +24,50 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum class SceneKind { Demo, RobotWalk, RobotWaveDqs };
+enum class SceneKind { Demo, Cornell, RobotWalk, RobotWaveDqs };
 
 struct GoldenCase {
   const char* name;
   SceneKind scene;
   double time;
-  int msaa;
+  int msaa = 0;         // 0: the scene's own setting
+  int supersample = 0;
+  int pcf = 0;          // 0: the scene's own; 1: hard shadows
 };
 
-// The demo scene (props and two skinned robots) and the viewer's skinned robot at
-// two times, the second with dual-quaternion skinning.
-const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5, 1},
-                             {"demo_t2", SceneKind::Demo, 2.0, 1},
+// The default scene (PBR, sun shadows with PCF, sky, fog, four skinned robots) at
+// two times, with MSAA, with supersampling and with hard shadows; the course's
+// Cornell room (classic shading, point-light cube shadow) hard and soft (PCF); the
+// viewer's robot with linear-blend and dual-quaternion skinning.
+const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
+                             {"demo_t2", SceneKind::Demo, 2.0},
                              {"demo_t1_msaa4", SceneKind::Demo, 1.0, 4},
-                             {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3, 1},
-                             {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6, 1}};
+                             {"demo_t1_ss2", SceneKind::Demo, 1.0, 0, 2},
+                             {"demo_t1_hard", SceneKind::Demo, 1.0, 0, 0, 1},
+                             {"cornell", SceneKind::Cornell, 0.0},
+                             {"cornell_pcf5", SceneKind::Cornell, 0.0, 0, 0, 5},
+                             {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3},
+                             {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6}};
 
 const std::string kShaders = std::string(ENGINE_SOURCE_DIR) + "/shaders";
 const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
 
-std::unique_ptr<Game> makeScene(SceneKind kind) {
-  if (kind == SceneKind::Demo) {
-    return std::make_unique<demo::ProceduralScene>(kShaders, kAssets, demo::defaultSceneSettings());
+std::unique_ptr<Game> makeScene(const GoldenCase& c) {
+  if (c.scene == SceneKind::Demo || c.scene == SceneKind::Cornell) {
+    auto scene = loadSceneFile(kAssets + (c.scene == SceneKind::Demo ? "/scenes/demo.json" : "/scenes/cornell.json"));
+    if (!scene) return nullptr;
+    SceneRenderOptions options;
+    options.shaderDir = kShaders;
+    options.msaaOverride = c.msaa;
+    options.supersampleOverride = c.supersample;
+    options.pcfKernelOverride = c.pcf;
+    return std::make_unique<demo::SceneGame>(std::move(scene).value(), options);
   }
   auto model = loadGltf(kAssets + "/models/character.gltf");
   if (!model) return nullptr;
   viewer::ViewerSettings settings;
-  settings.clip = kind == SceneKind::RobotWalk ? 1 : 2;  // Idle, Walk, Wave
-  settings.skinMode = kind == SceneKind::RobotWaveDqs ? SkinMode::DualQuat : SkinMode::Linear;
+  settings.clip = c.scene == SceneKind::RobotWalk ? 1 : 2;  // Idle, Walk, Wave
+  settings.skinMode = c.scene == SceneKind::RobotWaveDqs ? SkinMode::DualQuat : SkinMode::Linear;
   return std::make_unique<viewer::ViewerScene>(kShaders, std::move(model).value(), settings);
 }
 
@@ -73,14 +89,13 @@ class Golden : public ::testing::TestWithParam<Param> {};
 TEST_P(Golden, MatchesTheGoldenImage) {
   const Backend backend = std::get<0>(GetParam());
   const GoldenCase& c = kCases[std::get<1>(GetParam())];
-  auto scene = makeScene(c.scene);
+  auto scene = makeScene(c);
   ASSERT_NE(scene, nullptr);
   RunOptions options;
   options.width = 640;
   options.height = 360;
   options.time = c.time;
   options.frames = 3;  // a few frames before the captured one, as the demo runs
-  options.msaa = c.msaa;
   options.debugGl = true;
   Image actual;
   auto status = runHeadless(backend, *scene, options, &actual);

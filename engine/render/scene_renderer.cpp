@@ -1,0 +1,686 @@
+#include "render/scene_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <sstream>
+
+#include "asset/gltf_loader.h"
+#include "render/character.h"
+#include "render/mesh.h"
+#include "render/model_renderer.h"
+#include "render/textures.h"
+
+namespace engine {
+namespace {
+
+constexpr int kMaxPointLights = 4;
+constexpr double kSunShadowDistance = 60.0;  // metres of view the sun's map covers
+constexpr int kMaxCubeShadowSize = 1024;
+
+// The uniform block of shaders/common/frame.glsl (std140: vec4-aligned members).
+struct FrameBlock {
+  glm::mat4 viewProjection{1.0f};
+  glm::mat4 sunShadowMatrix{1.0f};
+  glm::vec4 sunDirection{0.0f};
+  glm::vec4 sunColor{0.0f};
+  glm::vec4 pointPosition[kMaxPointLights]{};
+  glm::vec4 pointColor[kMaxPointLights]{};
+  glm::vec4 ambientSky{0.0f};
+  glm::vec4 ambientGround{0.0f};
+  glm::vec4 fog{0.0f};
+  glm::vec4 shadowParams{0.0f};
+  glm::ivec4 counts{0};
+};
+
+// A unit shape placed in the world, with a bounding sphere for culling
+// (radius < 0: unbounded, never culled).
+struct ShapeDraw {
+  const GpuMesh* mesh = nullptr;
+  glm::vec2 uvScale{1.0f};  // texture repeats across the shape
+  glm::dmat4 world{1.0};
+  int material = 0;
+  glm::dvec3 center{0.0};
+  double radius = -1.0;
+  bool twoSided = false;
+};
+
+struct CharacterDraw {
+  std::unique_ptr<CharacterInstance> instance;
+  glm::dmat4 world{1.0};
+  ModelDesc desc;
+  glm::dvec3 localCenter{0.0};
+  double localRadius = 1.0;
+};
+
+glm::dmat4 rotationFromTo(const glm::dvec3& from, const glm::dvec3& to) {
+  const glm::dvec3 axis = glm::cross(from, to);
+  const double c = glm::dot(from, to);
+  if (glm::length(axis) < 1e-12) {
+    return c > 0.0 ? glm::dmat4(1.0) : glm::rotate(glm::dmat4(1.0), glm::pi<double>(), glm::dvec3(1, 0, 0));
+  }
+  return glm::rotate(glm::dmat4(1.0), std::atan2(glm::length(axis), c), glm::normalize(axis));
+}
+
+// View rotation from a forward and an up vector; a left-handed scene (the course's
+// room) puts +x on the right when looking along +z, which mirrors GL's convention.
+glm::dmat4 viewRotation(const glm::dvec3& forward, const glm::dvec3& upHint, bool leftHanded) {
+  const glm::dvec3 f = glm::normalize(forward);
+  const glm::dvec3 r = glm::normalize(leftHanded ? glm::cross(upHint, f) : glm::cross(f, upHint));
+  const glm::dvec3 u = leftHanded ? glm::cross(f, r) : glm::cross(r, f);
+  glm::dmat4 v(1.0);
+  for (int i = 0; i < 3; ++i) {
+    v[i][0] = r[i];
+    v[i][1] = u[i];
+    v[i][2] = -f[i];
+  }
+  return v;
+}
+
+// Reverse-Z projection (near maps to 1, far to 0) for GL_ZERO_TO_ONE clip space:
+// float depth then spends its precision evenly across distance.
+glm::dmat4 reverseZProjection(double fovyRadians, double aspect, double nearPlane, double farPlane) {
+  return glm::perspectiveRH_ZO(fovyRadians, aspect, farPlane, nearPlane);
+}
+
+bool sphereVisible(const glm::dvec4 planes[6], const glm::dvec3& center, double radius) {
+  if (radius < 0.0) return true;
+  for (int i = 0; i < 6; ++i) {
+    if (glm::dot(glm::dvec3(planes[i]), center) + planes[i].w < -radius) return false;
+  }
+  return true;
+}
+
+// The six planes of a view-projection (Gribb-Hartmann), normalised, inside >= 0.
+void frustumPlanes(const glm::dmat4& m, glm::dvec4 planes[6]) {
+  const glm::dvec4 row0(m[0][0], m[1][0], m[2][0], m[3][0]);
+  const glm::dvec4 row1(m[0][1], m[1][1], m[2][1], m[3][1]);
+  const glm::dvec4 row2(m[0][2], m[1][2], m[2][2], m[3][2]);
+  const glm::dvec4 row3(m[0][3], m[1][3], m[2][3], m[3][3]);
+  planes[0] = row3 + row0;
+  planes[1] = row3 - row0;
+  planes[2] = row3 + row1;
+  planes[3] = row3 - row1;
+  planes[4] = row2;         // zero-to-one depth: z >= 0
+  planes[5] = row3 - row2;  // z <= w
+  for (int i = 0; i < 6; ++i) planes[i] /= glm::length(glm::dvec3(planes[i]));
+}
+
+}  // namespace
+
+struct SceneRenderer::Impl {
+  SceneDesc scene;
+  RenderDesc render;
+  std::string shaderDir;
+  std::unique_ptr<ShaderVariants> variants;
+  gl::Program sky, post;
+  gl::VertexArray emptyVao;
+  gl::Buffer frameUbo;
+  std::unique_ptr<GpuMesh> sphere, cube, quad;
+  std::vector<ShapeDraw> shapes;
+  std::vector<gl::Texture> materialTextures;  // empty texture = none
+  std::vector<CharacterDraw> characters;
+  FrameBlock frame;
+  // HDR target.
+  int targetWidth = 0, targetHeight = 0;
+  gl::Texture hdr;
+  gl::Renderbuffer msaaColor, depth;
+  gl::Framebuffer drawFbo, resolveFbo;
+  // Shadows.
+  bool sunShadows = false, pointShadows = false;
+  int sunLight = -1;
+  std::vector<int> pointLights;
+  gl::Texture sunShadowMap, pointShadowMap;
+  gl::Framebuffer sunShadowFbo, pointShadowFbo;
+  int sunShadowSize = 0, cubeSize = 0;
+  double sunTexelWorld = 0.0;
+  double pointNear = 0.05, pointFar = 50.0;
+  int pcfRadius = 0;
+  glm::dvec3 eye{0.0};  // camera position of the frame being drawn
+  SceneStats* stats = nullptr;
+
+  Status init(const SceneRenderOptions& options);
+  Status loadMaterials();
+  Status loadModels();
+  void addShapes();
+  Status buildVariants();
+  Status makeTarget(int width, int height);
+  void setUniforms(const gl::Program& program) const;
+  void drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection);
+  void drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
+                      const glm::mat4& viewProjection);
+  void renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
+                       double nearPlane);
+  void renderPointShadow(const glm::dvec3& cameraPosition);
+  void fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection);
+};
+
+Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
+  shaderDir = options.shaderDir;
+  render = scene.render;
+  if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
+  if (options.supersampleOverride > 0) render.supersample = options.supersampleOverride;
+  if (options.shadowMapOverride > 0) render.shadowMapSize = options.shadowMapOverride;
+  if (options.pcfKernelOverride > 0) {
+    render.pcfKernel = options.pcfKernelOverride;
+    render.shadowFilter = options.pcfKernelOverride > 1 ? ShadowFilter::Pcf : ShadowFilter::Hard;
+  }
+  pcfRadius = render.shadowFilter == ShadowFilter::Hard ? 0 : render.pcfKernel / 2;
+
+  for (int i = 0; i < int(scene.lights.size()); ++i) {
+    const LightDesc& l = scene.lights[size_t(i)];
+    if (l.type == LightType::Sun && sunLight < 0) sunLight = i;
+    // Area lights are drawn as a point at their centre; their soft shadow is the
+    // ray tracer's job (PCF only imitates it).
+    if (l.type != LightType::Sun && int(pointLights.size()) < kMaxPointLights) pointLights.push_back(i);
+  }
+  sunShadows = sunLight >= 0 && scene.lights[size_t(sunLight)].shadows;
+  pointShadows = !pointLights.empty() && scene.lights[size_t(pointLights[0])].shadows;
+
+  std::vector<std::string> defines;
+  if (scene.render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
+  if (sunShadows) defines.push_back("SUN_SHADOWS 1");
+  if (pointShadows) defines.push_back("POINT_SHADOWS 1");
+  if (scene.fog.enabled) defines.push_back("FOG 1");
+  variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
+
+  if (scene.sky.enabled) {
+    auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}},
+                                      {"HDR_OUTPUT 1"});
+    if (!program) return program.error();
+    sky = std::move(program).value();
+  }
+  auto postProgram = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}});
+  if (!postProgram) return postProgram.error();
+  post = std::move(postProgram).value();
+  emptyVao = gl::VertexArray::create();
+  frameUbo = gl::Buffer::create(sizeof(FrameBlock));
+
+  if (auto s = loadMaterials(); !s) return s;
+  if (auto s = loadModels(); !s) return s;
+  addShapes();
+
+  if (sunShadows) {
+    sunShadowSize = render.shadowMapSize;
+    sunShadowMap = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, sunShadowSize, sunShadowSize, 1);
+    sunShadowMap.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    sunShadowMap.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    sunShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    sunShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    sunShadowMap.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    sunShadowMap.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    sunShadowFbo = gl::Framebuffer::create();
+    sunShadowFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMap);
+  }
+  if (pointShadows) {
+    cubeSize = std::min(render.shadowMapSize, kMaxCubeShadowSize);
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
+    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, cubeSize, cubeSize);
+    pointShadowMap = gl::Texture::adopt(id, cubeSize, cubeSize);
+    pointShadowMap.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    pointShadowMap.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    pointShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    pointShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    pointShadowFbo = gl::Framebuffer::create();
+    pointFar = std::max(1.0, scene.camera.farPlane);
+  }
+  return buildVariants();
+}
+
+Status SceneRenderer::Impl::loadMaterials() {
+  for (const MaterialDesc& m : scene.materials) {
+    if (m.texture.empty()) {
+      materialTextures.emplace_back();
+    } else if (m.texture == "checker") {
+      materialTextures.push_back(uploadTexture(makeChecker(256, 2, {235, 235, 235}, {90, 90, 90}), true));
+    } else {
+      const auto folder = scene.path.substr(0, scene.path.find_last_of('/') + 1);
+      auto image = readPng(folder + m.texture);
+      if (!image) return makeError(scene.path + ": /materials/" + m.name + "/texture: " + image.error().message);
+      materialTextures.push_back(uploadTexture(*image, true));
+    }
+  }
+  return Ok{};
+}
+
+Status SceneRenderer::Impl::loadModels() {
+  std::map<std::string, std::shared_ptr<const CharacterAsset>> byPath;
+  for (size_t i = 0; i < scene.models.size(); ++i) {
+    const ModelDesc& desc = scene.models[i];
+    const std::string where = scene.path + ": /models/" + std::to_string(i);
+    auto& asset = byPath[desc.path];
+    if (!asset) {
+      auto model = loadGltf(desc.path);
+      if (!model) return makeError(where + "/path: " + model.error().message);
+      auto created = CharacterAsset::create(std::move(model).value());
+      if (!created) return makeError(where + ": " + created.error().message);
+      asset = std::move(created).value();
+    }
+    auto clip = findClip(asset->animated, desc.clip, desc.path);
+    if (!clip) return makeError(where + "/clip: " + clip.error().message);
+    CharacterDraw draw;
+    draw.instance = std::make_unique<CharacterInstance>(asset);
+    draw.instance->play(*clip);
+    draw.instance->player().setSpeed(desc.speed);
+    draw.desc = desc;
+    glm::dmat4 world = glm::translate(glm::dmat4(1.0), desc.position);
+    world = glm::rotate(world, glm::radians(desc.rotationDegrees.y), glm::dvec3(0, 1, 0));
+    world = glm::rotate(world, glm::radians(desc.rotationDegrees.x), glm::dvec3(1, 0, 0));
+    world = glm::rotate(world, glm::radians(desc.rotationDegrees.z), glm::dvec3(0, 0, 1));
+    draw.world = glm::scale(world, desc.scale);
+    const auto bounds = asset->boundsOfAllPoses();
+    draw.localCenter = glm::dvec3(bounds.min + bounds.max) * 0.5;
+    draw.localRadius = 0.5 * double(glm::length(bounds.max - bounds.min)) *
+                       std::max({desc.scale.x, desc.scale.y, desc.scale.z});
+    characters.push_back(std::move(draw));
+  }
+  return Ok{};
+}
+
+void SceneRenderer::Impl::addShapes() {
+  for (const PrimitiveDesc& p : scene.primitives) {
+    ShapeDraw draw;
+    draw.material = p.material;
+    if (p.type == PrimitiveType::Sphere) {
+      if (!sphere) sphere = std::make_unique<GpuMesh>(makeSphere(1.0f, 48, 96));
+      draw.mesh = sphere.get();
+      draw.world = glm::scale(glm::translate(glm::dmat4(1.0), p.center), glm::dvec3(p.radius));
+      draw.center = p.center;
+      draw.radius = p.radius;
+    } else if (p.type == PrimitiveType::Box) {
+      if (!cube) cube = std::make_unique<GpuMesh>(makeCube(1.0f));
+      draw.mesh = cube.get();
+      draw.center = (p.min + p.max) * 0.5;
+      draw.world = glm::scale(glm::translate(glm::dmat4(1.0), draw.center), p.max - p.min);
+      draw.radius = 0.5 * glm::length(p.max - p.min);
+    } else {
+      // A plane is a large square: `extent` wide each way, or the camera's far
+      // distance; finely divided so per-vertex work stays well conditioned.
+      if (!quad) quad = std::make_unique<GpuMesh>(makePlane(2.0f, 16, 2.0f));
+      draw.mesh = quad.get();
+      const double extent = p.extent > 0.0 ? p.extent : scene.camera.farPlane;
+      draw.world = glm::translate(glm::dmat4(1.0), p.point) * rotationFromTo({0, 1, 0}, p.normal) *
+                   glm::scale(glm::dmat4(1.0), glm::dvec3(extent, 1.0, extent));
+      // The quad's uv spans 2 units; one texture tile per `1 / texture_scale` metres.
+      draw.uvScale = glm::vec2(float(extent) * scene.materials[size_t(p.material)].textureScale);
+      draw.twoSided = true;
+    }
+    shapes.push_back(draw);
+  }
+}
+
+Status SceneRenderer::Impl::buildVariants() {
+  // Everything the scene will draw, built now, so the first frame costs no
+  // compile and --describe can list exactly what exists.
+  std::vector<ShaderVariant> needed;
+  for (const ShapeDraw& s : shapes) needed.push_back({0, SkinMode::Linear, materialTextures[size_t(s.material)].id() != 0, false});
+  for (const CharacterDraw& c : characters) {
+    const ModelData& model = c.instance->asset().model;
+    const SkinMode mode = c.desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
+    for (const NodeData& node : model.nodes) {
+      if (node.mesh < 0) continue;
+      for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
+        const int influences = node.skin >= 0 ? prim.influences : 0;
+        const bool textured = prim.material >= 0 && model.materials[size_t(prim.material)].baseColorImage >= 0;
+        needed.push_back({influences, mode, textured, false});
+        if (sunShadows || pointShadows) needed.push_back({influences, mode, false, true});
+      }
+    }
+  }
+  if ((sunShadows || pointShadows) && !shapes.empty()) needed.push_back({0, SkinMode::Linear, false, true});
+  for (const ShaderVariant& v : needed) {
+    auto program = variants->get(v);
+    if (!program) return program.error();
+  }
+  return Ok{};
+}
+
+Status SceneRenderer::Impl::makeTarget(int width, int height) {
+  const int w = width * render.supersample, h = height * render.supersample;
+  if (w == targetWidth && h == targetHeight) return Ok{};
+  GLint maxSamples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  if (render.msaa > maxSamples) {
+    return makeError(scene.path + ": /render/msaa: " + std::to_string(render.msaa) +
+                     " samples asked, this GL offers up to " + std::to_string(maxSamples));
+  }
+  targetWidth = w;
+  targetHeight = h;
+  hdr = gl::Texture::create2D(GL_RGBA16F, w, h, 1);
+  hdr.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  hdr.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const int samples = render.msaa > 1 ? render.msaa : 0;
+  depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, w, h, samples);
+  drawFbo = gl::Framebuffer::create();
+  if (samples > 0) {
+    msaaColor = gl::Renderbuffer::create(GL_RGBA16F, w, h, samples);
+    drawFbo.attach(GL_COLOR_ATTACHMENT0, msaaColor);
+    resolveFbo = gl::Framebuffer::create();
+    resolveFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
+  } else {
+    drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
+  }
+  drawFbo.attach(GL_DEPTH_ATTACHMENT, depth);
+  if (!drawFbo.complete()) return makeError("scene HDR framebuffer is incomplete");
+  return Ok{};
+}
+
+void SceneRenderer::Impl::setUniforms(const gl::Program& program) const {
+  if (sunShadows) {
+    program.set("u_sunTexelWorld", float(sunTexelWorld));
+    sunShadowMap.bind(4);
+  }
+  if (pointShadows) {
+    program.set("u_pointNear", float(pointNear));
+    pointShadowMap.bind(5);
+  }
+}
+
+void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection) {
+  frame.viewProjection = viewProjection;
+  frame.sunDirection = glm::vec4(0.0f);
+  if (sunLight >= 0) {
+    const LightDesc& sun = scene.lights[size_t(sunLight)];
+    frame.sunDirection = glm::vec4(glm::vec3(sun.direction), 1.0f);
+    frame.sunColor = glm::vec4(sun.color * sun.intensity, 0.0f);
+  }
+  frame.counts = glm::ivec4(int(pointLights.size()), 0, 0, 0);
+  for (size_t i = 0; i < pointLights.size(); ++i) {
+    const LightDesc& l = scene.lights[size_t(pointLights[i])];
+    frame.pointPosition[i] = glm::vec4(glm::vec3(l.position - cameraPosition), l.falloff ? 1.0f : 0.0f);
+    frame.pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows ? 1.0f : 0.0f);
+  }
+  // Ambient from the sky: the zenith and ground colours, dimmed.
+  frame.ambientSky = glm::vec4(scene.sky.enabled ? scene.sky.zenith * 0.35f + scene.sky.horizon * 0.15f
+                                                 : glm::vec3(scene.ambient),
+                               scene.ambient);
+  frame.ambientGround = glm::vec4(scene.sky.enabled ? scene.sky.ground * 0.3f : glm::vec3(scene.ambient), 0.0f);
+  frame.fog = scene.fog.enabled ? glm::vec4(scene.fog.color, scene.fog.density) : glm::vec4(0.0f);
+  frame.shadowParams = glm::vec4(sunShadowSize ? 1.0f / float(sunShadowSize) : 0.0f, float(pcfRadius),
+                                 float(pointFar), cubeSize ? 2.0f / float(cubeSize) : 0.0f);
+  frameUbo.upload(0, sizeof(FrameBlock), &frame);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
+}
+
+void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection) {
+  for (const ShapeDraw& s : shapes) {
+    if (planes && !sphereVisible(planes, s.center - eye, s.radius)) {
+      ++stats->objectsCulled;
+      continue;
+    }
+    const MaterialDesc& m = scene.materials[size_t(s.material)];
+    const bool textured = !depthOnly && materialTextures[size_t(s.material)].id() != 0;
+    auto program = variants->get({0, SkinMode::Linear, textured, depthOnly});
+    if (!program) continue;
+    const gl::Program& p = **program;
+    p.use();
+    ++stats->programChanges;
+    setUniforms(p);
+    // Camera-relative: the offset is taken in double, then the matrix goes to float.
+    glm::dmat4 relative = s.world;
+    relative[3] -= glm::dvec4(eye, 0.0);
+    const glm::mat4 model(relative);
+    p.set("u_model", model);
+    p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model)))));
+    p.set("u_uvScale", s.uvScale * (s.mesh == quad.get() ? 1.0f : m.textureScale));
+    if (depthOnly) {
+      p.set("u_lightViewProjection", lightViewProjection);
+    } else {
+      p.set("u_baseColorFactor", glm::vec4(m.color, 1.0f));
+      p.set("u_metallic", m.metallic);
+      p.set("u_roughness", m.roughness);
+      p.set("u_ambient", m.ambient);
+      p.set("u_diffuse", m.diffuse);
+      p.set("u_specular", m.specular);
+      p.set("u_shininess", m.shininess);
+      p.set("u_reflection", m.reflection);
+      p.set("u_emissive", glm::vec3(0.0f));
+      if (textured) materialTextures[size_t(s.material)].bind(0);
+    }
+    if (s.twoSided) glDisable(GL_CULL_FACE);
+    s.mesh->draw();
+    if (s.twoSided) glEnable(GL_CULL_FACE);
+    ++stats->drawCalls;
+    ++stats->objectsDrawn;
+  }
+}
+
+void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
+                                         const glm::mat4& viewProjection) {
+  for (CharacterDraw& c : characters) {
+    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
+    if (planes && !sphereVisible(planes, center, c.localRadius)) {
+      ++stats->objectsCulled;
+      continue;
+    }
+    const SkinMode mode = c.desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
+    auto set = [this, depthOnly, &lightViewProjection](const gl::Program& p) {
+      setUniforms(p);
+      if (depthOnly) p.set("u_lightViewProjection", lightViewProjection);
+    };
+    (void)c.instance->draw(*variants, viewProjection, mode, set, depthOnly);
+    const ModelData& model = c.instance->asset().model;
+    for (const NodeData& node : model.nodes) {
+      if (node.mesh < 0) continue;
+      const int prims = int(model.meshes[size_t(node.mesh)].primitives.size());
+      stats->drawCalls += prims;
+      stats->programChanges += prims;
+    }
+    ++stats->objectsDrawn;
+  }
+}
+
+void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
+                                          double aspect, double nearPlane) {
+  // Bounding sphere of the view frustum up to the shadow distance, camera-relative.
+  const double farPlane = std::min(scene.camera.farPlane, kSunShadowDistance);
+  const glm::dmat4 invView = glm::inverse(view);
+  const double ty = std::tan(fovy * 0.5), tx = ty * aspect;
+  glm::dvec3 corners[8];
+  int k = 0;
+  for (double d : {nearPlane, farPlane})
+    for (double sy : {-1.0, 1.0})
+      for (double sx : {-1.0, 1.0}) corners[k++] = glm::dvec3(invView * glm::dvec4(sx * tx * d, sy * ty * d, -d, 1.0));
+  glm::dvec3 center(0.0);
+  for (const auto& c : corners) center += c / 8.0;
+  double radius = 0.0;
+  for (const auto& c : corners) radius = std::max(radius, glm::length(c - center));
+  radius = std::ceil(radius);  // a stable size, so texels do not change every frame
+
+  const glm::dvec3 l = scene.lights[size_t(sunLight)].direction;
+  const glm::dvec3 up = std::abs(l.y) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 lx = glm::normalize(glm::cross(up, l)), ly = glm::cross(l, lx);
+  // Snap the centre to whole texels in world space: the map then slides in texel
+  // steps as the camera moves, and shadow edges do not shimmer.
+  const double texel = 2.0 * radius / double(sunShadowSize);
+  const glm::dvec3 world = center + cameraPosition;
+  const double u = glm::dot(world, lx), v = glm::dot(world, ly);
+  center += lx * (std::floor(u / texel) * texel - u) + ly * (std::floor(v / texel) * texel - v);
+  sunTexelWorld = texel;
+
+  const double casterMargin = 200.0;  // casters behind the view still throw shadows into it
+  const glm::dmat4 lightView = glm::lookAt(center + l * (radius + casterMargin), center, ly);
+  const glm::dmat4 lightProj = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0, 2.0 * radius + casterMargin);
+  const glm::mat4 lightViewProjection(lightProj * lightView);
+  const glm::dmat4 bias = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.0)) *
+                          glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 1.0));
+  frame.sunShadowMatrix = glm::mat4(bias * lightProj * lightView);
+
+  sunShadowFbo.bind();
+  glViewport(0, 0, sunShadowSize, sunShadowSize);
+  glClearDepth(1.0);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glDepthFunc(GL_LESS);
+  // Slope-scaled offset: surfaces at grazing angles to the sun get more.
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.0f);
+  drawShapes(nullptr, true, lightViewProjection);
+  drawCharacters(nullptr, true, lightViewProjection, lightViewProjection);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) {
+  const glm::dvec3 light = scene.lights[size_t(pointLights[0])].position - cameraPosition;
+  // GL's cube face order and orientation.
+  const glm::dvec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const glm::dvec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+  const glm::dmat4 proj = glm::perspectiveRH_ZO(glm::half_pi<double>(), 1.0, pointNear, pointFar);
+  glViewport(0, 0, cubeSize, cubeSize);
+  glDepthFunc(GL_LESS);
+  glClearDepth(1.0);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.0f);
+  // Cube faces are seen from inside: a right-handed face view mirrors nothing,
+  // but GL's cube orientation does; draw both sides so no caster is lost.
+  glDisable(GL_CULL_FACE);
+  for (int face = 0; face < 6; ++face) {
+    glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, face);
+    pointShadowFbo.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    const glm::mat4 faceViewProjection(proj * glm::lookAt(light, light + dirs[face], ups[face]));
+    drawShapes(nullptr, true, faceViewProjection);
+    drawCharacters(nullptr, true, faceViewProjection, faceViewProjection);
+  }
+  glEnable(GL_CULL_FACE);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+SceneRenderer::SceneRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) { impl_->stats = &stats_; }
+SceneRenderer::~SceneRenderer() = default;
+
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const SceneDesc& scene, const SceneRenderOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  impl->scene = scene;
+  std::unique_ptr<SceneRenderer> renderer(new SceneRenderer(std::move(impl)));
+  if (auto s = renderer->impl_->init(options); !s) return s.error();
+  return renderer;
+}
+
+const SceneDesc& SceneRenderer::scene() const { return impl_->scene; }
+
+std::vector<CharacterInstance*> SceneRenderer::characters() {
+  std::vector<CharacterInstance*> out;
+  for (auto& c : impl_->characters) out.push_back(c.instance.get());
+  return out;
+}
+
+void SceneRenderer::update(double time) {
+  // Clip time is a function of the scene time alone (start + time * speed), so a
+  // frame never depends on the frames before it.
+  for (auto& c : impl_->characters) {
+    c.instance->player().seek(c.desc.start + time * c.desc.speed);
+    c.instance->evaluate();
+  }
+}
+
+Camera SceneRenderer::initialCamera() const {
+  Camera camera;
+  const CameraDesc& d = impl_->scene.camera;
+  camera.position = d.position;
+  camera.fovyDegrees = d.fovyDegrees;
+  camera.nearPlane = d.nearPlane;
+  camera.farPlane = d.farPlane;
+  camera.lookAt(d.position + d.forward);
+  return camera;
+}
+
+void SceneRenderer::render(const Camera& camera, int width, int height) {
+  Impl& s = *impl_;
+  stats_ = SceneStats{};
+  if (auto status = s.makeTarget(width, height); !status) return;
+  const glm::dvec3 cameraPosition = camera.position;
+  const double aspect = double(width) / double(height);
+  const double fovy = glm::radians(camera.fovyDegrees);
+  const glm::dmat4 view = viewRotation(camera.forward(), s.scene.camera.up, s.scene.camera.leftHanded);
+  const glm::dmat4 projection = reverseZProjection(fovy, aspect, camera.nearPlane, camera.farPlane);
+  const glm::dmat4 viewProjection = projection * view;
+  glm::dvec4 planes[6];
+  frustumPlanes(viewProjection, planes);
+
+  GLint callerFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  s.eye = cameraPosition;
+  for (auto& c : s.characters) c.instance->computeModels(c.world, cameraPosition);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  s.fillFrame(cameraPosition, glm::mat4(viewProjection));
+  if (s.sunShadows) s.renderSunShadow(cameraPosition, view, fovy, aspect, camera.nearPlane);
+  if (s.pointShadows) s.renderPointShadow(cameraPosition);
+  s.fillFrame(cameraPosition, glm::mat4(viewProjection));  // with the shadow matrix
+
+  s.drawFbo.bind();
+  glViewport(0, 0, s.targetWidth, s.targetHeight);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  const glm::vec3 background = s.scene.sky.background;
+  glClearColor(background.r, background.g, background.b, 1.0f);
+  glClearDepth(0.0);  // reverse-Z: far is 0
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDepthFunc(GL_GREATER);
+  // A left-handed view is a mirror: it turns counter-clockwise faces clockwise.
+  glFrontFace(s.scene.camera.leftHanded ? GL_CW : GL_CCW);
+  if (s.scene.sky.enabled) {
+    s.sky.use();
+    Lighting lighting;
+    lighting.sunDirection = s.sunLight >= 0 ? glm::vec3(s.scene.lights[size_t(s.sunLight)].direction) : glm::vec3(0, -1, 0);
+    lighting.skyZenith = s.scene.sky.zenith;
+    lighting.skyHorizon = s.scene.sky.horizon;
+    lighting.skyGround = s.scene.sky.ground;
+    setSkyUniforms(s.sky, lighting);
+    s.sky.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+    s.emptyVao.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    ++stats_.drawCalls;
+  }
+  s.drawShapes(planes, false, glm::mat4(1.0f));
+  s.drawCharacters(planes, false, glm::mat4(1.0f), glm::mat4(viewProjection));
+
+  if (s.render.msaa > 1) {
+    glBlitNamedFramebuffer(s.drawFbo.id(), s.resolveFbo.id(), 0, 0, s.targetWidth, s.targetHeight, 0, 0,
+                           s.targetWidth, s.targetHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+  // Post: into the framebuffer the caller bound. It receives display values, so
+  // sRGB encoding on write is off (the shader applies the output curve itself).
+  glFrontFace(GL_CCW);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  glDepthFunc(GL_LESS);
+  glClearDepth(1.0);
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
+  glViewport(0, 0, width, height);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glDisable(GL_DEPTH_TEST);
+  s.post.use();
+  s.post.set("u_exposure", s.render.exposure);
+  s.post.set("u_toneMap", int(s.render.toneMap));
+  s.post.set("u_outputCurve", s.render.output == OutputCurve::Gamma22 ? 1 : 0);
+  s.post.set("u_supersample", s.render.supersample);
+  s.hdr.bind(0);
+  s.emptyVao.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+  stats_.drawCalls += 1;
+}
+
+std::string SceneRenderer::describe() const {
+  const Impl& s = *impl_;
+  std::ostringstream out;
+  out << "passes:";
+  if (s.sunShadows) out << " shadow-sun(" << s.sunShadowSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
+  if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
+  if (s.scene.sky.enabled) out << " sky";
+  out << " opaque";
+  if (s.scene.fog.enabled) out << "+fog";
+  out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
+  out << "\nshading: " << (s.scene.render.shading == Shading::Classic ? "classic" : "pbr");
+  out << "\nvariants:";
+  for (const auto& v : s.variants->built()) out << " " << v.describe();
+  out << "\n";
+  return out.str();
+}
+
+}  // namespace engine

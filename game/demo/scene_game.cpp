@@ -1,0 +1,22 @@
+#include "scene_game.h"
+
+namespace demo {
+
+SceneGame::SceneGame(engine::SceneDesc scene, engine::SceneRenderOptions options)
+    : scene_(std::move(scene)), options_(std::move(options)) {}
+
+SceneGame::~SceneGame() = default;
+
+engine::Status SceneGame::init() {
+  auto renderer = engine::SceneRenderer::create(scene_, options_);
+  if (!renderer) return renderer.error();
+  renderer_ = std::move(renderer).value();
+  camera_ = renderer_->initialCamera();
+  return engine::Ok{};
+}
+
+void SceneGame::update(double time, double) { renderer_->update(time); }
+
+void SceneGame::render(const engine::FrameInfo& frame) { renderer_->render(camera_, frame.width, frame.height); }
+
+}  // namespace demo

@@ -1,0 +1,53 @@
+#version 450 core
+// Terrain materials: grass, rock and snow blended by height and slope, lit with the
+// same sun, hemispheric ambient, fog and tone map as lit.frag.
+#include "common/lighting.glsl"
+#include "common/fog.glsl"
+#include "common/terrain_shadow.glsl"
+
+in vec3 v_position;
+in vec3 v_normal;
+in float v_height;
+in vec2 v_uv;
+
+layout(binding = 1) uniform sampler2D u_grassTexture;
+layout(binding = 2) uniform sampler2D u_rockTexture;
+layout(binding = 3) uniform sampler2D u_snowTexture;
+uniform float u_heightScale;
+uniform vec3 u_sunDirection;
+uniform vec3 u_sunColor;
+uniform vec3 u_skyColor;
+uniform vec3 u_groundColor;
+uniform vec3 u_fogColor;
+uniform float u_fogDensity;
+
+layout(location = 0) out vec4 o_color;
+
+// Layer weights, summing to one: rock where steep, snow high up where it can lie
+// (not on cliffs), grass elsewhere. The texture's own brightness jitters the snow
+// line so it does not follow a contour exactly.
+vec3 layerWeights(float height01, float slope, float jitter) {
+  float rock = smoothstep(0.28, 0.5, slope);
+  float snow = smoothstep(0.6, 0.7, height01 + 0.05 * jitter) * (1.0 - smoothstep(0.35, 0.6, slope));
+  float grass = max(1.0 - rock - snow, 0.0);
+  return vec3(grass, rock, snow) / max(grass + rock + snow, 1e-4);
+}
+
+void main() {
+  vec3 n = normalize(v_normal);
+  vec3 toEye = normalize(-v_position);  // the camera sits at the origin
+  // Two scales of the same layer break up visible repetition.
+  vec2 uvFar = v_uv * 0.173;
+  vec3 grass = texture(u_grassTexture, v_uv).rgb * texture(u_grassTexture, uvFar).rgb * 2.0;
+  vec3 rock = texture(u_rockTexture, v_uv).rgb * texture(u_rockTexture, uvFar).rgb * 2.0;
+  vec3 snow = texture(u_snowTexture, v_uv).rgb;
+  vec3 w = layerWeights(v_height / u_heightScale, 1.0 - n.y, rock.r * 2.0 - 0.5);
+  vec3 albedo = grass * w.x + rock * w.y + snow * w.z;
+  float specular = mix(0.02, 0.25, w.z);
+  Sun sun = Sun(u_sunDirection, u_sunColor);
+  vec3 color = albedo * hemisphereAmbient(n, u_skyColor, u_groundColor) +
+               blinnPhong(albedo, n, toEye, sun, specular, 24.0) * shadowFactor(v_position);
+  color = applyFog(color, length(v_position), u_fogColor, u_fogDensity);
+  // Linear out, with lit.frag's Reinhard so terrain and meshes share a tone curve.
+  o_color = vec4(color / (1.0 + color), 1.0);
+}
