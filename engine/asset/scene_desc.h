@@ -133,4 +133,13 @@ struct SceneDesc {
   float ambient = 0.1f;  // classic shading's ambient term when a material has none
 };
 
+// The ambient light both renderers use for PBR shading: a hemisphere from the
+// sky's colours (dimmed), or the scene's ambient grey without a sky.
+inline glm::vec3 ambientSkyColor(const SceneDesc& scene) {
+  return scene.sky.enabled ? scene.sky.zenith * 0.35f + scene.sky.horizon * 0.15f : glm::vec3(scene.ambient);
+}
+inline glm::vec3 ambientGroundColor(const SceneDesc& scene) {
+  return scene.sky.enabled ? scene.sky.ground * 0.3f : glm::vec3(scene.ambient);
+}
+
 }  // namespace engine

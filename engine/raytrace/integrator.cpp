@@ -129,11 +129,14 @@ class Tracer {
       const glm::vec3 f = f0 + (glm::vec3(1.0f) - f0) * std::pow(1.0f - vDotH, 5.0f);
       const glm::vec3 spec = d * g * f / (4.0f * nDotV * nDotL + 1e-4f);
       const glm::vec3 kd = (glm::vec3(1.0f) - f) * (1.0f - m.metallic);
-      color += (kd * m.color / std::numbers::pi_v<float> + spec) * ls.radiance * (nDotL * ls.visibility);
+      // Light intensities are what a white Lambert surface facing the light reflects
+      // (the rasterizer's convention, shaders/common/shading.glsl), so pi cancels.
+      color += (kd * m.color / std::numbers::pi_v<float> + spec) * ls.radiance *
+               (nDotL * ls.visibility * std::numbers::pi_v<float>);
     }
-    const SkyDesc& sky = scene_.sky();
-    const glm::vec3 ambientLight = sky.enabled ? glm::mix(sky.ground, sky.zenith, 0.5f + 0.5f * nf.y) : glm::vec3(1.0f);
-    return color + m.color * m.ambient * ambientLight;
+    // The same hemisphere ambient as the rasterizer's shadeAmbient.
+    const glm::vec3 ambientLight = glm::mix(scene_.ambientGround(), scene_.ambientSky(), 0.5f + 0.5f * nf.y);
+    return color + ambientLight * (m.color * (1.0f - m.metallic) + f0 * (1.0f - m.roughness) * 0.5f);
   }
 
   LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,

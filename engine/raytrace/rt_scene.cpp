@@ -40,6 +40,8 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
   scene.camera_ = desc.camera;
   scene.lights_ = desc.lights;
   scene.sky_ = desc.sky;
+  scene.ambientSky_ = ambientSkyColor(desc);
+  scene.ambientGround_ = ambientGroundColor(desc);
   scene.render_ = desc.render;
   const int materialCount = int(scene.materials_.size());
   for (std::size_t i = 0; i < desc.primitives.size(); ++i) {

@@ -67,6 +67,9 @@ class RtScene {
   const std::vector<LightDesc>& lights() const { return lights_; }
   const std::vector<MaterialDesc>& materials() const { return materials_; }
   const SkyDesc& sky() const { return sky_; }
+  // PBR's hemisphere ambient (see ambientSkyColor in asset/scene_desc.h).
+  glm::vec3 ambientSky() const { return ambientSky_; }
+  glm::vec3 ambientGround() const { return ambientGround_; }
   const RenderDesc& render() const { return render_; }
   const std::vector<RtMesh>& meshes() const { return meshes_; }
   const Bvh& bvh() const { return bvh_; }
@@ -87,6 +90,8 @@ class RtScene {
   std::vector<LightDesc> lights_;
   std::vector<MaterialDesc> materials_;
   SkyDesc sky_;
+  glm::vec3 ambientSky_{0.1f};
+  glm::vec3 ambientGround_{0.1f};
   RenderDesc render_;
   // Each analytic shape in both precisions, so neither path converts per ray.
   std::vector<Sphere<float>> spheresF_;

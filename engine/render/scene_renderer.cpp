@@ -393,10 +393,8 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
     frame.pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows ? 1.0f : 0.0f);
   }
   // Ambient from the sky: the zenith and ground colours, dimmed.
-  frame.ambientSky = glm::vec4(scene.sky.enabled ? scene.sky.zenith * 0.35f + scene.sky.horizon * 0.15f
-                                                 : glm::vec3(scene.ambient),
-                               scene.ambient);
-  frame.ambientGround = glm::vec4(scene.sky.enabled ? scene.sky.ground * 0.3f : glm::vec3(scene.ambient), 0.0f);
+  frame.ambientSky = glm::vec4(ambientSkyColor(scene), scene.ambient);
+  frame.ambientGround = glm::vec4(ambientGroundColor(scene), 0.0f);
   frame.fog = scene.fog.enabled ? glm::vec4(scene.fog.color, scene.fog.density) : glm::vec4(0.0f);
   frame.shadowParams = glm::vec4(sunShadowSize ? 1.0f / float(sunShadowSize) : 0.0f, float(pcfRadius),
                                  float(pointFar), cubeSize ? 2.0f / float(cubeSize) : 0.0f);

@@ -13,7 +13,9 @@
 #include "asset/scene_file.h"
 #include "core/image.h"
 #include "raytrace/integrator.h"
+#include "raytrace/progress_bar.h"
 #include "raytrace/rt_scene.h"
+#include "raytrace/scene_builder.h"
 #include "raytrace/tone_map.h"
 
 namespace {
@@ -31,6 +33,7 @@ struct Options {
   std::uint64_t seed = 1;
   std::string precision = "float";
   std::string out = "out/rtrender.png";
+  double time = 0.0;
 };
 
 bool parseSize(const std::string& text, int& w, int& h) {
@@ -38,27 +41,6 @@ bool parseSize(const std::string& text, int& w, int& h) {
   if (std::sscanf(text.c_str(), "%dx%d%n", &w, &h, &consumed) != 2 || consumed != int(text.size())) return false;
   return w > 0 && h > 0 && w <= kMaxSide && h <= kMaxSide;
 }
-
-// Redraws one line on stderr at most ten times a second: tiles done, rays/s.
-class ProgressBar {
- public:
-  bool update(const engine::rt::RenderProgress& p) {
-    const auto now = std::chrono::steady_clock::now();
-    if (p.tilesDone != p.tilesTotal && now - last_ < std::chrono::milliseconds(100)) return true;
-    last_ = now;
-    constexpr int kWidth = 40;
-    const int filled = p.tilesTotal > 0 ? kWidth * p.tilesDone / p.tilesTotal : kWidth;
-    const double rate = p.seconds > 0.0 ? double(p.rays.total()) / p.seconds / 1e6 : 0.0;
-    std::fprintf(stderr, "\r[%.*s%*s] %3d%% %7.2f Mrays/s", filled, "########################################",
-                 kWidth - filled, "", p.tilesTotal > 0 ? 100 * p.tilesDone / p.tilesTotal : 100, rate);
-    if (p.tilesDone == p.tilesTotal) std::fputc('\n', stderr);
-    std::fflush(stderr);
-    return true;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_{};
-};
 
 }  // namespace
 
@@ -76,6 +58,7 @@ int main(int argc, char** argv) {
   app.add_option("--rt-precision", o.precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))->capture_default_str();
   app.add_option("--out", o.out, "output PNG")->capture_default_str();
+  app.add_option("--time", o.time, "scene time in seconds (poses the scene's models)")->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -100,23 +83,22 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rtrender: %s\n", desc.error().message.c_str());
     return kExitBadInput;
   }
-  auto scene = engine::rt::RtScene::fromSceneDesc(*desc);
-  if (!scene) {
-    std::fprintf(stderr, "rtrender: %s\n", scene.error().message.c_str());
-    return kExitBadInput;
-  }
   settings.samplesPerPixel = o.spp;
   settings.shadowSamples = o.shadowSamples;
   settings.maxDepth = o.maxDepth;
   settings.threads = o.threads;
   settings.seed = o.seed;
   settings.precision = o.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;
-  ProgressBar bar;
+  engine::rt::ProgressBar bar;
   settings.progress = [&bar](const engine::rt::RenderProgress& p) { return bar.update(p); };
 
-  const engine::rt::RenderResult result = engine::rt::Integrator(*scene, settings).render();
-  const engine::Image image = engine::rt::toImage(result.image, scene->render());
-  if (auto written = engine::writePng(o.out, image); !written) {
+  auto run = engine::rt::raytraceScene(*desc, o.time, settings);
+  if (!run) {
+    std::fprintf(stderr, "rtrender: %s\n", run.error().message.c_str());
+    return kExitBadInput;
+  }
+  const engine::rt::RenderResult& result = run->result;
+  if (auto written = engine::writePng(o.out, run->image); !written) {
     std::fprintf(stderr, "rtrender: %s\n", written.error().message.c_str());
     return kExitBadInput;
   }
