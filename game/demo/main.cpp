@@ -4,8 +4,14 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "app/cli.h"
 #include "asset/scene_file.h"
+#include "raytrace/progress_bar.h"
+#include "raytrace/scene_builder.h"
+#include "raytrace_game.h"
 #include "scene_game.h"
 
 namespace {
@@ -13,6 +19,38 @@ namespace {
 int fail(int code, const std::string& message) {
   std::fprintf(stderr, "demo: %s\n", message.c_str());
   return code;
+}
+
+struct RaytraceOptions {
+  std::string precision = "float";
+  engine::rt::RenderSettings settings;
+};
+
+// Offscreen ray tracing needs no GL context: trace, encode, write.
+int runRaytraceOffscreen(const engine::SceneDesc& scene, const engine::CommonOptions& options,
+                         engine::rt::RenderSettings settings) {
+  engine::rt::ProgressBar bar;
+  settings.progress = [&bar](const engine::rt::RenderProgress& p) { return bar.update(p); };
+  auto run = engine::rt::raytraceScene(scene, options.run.time.value_or(0.0), settings);
+  if (!run) return fail(engine::kExitBadInput, run.error().message);
+  if (auto s = engine::writePng(options.run.screenshot, run->image); !s) return fail(engine::kExitBadInput, s.error().message);
+  const auto& r = run->result.rays;
+  const double mrays = run->result.seconds > 0.0 ? double(r.total()) / run->result.seconds / 1e6 : 0.0;
+  std::fprintf(stderr, "ray traced %dx%d, spp %d: %.3f s, %.2f Mrays/s (%llu primary, %llu shadow, %llu reflection); "
+               "%d meshes, %d triangles, BVH %.1f ms\n",
+               settings.width, settings.height, settings.samplesPerPixel, run->result.seconds, mrays,
+               (unsigned long long)r.primary, (unsigned long long)r.shadow, (unsigned long long)r.reflection,
+               run->build.meshes, run->build.triangles, run->build.bvhSeconds * 1e3);
+  if (!options.run.benchFile.empty()) {
+    nlohmann::json j = {{"mode", "raytrace"}, {"seconds", run->result.seconds}, {"mrays_per_second", mrays},
+                        {"rays", {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection}}},
+                        {"width", settings.width}, {"height", settings.height}, {"spp", settings.samplesPerPixel},
+                        {"shadow_samples", settings.shadowSamples}, {"threads", settings.threads},
+                        {"bvh_build_ms", run->build.bvhSeconds * 1e3}, {"command", options.run.command}};
+    std::ofstream(options.run.benchFile) << j.dump(2) << "\n";
+  }
+  std::printf("%s\n", options.run.screenshot.c_str());
+  return 0;
 }
 
 }  // namespace
@@ -31,6 +69,21 @@ int main(int argc, char** argv) {
   app.add_option("--pcf", render.pcfKernelOverride, "PCF kernel width (odd; 1 = hard shadows)")
       ->check(CLI::IsMember({1, 3, 5, 7, 9}));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
+  std::string mode = "raster";
+  RaytraceOptions rt;
+  app.add_option("--mode", mode, "raster (OpenGL) or raytrace (the CPU reference)")
+      ->check(CLI::IsMember({"raster", "raytrace"}))->capture_default_str();
+  app.add_option("--spp", rt.settings.samplesPerPixel, "Ray tracing: stratified samples per pixel")
+      ->check(CLI::Range(1, 4096))->capture_default_str();
+  app.add_option("--shadow-samples", rt.settings.shadowSamples, "Ray tracing: N x N shadow rays per area light")
+      ->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--max-depth", rt.settings.maxDepth, "Ray tracing: mirror recursion depth")
+      ->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("--threads", rt.settings.threads, "Ray tracing: worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024))->capture_default_str();
+  app.add_option("--seed", rt.settings.seed, "Ray tracing: random seed")->capture_default_str();
+  app.add_option("--rt-precision", rt.precision, "Ray tracing: float or double")
+      ->check(CLI::IsMember({"float", "double"}))->capture_default_str();
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
 
   if (options.checkDisplay) return engine::displayAvailable() ? 0 : 1;
@@ -50,6 +103,16 @@ int main(int argc, char** argv) {
   render.shaderDir = options.shaderDir;
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
   options.run.msaa = 1;
+  if (mode == "raytrace") {
+    rt.settings.width = options.run.width;
+    rt.settings.height = options.run.height;
+    rt.settings.precision = rt.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;
+    if (offscreen) return runRaytraceOffscreen(*scene, options, rt.settings);
+    if (!engine::displayAvailable()) return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
+    demo::RaytraceGame game(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings);
+    if (auto status = engine::runWindow(game, options.run); !status) return fail(engine::kExitBadInput, status.error().message);
+    return 0;
+  }
   demo::SceneGame game(std::move(scene).value(), render);
 
   const engine::Backend backend = engine::chosenBackend(options);
