@@ -48,6 +48,10 @@ void main() {
   vec3 color = albedo * hemisphereAmbient(n, u_skyColor, u_groundColor) +
                blinnPhong(albedo, n, toEye, sun, specular, 24.0) * shadowFactor(v_position);
   color = applyFog(color, length(v_position), u_fogColor, u_fogDensity);
+#ifdef HDR_OUTPUT
+  o_color = vec4(color, 1.0);  // the scene renderer's post pass tone maps
+#else
   // Linear out, with lit.frag's Reinhard so terrain and meshes share a tone curve.
   o_color = vec4(color / (1.0 + color), 1.0);
+#endif
 }

@@ -114,6 +114,19 @@ Status checkUris(const std::string& jsonText, const std::string& path) {
   nlohmann::json doc = nlohmann::json::parse(jsonText, nullptr, false);
   if (doc.is_discarded()) return makeError(path + ": invalid JSON");
   if (!doc.is_object()) return makeError(path + ": the top-level JSON value is not an object");
+  // The count limits are checked here as well as after parsing: tinygltf spends
+  // about 1 KiB per node, so a 3 MiB list of empty nodes would cost a gigabyte
+  // before Converter::checkLimits could refuse it.
+  if (auto nodes = doc.find("nodes"); nodes != doc.end() && nodes->is_array() && nodes->size() > kMaxNodes)
+    return makeError(path + ": " + str(nodes->size()) + " nodes, the limit is " + str(kMaxNodes));
+  if (auto skins = doc.find("skins"); skins != doc.end() && skins->is_array())
+    for (std::size_t i = 0; i < skins->size(); ++i) {
+      const auto& skin = (*skins)[i];
+      if (skin.is_object() && skin.contains("joints") && skin["joints"].is_array() &&
+          skin["joints"].size() > kMaxSkinJoints)
+        return makeError(path + ": skin " + str(i) + ": " + str(skin["joints"].size()) +
+                         " joints, the limit is " + str(kMaxSkinJoints));
+    }
   for (const char* kind : {"buffers", "images"}) {
     auto list = doc.find(kind);
     if (list == doc.end() || !list->is_array()) continue;
@@ -134,6 +147,10 @@ Status checkUris(const std::string& jsonText, const std::string& path) {
 bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err,
                           const std::string& filepath, void* userData) {
   const fs::path& folder = *static_cast<const fs::path*>(userData);
+  if (folder.empty()) {
+    if (err) *err += filepath + ": a model read from memory cannot refer to files";
+    return false;
+  }
   std::error_code ec;
   fs::path full = fs::weakly_canonical(filepath, ec);
   if (ec) {
@@ -153,7 +170,6 @@ bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err,
   return tinygltf::ReadWholeFile(out, err, full.string(), nullptr);
 }
 
-constexpr std::uint32_t kMaxImageSide = 16384;
 
 std::uint32_t bigEndian(const unsigned char* p, int bytes) {
   std::uint32_t v = 0;
@@ -182,21 +198,41 @@ std::pair<std::uint32_t, std::uint32_t> imageSize(const unsigned char* bytes, st
 bool tolerantImageLoader(tinygltf::Image* image, const int imageIndex, std::string* err,
                          std::string* warn, int reqWidth, int reqHeight,
                          const unsigned char* bytes, int size, void*) {
-  auto [width, height] = imageSize(bytes, size > 0 ? static_cast<std::size_t>(size) : 0);
-  if (width > kMaxImageSide || height > kMaxImageSide) {
-    if (warn) *warn += "image " + std::to_string(imageIndex) + ": " + std::to_string(width) + " x " +
-                       std::to_string(height) + " pixels is over the limit of " + std::to_string(kMaxImageSide) + "\n";
+  const std::size_t length = size > 0 ? static_cast<std::size_t>(size) : 0;
+  const std::string name = "image " + std::to_string(imageIndex);
+  auto refuse = [&](const std::string& why) {
+    if (warn) *warn += name + ": " + why + "\n";
     image->image.clear();
     return true;
+  };
+  // glTF allows PNG and JPEG only. stb would also try TGA (which has no magic),
+  // PSD, HDR, ... and could take any corrupted bytes for one of them, with a size
+  // that nothing here has checked.
+  const bool png = length >= 8 && bytes[0] == 0x89 && bytes[1] == 'P';
+  const bool jpeg = length >= 4 && bytes[0] == 0xFF && bytes[1] == 0xD8;
+  if (!png && !jpeg) return refuse("not a PNG or JPEG file");
+  auto [width, height] = imageSize(bytes, length);
+  // The same limits as readPng (core/image.h).
+  if (width > static_cast<std::uint32_t>(kMaxImageSide) || height > static_cast<std::uint32_t>(kMaxImageSide))
+    return refuse(std::to_string(width) + " x " + std::to_string(height) + " pixels is over the limit of " +
+                  std::to_string(kMaxImageSide));
+  if (std::uint64_t{width} * height > kMaxImagePixels)
+    return refuse(std::to_string(width) + " x " + std::to_string(height) + " pixels is over the limit of " +
+                  std::to_string(kMaxImagePixels) + " pixels");
+  if (jpeg && (width == 0 || height == 0)) return refuse("JPEG without a frame header");
+  if (png) {
+    if (Status s = checkPngHeader(std::span(bytes, length), name); !s) {
+      if (warn) *warn += s.error().message + "\n";
+      image->image.clear();
+      return true;
+    }
   }
   std::string decodeError;
   if (tinygltf::LoadImageData(image, imageIndex, &decodeError, warn, reqWidth, reqHeight,
                               bytes, size, nullptr))
     return true;
-  image->image.clear();
-  if (warn) *warn += "image " + std::to_string(imageIndex) + ": cannot decode: " + decodeError + "\n";
   (void)err;
-  return true;
+  return refuse("cannot decode: " + decodeError);
 }
 
 std::vector<std::string> splitLines(const std::string& text) {
@@ -211,32 +247,42 @@ std::vector<std::string> splitLines(const std::string& text) {
   return lines;
 }
 
-Result<tinygltf::Model> parseWithTinygltf(const std::string& path, ModelData& out) {
-  auto bytes = readFileBytes(path);
-  if (!bytes) return bytes.error();
-  bool binary = bytes->size() >= 4 && readU32(*bytes, 0) == kGlbMagic;
+// `folder` is where external URIs resolve; empty for in-memory input, which may
+// not read any file.
+Result<tinygltf::Model> parseWithTinygltf(const std::vector<unsigned char>& bytes, const std::string& path,
+                                          const fs::path& folder, ModelData& out) {
+  if (bytes.size() > kMaxModelFileBytes)
+    return makeError(path + ": " + str(bytes.size()) + " bytes, the limit is " + std::to_string(kMaxModelFileBytes));
+  bool binary = bytes.size() >= 4 && readU32(bytes, 0) == kGlbMagic;
+  // Without the magic the bytes are read as JSON text; a .glb name says what was
+  // meant, and "invalid JSON" would mislead.
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (!binary && ext == ".glb") {
+    if (bytes.size() < 4) return makeError(path + ": truncated GLB: " + str(bytes.size()) + " bytes, the header needs 20");
+    return makeError(path + ": not a GLB file (bad magic)");
+  }
   std::string jsonText;
   if (binary) {
-    auto json = glbJson(*bytes, path);
+    auto json = glbJson(bytes, path);
     if (!json) return json.error();
     jsonText = std::move(json.value());
   } else {
-    jsonText.assign(bytes->begin(), bytes->end());
+    jsonText.assign(bytes.begin(), bytes.end());
   }
   Status uris = checkUris(jsonText, path);
   if (!uris) return uris.error();
 
-  std::error_code ec;
-  fs::path folder = fs::weakly_canonical(fs::absolute(path).parent_path(), ec);
   tinygltf::TinyGLTF loader;
   tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
-                                  &guardedReadWholeFile, &tinygltf::WriteWholeFile, &folder};
+                                  &guardedReadWholeFile, &tinygltf::WriteWholeFile,
+                                  const_cast<fs::path*>(&folder)};
   loader.SetFsCallbacks(callbacks);
   loader.SetImageLoader(&tolerantImageLoader, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(),
-                                                 static_cast<unsigned int>(bytes->size()),
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                                 static_cast<unsigned int>(bytes.size()),
                                                  folder.string())
                    : loader.LoadASCIIFromString(&model, &err, &warn, jsonText.c_str(),
                                                 static_cast<unsigned int>(jsonText.size()),
@@ -725,15 +771,33 @@ class Converter {
 
 }  // namespace
 
-Result<ModelData> loadGltf(const std::string& path) {
+namespace {
+
+Result<ModelData> convert(const std::vector<unsigned char>& bytes, const std::string& path,
+                          const fs::path& folder) {
   ModelData model;
   model.path = path;
-  auto gltf = parseWithTinygltf(path, model);
+  auto gltf = parseWithTinygltf(bytes, path, folder, model);
   if (!gltf) return gltf.error();
   Converter converter(*gltf, model);
   if (Status s = converter.run(); !s) return s.error();
   for (const std::string& w : model.warnings) logWarning(w);
   return model;
+}
+
+}  // namespace
+
+Result<ModelData> loadGltf(const std::string& path) {
+  auto bytes = readFileBytes(path);
+  if (!bytes) return bytes.error();
+  std::error_code ec;
+  fs::path folder = fs::weakly_canonical(fs::absolute(path).parent_path(), ec);
+  if (ec || folder.empty()) return makeError(path + ": cannot resolve the model's folder");
+  return convert(*bytes, path, folder);
+}
+
+Result<ModelData> loadGltfFromMemory(std::span<const unsigned char> bytes, const std::string& name) {
+  return convert(std::vector<unsigned char>(bytes.begin(), bytes.end()), name, fs::path());
 }
 
 }  // namespace engine

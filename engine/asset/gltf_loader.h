@@ -3,6 +3,7 @@
 // The file is untrusted: every problem comes back as an Error naming the file and
 // the element ("hero.glb: skin 0: joint 7 has no node"); nothing aborts.
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "asset/model_data.h"
@@ -20,5 +21,10 @@ inline constexpr std::size_t kMaxAccessorElements = 1u << 26;
 // schemes than data:). Missing or undecodable images only warn and get a 1x1
 // white fallback; missing buffers are errors.
 Result<ModelData> loadGltf(const std::string& path);
+
+// The same loader on bytes already in memory (.glb or .gltf text); `name` stands
+// for the file in messages. Only data: URIs are followed: a buffer that names a
+// file is an error, an image that names one gets the fallback.
+Result<ModelData> loadGltfFromMemory(std::span<const unsigned char> bytes, const std::string& name);
 
 }  // namespace engine

@@ -76,6 +76,7 @@ struct ModelDesc {
   double speed = 1.0;
   double start = 0.0;   // clip time at scene time 0
   bool dualQuat = false;
+  bool onTerrain = false;  // position.y is a height above the terrain there
 };
 
 struct SkyDesc {
@@ -116,6 +117,8 @@ struct TerrainDesc {
   unsigned seed = 1;
   double size = 256.0;
   double heightScale = 20.0;
+  double spacing = 1.0;       // metres between samples (procedural)
+  double errorPixels = 2.0;   // level-of-detail target: screen-space error
   glm::dvec3 origin{0.0};
 };
 

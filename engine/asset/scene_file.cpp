@@ -220,7 +220,8 @@ Status readPrimitive(const Node& n, PrimitiveDesc& p, const std::map<std::string
 }
 
 Status readModel(const Node& n, ModelDesc& m, const std::filesystem::path& folder) {
-  TRY(n.expectObject({"path", "position", "rotation", "scale", "clip", "speed", "start", "skinning"}));
+  TRY(n.expectObject({"path", "position", "rotation", "scale", "clip", "speed", "start", "skinning", "on_terrain"}));
+  TRY(readBool(n, "on_terrain", m.onTerrain));
   if (!n.has("path")) return n.error("missing \"path\" of the glTF file");
   TRY(readString(n, "path", m.path));
   m.path = (folder / m.path).lexically_normal().string();
@@ -278,7 +279,7 @@ Status readRender(const Node& n, RenderDesc& r) {
 }
 
 Status readTerrain(const Node& n, TerrainDesc& t, const std::filesystem::path& folder) {
-  TRY(n.expectObject({"heightmap", "seed", "size", "height_scale", "origin"}));
+  TRY(n.expectObject({"heightmap", "seed", "size", "height_scale", "spacing", "error_pixels", "origin"}));
   t.enabled = true;
   TRY(readString(n, "heightmap", t.heightmap));
   if (!t.heightmap.empty()) t.heightmap = (folder / t.heightmap).lexically_normal().string();
@@ -287,6 +288,8 @@ Status readTerrain(const Node& n, TerrainDesc& t, const std::filesystem::path& f
   t.seed = unsigned(seed);
   TRY(readNumber(n, "size", t.size, 1e-3, 1e7));
   TRY(readNumber(n, "height_scale", t.heightScale, 0.0, 1e6));
+  TRY(readNumber(n, "spacing", t.spacing, 1e-3, 1e4));
+  TRY(readNumber(n, "error_pixels", t.errorPixels, 0.1, 100.0));
   TRY(readVec3(n, "origin", t.origin));
   return Ok{};
 }

@@ -11,6 +11,9 @@
 #include "render/mesh.h"
 #include "render/model_renderer.h"
 #include "render/textures.h"
+#include "terrain/lod.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_renderer.h"
 
 namespace engine {
 namespace {
@@ -137,10 +140,14 @@ struct SceneRenderer::Impl {
   double sunTexelWorld = 0.0;
   double pointNear = 0.05, pointFar = 50.0;
   int pcfRadius = 0;
+  std::unique_ptr<terrain::Terrain> terrain;
+  std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
   SceneStats* stats = nullptr;
 
   Status init(const SceneRenderOptions& options);
+  Status loadTerrain();
+  void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
   Status loadMaterials();
   Status loadModels();
   void addShapes();
@@ -197,6 +204,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   emptyVao = gl::VertexArray::create();
   frameUbo = gl::Buffer::create(sizeof(FrameBlock));
 
+  if (auto s = loadTerrain(); !s) return s;
   if (auto s = loadMaterials(); !s) return s;
   if (auto s = loadModels(); !s) return s;
   addShapes();
@@ -227,6 +235,50 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     pointFar = std::max(1.0, scene.camera.farPlane);
   }
   return buildVariants();
+}
+
+Status SceneRenderer::Impl::loadTerrain() {
+  if (!scene.terrain.enabled) return Ok{};
+  terrain::TerrainSettings settings;
+  settings.heightmap = scene.terrain.heightmap;
+  settings.seed = scene.terrain.seed;
+  settings.size = scene.terrain.size;
+  settings.spacing = scene.terrain.spacing;
+  settings.heightScale = scene.terrain.heightScale;
+  settings.origin = scene.terrain.origin;
+  auto created = terrain::Terrain::create(settings);
+  if (!created) return makeError(scene.path + ": /terrain: " + created.error().message);
+  terrain = std::make_unique<terrain::Terrain>(std::move(created).value());
+  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, {"HDR_OUTPUT 1"});
+  if (!renderer) return renderer.error();
+  terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
+  return Ok{};
+}
+
+void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
+  terrain::LodCamera camera;
+  camera.position = eye;
+  camera.viewProjection = glm::mat4(viewProjection);
+  camera.fovY = fovy;
+  camera.viewportHeight = viewportHeight;
+  const auto selection = terrain::selectLod(*terrain, camera, scene.terrain.errorPixels);
+  // The terrain shader takes lit.frag's lighting uniforms.
+  Lighting lighting;
+  if (sunLight >= 0) {
+    const LightDesc& sun = scene.lights[size_t(sunLight)];
+    lighting.sunDirection = glm::vec3(sun.direction);
+    lighting.sunColor = sun.color * sun.intensity;
+  } else {
+    lighting.sunColor = glm::vec3(0.0f);
+  }
+  lighting.ambientSky = ambientSkyColor(scene);
+  lighting.ambientGround = ambientGroundColor(scene);
+  lighting.skyHorizon = scene.fog.color;
+  lighting.fogDensity = scene.fog.enabled ? scene.fog.density : 0.0f;
+  const auto drawn = terrainRenderer->draw(selection, glm::mat4(viewProjection), eye,
+                                           [&lighting](const gl::Program& p) { setLightingUniforms(p, lighting); });
+  stats->drawCalls += 1;
+  stats->terrainTriangles = int(drawn.trianglesDrawn);
 }
 
 Status SceneRenderer::Impl::loadMaterials() {
@@ -265,7 +317,9 @@ Status SceneRenderer::Impl::loadModels() {
     draw.instance->play(*clip);
     draw.instance->player().setSpeed(desc.speed);
     draw.desc = desc;
-    glm::dmat4 world = glm::translate(glm::dmat4(1.0), desc.position);
+    glm::dvec3 position = desc.position;
+    if (desc.onTerrain && terrain) position.y += terrain->heightAt(position.x, position.z);
+    glm::dmat4 world = glm::translate(glm::dmat4(1.0), position);
     world = glm::rotate(world, glm::radians(desc.rotationDegrees.y), glm::dvec3(0, 1, 0));
     world = glm::rotate(world, glm::radians(desc.rotationDegrees.x), glm::dvec3(1, 0, 0));
     world = glm::rotate(world, glm::radians(desc.rotationDegrees.z), glm::dvec3(0, 0, 1));
@@ -635,6 +689,7 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
     glEnable(GL_DEPTH_TEST);
     ++stats_.drawCalls;
   }
+  if (s.terrain) s.drawTerrain(viewProjection, fovy, s.targetHeight);
   s.drawShapes(planes, false, glm::mat4(1.0f));
   s.drawCharacters(planes, false, glm::mat4(1.0f), glm::mat4(viewProjection));
 
@@ -671,6 +726,7 @@ std::string SceneRenderer::describe() const {
   if (s.sunShadows) out << " shadow-sun(" << s.sunShadowSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
   if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
   if (s.scene.sky.enabled) out << " sky";
+  if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
   out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";

@@ -29,6 +29,7 @@ struct SceneStats {
   int programChanges = 0;
   int objectsCulled = 0;
   int objectsDrawn = 0;
+  int terrainTriangles = 0;
 };
 
 class SceneRenderer {

@@ -1,0 +1,216 @@
+#include "terrain/lod.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace engine::terrain {
+namespace {
+
+// Root-level morph distances far beyond any distance: its k is always 0.
+constexpr float kNoMorphStart = 1e30f;
+constexpr float kNoMorphEnd = 2e30f;
+// Relative slack that keeps conditions (b) and (c) true through float rounding.
+constexpr double kRangeSlack = 1.001;
+
+glm::dvec4 row(const glm::mat4& m, int r) { return {m[0][r], m[1][r], m[2][r], m[3][r]}; }
+
+struct Selector {
+  const Terrain& terrain;
+  const LodCamera& camera;
+  LodSelection& out;
+  Frustum frustum;
+  glm::dvec2 cameraSample;  // camera (x, z) in sample units from the origin
+  double dy2 = 0.0;         // squared vertical distance used by every distance
+
+  // Distance (metres) from the camera to the nearest point of a rectangle of
+  // samples, in the metric of the header comment.
+  double distance(int x0, int z0, int x1, int z1) const {
+    const double dx = std::max({double(x0) - cameraSample.x, 0.0, cameraSample.x - double(x1)});
+    const double dz = std::max({double(z0) - cameraSample.y, 0.0, cameraSample.y - double(z1)});
+    const double s = terrain.spacing();
+    return std::sqrt((dx * dx + dz * dz) * s * s + dy2);
+  }
+  double farthest(int x0, int z0, int x1, int z1) const {
+    const double dx = std::max(std::abs(x0 - cameraSample.x), std::abs(x1 - cameraSample.x));
+    const double dz = std::max(std::abs(z0 - cameraSample.y), std::abs(z1 - cameraSample.y));
+    const double s = terrain.spacing();
+    return std::sqrt((dx * dx + dz * dz) * s * s + dy2);
+  }
+
+  bool visible(int level, int x0, int z0, int span) const {
+    if (!camera.cull) return true;
+    const HeightRange h = terrain.regionBounds(x0, z0, x0 + span, z0 + span);
+    const double s = terrain.spacing();
+    const glm::dvec3 o = terrain.origin() - camera.position;
+    const int x1 = std::min(x0 + span, terrain.cellsX()), z1 = std::min(z0 + span, terrain.cellsZ());
+    (void)level;
+    return frustum.intersects({o.x + x0 * s, o.y + h.min, o.z + z0 * s},
+                              {o.x + x1 * s, o.y + h.max, o.z + z1 * s});
+  }
+
+  void addPatch(int level, const PageKey& node, int qx, int qz) {
+    const int s = Terrain::stride(level);
+    const int span = kPatchQuads * s;
+    const int gx = node.nx * kNodeQuads * s + qx * span, gz = node.nz * kNodeQuads * s + qz * span;
+    if (gx >= terrain.cellsX() || gz >= terrain.cellsZ()) return;  // wholly outside the field
+    if (!visible(level, gx, gz, span)) return;
+    LodPatch p{level, gx, gz, node, terrain.geometricError(level)};
+    const int top = terrain.levelCount() - 1;
+    if (level < top && farthest(gx, gz, gx + span, gz + span) > out.morphStart[std::size_t(level)])
+      p.error = terrain.geometricError(level + 1);
+    out.patches.push_back(p);
+  }
+
+  void addNode(const PageKey& node) {
+    for (int q = 0; q < 4; ++q) addPatch(node.level, node, q & 1, q >> 1);
+  }
+
+  // Strugar's LODSelect: false when the node is beyond its level's range, so the
+  // parent must draw that area itself.
+  bool select(const PageKey& node) {
+    const int span = kNodeQuads * Terrain::stride(node.level);
+    const int x0 = node.nx * span, z0 = node.nz * span;
+    if (x0 >= terrain.cellsX() || z0 >= terrain.cellsZ()) return true;
+    const int x1 = std::min(x0 + span, terrain.cellsX()), z1 = std::min(z0 + span, terrain.cellsZ());
+    const double d = distance(x0, z0, x1, z1);
+    if (d > out.range[std::size_t(node.level)]) return false;
+    if (!visible(node.level, x0, z0, span)) return true;
+    if (node.level == 0 || d > out.range[std::size_t(node.level - 1)]) {
+      addNode(node);
+      return true;
+    }
+    for (int q = 0; q < 4; ++q) {
+      const PageKey child{node.level - 1, node.nx * 2 + (q & 1), node.nz * 2 + (q >> 1)};
+      if (!select(child)) addPatch(node.level, node, q & 1, q >> 1);
+    }
+    return true;
+  }
+};
+
+void computeRanges(const Terrain& terrain, const LodCamera& camera, double errorPixels,
+                   LodSelection& out) {
+  const int top = terrain.levelCount() - 1;
+  // Pixels per metre of error at distance 1.
+  const double k = camera.viewportHeight / (2.0 * std::tan(camera.fovY * 0.5));
+  const double target = std::max(errorPixels, 1e-6);
+  for (int level = 0; level < top; ++level) {
+    // Morphing toward level + 1 starts where that level's error projects to the target.
+    const double acceptable = terrain.geometricError(level + 1) * k / target;
+    double range = acceptable / kMorphStartRatio;
+    if (level > 0) {
+      // (a) and (c): a level-(L-1) node reaches at most its range plus its diagonal;
+      // there level L must not have begun morphing.
+      const double prev = out.range[std::size_t(level - 1)];
+      range = std::max(range, (prev + std::sqrt(2.0) * terrain.nodeSize(level - 1)) / kMorphStartRatio * kRangeSlack);
+    }
+    out.range[std::size_t(level)] = range;
+    out.morphStart[std::size_t(level)] = float(range * kMorphStartRatio);
+    out.morphEnd[std::size_t(level)] = float(range * kMorphEndRatio);
+  }
+  out.range[std::size_t(top)] = std::numeric_limits<double>::infinity();
+  out.morphStart[std::size_t(top)] = kNoMorphStart;
+  out.morphEnd[std::size_t(top)] = kNoMorphEnd;
+}
+
+}  // namespace
+
+Frustum Frustum::fromViewProjection(const glm::mat4& m) {
+  // Gribb and Hartmann: the clip-space inequalities -w <= x, y, z <= w written as
+  // planes in the space the matrix takes points from.
+  Frustum f;
+  const glm::dvec4 r0 = row(m, 0), r1 = row(m, 1), r2 = row(m, 2), r3 = row(m, 3);
+  f.planes = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2};
+  return f;
+}
+
+bool Frustum::intersects(const glm::dvec3& lo, const glm::dvec3& hi) const {
+  for (const glm::dvec4& p : planes) {
+    // The box corner farthest along the plane normal.
+    const glm::dvec3 c(p.x >= 0 ? hi.x : lo.x, p.y >= 0 ? hi.y : lo.y, p.z >= 0 ? hi.z : lo.z);
+    if (p.x * c.x + p.y * c.y + p.z * c.z + p.w < 0.0) return false;
+  }
+  return true;
+}
+
+LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels) {
+  LodSelection out;
+  computeRanges(terrain, camera, errorPixels, out);
+  const double s = terrain.spacing();
+  // Clamped so that the integer cell and the float fraction stay meaningful for a
+  // camera absurdly far away; such a camera sees only the root anyway.
+  constexpr double kFar = 1 << 29;
+  const glm::dvec2 cam = glm::clamp(
+      glm::dvec2(camera.position.x - terrain.origin().x, camera.position.z - terrain.origin().z) / s,
+      glm::dvec2(-kFar), glm::dvec2(kFar));
+  const glm::dvec2 cell = glm::floor(cam);
+  out.cameraCell = glm::ivec2(cell);
+  out.cameraFraction = glm::vec2(cam - cell);
+  const double cy = camera.position.y - terrain.origin().y;
+  out.cameraHeight = float(cy);
+  const HeightRange h = terrain.heightRange();
+  const double dy = std::max({double(h.min) - cy, 0.0, cy - double(h.max)});
+  out.morphDy2 = float(dy * dy);
+  out.spacing = float(s);
+  out.cells = {terrain.cellsX(), terrain.cellsZ()};
+
+  Selector selector{terrain, camera, out, Frustum::fromViewProjection(camera.viewProjection), cam,
+                    // The selection uses the same squared height as the vertices.
+                    double(out.morphDy2)};
+  const PageKey root{terrain.levelCount() - 1, 0, 0};
+  if (!selector.select(root)) selector.addNode(root);
+
+  out.stats.patches = out.patches.size();
+  out.stats.triangles = out.patches.size() * kPatchQuads * kPatchQuads * 2;
+  out.stats.finestLevel = terrain.levelCount() - 1;
+  for (const LodPatch& p : out.patches) {
+    out.stats.maxGeometricError = std::max(out.stats.maxGeometricError, p.error);
+    out.stats.finestLevel = std::min(out.stats.finestLevel, p.level);
+  }
+  return out;
+}
+
+float morphFactor(const LodSelection& sel, int level, int gx, int gz) {
+  const int cx = std::min(gx, sel.cells.x), cz = std::min(gz, sel.cells.y);
+  const float x = (float(cx - sel.cameraCell.x) - sel.cameraFraction.x) * sel.spacing;
+  const float z = (float(cz - sel.cameraCell.y) - sel.cameraFraction.y) * sel.spacing;
+  const float d = std::sqrt(x * x + z * z + sel.morphDy2);
+  const float start = sel.morphStart[std::size_t(level)], end = sel.morphEnd[std::size_t(level)];
+  return std::clamp((d - start) / (end - start), 0.0f, 1.0f);
+}
+
+glm::vec3 patchVertex(const LodSelection& sel, const LodPatch& patch, const HeightPage& page,
+                      int i, int j) {
+  const int s = Terrain::stride(patch.level);
+  const int gx = patch.gx + i * s, gz = patch.gz + j * s;
+  const float k = morphFactor(sel, patch.level, gx, gz);
+  // Odd vertices slide onto their even neighbour toward the node's origin: at k = 1
+  // the grid is exactly the parent level's.
+  const int oddX = i & 1, oddZ = j & 1;
+  const int qx = std::min(gx - oddX * s, sel.cells.x), qz = std::min(gz - oddZ * s, sel.cells.y);
+  const int px = std::min(gx, sel.cells.x), pz = std::min(gz, sel.cells.y);
+  const float rx = float(px - sel.cameraCell.x) - sel.cameraFraction.x;
+  const float rz = float(pz - sel.cameraCell.y) - sel.cameraFraction.y;
+  const float qrx = float(qx - sel.cameraCell.x) - sel.cameraFraction.x;
+  const float qrz = float(qz - sel.cameraCell.y) - sel.cameraFraction.y;
+  // Position of the patch inside its node's page, in the level's samples.
+  const int li = (patch.gx / s) % kNodeQuads + i, lj = (patch.gz / s) % kNodeQuads + j;
+  const float hp = page.at(li, lj), hq = page.at(li - oddX, lj - oddZ);
+  const float w = 1.0f - k;
+  const float x = (rx * w + qrx * k) * sel.spacing;
+  const float z = (rz * w + qrz * k) * sel.spacing;
+  const float y = (hp * w + hq * k) - sel.cameraHeight;
+  return {x, y, z};
+}
+
+std::vector<glm::vec3> patchVertices(const Terrain& terrain, const LodSelection& selection,
+                                     const LodPatch& patch) {
+  auto page = terrain.page(patch.node);
+  std::vector<glm::vec3> out;
+  out.reserve(std::size_t(kPatchQuads + 1) * (kPatchQuads + 1));
+  for (int j = 0; j <= kPatchQuads; ++j)
+    for (int i = 0; i <= kPatchQuads; ++i) out.push_back(patchVertex(selection, patch, *page, i, j));
+  return out;
+}
+
+}  // namespace engine::terrain

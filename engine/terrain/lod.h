@@ -1,0 +1,90 @@
+#pragma once
+// Continuous distance-dependent level of detail (CDLOD, Strugar 2009). A quadtree
+// of nodes over the field; each selected node is drawn as 2x2 patches of one fixed
+// grid (kPatchQuads^2 quads) whose vertices morph toward the parent level's grid as
+// their distance nears the end of the level's range, so levels meet without cracks
+// and change without popping.
+//
+// Distances use the horizontal distance plus the camera's height above (or below)
+// the terrain's whole height range: a function of a vertex's (x, z) alone, which
+// makes a shared vertex morph identically in every patch that has it, and keeps the
+// distance a lower bound of the true one, so the screen-space error stays under
+// target. Ranges are then spaced so that (a) neighbours differ by at most one
+// level, (b) a finer patch is fully morphed where it meets a coarser one and
+// (c) the coarser one is not morphed there at all (see lod.cpp).
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "terrain/page_cache.h"
+#include "terrain/terrain.h"
+
+namespace engine::terrain {
+
+// Morphing starts at this share of a level's range and ends just before it.
+inline constexpr double kMorphStartRatio = 0.7;
+inline constexpr double kMorphEndRatio = 0.999;
+
+struct LodCamera {
+  glm::dvec3 position{0.0};
+  // Camera-relative: the view has no translation (camera at the origin). Clip
+  // space as in OpenGL; culling uses the six planes of this matrix.
+  glm::mat4 viewProjection{1.0f};
+  double fovY = 1.0471975511965976;  // vertical, radians
+  int viewportHeight = 720;
+  bool cull = true;
+};
+
+// Six planes (a, b, c, d): inside when a*x + b*y + c*z + d >= 0.
+struct Frustum {
+  std::array<glm::dvec4, 6> planes{};
+  static Frustum fromViewProjection(const glm::mat4& viewProjection);
+  // False only when the box is wholly outside one plane (conservative).
+  bool intersects(const glm::dvec3& lo, const glm::dvec3& hi) const;
+};
+
+struct LodPatch {
+  int level = 0;
+  int gx = 0, gz = 0;  // global sample index of the patch's vertex (0, 0)
+  PageKey node;        // the node (and height page) it belongs to
+  float error = 0.0f;  // metres: the level's geometric error, or the next one's where it morphs
+};
+
+struct LodStats {
+  std::size_t patches = 0;
+  std::size_t triangles = 0;
+  float maxGeometricError = 0.0f;  // metres, over the drawn patches
+  int finestLevel = 0;
+};
+
+struct LodSelection {
+  std::vector<LodPatch> patches;
+  // Per level: the selection range (metres) and the morph distances.
+  std::array<double, kMaxLevels> range{};
+  std::array<float, kMaxLevels> morphStart{}, morphEnd{};
+  // The camera split for exact float maths: sample cell (integer) + fraction.
+  glm::ivec2 cameraCell{0};
+  glm::vec2 cameraFraction{0.0f};
+  float cameraHeight = 0.0f;  // camera y - origin y
+  float morphDy2 = 0.0f;      // squared height of the camera above/below the height range
+  float spacing = 1.0f;
+  glm::ivec2 cells{0};        // vertex indices are clamped to [0, cells]
+  LodStats stats;
+};
+
+LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels);
+
+// The CPU mirror of terrain.vert: morph factor of the vertex at global sample
+// (gx, gz) of a level-`level` grid, and the camera-relative position of patch
+// vertex (i, j) in [0, kPatchQuads]^2, with the same float operations in the same
+// order as the shader.
+float morphFactor(const LodSelection& selection, int level, int gx, int gz);
+glm::vec3 patchVertex(const LodSelection& selection, const LodPatch& patch, const HeightPage& page,
+                      int i, int j);
+// All (kPatchQuads + 1)^2 vertices, row by row (j outer).
+std::vector<glm::vec3> patchVertices(const Terrain& terrain, const LodSelection& selection,
+                                     const LodPatch& patch);
+
+}  // namespace engine::terrain

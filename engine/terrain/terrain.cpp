@@ -1,0 +1,198 @@
+#include "terrain/terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace engine::terrain {
+namespace {
+
+// Probe estimates of the noise's error are scaled by this: the probes see a few
+// thousand samples of a field with hundreds of millions, so the true maximum can
+// be somewhat above the probed one.
+constexpr double kProbeSafety = 1.5;
+constexpr int kErrorProbes = 16;
+
+std::string describe(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+Status validate(const TerrainSettings& s, const std::string& where) {
+  if (!std::isfinite(s.size) || s.size <= 0.0)
+    return makeError(where + ": size must be a finite number > 0 (got " + describe(s.size) + ")");
+  if (!std::isfinite(s.heightScale) || s.heightScale < 0.0)
+    return makeError(where + ": heightScale must be a finite number >= 0 (got " +
+                     describe(s.heightScale) + ")");
+  if (!finite(s.origin)) return makeError(where + ": origin must be finite");
+  if (s.pageCacheBytes < kPageBytes * 4)
+    return makeError(where + ": pageCacheBytes " + std::to_string(s.pageCacheBytes) +
+                     " is under four pages (" + std::to_string(kPageBytes * 4) + " bytes)");
+  if (s.heightmap.empty()) {
+    if (!std::isfinite(s.spacing) || s.spacing <= 0.0)
+      return makeError(where + ": spacing must be a finite number > 0 (got " + describe(s.spacing) + ")");
+    const double cells = std::ceil(s.size / s.spacing - 1e-9);
+    if (cells > kMaxCellsPerSide)
+      return makeError(where + ": size / spacing gives " + describe(cells) +
+                       " cells a side; at most " + std::to_string(kMaxCellsPerSide) + " are supported");
+    if (s.octaves < 1 || s.octaves > 24)
+      return makeError(where + ": octaves must be in [1, 24] (got " + std::to_string(s.octaves) + ")");
+    if (!std::isfinite(s.featureSize) || s.featureSize < 0.0)
+      return makeError(where + ": featureSize must be a finite number >= 0");
+  }
+  return Ok{};
+}
+
+int floorPow2(double v) {
+  int p = 1;
+  while (p <= kMaxCellsPerSide && double(p) * 2.0 <= v) p *= 2;
+  return p;
+}
+
+}  // namespace
+
+Result<Terrain> Terrain::create(const TerrainSettings& settings) {
+  const std::string where = settings.heightmap.empty() ? std::string("terrain") : settings.heightmap;
+  if (Status ok = validate(settings, where); !ok) return ok.error();
+  Terrain t;
+  t.origin_ = settings.origin;
+  const float heightScale = float(settings.heightScale);
+  if (settings.heightmap.empty()) {
+    t.spacing_ = settings.spacing;
+    t.cellsX_ = t.cellsZ_ = std::max(1, int(std::ceil(settings.size / settings.spacing - 1e-9)));
+    const double feature = settings.featureSize > 0.0 ? settings.featureSize : settings.size / 4.0;
+    NoiseParams noise;
+    noise.seed = settings.seed;
+    noise.basePeriod = std::max(2, floorPow2(feature / settings.spacing));
+    noise.octaves = settings.octaves;
+    noise.heightScale = heightScale;
+    t.source_ = std::make_unique<NoiseHeights>(noise);
+  } else {
+    auto image = loadHeightmap(settings.heightmap, heightScale);
+    if (!image) return image.error();
+    t.cellsX_ = image.value()->width() - 1;
+    t.cellsZ_ = image.value()->height() - 1;
+    t.spacing_ = settings.size / std::max(t.cellsX_, t.cellsZ_);
+    t.source_ = std::move(image).value();
+  }
+  while ((double(kNodeQuads) * stride(t.levelCount_ - 1)) < std::max(t.cellsX_, t.cellsZ_)) {
+    ++t.levelCount_;
+  }
+  // The generator must not capture `this`: a Terrain moves. The source lives on
+  // the heap and does not.
+  const HeightSource* source = t.source_.get();
+  const int cellsX = t.cellsX_, cellsZ = t.cellsZ_;
+  t.cache_ = std::make_unique<PageCache>(
+      settings.pageCacheBytes, [source, cellsX, cellsZ](const PageKey& key, HeightPage& page) {
+        const int s = stride(key.level);
+        const int gx0 = key.nx * kNodeQuads * s, gz0 = key.nz * kNodeQuads * s;
+        for (int j = -1; j < kPageSide - 1; ++j) {
+          const int gz = std::clamp(gz0 + j * s, 0, cellsZ);
+          for (int i = -1; i < kPageSide - 1; ++i) {
+            const int gx = std::clamp(gx0 + i * s, 0, cellsX);
+            page.heights[std::size_t(j + 1) * kPageSide + (i + 1)] = source->sample(gx, gz);
+          }
+        }
+      });
+  t.estimateErrors(!settings.heightmap.empty());
+  return t;
+}
+
+float Terrain::sample(int ix, int iz) const {
+  return source_->sample(std::clamp(ix, 0, cellsX_), std::clamp(iz, 0, cellsZ_));
+}
+
+HeightRange Terrain::nodeBounds(const PageKey& node) const {
+  const int span = kNodeQuads * stride(node.level);
+  return regionBounds(node.nx * span, node.nz * span, node.nx * span + span, node.nz * span + span);
+}
+
+HeightRange Terrain::regionBounds(int x0, int z0, int x1, int z1) const {
+  return source_->bounds(std::clamp(x0, 0, cellsX_), std::clamp(z0, 0, cellsZ_),
+                         std::clamp(x1, 0, cellsX_), std::clamp(z1, 0, cellsZ_));
+}
+
+// The largest difference, over the level-(L-1) vertices of a region, between the
+// level-(L-1) mesh and the level-L mesh. The two meshes are piecewise linear and
+// every level-L triangle is a union of level-(L-1) triangles (same diagonal
+// direction), so the difference peaks at level-(L-1) vertices, and the sum of these
+// increments over levels bounds the error against full resolution.
+double Terrain::deltaOverRegion(int level, int gx0, int gz0, int cells) const {
+  const int s = stride(level - 1);
+  double worst = 0.0;
+  for (int b = 0; b <= cells; ++b) {
+    const int gz = gz0 + b * s;
+    if (gz > cellsZ_) break;
+    const bool oddZ = (gz / s) % 2 != 0;
+    for (int a = 0; a <= cells; ++a) {
+      const int gx = gx0 + a * s;
+      if (gx > cellsX_) break;
+      const bool oddX = (gx / s) % 2 != 0;
+      if (!oddX && !oddZ) continue;
+      const int dx = oddX ? s : 0, dz = oddZ ? s : 0;
+      // Odd in both: the point sits on the level-L quad's (0,0)-(1,1) diagonal.
+      const double coarse = 0.5 * (double(sample(gx - dx, gz - dz)) + sample(gx + dx, gz + dz));
+      worst = std::max(worst, std::abs(double(sample(gx, gz)) - coarse));
+    }
+  }
+  return worst;
+}
+
+void Terrain::estimateErrors(bool exact) {
+  errors_.assign(std::size_t(levelCount_), 0.0f);
+  double sum = 0.0;
+  for (int level = 1; level < levelCount_; ++level) {
+    double delta = 0.0;
+    if (exact) {
+      delta = deltaOverRegion(level, 0, 0, std::max(cellsX_, cellsZ_) / stride(level - 1) + 1);
+    } else {
+      // Probes of 64x64 level-(L-1) cells at hashed, aligned places in the field.
+      const int span = kNodeQuads * stride(level - 1);
+      const int placesX = std::max(1, cellsX_ / span), placesZ = std::max(1, cellsZ_ / span);
+      for (int p = 0; p < kErrorProbes; ++p) {
+        const double u = 0.5 * (latticeValue(0x7E44A1u, level, p, 0) + 1.0);
+        const double v = 0.5 * (latticeValue(0x7E44A1u, level, p, 1) + 1.0);
+        const int px = std::min(placesX - 1, int(u * placesX)), pz = std::min(placesZ - 1, int(v * placesZ));
+        delta = std::max(delta, kProbeSafety * deltaOverRegion(level, px * span, pz * span, kNodeQuads));
+      }
+    }
+    sum += delta;
+    errors_[std::size_t(level)] = float(sum);
+  }
+}
+
+double Terrain::heightAt(double x, double z) const {
+  const double u = std::clamp((x - origin_.x) / spacing_, 0.0, double(cellsX_));
+  const double v = std::clamp((z - origin_.z) / spacing_, 0.0, double(cellsZ_));
+  const int cx = std::min(int(u), cellsX_ - 1), cz = std::min(int(v), cellsZ_ - 1);
+  const double fx = u - cx, fz = v - cz;
+  auto p = page({0, cx / kNodeQuads, cz / kNodeQuads});
+  const int i = cx % kNodeQuads, j = cz % kNodeQuads;
+  const double a = p->at(i, j) + (p->at(i + 1, j) - double(p->at(i, j))) * fx;
+  const double b = p->at(i, j + 1) + (p->at(i + 1, j + 1) - double(p->at(i, j + 1))) * fx;
+  return origin_.y + a + (b - a) * fz;
+}
+
+glm::vec3 Terrain::normalAt(double x, double z) const {
+  const double u = std::clamp((x - origin_.x) / spacing_, 0.0, double(cellsX_));
+  const double v = std::clamp((z - origin_.z) / spacing_, 0.0, double(cellsZ_));
+  const int cx = std::min(int(u), cellsX_ - 1), cz = std::min(int(v), cellsZ_ - 1);
+  const float fx = float(u - cx), fz = float(v - cz);
+  auto p = page({0, cx / kNodeQuads, cz / kNodeQuads});
+  const int i0 = cx % kNodeQuads, j0 = cz % kNodeQuads;
+  // Central differences; the page's one-sample border supplies the neighbours.
+  auto corner = [&](int i, int j) {
+    return glm::normalize(glm::vec3(p->at(i - 1, j) - p->at(i + 1, j), float(2.0 * spacing_),
+                                    p->at(i, j - 1) - p->at(i, j + 1)));
+  };
+  const glm::vec3 a = glm::mix(corner(i0, j0), corner(i0 + 1, j0), fx);
+  const glm::vec3 b = glm::mix(corner(i0, j0 + 1), corner(i0 + 1, j0 + 1), fx);
+  return glm::normalize(glm::mix(a, b, fz));
+}
+
+}  // namespace engine::terrain

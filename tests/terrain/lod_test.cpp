@@ -1,0 +1,283 @@
+// CDLOD without GL: crack-freedom at every level transition (exact equality of the
+// CPU mirror of the vertex shader), rendered surface within the stated error,
+// screen-space ranges and frustum culling.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "core/image.h"
+#include "terrain/lod.h"
+#include "terrain/terrain.h"
+#include "terrain_support.h"
+
+using namespace engine;
+using namespace engine::terrain;
+using engine::terrain::test::makeCamera;
+
+namespace {
+
+using Point = std::array<float, 3>;
+using Edge = std::array<float, 6>;
+
+Edge edgeKey(const glm::vec3& a, const glm::vec3& b) {
+  Point pa{a.x, a.y, a.z}, pb{b.x, b.y, b.z};
+  if (pb < pa) std::swap(pa, pb);
+  return {pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]};
+}
+
+struct CrackReport {
+  std::size_t edges = 0;
+  std::size_t unmatched = 0;
+  std::set<int> levels;
+};
+
+// Watertightness: every boundary edge of every patch (after morphing, ignoring the
+// zero-length edges that fully morphed vertices leave) must appear, bit for bit,
+// in exactly one other patch, unless it lies on the field's border.
+CrackReport checkWatertight(const Terrain& terrain, const LodSelection& selection) {
+  std::map<Edge, int> count;
+  CrackReport report;
+  const int n = kPatchQuads;
+  for (const LodPatch& p : selection.patches) {
+    report.levels.insert(p.level);
+    const std::vector<glm::vec3> v = patchVertices(terrain, selection, p);
+    auto at = [&](int i, int j) { return v[std::size_t(j) * (n + 1) + i]; };
+    const int span = n * Terrain::stride(p.level);
+    const bool border[4] = {p.gz == 0, p.gx + span >= terrain.cellsX(), p.gz + span >= terrain.cellsZ(), p.gx == 0};
+    for (int side = 0; side < 4; ++side) {
+      if (border[side]) continue;
+      for (int t = 0; t < n; ++t) {
+        glm::vec3 a, b;
+        switch (side) {
+          case 0: a = at(t, 0), b = at(t + 1, 0); break;
+          case 1: a = at(n, t), b = at(n, t + 1); break;
+          case 2: a = at(t, n), b = at(t + 1, n); break;
+          default: a = at(0, t), b = at(0, t + 1); break;
+        }
+        if (a == b) continue;
+        ++count[edgeKey(a, b)];
+      }
+    }
+  }
+  for (const auto& [edge, c] : count) {
+    ++report.edges;
+    if (c != 2) ++report.unmatched;
+  }
+  return report;
+}
+
+// Larger of the two twists of the full-resolution cells around (u, v): how far a
+// bilinear patch can be from its two triangles.
+double twistAround(const Terrain& t, double u, double v) {
+  const int cx = int(std::floor(u)), cz = int(std::floor(v));
+  double worst = 0.0;
+  for (int dz = -1; dz <= 0; ++dz)
+    for (int dx = -1; dx <= 0; ++dx) {
+      const int x = cx + dx, z = cz + dz;
+      worst = std::max(worst, std::abs(double(t.sample(x, z)) + t.sample(x + 1, z + 1) - t.sample(x + 1, z) -
+                                       t.sample(x, z + 1)));
+    }
+  return worst;
+}
+
+struct Case {
+  const char* name;
+  glm::dvec3 eye;
+  glm::dvec3 target;
+};
+
+std::vector<Case> cameraCases(const glm::dvec3& o, const Terrain& t) {
+  auto ground = [&](double x, double z) { return glm::dvec3(o.x + x, t.heightAt(o.x + x, o.z + z), o.z + z); };
+  return {
+      {"low in the middle", ground(2048, 2048) + glm::dvec3(0, 5, 0), ground(2500, 2300)},
+      {"near a corner", ground(60, 70) + glm::dvec3(0, 20, 0), ground(1000, 900)},
+      {"between samples", ground(1234.37, 3011.81) + glm::dvec3(0.1, 2.3, 0.2), ground(1000, 3500)},
+      {"high above", ground(1500, 2500) + glm::dvec3(0, 1500, 0), ground(2000, 2000)},
+      {"outside the field", o + glm::dvec3(-600, 700, 4500), ground(2000, 2000)},
+  };
+}
+
+Result<Terrain> makeNoise(glm::dvec3 origin) {
+  return Terrain::create(test::noiseSettings(4096.0, 600.0, origin));
+}
+
+}  // namespace
+
+class LodCracks : public ::testing::TestWithParam<glm::dvec3> {};
+
+TEST_P(LodCracks, SharedEdgesMatchExactlyAtEveryTransition) {
+  const glm::dvec3 origin = GetParam();
+  auto t = makeNoise(origin);
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  for (const Case& c : cameraCases(origin, *t)) {
+    for (double pixels : {1.0, 8.0}) {
+      LodCamera camera = makeCamera(c.eye, c.target);
+      camera.cull = false;  // culled neighbours would leave edges unmatched by design
+      const LodSelection selection = selectLod(*t, camera, pixels);
+      const CrackReport r = checkWatertight(*t, selection);
+      EXPECT_EQ(r.unmatched, 0u) << c.name << ", " << pixels << " px: " << r.unmatched << " of " << r.edges
+                                 << " boundary edges unmatched";
+      EXPECT_GT(r.edges, 0u);
+      if (std::string(c.name) == "low in the middle" && pixels == 8.0) {
+        EXPECT_GE(r.levels.size(), 3u) << "the case should cross several level transitions";
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Origins, LodCracks,
+                         ::testing::Values(glm::dvec3(0.0), glm::dvec3(1.0e7, -800.0, -4.0e6)));
+
+TEST(Lod, HeightmapWithRaggedEdgesIsWatertight) {
+  // 301 x 197 samples: nodes hang over the field's edge and are clamped to it.
+  Image image(301, 197);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      p[0] = p[1] = p[2] = std::uint8_t(128 + 100 * std::sin(x * 0.05) * std::cos(y * 0.07));
+      p[3] = 255;
+    }
+  const auto path = std::filesystem::temp_directory_path() / "engine_terrain_ragged.png";
+  ASSERT_TRUE(writePng(path.string(), image).ok());
+  TerrainSettings s;
+  s.heightmap = path.string();
+  s.size = 3000.0;
+  s.heightScale = 300.0;
+  auto t = Terrain::create(s);
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  LodCamera camera = makeCamera({500.0, 250.0, 900.0}, {2000.0, 100.0, 1500.0});
+  camera.cull = false;
+  const LodSelection selection = selectLod(*t, camera, 1.0);
+  const CrackReport r = checkWatertight(*t, selection);
+  EXPECT_EQ(r.unmatched, 0u) << r.unmatched << " of " << r.edges;
+  EXPECT_GE(r.levels.size(), 2u);
+}
+
+// Every rendered vertex lies on its level's mesh, so it is within that level's
+// stated geometric error of the full-resolution mesh; heightAt (bilinear) can be
+// a further cell twist away from the triangles.
+TEST(Lod, RenderedSurfaceIsWithinTheStatedErrorOfHeightAt) {
+  for (glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(-2.5e6, 300.0, 8.0e6)}) {
+    auto t = makeNoise(origin);
+    ASSERT_TRUE(t.ok()) << t.error().message;
+    for (const Case& c : cameraCases(origin, *t)) {
+      LodCamera camera = makeCamera(c.eye, c.target);
+      const LodSelection selection = selectLod(*t, camera, 1.0);
+      double worstRatio = 0.0;
+      for (std::size_t pi = 0; pi < selection.patches.size(); pi += 5) {
+        const LodPatch& p = selection.patches[pi];
+        const auto v = patchVertices(*t, selection, p);
+        for (std::size_t i = 0; i < v.size(); i += 7) {
+          const double wx = c.eye.x + v[i].x, wz = c.eye.z + v[i].z;
+          const double rendered = c.eye.y + v[i].y;
+          const double u = (wx - origin.x) / t->spacing(), w = (wz - origin.z) / t->spacing();
+          const double allowed = t->geometricError(p.level) + twistAround(*t, u, w) + 0.02;
+          const double off = std::abs(rendered - t->heightAt(wx, wz));
+          worstRatio = std::max(worstRatio, off / allowed);
+          ASSERT_LE(off, allowed) << c.name << ": level " << p.level << " vertex " << i;
+        }
+      }
+      EXPECT_LE(worstRatio, 1.0);
+    }
+  }
+}
+
+TEST(Lod, UnmorphedVerticesSitExactlyOnSamples) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(2000.0, t->heightAt(2000.0, 2000.0) + 3.0, 2000.0);
+  const LodSelection selection = selectLod(*t, makeCamera(eye, eye + glm::dvec3(1, 0, 0)), 1.0);
+  std::size_t checked = 0;
+  for (const LodPatch& p : selection.patches) {
+    const auto page = t->page(p.node);
+    for (int j = 0; j <= kPatchQuads; j += 5)
+      for (int i = 0; i <= kPatchQuads; i += 5) {
+        const int s = Terrain::stride(p.level);
+        if (morphFactor(selection, p.level, p.gx + i * s, p.gz + j * s) != 0.0f) continue;
+        const glm::vec3 v = patchVertex(selection, p, *page, i, j);
+        EXPECT_NEAR(v.y + selection.cameraHeight, t->sample(p.gx + i * s, p.gz + j * s), 1e-3);
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 100u);
+}
+
+TEST(Lod, FinerTargetsDrawMoreAndErrOnlyWithinTarget) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(1000.0, t->heightAt(1000.0, 1000.0) + 10.0, 1000.0);
+  const LodCamera camera = makeCamera(eye, eye + glm::dvec3(1, -0.1, 1));
+  std::size_t previous = SIZE_MAX;
+  for (double pixels : {0.5, 1.0, 2.0, 4.0, 8.0}) {
+    const LodSelection s = selectLod(*t, camera, pixels);
+    EXPECT_LE(s.stats.triangles, previous) << pixels;
+    previous = s.stats.triangles;
+    // Each level is used only beyond the distance where the next finer level's
+    // error projects under target: error * pixelsPerMetreAt1m / distance <= target.
+    const double k = camera.viewportHeight / (2.0 * std::tan(camera.fovY / 2));
+    for (int level = 0; level + 1 < t->levelCount(); ++level) {
+      const double d = s.morphStart[std::size_t(level)];
+      EXPECT_LE(t->geometricError(level + 1) * k / d, pixels * 1.0001) << "level " << level;
+    }
+  }
+}
+
+TEST(Frustum, BoxesAgainstPlanes) {
+  // Looking down -z from the origin, 90 degrees, near 1, far 100.
+  const glm::mat4 vp = glm::perspective(glm::radians(90.0f), 1.0f, 1.0f, 100.0f);
+  const Frustum f = Frustum::fromViewProjection(vp);
+  EXPECT_TRUE(f.intersects({-1, -1, -11}, {1, 1, -9}));        // straight ahead
+  EXPECT_FALSE(f.intersects({-1, -1, 9}, {1, 1, 11}));         // behind
+  EXPECT_FALSE(f.intersects({-31, -1, -11}, {-29, 1, -9}));    // far to the left
+  EXPECT_FALSE(f.intersects({-1, 20, -11}, {1, 22, -9}));      // above
+  EXPECT_FALSE(f.intersects({-1, -1, -300}, {1, 1, -200}));    // beyond the far plane
+  EXPECT_TRUE(f.intersects({-100, -100, -50}, {100, 100, 50})); // contains the frustum's apex
+  EXPECT_TRUE(f.intersects({9, -1, -11}, {12, 1, -9}));        // straddles the right plane
+}
+
+// Culling only removes patches, and only ones wholly outside the view: each has
+// all its vertices beyond one clip plane.
+TEST(Frustum, CulledPatchesAreWhollyOutside) {
+  auto t = makeNoise(glm::dvec3(3.0e6, 0.0, 3.0e6));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 o = t->origin();
+  const glm::dvec3 eye(o.x + 1500.0, t->heightAt(o.x + 1500.0, o.z + 800.0) + 40.0, o.z + 800.0);
+  LodCamera camera = makeCamera(eye, eye + glm::dvec3(0.3, -0.2, 1.0));
+  const LodSelection culled = selectLod(*t, camera, 1.0);
+  camera.cull = false;
+  const LodSelection all = selectLod(*t, camera, 1.0);
+  auto key = [](const LodPatch& p) { return std::array<int, 3>{p.level, p.gx, p.gz}; };
+  std::set<std::array<int, 3>> kept;
+  for (const LodPatch& p : culled.patches) kept.insert(key(p));
+  std::set<std::array<int, 3>> everything;
+  for (const LodPatch& p : all.patches) everything.insert(key(p));
+  for (const auto& k : kept) EXPECT_TRUE(everything.count(k)) << "culling added a patch";
+  EXPECT_LT(culled.patches.size(), all.patches.size() * 3 / 4);
+  std::size_t dropped = 0;
+  for (const LodPatch& p : all.patches) {
+    if (kept.count(key(p))) continue;
+    ++dropped;
+    const auto v = patchVertices(*t, all, p);
+    bool outsideOne = false;
+    for (int plane = 0; plane < 6 && !outsideOne; ++plane) {
+      bool allOut = true;
+      for (const glm::vec3& x : v) {
+        const glm::vec4 c = camera.viewProjection * glm::vec4(x, 1.0f);
+        const float s = plane % 2 ? -1.0f : 1.0f;
+        if (c.w + s * c[plane / 2] >= 0.0f) {
+          allOut = false;
+          break;
+        }
+      }
+      outsideOne = allOut;
+    }
+    EXPECT_TRUE(outsideOne) << "patch at level " << p.level << " (" << p.gx << ", " << p.gz
+                            << ") was culled but reaches into the view";
+  }
+  EXPECT_GT(dropped, 0u);
+}
