@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 
 namespace engine {
@@ -24,16 +25,72 @@ void flipVertically(Image& image) {
   }
 }
 
-Result<Image> readPng(const std::string& path) {
-  int w = 0, h = 0, channels = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
-  if (!data) {
-    return makeError(path + ": cannot read image: " + stbi_failure_reason());
+Status checkPngHeader(std::span<const std::uint8_t> bytes, const std::string& name) {
+  static const std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
+    return makeError(name + ": cannot read image: not a PNG file");
+  if (bytes.size() > kMaxImageFileBytes)
+    return makeError(name + ": cannot read image: " + std::to_string(bytes.size()) + " bytes, the limit is " +
+                     std::to_string(kMaxImageFileBytes));
+  // IHDR is the first chunk: length, "IHDR", width, height (big-endian).
+  if (bytes.size() < 24 || !std::equal(bytes.begin() + 12, bytes.begin() + 16, "IHDR"))
+    return makeError(name + ": cannot read image: PNG has no IHDR header");
+  auto be32 = [&](std::size_t at) {
+    return std::uint32_t{bytes[at]} << 24 | std::uint32_t{bytes[at + 1]} << 16 | std::uint32_t{bytes[at + 2]} << 8 |
+           std::uint32_t{bytes[at + 3]};
+  };
+  const std::uint64_t w = be32(16), h = be32(20);
+  if (w == 0 || h == 0 || w > std::uint64_t(kMaxImageSide) || h > std::uint64_t(kMaxImageSide))
+    return makeError(name + ": image is " + std::to_string(w) + "x" + std::to_string(h) +
+                     " pixels; each side must be in [1, " + std::to_string(kMaxImageSide) + "]");
+  if (w * h > kMaxImagePixels)
+    return makeError(name + ": image is " + std::to_string(w) + "x" + std::to_string(h) + " pixels, over the limit of " +
+                     std::to_string(kMaxImagePixels) + " pixels");
+  // stb trusts chunk lengths and reserves memory for an IDAT's declared length
+  // before reading it, so a 60-byte file could make it allocate gigabytes.
+  for (std::size_t at = 8; at + 8 <= bytes.size();) {
+    const std::uint64_t length = be32(at);
+    const std::string type(bytes.begin() + static_cast<std::ptrdiff_t>(at) + 4,
+                           bytes.begin() + static_cast<std::ptrdiff_t>(at) + 8);
+    if (at + 12 + length > bytes.size())
+      return makeError(name + ": cannot read image: PNG chunk at byte " + std::to_string(at) +
+                       " declares " + std::to_string(length) + " bytes, past the end of the file");
+    if (type == "IEND") break;
+    at += static_cast<std::size_t>(12 + length);
   }
+  // The least data any PNG of this size holds: one filter byte and one bit per
+  // pixel per row.
+  const std::uint64_t leastRaw = h * (1 + (w + 7) / 8);
+  if (leastRaw > (std::uint64_t(bytes.size()) + 1) * 1032)
+    return makeError(name + ": image claims " + std::to_string(w) + "x" + std::to_string(h) +
+                     " pixels, more than its " + std::to_string(bytes.size()) + " bytes can hold");
+  return Ok{};
+}
+
+Result<Image> decodePng(std::span<const std::uint8_t> bytes, const std::string& name) {
+  if (Status s = checkPngHeader(bytes, name); !s) return s.error();
+  const int size = static_cast<int>(bytes.size());
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* data = stbi_load_from_memory(bytes.data(), size, &w, &h, &channels, 4);
+  if (!data) return makeError(name + ": cannot read image: " + stbi_failure_reason());
   Image image(w, h);
   std::copy(data, data + static_cast<size_t>(w) * h * 4, image.pixels.begin());
   stbi_image_free(data);
   return image;
+}
+
+Result<Image> readPng(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return makeError(path + ": cannot read image: " + ec.message());
+  if (size > kMaxImageFileBytes)
+    return makeError(path + ": cannot read image: " + std::to_string(size) + " bytes, the limit is " +
+                     std::to_string(kMaxImageFileBytes));
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::uint8_t> bytes(static_cast<size_t>(size));
+  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+    return makeError(path + ": cannot read image: cannot read the file");
+  return decodePng(bytes, path);
 }
 
 Status writePng(const std::string& path, const Image& image) {

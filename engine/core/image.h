@@ -2,6 +2,7 @@
 // 8-bit RGBA images in memory, PNG read/write (stb) and image comparison. Rows are
 // stored top to bottom, as PNG stores them.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,24 @@ struct Image {
 // Reverses the row order (GL reads bottom row first).
 void flipVertically(Image& image);
 
+// Limits on untrusted images, checked from the header before any pixel is
+// decoded, so that a small file cannot claim gigabytes.
+inline constexpr std::uint64_t kMaxImageFileBytes = 256ull * 1024 * 1024;
+inline constexpr int kMaxImageSide = 16384;
+// 8192 x 8192: 256 MiB as RGBA8, which the decoder holds twice at its peak.
+inline constexpr std::uint64_t kMaxImagePixels = 1ull << 26;
+
+// PNG only (stb would also decode a dozen other formats; a file named .png that is
+// something else is refused rather than handed to those decoders). Errors name the
+// file; a 0x0 or over-limit image is an error.
 Result<Image> readPng(const std::string& path);
+// The same decoder on bytes in memory; `name` stands for the file in messages.
+Result<Image> decodePng(std::span<const std::uint8_t> bytes, const std::string& name);
+// Reads only the PNG header: refuses a 0x0 or over-limit size, and a size whose
+// pixel data could not fit in the file even at zlib's best ratio (1032:1), which a
+// real PNG cannot have but a decompression bomb does; stb would allocate the whole
+// image before finding out.
+Status checkPngHeader(std::span<const std::uint8_t> bytes, const std::string& name);
 // Writes to a temporary file beside `path` and renames it, so a failure never
 // leaves a half-written PNG behind.
 Status writePng(const std::string& path, const Image& image);
