@@ -76,6 +76,9 @@ struct ModelDesc {
   double speed = 1.0;
   double start = 0.0;   // clip time at scene time 0
   bool dualQuat = false;
+  // Drawn in the bind pose without skinning: the baseline skinning is measured
+  // against (bench/skinning_cost).
+  bool unskinned = false;
   bool onTerrain = false;  // position.y is a height above the terrain there
 };
 

@@ -242,8 +242,10 @@ Status readModel(const Node& n, ModelDesc& m, const std::filesystem::path& folde
   TRY(readNumber(n, "speed", m.speed, -1e3, 1e3));
   TRY(readNumber(n, "start", m.start, -1e9, 1e9));
   std::string skinning = "lbs";
-  TRY(readEnum(n, "skinning", skinning, std::map<std::string, std::string>{{"lbs", "lbs"}, {"dqs", "dqs"}}));
+  TRY(readEnum(n, "skinning", skinning,
+                std::map<std::string, std::string>{{"lbs", "lbs"}, {"dqs", "dqs"}, {"none", "none"}}));
   m.dualQuat = skinning == "dqs";
+  m.unskinned = skinning == "none";
   return Ok{};
 }
 

@@ -146,7 +146,7 @@ Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuMode
     const auto& prims = gpu.meshes()[size_t(node.mesh)];
     for (size_t p = 0; p < prims.size(); ++p) {
       const GpuPrimitive& prim = prims[p];
-      const bool skinned = node.skin >= 0 && prim.influences > 0;
+      const bool skinned = node.skin >= 0 && prim.influences > 0 && frame.skinMode != SkinMode::None;
       const MaterialData* material =
           prim.material >= 0 ? &model.materials[size_t(prim.material)] : nullptr;
       const bool textured = !frame.depthOnly && material && material->baseColorImage >= 0;

@@ -18,7 +18,8 @@
 
 namespace engine {
 
-enum class SkinMode { Linear, DualQuat };
+// None draws skinned meshes in their bind pose with the static shader.
+enum class SkinMode { Linear, DualQuat, None };
 
 struct ShaderVariant {
   int influences = 0;  // 0 = static, 4 or 8

@@ -57,6 +57,10 @@ struct CharacterDraw {
   double localRadius = 1.0;
 };
 
+SkinMode skinModeOf(const ModelDesc& desc) {
+  return desc.unskinned ? SkinMode::None : desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
+}
+
 glm::dmat4 rotationFromTo(const glm::dvec3& from, const glm::dvec3& to) {
   const glm::dvec3 axis = glm::cross(from, to);
   const double c = glm::dot(from, to);
@@ -372,11 +376,11 @@ Status SceneRenderer::Impl::buildVariants() {
   for (const ShapeDraw& s : shapes) needed.push_back({0, SkinMode::Linear, materialTextures[size_t(s.material)].id() != 0, false});
   for (const CharacterDraw& c : characters) {
     const ModelData& model = c.instance->asset().model;
-    const SkinMode mode = c.desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
+    const SkinMode mode = skinModeOf(c.desc);
     for (const NodeData& node : model.nodes) {
       if (node.mesh < 0) continue;
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        const int influences = node.skin >= 0 ? prim.influences : 0;
+        const int influences = node.skin >= 0 && mode != SkinMode::None ? prim.influences : 0;
         const bool textured = prim.material >= 0 && model.materials[size_t(prim.material)].baseColorImage >= 0;
         needed.push_back({influences, mode, textured, false});
         if (sunShadows || pointShadows) needed.push_back({influences, mode, false, true});
@@ -507,7 +511,7 @@ void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnl
       ++stats->objectsCulled;
       continue;
     }
-    const SkinMode mode = c.desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
+    const SkinMode mode = skinModeOf(c.desc);
     auto set = [this, depthOnly, &lightViewProjection](const gl::Program& p) {
       setUniforms(p);
       if (depthOnly) p.set("u_lightViewProjection", lightViewProjection);
