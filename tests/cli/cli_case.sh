@@ -3,6 +3,7 @@
 # Each case checks the exit code and that the message names what was wrong.
 set -u
 BIN="$1"; WORK="$2"; CASE="$3"
+SRC="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 mkdir -p "$WORK" && cd "$WORK" || exit 1
 OUT="$WORK/$CASE.out"; ERR="$WORK/$CASE.err"
 
@@ -68,5 +69,34 @@ case "$CASE" in
     expect 1 "over the limit" -- "$BIN/imgdiff" t0.png t2.png --max-mean 0.01 --diff d.png
     [ -s d.png ] || { echo "FAIL: no diff image"; exit 1; }
     expect 2 "missing\.png" -- "$BIN/imgdiff" t0.png missing.png ;;
+  describe_demo)
+    # The default scene needs every pass: sun shadows, sky, terrain, fog, skinning.
+    expect 0 "shadow-sun" -- "$BIN/demo" --describe
+    for want in "sky" "terrain(cdlod" "opaque+fog" "lbs4+textured" "dqs4+depth" "shading: pbr"; do
+      grep -qF "$want" "$OUT" || { echo "FAIL: --describe lacks $want"; cat "$OUT"; exit 1; }
+    done ;;
+  describe_cornell)
+    # The course room: one point light with a cube shadow, classic shading, and
+    # nothing it does not contain (no sun map, sky, terrain, fog or skinning).
+    expect 0 "shadow-point" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --describe
+    grep -qF "shading: classic" "$OUT" || { echo "FAIL: not classic"; cat "$OUT"; exit 1; }
+    for unwanted in "shadow-sun" "sky" "terrain" "fog" "lbs" "dqs" "textured"; do
+      if grep -qF "$unwanted" "$OUT"; then echo "FAIL: cornell built $unwanted"; cat "$OUT"; exit 1; fi
+    done ;;
+  scene_unknown_clip)
+    printf '{"models": [{"path": "%s/assets/models/character.gltf", "clip": "Run"}]}' "$SRC" > clip.json
+    expect 2 'clip\.json: /models/0/clip: no clip "Run" in character\.gltf; clips are: Idle, Walk, Wave' -- \
+      "$BIN/demo" clip.json --offscreen --size 64x64 --screenshot clip.png
+    [ ! -e clip.png ] || { echo "FAIL: wrote an image"; exit 1; } ;;
+  scene_missing_model)
+    echo '{"models": [{"path": "nowhere.glb"}]}' > model.json
+    expect 2 "model\.json: /models/0/path: .*nowhere\.glb" -- "$BIN/demo" model.json --offscreen --size 64x64 ;;
+  scene_wrong_type)
+    echo '{"lights": [{"type": "sun", "intensity": "bright"}]}' > type.json
+    expect 2 "type\.json: /lights/0/intensity: expected a number" -- "$BIN/demo" type.json --offscreen ;;
+  raytrace_offscreen)
+    rm -f rt.png
+    expect 0 "Mrays/s" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --offscreen --size 64x48 --screenshot rt.png
+    [ -s rt.png ] || { echo "FAIL: no image"; exit 1; } ;;
   *) echo "unknown case $CASE"; exit 1 ;;
 esac
