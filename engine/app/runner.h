@@ -23,7 +23,9 @@ struct RunOptions {
   // Frames rendered, the last one at `time`, each at a fixed step (a window then
   // shows exactly what headless renders). Window only: 0 = real time until closed.
   int frames = 1;
-  int msaa = 1;
+  int msaa = 1;             // as asked (and reported by --bench)
+  int targetSamples = 0;    // samples of the runner's own target; 0: msaa (a game
+                            // that multisamples itself asks for 1)
   std::string screenshot;  // PNG of the last frame; empty = none
   std::string benchFile;   // frame-time JSON; empty = none
   std::string command;     // the command line, recorded in the bench report

@@ -23,7 +23,8 @@ Result<RunSetup> startRun(Backend backend, Game& game, const RunOptions& options
   if (!context) return context.error();
   if (options.debugGl) gl::enableDebugOutput();
   if (auto status = game.init(); !status) return status.error();
-  auto target = RenderTarget::create(options.width, options.height, options.msaa);
+  auto target = RenderTarget::create(options.width, options.height,
+                                     options.targetSamples > 0 ? options.targetSamples : options.msaa);
   if (!target) return target.error();
   return RunSetup{std::move(context).value(), std::move(target).value()};
 }

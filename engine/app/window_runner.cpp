@@ -92,7 +92,7 @@ Status runWindow(Game& game, const RunOptions& options) {
     glfwGetFramebufferSize(window, &width, &height);
     if (width == 0 || height == 0) continue;  // minimised
     if (width != setup->target.width() || height != setup->target.height()) {
-      auto resized = RenderTarget::create(width, height, options.msaa);
+      auto resized = RenderTarget::create(width, height, options.targetSamples > 0 ? options.targetSamples : options.msaa);
       if (!resized) return resized.error();
       setup->target = std::move(resized).value();
     }

@@ -144,6 +144,9 @@ struct SceneRenderer::Impl {
   double sunTexelWorld = 0.0;
   double pointNear = 0.05, pointFar = 50.0;
   int pcfRadius = 0;
+  // Without characters nothing moves: the point light's cube map (which does not
+  // depend on the camera) is drawn once and kept.
+  bool pointShadowValid = false;
   std::unique_ptr<terrain::Terrain> terrain;
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
@@ -665,7 +668,10 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
   glFrontFace(GL_CCW);
   s.fillFrame(cameraPosition, glm::mat4(viewProjection));
   if (s.sunShadows) s.renderSunShadow(cameraPosition, view, fovy, aspect, camera.nearPlane);
-  if (s.pointShadows) s.renderPointShadow(cameraPosition);
+  if (s.pointShadows && !(s.pointShadowValid && s.characters.empty())) {
+    s.renderPointShadow(cameraPosition);
+    s.pointShadowValid = true;
+  }
   s.fillFrame(cameraPosition, glm::mat4(viewProjection));  // with the shadow matrix
 
   s.drawFbo.bind();
@@ -737,6 +743,9 @@ std::string SceneRenderer::describe() const {
   out << "\nshading: " << (s.scene.render.shading == Shading::Classic ? "classic" : "pbr");
   out << "\nvariants:";
   for (const auto& v : s.variants->built()) out << " " << v.describe();
+  out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes, "
+      << stats_.objectsDrawn << " objects drawn, " << stats_.objectsCulled << " culled";
+  if (s.terrain) out << ", " << stats_.terrainTriangles << " terrain triangles";
   out << "\n";
   return out.str();
 }

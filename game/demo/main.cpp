@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
   // only receives the tone-mapped result.
   render.shaderDir = options.shaderDir;
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
-  options.run.msaa = 1;
+  options.run.targetSamples = 1;
   if (mode == "raytrace") {
     rt.settings.width = options.run.width;
     rt.settings.height = options.run.height;

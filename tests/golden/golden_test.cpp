@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum class SceneKind { Demo, Cornell, RobotWalk, RobotWaveDqs };
+enum class SceneKind { Demo, Cornell, TerrainValley, TerrainOverview, RobotWalk, RobotWaveDqs };
 
 struct GoldenCase {
   const char* name;
@@ -36,7 +36,8 @@ struct GoldenCase {
 };
 
 // The default scene (PBR, sun shadows with PCF, sky, fog, four skinned robots) at
-// two times, with MSAA, with supersampling and with hard shadows; the course's
+// two times, with MSAA, with supersampling and with hard shadows; the terrain scene
+// from two viewpoints; the course's
 // Cornell room (classic shading, point-light cube shadow) hard and soft (PCF); the
 // viewer's robot with linear-blend and dual-quaternion skinning.
 const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
@@ -46,6 +47,8 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"demo_t1_hard", SceneKind::Demo, 1.0, 0, 0, 1},
                              {"cornell", SceneKind::Cornell, 0.0},
                              {"cornell_pcf5", SceneKind::Cornell, 0.0, 0, 0, 5},
+                             {"terrain_valley", SceneKind::TerrainValley, 1.0},
+                             {"terrain_overview", SceneKind::TerrainOverview, 1.0},
                              {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3},
                              {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6}};
 
@@ -53,9 +56,18 @@ const std::string kShaders = std::string(ENGINE_SOURCE_DIR) + "/shaders";
 const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
 
 std::unique_ptr<Game> makeScene(const GoldenCase& c) {
-  if (c.scene == SceneKind::Demo || c.scene == SceneKind::Cornell) {
-    auto scene = loadSceneFile(kAssets + (c.scene == SceneKind::Demo ? "/scenes/demo.json" : "/scenes/cornell.json"));
+  if (c.scene != SceneKind::RobotWalk && c.scene != SceneKind::RobotWaveDqs) {
+    const char* file = c.scene == SceneKind::Demo      ? "/scenes/demo.json"
+                       : c.scene == SceneKind::Cornell ? "/scenes/cornell.json"
+                                                       : "/scenes/terrain.json";
+    auto scene = loadSceneFile(kAssets + file);
     if (!scene) return nullptr;
+    if (c.scene == SceneKind::TerrainOverview) {
+      // The terrain's second viewpoint: high above, looking over the valley to the
+      // mountains, where coarse LOD levels and the morph between them show.
+      scene->camera.position = glm::dvec3(800.0, 650.0, 1500.0);
+      scene->camera.forward = glm::normalize(glm::dvec3(0.0, -450.0, -1500.0));
+    }
     SceneRenderOptions options;
     options.shaderDir = kShaders;
     options.msaaOverride = c.msaa;
