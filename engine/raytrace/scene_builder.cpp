@@ -9,6 +9,8 @@
 #include "anim/player.h"
 #include "asset/gltf_loader.h"
 #include "raytrace/tone_map.h"
+#include "terrain/lod.h"
+#include "terrain/terrain.h"
 
 namespace engine::rt {
 namespace {
@@ -115,9 +117,56 @@ Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int cl
   return Ok{};
 }
 
+// The terrain as the rasterizer draws it from the scene's camera: the CDLOD patches
+// selected for this view, each a grid of morphed vertices, in world space.
+Status addTerrain(const SceneDesc& desc, int viewportHeight, RtScene& scene, SceneBuildStats& stats) {
+  terrain::TerrainSettings settings;
+  settings.heightmap = desc.terrain.heightmap;
+  settings.seed = desc.terrain.seed;
+  settings.size = desc.terrain.size;
+  settings.spacing = desc.terrain.spacing;
+  settings.heightScale = desc.terrain.heightScale;
+  settings.origin = desc.terrain.origin;
+  auto field = terrain::Terrain::create(settings);
+  if (!field) return makeError(desc.path + ": /terrain: " + field.error().message);
+  const CameraDesc& c = desc.camera;
+  terrain::LodCamera camera;
+  camera.position = c.position;
+  camera.fovY = glm::radians(c.fovyDegrees);
+  camera.viewportHeight = viewportHeight;
+  camera.viewProjection = glm::mat4(glm::perspective(camera.fovY, 16.0 / 9.0, c.nearPlane, c.farPlane) *
+                                    glm::lookAt(glm::dvec3(0.0), c.forward, c.up));
+  // No culling: terrain outside the view still casts shadows into it.
+  camera.cull = false;
+  const auto selection = terrain::selectLod(*field, camera, desc.terrain.errorPixels);
+  MaterialDesc grass;
+  grass.name = "terrain";
+  grass.color = glm::vec3(0.2f, 0.32f, 0.12f);  // the grass layer's mean colour, linear
+  grass.roughness = 0.9f;
+  const int material = scene.addMaterial(grass);
+  for (const auto& patch : selection.patches) {
+    const auto vertices = terrain::patchVertices(*field, selection, patch);
+    const int n = int(std::lround(std::sqrt(double(vertices.size())))) - 1;
+    RtMesh mesh;
+    mesh.material = material;
+    for (const glm::vec3& v : vertices) mesh.positions.push_back(glm::vec3(glm::dvec3(v) + c.position));
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const std::uint32_t a = std::uint32_t(j * (n + 1) + i), b = a + 1, d = a + std::uint32_t(n + 1), e = d + 1;
+        mesh.indices.insert(mesh.indices.end(), {a, d, b, b, d, e});
+      }
+    }
+    stats.triangles += int(mesh.indices.size() / 3);
+    ++stats.meshes;
+    auto added = scene.addMesh(std::move(mesh));
+    if (!added) return added.error();
+  }
+  return Ok{};
+}
+
 }  // namespace
 
-Result<RtScene> buildRtScene(const SceneDesc& desc, double time, SceneBuildStats* statsOut) {
+Result<RtScene> buildRtScene(const SceneDesc& desc, double time, int viewportHeight, SceneBuildStats* statsOut) {
   auto scene = RtScene::fromSceneDesc(desc);
   if (!scene) return scene.error();
   SceneBuildStats stats;
@@ -142,6 +191,9 @@ Result<RtScene> buildRtScene(const SceneDesc& desc, double time, SceneBuildStats
       return makeError(where + ": " + s.error().message);
     }
   }
+  if (desc.terrain.enabled) {
+    if (auto s = addTerrain(desc, viewportHeight, *scene, stats); !s) return s.error();
+  }
   stats.skinSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.bvhSeconds = scene->build();
   if (statsOut) *statsOut = stats;
@@ -150,7 +202,7 @@ Result<RtScene> buildRtScene(const SceneDesc& desc, double time, SceneBuildStats
 
 Result<RaytraceRun> raytraceScene(const SceneDesc& desc, double time, const RenderSettings& settings) {
   RaytraceRun run;
-  auto scene = buildRtScene(desc, time, &run.build);
+  auto scene = buildRtScene(desc, time, settings.height, &run.build);
   if (!scene) return scene.error();
   run.result = Integrator(*scene, settings).render();
   run.image = toImage(run.result.image, scene->render());

@@ -18,8 +18,11 @@ struct SceneBuildStats {
   double bvhSeconds = 0.0;
 };
 
-// Errors name the scene file and the model element, like the rasterizer's.
-Result<RtScene> buildRtScene(const SceneDesc& scene, double time, SceneBuildStats* stats = nullptr);
+// Errors name the scene file and the model element, like the rasterizer's. The
+// terrain is triangulated exactly as the rasterizer draws it for this camera and
+// an image `viewportHeight` pixels high (the same CDLOD selection and morph).
+Result<RtScene> buildRtScene(const SceneDesc& scene, double time, int viewportHeight = 720,
+                             SceneBuildStats* stats = nullptr);
 
 struct RaytraceRun {
   Image image;  // tone mapped and encoded as the scene's render settings say

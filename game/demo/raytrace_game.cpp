@@ -17,7 +17,7 @@ RaytraceGame::RaytraceGame(engine::SceneDesc scene, double time, engine::rt::Ren
 RaytraceGame::~RaytraceGame() { shutdown(); }
 
 engine::Status RaytraceGame::init() {
-  auto scene = engine::rt::buildRtScene(desc_, time_);
+  auto scene = engine::rt::buildRtScene(desc_, time_, settings_.height);
   if (!scene) return scene.error();
   scene_ = std::make_unique<engine::rt::RtScene>(std::move(scene).value());
   integrator_ = std::make_unique<engine::rt::Integrator>(*scene_, settings_);
