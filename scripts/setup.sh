@@ -11,6 +11,7 @@ PACKAGES=(
   libstb-dev python3-glad nlohmann-json3-dev libcli11-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev
   xvfb xauth
+  python3 clang libclang-rt-14-dev
 )
 
 missing_packages() {

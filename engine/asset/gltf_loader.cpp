@@ -117,6 +117,35 @@ Status checkUris(const std::string& jsonText, const std::string& path) {
   // The count limits are checked here as well as after parsing: tinygltf spends
   // about 1 KiB per node, so a 3 MiB list of empty nodes would cost a gigabyte
   // before Converter::checkLimits could refuse it.
+  // tinygltf hands an image's bufferView to the image loader without checking that
+  // it lies inside its buffer (the loader would read past the end), so the views
+  // of images are checked against the declared buffer sizes here; tinygltf checks
+  // the declared sizes against the data.
+  auto images = doc.find("images");
+  auto views = doc.find("bufferViews");
+  auto buffers = doc.find("buffers");
+  if (images != doc.end() && images->is_array())
+    for (std::size_t i = 0; i < images->size(); ++i) {
+      const auto& image = (*images)[i];
+      if (!image.is_object() || !image.contains("bufferView")) continue;
+      const auto& v = image["bufferView"];
+      std::string name = path + ": image " + str(i) + ": bufferView ";
+      if (!v.is_number_unsigned() || views == doc.end() || !views->is_array() || v.get<std::uint64_t>() >= views->size())
+        return makeError(name + v.dump() + " does not exist");
+      const auto& view = (*views)[v.get<std::size_t>()];
+      auto field = [&](const nlohmann::json& o, const char* key, std::uint64_t fallback) -> std::int64_t {
+        if (!o.is_object() || !o.contains(key)) return static_cast<std::int64_t>(fallback);
+        return o[key].is_number_unsigned() && o[key].get<std::uint64_t>() < (1ull << 62) ? o[key].get<std::int64_t>() : -1;
+      };
+      std::int64_t b = field(view, "buffer", ~0ull >> 2), offset = field(view, "byteOffset", 0), bytes = field(view, "byteLength", 0);
+      if (b < 0 || offset < 0 || bytes < 0 || buffers == doc.end() || !buffers->is_array() ||
+          static_cast<std::uint64_t>(b) >= buffers->size())
+        return makeError(name + v.dump() + " is malformed or names no buffer");
+      std::int64_t size = field((*buffers)[static_cast<std::size_t>(b)], "byteLength", 0);
+      if (size < 0 || offset + bytes > size)
+        return makeError(name + v.dump() + ": bytes [" + std::to_string(offset) + ", " + std::to_string(offset + bytes) +
+                         ") run past buffer " + std::to_string(b) + " of " + std::to_string(size) + " bytes");
+    }
   if (auto nodes = doc.find("nodes"); nodes != doc.end() && nodes->is_array() && nodes->size() > kMaxNodes)
     return makeError(path + ": " + str(nodes->size()) + " nodes, the limit is " + str(kMaxNodes));
   if (auto skins = doc.find("skins"); skins != doc.end() && skins->is_array())

@@ -111,6 +111,9 @@ Status readVec3(const Node& parent, const char* key, Vec& out) {
   for (size_t i = 0; i < 3; ++i) {
     const Node c = n.at(i);
     if (!c.value().is_number() || !std::isfinite(c.value().get<double>())) return c.error("expected a finite number");
+    // Coordinates beyond 1e12 m are no scene (the solar system fits in 1e13): sums
+    // and differences of such values would overflow to infinity and NaN.
+    if (std::abs(c.value().get<double>()) > 1e12) return c.error("expected a number within +-1e12");
     out[int(i)] = typename Vec::value_type(c.value().get<double>());
   }
   return Ok{};

@@ -1,0 +1,204 @@
+#!/usr/bin/env python3
+"""Writes the bad-input corpus into OUT_DIR: one broken model, image or scene per
+case of tests/badinput (the table in README.md beside this file). Generated at
+test time rather than committed, so that the large cases (a 4 GiB buffer, a
+600 MiB file) cost nothing: they are sparse files.
+
+Usage: make_bad_inputs.py OUT_DIR
+"""
+import json
+import os
+import struct
+import sys
+import zlib
+
+
+class Model:
+    """The valid base: a skinned, animated triangle; every case breaks one thing.
+    Buffer layout (byte offsets): 0 positions 3 x vec3 | 36 joints 3 x u8vec4 |
+    48 weights 3 x vec4 | 96 indices 3 x u16 (+2) | 104 inverse binds 2 x mat4 |
+    232 key times 2 x f32 | 240 rotation keys 2 x vec4 (272 bytes)."""
+
+    def __init__(self):
+        b = bytearray(272)
+        struct.pack_into("<9f", b, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0)
+        struct.pack_into("<12B", b, 36, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0)
+        struct.pack_into("<12f", b, 48, 0.5, 0.5, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0)
+        struct.pack_into("<3H", b, 96, 0, 1, 2)
+        struct.pack_into("<32f", b, 104, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+                         1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1)
+        struct.pack_into("<2f", b, 232, 0.0, 1.0)
+        struct.pack_into("<8f", b, 240, 0, 0, 0, 1, 0, 0, 0.7071068, 0.7071068)
+        self.bin = b
+
+        def view(offset, length):
+            return {"buffer": 0, "byteOffset": offset, "byteLength": length}
+
+        def acc(v, ct, count, type_):
+            return {"bufferView": v, "componentType": ct, "count": count, "type": type_}
+
+        self.doc = {
+            "asset": {"version": "2.0"},
+            "scene": 0,
+            "scenes": [{"nodes": [0, 1]}],
+            "nodes": [{"mesh": 0, "skin": 0, "name": "body"},
+                      {"children": [2], "name": "hip"},
+                      {"translation": [0, 1, 0], "name": "spine"}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2},
+                                        "indices": 3}]}],
+            "skins": [{"joints": [1, 2], "inverseBindMatrices": 4}],
+            "animations": [{"channels": [{"sampler": 0, "target": {"node": 2, "path": "rotation"}}],
+                            "samplers": [{"input": 5, "output": 6, "interpolation": "LINEAR"}]}],
+            "buffers": [{"byteLength": 272}],
+            "bufferViews": [view(0, 36), view(36, 12), view(48, 48), view(96, 6), view(104, 128),
+                            view(232, 8), view(240, 32)],
+            "accessors": [acc(0, 5126, 3, "VEC3"), acc(1, 5121, 3, "VEC4"), acc(2, 5126, 3, "VEC4"),
+                          acc(3, 5123, 3, "SCALAR"), acc(4, 5126, 2, "MAT4"), acc(5, 5126, 2, "SCALAR"),
+                          acc(6, 5126, 2, "VEC4")],
+        }
+
+    def glb(self):
+        text = json.dumps(self.doc, separators=(",", ":")).encode()
+        text += b" " * (-len(text) % 4)
+        total = 12 + 8 + len(text) + 8 + len(self.bin)
+        return (struct.pack("<III", 0x46546C67, 2, total) + struct.pack("<II", len(text), 0x4E4F534A) + text +
+                struct.pack("<II", len(self.bin), 0x004E4942) + bytes(self.bin))
+
+
+def png(width, height, rows=None):
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    raw = b"".join(b"\x00" + r for r in (rows or []))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def main(out):
+    os.makedirs(out, exist_ok=True)
+
+    def write(name, data):
+        with open(os.path.join(out, name), "wb") as f:
+            f.write(data if isinstance(data, bytes) else data.encode())
+
+    def case(name, edit=None, binary=True):
+        m = Model()
+        if edit:
+            edit(m)
+        if binary:
+            write(name, m.glb())
+        else:
+            m.doc["buffers"][0].setdefault("uri", name.rsplit(".", 1)[0] + ".bin")
+            uri = m.doc["buffers"][0]["uri"]
+            if "/" not in uri and not os.path.exists(os.path.join(out, uri)):
+                write(uri, bytes(m.bin))
+            write(name, json.dumps(m.doc))
+
+    case("good.glb")
+    write("truncated.glb", Model().glb()[:30])
+    write("wrong_magic.glb", b"glTX" + Model().glb()[4:])
+    # JSON chunk length past the end of the file (header length left consistent).
+    g = bytearray(Model().glb())
+    struct.pack_into("<I", g, 12, len(g))
+    write("json_chunk_past_end.glb", bytes(g))
+    # BIN chunk length past the end.
+    g = bytearray(Model().glb())
+    json_len = struct.unpack_from("<I", g, 12)[0]
+    struct.pack_into("<I", g, 20 + json_len, 1 << 20)
+    write("bin_chunk_past_end.glb", bytes(g))
+
+    def set_(path, value):
+        def edit(m):
+            node = m.doc
+            for key in path[:-1]:
+                node = node[key]
+            node[path[-1]] = value
+        return edit
+
+    # 2^32 - 1 elements: must be refused from the count alone, before any allocation.
+    case("accessor_count_overflow.glb", set_(["accessors", 0, "count"], 4294967295))
+    # One past kMaxAccessorElements (2^26).
+    case("accessor_count_limit.glb", set_(["accessors", 5, "count"], (1 << 26) + 1))
+    case("bufferview_past_buffer.glb", set_(["bufferViews", 6, "byteLength"], 64))
+
+    def joint_past_skin(m):
+        m.bin[36 + 4] = 5  # vertex 1 names joint 5 of a 2-joint skin
+    case("joint_past_skin.glb", joint_past_skin)
+
+    def key_time(value, index=1):
+        def edit(m):
+            struct.pack_into("<f", m.bin, 232 + 4 * index, value)
+        return edit
+    case("negative_key_time.glb", key_time(-1.0, 0))
+    case("nan_key_time.glb", key_time(float("nan")))
+
+    def unsorted(m):
+        struct.pack_into("<2f", m.bin, 232, 1.0, 0.5)
+    case("unsorted_keys.glb", unsorted)
+
+    def cycle(m):
+        m.doc["nodes"][2]["children"] = [1]  # hip -> spine -> hip
+    case("node_cycle.glb", cycle)
+    case("uri_dotdot.gltf", set_(["buffers", 0, "uri"], "../outside.bin"), binary=False)
+    case("uri_absolute.gltf", set_(["buffers", 0, "uri"], "/etc/passwd"), binary=False)
+
+    # A buffer declaring 4 GiB: first with a small file behind it, then with a real
+    # (sparse) 4 GiB file, which the file-size limit must refuse before reading.
+    def declared_4gb(uri):
+        def edit(m):
+            m.doc["buffers"][0] = {"byteLength": 1 << 32, "uri": uri}
+        return edit
+    case("buffer_4gb_declared.gltf", declared_4gb("small.bin"), binary=False)
+    write("small.bin", bytes(Model().bin))
+    case("buffer_4gb_file.gltf", declared_4gb("huge.bin"), binary=False)
+    with open(os.path.join(out, "huge.bin"), "wb") as f:
+        f.truncate(1 << 32)
+
+    # A model file over kMaxModelFileBytes (512 MiB): a GLB padded with a sparse tail.
+    with open(os.path.join(out, "file_too_large.glb"), "wb") as f:
+        f.write(Model().glb())
+        f.truncate(600 << 20)
+
+    # kMaxSkinJoints + 1 joints (65537 nodes under one root).
+    def many_joints(m):
+        n = (1 << 16) + 1
+        m.doc["nodes"] = [{"mesh": 0, "skin": 0}, {"children": list(range(2, n + 1))}] + [{}] * (n - 1)
+        m.doc["scenes"] = [{"nodes": [0, 1]}]
+        m.doc["skins"] = [{"joints": list(range(1, n + 1))}]
+        m.doc["animations"] = []
+    case("too_many_joints.glb", many_joints)
+
+    # kMaxNodes + 1 nodes (2^20 + 1 empty nodes, 3 MiB of JSON).
+    write("too_many_nodes.gltf", json.dumps({"asset": {"version": "2.0"}, "nodes": [{}] * ((1 << 20) + 1)},
+                                            separators=(",", ":")))
+
+    # Images: a 0x0 PNG and one claiming 20000 x 20000 pixels, on their own (for
+    # imgdiff) and embedded as a model's texture (the loader warns and falls back).
+    write("zero_size.png", png(0, 0))
+    write("huge_claim.png", png(20000, 20000))
+
+    def with_image(data):
+        def edit(m):
+            off = len(m.bin)
+            m.bin += data + b"\0" * (-len(data) % 4)
+            m.doc["buffers"][0]["byteLength"] = len(m.bin)
+            m.doc["bufferViews"].append({"buffer": 0, "byteOffset": off, "byteLength": len(data)})
+            m.doc["images"] = [{"bufferView": 7, "mimeType": "image/png"}]
+            m.doc["textures"] = [{"source": 0}]
+            m.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+            m.doc["meshes"][0]["primitives"][0]["material"] = 0
+        return edit
+    case("zero_size_image.glb", with_image(png(0, 0)))
+    case("huge_image.glb", with_image(png(20000, 20000)))
+
+    # Scene files (the format of assets/scenes/*.json) with values of the wrong type.
+    write("scene_fovy_string.json", json.dumps({"camera": {"fovy": "wide"}}))
+    write("scene_models_number.json", json.dumps({"models": 5}))
+    write("scene_model_path_number.json", json.dumps({"models": [{"path": 3}]}))
+    write("scene_light_type.json", json.dumps({"lights": [{"type": 7}]}))
+    write("scene_position_null.json", json.dumps({"camera": {"position": [1, None, 3]}}))
+    write("scene_msaa_string.json", json.dumps({"render": {"msaa": "four"}}))
+    write("scene_unknown_key.json", json.dumps({"origin": [0, 0, 0]}))
+    write("scene_not_object.json", json.dumps([1, 2, 3]))
+
+if __name__ == "__main__":
+    main(sys.argv[1])
