@@ -10,6 +10,7 @@
 #include "../support/gl_test.h"
 #include "anim/jobs.h"
 #include "anim/model_builder.h"
+#include "anim/pose_dump.h"
 #include "asset/gltf_loader.h"
 #include "gl/resources.h"
 #include "render/model_renderer.h"
@@ -177,6 +178,31 @@ ModelData eightInfluenceModel() {
   return model;
 }
 
+// One mesh drawn twice, by two nodes with two different skins over two joint chains
+// (the RecursiveSkeletons case): each instance follows its own skeleton.
+ModelData twoSkinsOneMesh() {
+  ModelData model = eightInfluenceModel();
+  const int chainB = int(model.nodes.size());
+  for (int j = 0; j < 8; ++j) {
+    NodeData node = model.nodes[size_t(j)];
+    node.parent = j == 0 ? -1 : chainB + j - 1;
+    node.children.clear();
+    if (j < 7) node.children.push_back(chainB + j + 1);
+    node.translation += j == 0 ? glm::vec3(2.0f, 0.0f, 0.0f) : glm::vec3(0.0f);
+    node.rotation = glm::angleAxis(-0.3f * float(j), glm::vec3(1.0f, 0.0f, 0.0f));
+    model.nodes.push_back(node);
+  }
+  SkinData skin = model.skins[0];
+  for (int& joint : skin.joints) joint += chainB;
+  model.skins.push_back(skin);
+  NodeData second;
+  second.mesh = 0;
+  second.skin = 1;
+  model.nodes.push_back(second);
+  model.sceneRoots = {0, 8, chainB, int(model.nodes.size()) - 1};
+  return model;
+}
+
 std::string conformanceDir() {
   if (const char* env = std::getenv("CONFORMANCE_DIR")) return env;
   return std::string(ENGINE_SOURCE_DIR) + "/../shared/conformance";
@@ -188,6 +214,16 @@ class GpuSkinning : public GlTest {};
 ENGINE_INSTANTIATE_OFFSCREEN(GpuSkinning);
 
 TEST_P(GpuSkinning, EightInfluencesMatchCpu) { compareModel(eightInfluenceModel(), -1, 0.0); }
+
+TEST_P(GpuSkinning, TwoSkinsOnOneMeshEachFollowTheirSkeleton) {
+  const ModelData model = twoSkinsOneMesh();
+  compareModel(model, -1, 0.0);
+  auto pose = dumpPose(model, -1, 0.0);
+  ASSERT_TRUE(pose.ok()) << pose.error().message;
+  const auto& meshes = (*pose)["meshes"];
+  ASSERT_EQ(meshes.size(), 2u);
+  EXPECT_NE(meshes[0]["positions"], meshes[1]["positions"]) << "both instances took the same skin";
+}
 
 TEST_P(GpuSkinning, CesiumManMatchesCpu) {
   const std::string path = conformanceDir() + "/assets/CesiumMan/glTF-Binary/CesiumMan.glb";
