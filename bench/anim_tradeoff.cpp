@@ -56,21 +56,8 @@ void pose(const Model& m, const Clip& clip, double t, QuatInterpolation q, std::
 std::vector<glm::vec3> skinAll(const Model& m, const std::vector<glm::mat4>& models, SkinningMethod method) {
   std::vector<glm::vec3> out;
   for (const SkinnedPrim& sp : m.prims) {
-    std::vector<glm::mat4> palette(sp.skin->joints.size());
-    std::vector<DualQuat> dq(palette.size());
-    SkinningPaletteJob{models, sp.skin->joints, sp.skin->inverseBinds, palette}.run();
-    DualQuatPaletteJob{palette, dq}.run();
     std::vector<glm::vec3> positions(sp.prim->positions.size());
-    SkinningJob job;
-    job.method = method;
-    job.influences = sp.prim->influences;
-    job.positions = sp.prim->positions;
-    job.joints = sp.prim->joints;
-    job.weights = sp.prim->weights;
-    job.palette = palette;
-    job.dualQuats = dq;
-    job.outPositions = positions;
-    job.run();
+    skinPrimitive(*sp.prim, *sp.skin, models, method, positions);
     out.insert(out.end(), positions.begin(), positions.end());
   }
   return out;

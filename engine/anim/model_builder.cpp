@@ -57,4 +57,27 @@ Result<int> findClip(const AnimatedModel& animated, const std::string& wanted, c
                    " (or an index, -1 = rest pose)");
 }
 
+bool skinPrimitive(const PrimitiveData& prim, const Skin& skin, std::span<const glm::mat4> models,
+                   SkinningMethod method, std::span<glm::vec3> outPositions, std::span<glm::vec3> outNormals) {
+  std::vector<glm::mat4> palette(skin.joints.size());
+  if (!SkinningPaletteJob{models, skin.joints, skin.inverseBinds, palette}.run()) return false;
+  std::vector<DualQuat> dualQuats;
+  if (method == SkinningMethod::DualQuat) {
+    dualQuats.resize(palette.size());
+    DualQuatPaletteJob{palette, dualQuats}.run();
+  }
+  SkinningJob job;
+  job.method = method;
+  job.influences = prim.influences;
+  job.positions = prim.positions;
+  if (!outNormals.empty()) job.normals = prim.normals;
+  job.joints = prim.joints;
+  job.weights = prim.weights;
+  job.palette = palette;
+  job.dualQuats = dualQuats;
+  job.outPositions = outPositions;
+  job.outNormals = outNormals;
+  return job.run();
+}
+
 }  // namespace engine

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "anim/clip.h"
+#include "anim/jobs.h"
 #include "anim/skeleton.h"
 #include "asset/model_data.h"
 #include "core/result.h"
@@ -20,6 +21,14 @@ struct AnimatedModel {
 RawSkeleton makeRawSkeleton(const ModelData& model);
 RawClip makeRawClip(const AnimationData& animation);
 Result<AnimatedModel> buildAnimatedModel(const ModelData& model);
+
+// Skins one glTF primitive on the CPU for joint matrices `models` (palette, then
+// SkinningJob): the one path that the pose dump, the ray tracer, bounds and
+// benchmarks share with what the GPU computes. `outNormals` may be empty. False
+// when the spans do not fit.
+bool skinPrimitive(const PrimitiveData& prim, const Skin& skin, std::span<const glm::mat4> models,
+                   SkinningMethod method, std::span<glm::vec3> outPositions,
+                   std::span<glm::vec3> outNormals = {});
 
 // The clip index for `wanted`: "" (the first clip, or -1 without clips), an index
 // (-1 = rest pose) or a name. The error names the model file and lists the clips:

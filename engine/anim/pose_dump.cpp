@@ -28,17 +28,8 @@ nlohmann::json positionsJson(const std::vector<glm::vec3>& positions) {
 // Skinned primitives go through the same palette and job the renderer uses.
 std::vector<glm::vec3> skinnedPositions(const PrimitiveData& prim, const Skin& skin,
                                         std::span<const glm::mat4> models) {
-  std::vector<glm::mat4> palette(skin.joints.size());
-  SkinningPaletteJob paletteJob{models, skin.joints, skin.inverseBinds, palette};
   std::vector<glm::vec3> out(prim.positions.size());
-  SkinningJob skinning;
-  skinning.influences = prim.influences;
-  skinning.positions = prim.positions;
-  skinning.joints = prim.joints;
-  skinning.weights = prim.weights;
-  skinning.palette = palette;
-  skinning.outPositions = out;
-  if (!paletteJob.run() || !skinning.run()) return {};
+  if (!skinPrimitive(prim, skin, models, SkinningMethod::Linear, out)) return {};
   return out;
 }
 

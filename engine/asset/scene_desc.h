@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace engine {
 
@@ -138,6 +139,16 @@ struct SceneDesc {
   RenderDesc render;
   float ambient = 0.1f;  // classic shading's ambient term when a material has none
 };
+
+// A model's placement, with `groundHeight` added to its y (terrain under it):
+// translation, then yaw (y), pitch (x), roll (z), then scale. Both renderers use it.
+inline glm::dmat4 modelTransform(const ModelDesc& desc, double groundHeight = 0.0) {
+  glm::dmat4 world = glm::translate(glm::dmat4(1.0), desc.position + glm::dvec3(0.0, groundHeight, 0.0));
+  world = glm::rotate(world, glm::radians(desc.rotationDegrees.y), glm::dvec3(0, 1, 0));
+  world = glm::rotate(world, glm::radians(desc.rotationDegrees.x), glm::dvec3(1, 0, 0));
+  world = glm::rotate(world, glm::radians(desc.rotationDegrees.z), glm::dvec3(0, 0, 1));
+  return glm::scale(world, desc.scale);
+}
 
 // The ambient light both renderers use for PBR shading: a hemisphere from the
 // sky's colours (dimmed), or the scene's ambient grey without a sky.

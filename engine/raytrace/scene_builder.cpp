@@ -3,6 +3,7 @@
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
+#include <optional>
 
 #include "anim/jobs.h"
 #include "anim/model_builder.h"
@@ -10,6 +11,7 @@
 #include "asset/gltf_loader.h"
 #include "raytrace/tone_map.h"
 #include "terrain/lod.h"
+#include "terrain/scene_terrain.h"
 #include "terrain/terrain.h"
 
 namespace engine::rt {
@@ -46,17 +48,9 @@ void addMaterials(LoadedModel& loaded, RtScene& scene) {
   }
 }
 
-glm::dmat4 modelTransform(const ModelDesc& desc) {
-  glm::dmat4 world = glm::translate(glm::dmat4(1.0), desc.position);
-  world = glm::rotate(world, glm::radians(desc.rotationDegrees.y), glm::dvec3(0, 1, 0));
-  world = glm::rotate(world, glm::radians(desc.rotationDegrees.x), glm::dvec3(1, 0, 0));
-  world = glm::rotate(world, glm::radians(desc.rotationDegrees.z), glm::dvec3(0, 0, 1));
-  return glm::scale(world, desc.scale);
-}
-
 // Poses one model instance at `time` and adds its primitives as meshes.
-Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, double time, RtScene& scene,
-                        SceneBuildStats& stats) {
+Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, double time, double ground,
+                        RtScene& scene, SceneBuildStats& stats) {
   const Skeleton& skeleton = loaded.animated.skeleton;
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
   if (clip >= 0) {
@@ -66,7 +60,7 @@ Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int cl
         .run();
   }
   std::vector<glm::mat4> models(locals.size());
-  LocalToModelJob{skeleton.parents(), locals, glm::mat4(modelTransform(desc)), models}.run();
+  LocalToModelJob{skeleton.parents(), locals, glm::mat4(modelTransform(desc, ground)), models}.run();
   const SkinningMethod method = desc.dualQuat ? SkinningMethod::DualQuat : SkinningMethod::Linear;
   for (size_t n = 0; n < loaded.model.nodes.size(); ++n) {
     const NodeData& node = loaded.model.nodes[n];
@@ -79,23 +73,10 @@ Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int cl
       mesh.positions.resize(prim.positions.size());
       if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
       if (node.skin >= 0 && prim.influences > 0) {
-        const Skin& skin = loaded.animated.skins[size_t(node.skin)];
-        std::vector<glm::mat4> palette(skin.joints.size());
-        std::vector<DualQuat> dualQuats(skin.joints.size());
-        SkinningPaletteJob{models, skin.joints, skin.inverseBinds, palette}.run();
-        DualQuatPaletteJob{palette, dualQuats}.run();
-        SkinningJob job;
-        job.method = method;
-        job.influences = prim.influences;
-        job.positions = prim.positions;
-        job.normals = prim.normals;
-        job.joints = prim.joints;
-        job.weights = prim.weights;
-        job.palette = palette;
-        job.dualQuats = dualQuats;
-        job.outPositions = mesh.positions;
-        job.outNormals = mesh.normals;
-        if (!job.run()) return makeError(loaded.model.path + ": skinning failed");
+        if (!skinPrimitive(prim, loaded.animated.skins[size_t(node.skin)], models, method, mesh.positions,
+                           mesh.normals)) {
+          return makeError(loaded.model.path + ": skinning failed");
+        }
       } else {
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
         for (size_t v = 0; v < prim.positions.size(); ++v) {
@@ -119,16 +100,8 @@ Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int cl
 
 // The terrain as the rasterizer draws it from the scene's camera: the CDLOD patches
 // selected for this view, each a grid of morphed vertices, in world space.
-Status addTerrain(const SceneDesc& desc, int viewportHeight, RtScene& scene, SceneBuildStats& stats) {
-  terrain::TerrainSettings settings;
-  settings.heightmap = desc.terrain.heightmap;
-  settings.seed = desc.terrain.seed;
-  settings.size = desc.terrain.size;
-  settings.spacing = desc.terrain.spacing;
-  settings.heightScale = desc.terrain.heightScale;
-  settings.origin = desc.terrain.origin;
-  auto field = terrain::Terrain::create(settings);
-  if (!field) return makeError(desc.path + ": /terrain: " + field.error().message);
+Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int viewportHeight, RtScene& scene,
+                  SceneBuildStats& stats) {
   const CameraDesc& c = desc.camera;
   terrain::LodCamera camera;
   camera.position = c.position;
@@ -138,14 +111,14 @@ Status addTerrain(const SceneDesc& desc, int viewportHeight, RtScene& scene, Sce
                                     glm::lookAt(glm::dvec3(0.0), c.forward, c.up));
   // No culling: terrain outside the view still casts shadows into it.
   camera.cull = false;
-  const auto selection = terrain::selectLod(*field, camera, desc.terrain.errorPixels);
+  const auto selection = terrain::selectLod(field, camera, desc.terrain.errorPixels);
   MaterialDesc grass;
   grass.name = "terrain";
   grass.color = glm::vec3(0.2f, 0.32f, 0.12f);  // the grass layer's mean colour, linear
   grass.roughness = 0.9f;
   const int material = scene.addMaterial(grass);
   for (const auto& patch : selection.patches) {
-    const auto vertices = terrain::patchVertices(*field, selection, patch);
+    const auto vertices = terrain::patchVertices(field, selection, patch);
     const int n = int(std::lround(std::sqrt(double(vertices.size())))) - 1;
     RtMesh mesh;
     mesh.material = material;
@@ -171,6 +144,12 @@ Result<RtScene> buildRtScene(const SceneDesc& desc, double time, int viewportHei
   if (!scene) return scene.error();
   SceneBuildStats stats;
   const auto start = std::chrono::steady_clock::now();
+  std::optional<terrain::Terrain> field;
+  if (desc.terrain.enabled) {
+    auto created = terrain::Terrain::create(terrain::settingsFromScene(desc.terrain));
+    if (!created) return makeError(desc.path + ": /terrain: " + created.error().message);
+    field.emplace(std::move(created).value());
+  }
   std::map<std::string, LoadedModel> cache;
   for (size_t i = 0; i < desc.models.size(); ++i) {
     const ModelDesc& m = desc.models[i];
@@ -187,12 +166,13 @@ Result<RtScene> buildRtScene(const SceneDesc& desc, double time, int viewportHei
     }
     auto clip = findClip(it->second.animated, m.clip, m.path);
     if (!clip) return makeError(where + "/clip: " + clip.error().message);
-    if (auto s = addModelInstance(it->second, m, *clip, time, *scene, stats); !s) {
+    const double ground = m.onTerrain && field ? field->heightAt(m.position.x, m.position.z) : 0.0;
+    if (auto s = addModelInstance(it->second, m, *clip, time, ground, *scene, stats); !s) {
       return makeError(where + ": " + s.error().message);
     }
   }
-  if (desc.terrain.enabled) {
-    if (auto s = addTerrain(desc, viewportHeight, *scene, stats); !s) return s.error();
+  if (field) {
+    if (auto s = addTerrain(desc, *field, viewportHeight, *scene, stats); !s) return s.error();
   }
   stats.skinSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.bvhSeconds = scene->build();

@@ -20,7 +20,7 @@ CharacterAsset::Bounds CharacterAsset::boundsOfAllPoses(int samples) const {
   Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
   const Skeleton& skeleton = animated.skeleton;
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
-  std::vector<glm::mat4> models(locals.size()), palette;
+  std::vector<glm::mat4> models(locals.size());
   std::vector<glm::vec3> skinned;
   auto addPose = [&] {
     LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run();
@@ -31,18 +31,8 @@ CharacterAsset::Bounds CharacterAsset::boundsOfAllPoses(int samples) const {
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
         const bool isSkinned = node.skin >= 0 && prim.influences > 0;
         if (isSkinned) {
-          const Skin& skin = animated.skins[size_t(node.skin)];
-          palette.resize(skin.joints.size());
-          SkinningPaletteJob{models, skin.joints, skin.inverseBinds, palette}.run();
           skinned.resize(prim.positions.size());
-          SkinningJob job;
-          job.influences = prim.influences;
-          job.positions = prim.positions;
-          job.joints = prim.joints;
-          job.weights = prim.weights;
-          job.palette = palette;
-          job.outPositions = skinned;
-          job.run();
+          skinPrimitive(prim, animated.skins[size_t(node.skin)], models, SkinningMethod::Linear, skinned);
         }
         for (size_t v = 0; v < prim.positions.size(); ++v) {
           const glm::vec3 p = isSkinned ? skinned[v] : glm::vec3(world * glm::vec4(prim.positions[v], 1.0f));

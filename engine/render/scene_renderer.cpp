@@ -12,6 +12,7 @@
 #include "render/model_renderer.h"
 #include "render/textures.h"
 #include "terrain/lod.h"
+#include "terrain/scene_terrain.h"
 #include "terrain/terrain.h"
 #include "terrain/terrain_renderer.h"
 
@@ -246,14 +247,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
 
 Status SceneRenderer::Impl::loadTerrain() {
   if (!scene.terrain.enabled) return Ok{};
-  terrain::TerrainSettings settings;
-  settings.heightmap = scene.terrain.heightmap;
-  settings.seed = scene.terrain.seed;
-  settings.size = scene.terrain.size;
-  settings.spacing = scene.terrain.spacing;
-  settings.heightScale = scene.terrain.heightScale;
-  settings.origin = scene.terrain.origin;
-  auto created = terrain::Terrain::create(settings);
+  auto created = terrain::Terrain::create(terrain::settingsFromScene(scene.terrain));
   if (!created) return makeError(scene.path + ": /terrain: " + created.error().message);
   terrain = std::make_unique<terrain::Terrain>(std::move(created).value());
   auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, {"HDR_OUTPUT 1"});
@@ -324,13 +318,8 @@ Status SceneRenderer::Impl::loadModels() {
     draw.instance->play(*clip);
     draw.instance->player().setSpeed(desc.speed);
     draw.desc = desc;
-    glm::dvec3 position = desc.position;
-    if (desc.onTerrain && terrain) position.y += terrain->heightAt(position.x, position.z);
-    glm::dmat4 world = glm::translate(glm::dmat4(1.0), position);
-    world = glm::rotate(world, glm::radians(desc.rotationDegrees.y), glm::dvec3(0, 1, 0));
-    world = glm::rotate(world, glm::radians(desc.rotationDegrees.x), glm::dvec3(1, 0, 0));
-    world = glm::rotate(world, glm::radians(desc.rotationDegrees.z), glm::dvec3(0, 0, 1));
-    draw.world = glm::scale(world, desc.scale);
+    const double ground = desc.onTerrain && terrain ? terrain->heightAt(desc.position.x, desc.position.z) : 0.0;
+    draw.world = modelTransform(desc, ground);
     const auto bounds = asset->boundsOfAllPoses();
     draw.localCenter = glm::dvec3(bounds.min + bounds.max) * 0.5;
     draw.localRadius = 0.5 * double(glm::length(bounds.max - bounds.min)) *
