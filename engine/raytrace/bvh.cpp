@@ -174,8 +174,8 @@ Vec3<T> toT(const glm::vec3& v) {
 
 }  // namespace
 
-template <typename T>
-std::optional<BvhHit<T>> Bvh::intersect(const Ray<T>& rayIn) const {
+template <typename T, bool kAnyHit>
+std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
   if (nodes_.empty()) return std::nullopt;
   Ray<T> ray = rayIn;
   const Vec3<T> invDir = T(1) / ray.d;
@@ -191,8 +191,9 @@ std::optional<BvhHit<T>> Bvh::intersect(const Ray<T>& rayIn) const {
         for (std::uint32_t k = 0; k < node.count; ++k) {
           const TriangleVerts& tri = triangles_[node.offset + k];
           if (auto hit = intersectTriangle(ray, toT<T>(tri.p0), toT<T>(tri.p1), toT<T>(tri.p2))) {
-            ray.tMax = hit->t;
             best = BvhHit<T>{*hit, order_[node.offset + k]};
+            if constexpr (kAnyHit) return best;
+            ray.tMax = hit->t;
           }
         }
         if (top == 0) break;
@@ -214,36 +215,13 @@ std::optional<BvhHit<T>> Bvh::intersect(const Ray<T>& rayIn) const {
 }
 
 template <typename T>
+std::optional<BvhHit<T>> Bvh::intersect(const Ray<T>& ray) const {
+  return traverse<T, false>(ray);
+}
+
+template <typename T>
 bool Bvh::intersectAny(const Ray<T>& ray) const {
-  if (nodes_.empty()) return false;
-  const Vec3<T> invDir = T(1) / ray.d;
-  const int dirIsNeg[3] = {invDir.x < 0, invDir.y < 0, invDir.z < 0};
-  std::uint32_t stack[kStackSize];
-  int top = 0;
-  std::uint32_t current = 0;
-  for (;;) {
-    const Node& node = nodes_[current];
-    if (intersectBounds(node.bounds, ray, ray.tMax, invDir, dirIsNeg)) {
-      if (node.count > 0) {
-        for (std::uint32_t k = 0; k < node.count; ++k) {
-          const TriangleVerts& tri = triangles_[node.offset + k];
-          if (intersectTriangle(ray, toT<T>(tri.p0), toT<T>(tri.p1), toT<T>(tri.p2))) return true;
-        }
-        if (top == 0) break;
-        current = stack[--top];
-      } else if (dirIsNeg[node.axis]) {
-        stack[top++] = current + 1;
-        current = node.offset;
-      } else {
-        stack[top++] = node.offset;
-        current = current + 1;
-      }
-    } else {
-      if (top == 0) break;
-      current = stack[--top];
-    }
-  }
-  return false;
+  return traverse<T, true>(ray).has_value();
 }
 
 template std::optional<BvhHit<float>> Bvh::intersect(const Ray<float>&) const;

@@ -48,6 +48,10 @@ class Bvh {
   Bounds3f bounds() const { return nodes_.empty() ? Bounds3f{} : nodes_[0].bounds; }
 
  private:
+  // The one traversal both queries use: nearest hit, or (kAnyHit) the first found.
+  template <typename T, bool kAnyHit>
+  std::optional<BvhHit<T>> traverse(const Ray<T>& ray) const;
+
   struct Node {
     Bounds3f bounds;
     std::uint32_t offset = 0;  // leaf: first triangle; interior: second child
