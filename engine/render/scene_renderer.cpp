@@ -655,13 +655,15 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
   glFrontFace(GL_CCW);
-  s.fillFrame(cameraPosition, glm::mat4(viewProjection));
+  // Shadow passes use only their own light matrix, but every scene program declares
+  // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, s.frameUbo.id());
   if (s.sunShadows) s.renderSunShadow(cameraPosition, view, fovy, aspect, camera.nearPlane);
   if (s.pointShadows && !(s.pointShadowValid && s.characters.empty())) {
     s.renderPointShadow(cameraPosition);
     s.pointShadowValid = true;
   }
-  s.fillFrame(cameraPosition, glm::mat4(viewProjection));  // with the shadow matrix
+  s.fillFrame(cameraPosition, glm::mat4(viewProjection));
 
   s.drawFbo.bind();
   glViewport(0, 0, s.targetWidth, s.targetHeight);
