@@ -35,6 +35,11 @@ Status writeBenchJson(const std::string& path, const BenchReport& r) {
                       {"height", r.height},
                       {"msaa", r.msaa},
                       {"command", r.command}};
+  if (!r.counters.empty()) {
+    nlohmann::json counters = nlohmann::json::object();
+    for (const auto& [name, value] : r.counters) counters[name] = value;
+    j["last_frame"] = counters;
+  }
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp);

@@ -2,6 +2,7 @@
 // Frame times of a run, summarised as median / p95 / max and written as JSON for
 // `--bench`. Medians, not means: these machines are noisy.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/result.h"
@@ -27,6 +28,8 @@ struct BenchReport {
   int height = 0;
   int msaa = 1;
   std::string command;
+  // Work done by the last frame, by name (draw calls, program changes, triangles).
+  std::vector<std::pair<std::string, double>> counters;
 };
 
 Status writeBenchJson(const std::string& path, const BenchReport& report);

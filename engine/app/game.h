@@ -1,6 +1,10 @@
 #pragma once
 // What a program plugs into the runners (sokol's shape: initialise, then per frame
 // update and draw, then shut down by destruction).
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "core/result.h"
 #include "render/camera.h"
 
@@ -32,6 +36,10 @@ class Game {
   // captured image). Games without one leave wantsUi() false.
   virtual bool wantsUi() const { return false; }
   virtual void drawUi() {}
+  // What the last frame cost in work, not time (draw calls, program changes,
+  // triangles...), for `--bench`. Read with the context current, after the frame.
+  using Counters = std::vector<std::pair<std::string, double>>;
+  virtual Counters frameCounters() { return {}; }
 };
 
 }  // namespace engine

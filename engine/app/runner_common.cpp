@@ -29,7 +29,7 @@ Result<RunSetup> startRun(Backend backend, Game& game, const RunOptions& options
   return RunSetup{std::move(context).value(), std::move(target).value()};
 }
 
-Status finishRun(const GlContext& context, const RunOptions& options,
+Status finishRun(const GlContext& context, const RunOptions& options, Game& game,
                  std::vector<double> frameMs, const Image* lastFrame) {
   if (!options.benchFile.empty()) {
     BenchReport report;
@@ -41,6 +41,7 @@ Status finishRun(const GlContext& context, const RunOptions& options,
     report.height = options.height;
     report.msaa = options.msaa;
     report.command = options.command;
+    report.counters = game.frameCounters();
     if (auto s = writeBenchJson(options.benchFile, report); !s) return s;
   }
   if (!options.screenshot.empty() && lastFrame) {

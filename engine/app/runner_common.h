@@ -17,8 +17,9 @@ struct RunSetup {
 // makes the render target.
 Result<RunSetup> startRun(Backend backend, Game& game, const RunOptions& options);
 
-// Writes the bench JSON and the screenshot, as the options ask.
-Status finishRun(const GlContext& context, const RunOptions& options,
+// Writes the bench JSON (with the game's counters of the last frame) and the
+// screenshot, as the options ask. Call it before the game shuts down.
+Status finishRun(const GlContext& context, const RunOptions& options, Game& game,
                  std::vector<double> frameMs, const Image* lastFrame);
 
 }  // namespace engine

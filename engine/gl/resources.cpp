@@ -84,6 +84,18 @@ Renderbuffer Renderbuffer::create(GLenum format, int width, int height, int samp
   return Renderbuffer(id);
 }
 
+Query Query::create(GLenum target) {
+  GLuint id = 0;
+  glCreateQueries(target, 1, &id);
+  return Query(id, target);
+}
+
+GLuint64 Query::result() const {
+  GLuint64 value = 0;
+  glGetQueryObjectui64v(id(), GL_QUERY_RESULT, &value);
+  return value;
+}
+
 Framebuffer Framebuffer::create() {
   GLuint id = 0;
   glCreateFramebuffers(1, &id);

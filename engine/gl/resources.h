@@ -93,4 +93,19 @@ class Framebuffer : public Object<FramebufferDeleter> {
   using Object::Object;
 };
 
+// A query object (primitives generated, time elapsed...) of one target.
+class Query : public Object<QueryDeleter> {
+ public:
+  Query() = default;
+  static Query create(GLenum target);
+  void begin() const { glBeginQuery(target_, id()); }
+  void end() const { glEndQuery(target_); }
+  // Waits for the result: for benchmarks and tools, not inside a frame.
+  GLuint64 result() const;
+
+ private:
+  Query(GLuint id, GLenum target) : Object(id), target_(target) {}
+  GLenum target_ = 0;
+};
+
 }  // namespace engine::gl

@@ -2,9 +2,50 @@
 
 #include <cmath>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <span>
 
 namespace engine {
+
+namespace {
+
+glm::dmat4 rotationFromTo(const glm::dvec3& from, const glm::dvec3& to) {
+  const glm::dvec3 axis = glm::cross(from, to);
+  const double c = glm::dot(from, to);
+  if (glm::length(axis) < 1e-12) {
+    return c > 0.0 ? glm::dmat4(1.0) : glm::rotate(glm::dmat4(1.0), glm::pi<double>(), glm::dvec3(1, 0, 0));
+  }
+  return glm::rotate(glm::dmat4(1.0), std::atan2(glm::length(axis), c), glm::normalize(axis));
+}
+
+}  // namespace
+
+ShapeData shapeForPrimitive(const PrimitiveDesc& p) {
+  switch (p.type) {
+    case PrimitiveType::Sphere: return makeSphere(1.0f, 48, 96);
+    case PrimitiveType::Box: return makeCube(1.0f);
+    // Finely divided so per-vertex work (fog, lighting) stays well conditioned.
+    case PrimitiveType::Plane: return makePlane(2.0f, 16, 2.0f);
+  }
+  return {};
+}
+
+double planeExtent(const PrimitiveDesc& p, double farPlane) { return p.extent > 0.0 ? p.extent : farPlane; }
+
+glm::dmat4 primitiveTransform(const PrimitiveDesc& p, double farPlane) {
+  switch (p.type) {
+    case PrimitiveType::Sphere:
+      return glm::scale(glm::translate(glm::dmat4(1.0), p.center), glm::dvec3(p.radius));
+    case PrimitiveType::Box:
+      return glm::scale(glm::translate(glm::dmat4(1.0), (p.min + p.max) * 0.5), p.max - p.min);
+    case PrimitiveType::Plane: {
+      const double extent = planeExtent(p, farPlane);
+      return glm::translate(glm::dmat4(1.0), p.point) * rotationFromTo({0, 1, 0}, p.normal) *
+             glm::scale(glm::dmat4(1.0), glm::dvec3(extent, 1.0, extent));
+    }
+  }
+  return glm::dmat4(1.0);
+}
 
 ShapeData makePlane(float size, int cells, float uvRepeat) {
   ShapeData mesh;

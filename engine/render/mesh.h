@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "asset/scene_desc.h"
 #include "gl/resources.h"
 
 namespace engine {
@@ -26,6 +27,13 @@ ShapeData makePlane(float size, int cells, float uvRepeat);
 ShapeData makeCube(float size);
 // A UV sphere: `rings` x `segments` quads.
 ShapeData makeSphere(float radius, int rings, int segments);
+
+// A scene file's analytic primitive as the rasterizer draws it: the unit shape
+// (sphere of radius 1, cube of edge 1, plane 2 wide) and the transform that places
+// it. A plane without an extent reaches the camera's far distance.
+ShapeData shapeForPrimitive(const PrimitiveDesc& primitive);
+double planeExtent(const PrimitiveDesc& plane, double farPlane);
+glm::dmat4 primitiveTransform(const PrimitiveDesc& primitive, double farPlane);
 
 // Vertex attribute locations shared with shaders/common/vertex.glsl.
 inline constexpr GLuint kPositionLocation = 0;

@@ -62,15 +62,6 @@ SkinMode skinModeOf(const ModelDesc& desc) {
   return desc.unskinned ? SkinMode::None : desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
 }
 
-glm::dmat4 rotationFromTo(const glm::dvec3& from, const glm::dvec3& to) {
-  const glm::dvec3 axis = glm::cross(from, to);
-  const double c = glm::dot(from, to);
-  if (glm::length(axis) < 1e-12) {
-    return c > 0.0 ? glm::dmat4(1.0) : glm::rotate(glm::dmat4(1.0), glm::pi<double>(), glm::dvec3(1, 0, 0));
-  }
-  return glm::rotate(glm::dmat4(1.0), std::atan2(glm::length(axis), c), glm::normalize(axis));
-}
-
 // View rotation from a forward and an up vector; a left-handed scene (the course's
 // room) puts +x on the right when looking along +z, which mirrors GL's convention.
 glm::dmat4 viewRotation(const glm::dvec3& forward, const glm::dvec3& upHint, bool leftHanded) {
@@ -152,6 +143,8 @@ struct SceneRenderer::Impl {
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
   SceneStats* stats = nullptr;
+  gl::Query primitives;  // triangles of the whole frame
+  bool primitivesValid = false;
 
   Status init(const SceneRenderOptions& options);
   Status loadTerrain();
@@ -333,27 +326,20 @@ void SceneRenderer::Impl::addShapes() {
   for (const PrimitiveDesc& p : scene.primitives) {
     ShapeDraw draw;
     draw.material = p.material;
+    draw.world = primitiveTransform(p, scene.camera.farPlane);
+    std::unique_ptr<GpuMesh>& mesh =
+        p.type == PrimitiveType::Sphere ? sphere : p.type == PrimitiveType::Box ? cube : quad;
+    if (!mesh) mesh = std::make_unique<GpuMesh>(shapeForPrimitive(p));
+    draw.mesh = mesh.get();
     if (p.type == PrimitiveType::Sphere) {
-      if (!sphere) sphere = std::make_unique<GpuMesh>(makeSphere(1.0f, 48, 96));
-      draw.mesh = sphere.get();
-      draw.world = glm::scale(glm::translate(glm::dmat4(1.0), p.center), glm::dvec3(p.radius));
       draw.center = p.center;
       draw.radius = p.radius;
     } else if (p.type == PrimitiveType::Box) {
-      if (!cube) cube = std::make_unique<GpuMesh>(makeCube(1.0f));
-      draw.mesh = cube.get();
       draw.center = (p.min + p.max) * 0.5;
-      draw.world = glm::scale(glm::translate(glm::dmat4(1.0), draw.center), p.max - p.min);
       draw.radius = 0.5 * glm::length(p.max - p.min);
     } else {
-      // A plane is a large square: `extent` wide each way, or the camera's far
-      // distance; finely divided so per-vertex work stays well conditioned.
-      if (!quad) quad = std::make_unique<GpuMesh>(makePlane(2.0f, 16, 2.0f));
-      draw.mesh = quad.get();
-      const double extent = p.extent > 0.0 ? p.extent : scene.camera.farPlane;
-      draw.world = glm::translate(glm::dmat4(1.0), p.point) * rotationFromTo({0, 1, 0}, p.normal) *
-                   glm::scale(glm::dmat4(1.0), glm::dvec3(extent, 1.0, extent));
       // The quad's uv spans 2 units; one texture tile per `1 / texture_scale` metres.
+      const double extent = planeExtent(p, scene.camera.farPlane);
       draw.uvScale = glm::vec2(float(extent) * scene.materials[size_t(p.material)].textureScale);
       draw.twoSided = true;
     }
@@ -649,6 +635,8 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
 
   GLint callerFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  if (!s.primitives) s.primitives = gl::Query::create(GL_PRIMITIVES_GENERATED);
+  s.primitives.begin();
   s.eye = cameraPosition;
   for (auto& c : s.characters) c.instance->computeModels(c.world, cameraPosition);
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -718,6 +706,12 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glEnable(GL_DEPTH_TEST);
   stats_.drawCalls += 1;
+  s.primitives.end();
+  s.primitivesValid = true;
+}
+
+long long SceneRenderer::lastFrameTriangles() const {
+  return impl_->primitivesValid ? static_cast<long long>(impl_->primitives.result()) : 0;
 }
 
 std::string SceneRenderer::describe() const {

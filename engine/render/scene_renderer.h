@@ -49,6 +49,9 @@ class SceneRenderer {
   // "passes: ...\nvariants: ..." for demo --describe.
   std::string describe() const;
   const SceneStats& stats() const { return stats_; }
+  // Triangles the GL processed in the last frame, every pass included (a
+  // GL_PRIMITIVES_GENERATED query). Waits for the frame: for benchmarks and tools.
+  long long lastFrameTriangles() const;
   const SceneDesc& scene() const;
   std::vector<CharacterInstance*> characters();
 

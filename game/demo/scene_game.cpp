@@ -19,4 +19,14 @@ void SceneGame::update(double time, double) { renderer_->update(time); }
 
 void SceneGame::render(const engine::FrameInfo& frame) { renderer_->render(camera_, frame.width, frame.height); }
 
+engine::Game::Counters SceneGame::frameCounters() {
+  const engine::SceneStats& s = renderer_->stats();
+  return {{"draw_calls", s.drawCalls},
+          {"program_changes", s.programChanges},
+          {"objects_drawn", s.objectsDrawn},
+          {"objects_culled", s.objectsCulled},
+          {"terrain_triangles", s.terrainTriangles},
+          {"triangles_all_passes", double(renderer_->lastFrameTriangles())}};
+}
+
 }  // namespace demo

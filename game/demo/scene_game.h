@@ -20,6 +20,7 @@ class SceneGame final : public engine::Game {
   void render(const engine::FrameInfo& frame) override;
   engine::Camera& camera() override { return camera_; }
   void shutdown() override { renderer_.reset(); }
+  Counters frameCounters() override;
 
   engine::SceneRenderer* renderer() { return renderer_.get(); }
 

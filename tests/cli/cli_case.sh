@@ -61,7 +61,15 @@ case "$CASE" in
     rm -f bench.json
     expect 0 "shot\.png" -- "$BIN/demo" --offscreen --frames 5 --size 320x180 --bench bench.json --screenshot shot.png
     grep -q '"median"' bench.json && grep -q '"p95"' bench.json && grep -q '"renderer"' bench.json \
-      || { echo "FAIL: bench.json lacks fields"; cat bench.json; exit 1; } ;;
+      || { echo "FAIL: bench.json lacks fields"; cat bench.json; exit 1; }
+    # The last frame's work: the demo scene draws something in every pass.
+    python3 - bench.json <<'PY' || { cat bench.json; exit 1; }
+import json, sys
+counters = json.load(open(sys.argv[1]))["last_frame"]
+for key in ("draw_calls", "program_changes", "triangles_all_passes", "objects_drawn"):
+    assert counters[key] > 0, f"FAIL: last_frame.{key} = {counters[key]}"
+PY
+    ;;
   imgdiff)
     "$BIN/demo" --offscreen --time 0 --size 160x90 --screenshot t0.png >/dev/null || exit 1
     "$BIN/demo" --offscreen --time 2 --size 160x90 --screenshot t2.png >/dev/null || exit 1
