@@ -113,6 +113,9 @@ struct RenderDesc {
   float exposure = 1.0f;
   ToneMap toneMap = ToneMap::Aces;
   OutputCurve output = OutputCurve::Srgb;
+  // Cube map size of the rasterizer's reflection probes (one per mirror sphere or
+  // box); 0: mirrors show only their own shading.
+  int reflectionProbe = 256;
 };
 
 struct TerrainDesc {

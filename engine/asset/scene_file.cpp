@@ -268,7 +268,8 @@ Status readSky(const Node& n, SkyDesc& s) {
 }
 
 Status readRender(const Node& n, RenderDesc& r) {
-  TRY(n.expectObject({"msaa", "supersample", "shading", "shadow_map", "shadow_filter", "pcf_kernel", "exposure", "tonemap", "output"}));
+  TRY(n.expectObject({"msaa", "supersample", "shading", "shadow_map", "shadow_filter", "pcf_kernel", "exposure", "tonemap", "output",
+                          "reflection_probe"}));
   TRY(readInt(n, "msaa", r.msaa, 1, 16));
   if (r.msaa & (r.msaa - 1)) return n.at("msaa").error("expected 1, 2, 4, 8 or 16");
   TRY(readInt(n, "supersample", r.supersample, 1, 4));
@@ -277,6 +278,7 @@ Status readRender(const Node& n, RenderDesc& r) {
   TRY(readEnum(n, "shadow_filter", r.shadowFilter, std::map<std::string, ShadowFilter>{{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}}));
   TRY(readInt(n, "pcf_kernel", r.pcfKernel, 1, 15));
   if (r.pcfKernel % 2 == 0) return n.at("pcf_kernel").error("expected an odd kernel width");
+  TRY(readInt(n, "reflection_probe", r.reflectionProbe, 0, 2048));
   TRY(readFloat(n, "exposure", r.exposure, 1e-6, 1e6));
   TRY(readEnum(n, "tonemap", r.toneMap, std::map<std::string, ToneMap>{{"none", ToneMap::None}, {"reinhard", ToneMap::Reinhard}, {"aces", ToneMap::Aces}}));
   TRY(readEnum(n, "output", r.output, std::map<std::string, OutputCurve>{{"srgb", OutputCurve::Srgb}, {"gamma2.2", OutputCurve::Gamma22}}));

@@ -22,6 +22,13 @@ namespace {
 constexpr int kMaxPointLights = 4;
 constexpr double kSunShadowDistance = 60.0;  // metres of view the sun's map covers
 constexpr int kMaxCubeShadowSize = 1024;
+constexpr int kMaxReflectionProbes = 4;
+constexpr double kProbeNear = 0.01;
+
+// GL's cube face order, and the view axes that put each face's image where the
+// cube map's lookup expects it.
+constexpr glm::dvec3 kCubeFaceDirections[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+constexpr glm::dvec3 kCubeFaceUps[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
 
 // The uniform block of shaders/common/frame.glsl (std140: vec4-aligned members).
 struct FrameBlock {
@@ -48,6 +55,22 @@ struct ShapeDraw {
   glm::dvec3 center{0.0};
   double radius = -1.0;
   bool twoSided = false;
+  int probe = -1;  // reflection probe of a mirror shape
+};
+
+// Where a scene pass looks from: the camera, or one face of a reflection probe.
+struct View {
+  glm::dmat4 viewProjection{1.0};
+  glm::dvec4 planes[6];
+  double fovy = 1.0;
+  int height = 1;
+};
+
+// A cube map of the scene seen from a mirror shape's centre.
+struct Probe {
+  int shape = -1;
+  glm::dvec3 center{0.0};
+  gl::Texture cube;
 };
 
 struct CharacterDraw {
@@ -139,6 +162,12 @@ struct SceneRenderer::Impl {
   // Without characters nothing moves: the point light's cube map (which does not
   // depend on the camera) is drawn once and kept.
   bool pointShadowValid = false;
+  // Reflection probes: the rasterizer's stand-in for the ray tracer's reflected rays.
+  std::vector<Probe> probes;
+  int probeSize = 0;
+  gl::Renderbuffer probeDepth;
+  gl::Framebuffer probeFbo;
+  bool probesValid = false;  // static scenes draw their probes once
   std::unique_ptr<terrain::Terrain> terrain;
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
@@ -155,7 +184,12 @@ struct SceneRenderer::Impl {
   Status buildVariants();
   Status makeTarget(int width, int height);
   void setUniforms(const gl::Program& program) const;
-  void drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection);
+  void drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
+                  int skipShape = -1, bool useProbes = false);
+  void drawSky(const glm::dmat4& viewProjection);
+  void drawWorld(const View& view, int skipShape, bool useProbes);
+  Status makeProbes();
+  void renderProbes(const glm::dvec3& cameraPosition);
   void drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
                       const glm::mat4& viewProjection);
   void renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
@@ -191,6 +225,9 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
   if (scene.fog.enabled) defines.push_back("FOG 1");
+  probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
+  if (auto s = makeProbes(); !s) return s;
+  if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
   if (scene.sky.enabled) {
@@ -209,6 +246,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (auto s = loadMaterials(); !s) return s;
   if (auto s = loadModels(); !s) return s;
   addShapes();
+  for (int i = 0; i < int(probes.size()); ++i) shapes[size_t(probes[size_t(i)].shape)].probe = i;
 
   if (sunShadows) {
     sunShadowSize = render.shadowMapSize;
@@ -236,6 +274,32 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     pointFar = std::max(1.0, scene.camera.farPlane);
   }
   return buildVariants();
+}
+
+// One probe per mirror sphere or box (material reflection > 0), up to four. Planes
+// get none: a plane mirror needs a planar reflection, which this renderer lacks.
+Status SceneRenderer::Impl::makeProbes() {
+  if (probeSize <= 0) return Ok{};
+  for (int i = 0; i < int(scene.primitives.size()) && int(probes.size()) < kMaxReflectionProbes; ++i) {
+    const PrimitiveDesc& p = scene.primitives[size_t(i)];
+    if (p.type == PrimitiveType::Plane || scene.materials[size_t(p.material)].reflection <= 0.0f) continue;
+    Probe probe;
+    probe.shape = i;
+    probe.center = p.type == PrimitiveType::Sphere ? p.center : (p.min + p.max) * 0.5;
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
+    glTextureStorage2D(id, 1, GL_RGBA16F, probeSize, probeSize);
+    probe.cube = gl::Texture::adopt(id, probeSize, probeSize);
+    probe.cube.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    probe.cube.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    probes.push_back(std::move(probe));
+  }
+  if (probes.empty()) return Ok{};
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // no seams where faces meet
+  probeDepth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, probeSize, probeSize);
+  probeFbo = gl::Framebuffer::create();
+  probeFbo.attach(GL_DEPTH_ATTACHMENT, probeDepth);
+  return Ok{};
 }
 
 Status SceneRenderer::Impl::loadTerrain() {
@@ -438,8 +502,11 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
 }
 
-void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection) {
-  for (const ShapeDraw& s : shapes) {
+void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
+                                     int skipShape, bool useProbes) {
+  for (int index = 0; index < int(shapes.size()); ++index) {
+    const ShapeDraw& s = shapes[size_t(index)];
+    if (index == skipShape) continue;
     if (planes && !sphereVisible(planes, s.center - eye, s.radius)) {
       ++stats->objectsCulled;
       continue;
@@ -472,6 +539,11 @@ void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, c
       p.set("u_reflection", m.reflection);
       p.set("u_emissive", glm::vec3(0.0f));
       if (textured) materialTextures[size_t(s.material)].bind(0);
+      if (!probes.empty()) {
+        const bool probed = useProbes && s.probe >= 0;
+        p.set("u_hasProbe", probed ? 1 : 0);
+        if (probed) probes[size_t(s.probe)].cube.bind(6);
+      }
     }
     if (s.twoSided) glDisable(GL_CULL_FACE);
     s.mesh->draw();
@@ -557,9 +629,6 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
 
 void SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) {
   const glm::dvec3 light = scene.lights[size_t(pointLights[0])].position - cameraPosition;
-  // GL's cube face order and orientation.
-  const glm::dvec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  const glm::dvec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
   const glm::dmat4 proj = glm::perspectiveRH_ZO(glm::half_pi<double>(), 1.0, pointNear, pointFar);
   glViewport(0, 0, cubeSize, cubeSize);
   glDepthFunc(GL_LESS);
@@ -573,12 +642,72 @@ void SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) {
     glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, face);
     pointShadowFbo.bind();
     glClear(GL_DEPTH_BUFFER_BIT);
-    const glm::mat4 faceViewProjection(proj * glm::lookAt(light, light + dirs[face], ups[face]));
+    const glm::mat4 faceViewProjection(proj * glm::lookAt(light, light + kCubeFaceDirections[face], kCubeFaceUps[face]));
     drawShapes(nullptr, true, faceViewProjection);
     drawCharacters(nullptr, true, faceViewProjection, faceViewProjection);
   }
   glEnable(GL_CULL_FACE);
   glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection) {
+  sky.use();
+  Lighting lighting;
+  lighting.sunDirection = sunLight >= 0 ? glm::vec3(scene.lights[size_t(sunLight)].direction) : glm::vec3(0, -1, 0);
+  lighting.skyZenith = scene.sky.zenith;
+  lighting.skyHorizon = scene.sky.horizon;
+  lighting.skyGround = scene.sky.ground;
+  setSkyUniforms(sky, lighting);
+  sky.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+  emptyVao.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+  ++stats->drawCalls;
+}
+
+// Everything a colour pass shows, into the bound HDR framebuffer.
+void SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useProbes) {
+  if (scene.sky.enabled) drawSky(view.viewProjection);
+  if (terrain) drawTerrain(view.viewProjection, view.fovy, view.height);
+  drawShapes(view.planes, false, glm::mat4(1.0f), skipShape, useProbes);
+  drawCharacters(view.planes, false, glm::mat4(1.0f), glm::mat4(view.viewProjection));
+}
+
+// Each probe's six faces, seen from the mirror's centre without the mirror itself.
+// Positions stay camera-relative, now to the probe's centre; the sun's shadow
+// matrix is moved to match. Probes show no mirrors: one bounce, where the ray
+// tracer follows --max-depth bounces.
+void SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
+  const glm::mat4 cameraShadowMatrix = frame.sunShadowMatrix;
+  const glm::dmat4 projection = reverseZProjection(glm::half_pi<double>(), 1.0, kProbeNear, scene.camera.farPlane);
+  const glm::vec3 background = scene.sky.background;
+  glViewport(0, 0, probeSize, probeSize);
+  glFrontFace(GL_CCW);
+  for (const Probe& probe : probes) {
+    eye = probe.center;
+    for (auto& c : characters) c.instance->computeModels(c.world, probe.center);
+    frame.sunShadowMatrix =
+        glm::mat4(glm::dmat4(cameraShadowMatrix) * glm::translate(glm::dmat4(1.0), probe.center - cameraPosition));
+    for (int face = 0; face < 6; ++face) {
+      View view;
+      view.viewProjection = projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]);
+      frustumPlanes(view.viewProjection, view.planes);
+      view.fovy = glm::half_pi<double>();
+      view.height = probeSize;
+      fillFrame(probe.center, glm::mat4(view.viewProjection));
+      glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probe.cube.id(), 0, face);
+      probeFbo.bind();
+      glClearColor(background.r, background.g, background.b, 1.0f);
+      glClearDepth(0.0);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      glDepthFunc(GL_GREATER);
+      drawWorld(view, probe.shape, false);
+    }
+  }
+  frame.sunShadowMatrix = cameraShadowMatrix;
+  eye = cameraPosition;
+  for (auto& c : characters) c.instance->computeModels(c.world, cameraPosition);
 }
 
 SceneRenderer::SceneRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) { impl_->stats = &stats_; }
@@ -651,6 +780,12 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
     s.renderPointShadow(cameraPosition);
     s.pointShadowValid = true;
   }
+  // Probes depend on the scene, not on the camera: a scene where nothing moves
+  // draws them once.
+  if (!s.probes.empty() && !(s.probesValid && s.characters.empty())) {
+    s.renderProbes(cameraPosition);
+    s.probesValid = true;
+  }
   s.fillFrame(cameraPosition, glm::mat4(viewProjection));
 
   s.drawFbo.bind();
@@ -663,24 +798,12 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
   glDepthFunc(GL_GREATER);
   // A left-handed view is a mirror: it turns counter-clockwise faces clockwise.
   glFrontFace(s.scene.camera.leftHanded ? GL_CW : GL_CCW);
-  if (s.scene.sky.enabled) {
-    s.sky.use();
-    Lighting lighting;
-    lighting.sunDirection = s.sunLight >= 0 ? glm::vec3(s.scene.lights[size_t(s.sunLight)].direction) : glm::vec3(0, -1, 0);
-    lighting.skyZenith = s.scene.sky.zenith;
-    lighting.skyHorizon = s.scene.sky.horizon;
-    lighting.skyGround = s.scene.sky.ground;
-    setSkyUniforms(s.sky, lighting);
-    s.sky.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
-    s.emptyVao.bind();
-    glDisable(GL_DEPTH_TEST);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    ++stats_.drawCalls;
-  }
-  if (s.terrain) s.drawTerrain(viewProjection, fovy, s.targetHeight);
-  s.drawShapes(planes, false, glm::mat4(1.0f));
-  s.drawCharacters(planes, false, glm::mat4(1.0f), glm::mat4(viewProjection));
+  View mainView;
+  mainView.viewProjection = viewProjection;
+  std::copy(std::begin(planes), std::end(planes), std::begin(mainView.planes));
+  mainView.fovy = fovy;
+  mainView.height = s.targetHeight;
+  s.drawWorld(mainView, -1, true);
 
   if (s.render.msaa > 1) {
     glBlitNamedFramebuffer(s.drawFbo.id(), s.resolveFbo.id(), 0, 0, s.targetWidth, s.targetHeight, 0, 0,
@@ -720,6 +843,7 @@ std::string SceneRenderer::describe() const {
   out << "passes:";
   if (s.sunShadows) out << " shadow-sun(" << s.sunShadowSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
   if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
+  if (!s.probes.empty()) out << " reflection-probes(" << s.probes.size() << " x cube " << s.probeSize << ")";
   if (s.scene.sky.enabled) out << " sky";
   if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
   out << " opaque";

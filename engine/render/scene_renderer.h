@@ -22,6 +22,7 @@ struct SceneRenderOptions {
   int supersampleOverride = 0;
   int shadowMapOverride = 0;
   int pcfKernelOverride = 0;   // odd width; 1 = hard
+  int reflectionProbeOverride = -1;  // >= 0 replaces render.reflection_probe (0 = off)
 };
 
 struct SceneStats {

@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
   app.add_option("--shadow-map", render.shadowMapOverride, "Shadow map size in texels")->check(CLI::Range(64, 8192));
   app.add_option("--pcf", render.pcfKernelOverride, "PCF kernel width (odd; 1 = hard shadows)")
       ->check(CLI::IsMember({1, 3, 5, 7, 9}));
+  app.add_option("--reflection-probe", render.reflectionProbeOverride,
+                 "Cube map size of the mirrors' reflection probes (0: no reflections)")
+      ->check(CLI::Range(0, 2048));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
   std::string mode = "raster";
   RaytraceOptions rt;

@@ -65,7 +65,18 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
 }
 #endif
 
-// The rasterizer draws no reflections: a mirror shows only its own diffuse part.
-// That is one of the shortcuts measured against the ray tracer, which does trace
-// the reflected ray.
+#ifdef REFLECTION_PROBES
+// A mirror reflects the cube map of the scene seen from its centre: right in
+// direction, off by parallax for things close to the mirror, one bounce only. The
+// ray tracer traces the reflected ray itself; the difference is measured.
+layout(binding = 6) uniform samplerCube u_reflectionProbe;
+uniform int u_hasProbe;
+
+vec3 reflectedEnvironment(Surface s) {
+  if (u_hasProbe == 0 || s.reflection <= 0.0) return vec3(0.0);
+  return s.reflection * texture(u_reflectionProbe, reflect(-s.toEye, s.n)).rgb;
+}
+#else
+// Without probes a mirror shows only its own shading.
 vec3 reflectedEnvironment(Surface s) { return vec3(0.0 * s.reflection); }
+#endif

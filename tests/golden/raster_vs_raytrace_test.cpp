@@ -1,7 +1,8 @@
 // The rasterizer and the ray tracer render the course's Cornell room from the same
 // camera with the same classic shading and hard shadows: away from the mirror
-// sphere (the rasterizer draws no reflections, a shortcut measured in bench/) the
-// two images must agree pixel for pixel, up to edges.
+// sphere the two images must agree pixel for pixel, up to edges. On the mirror the
+// rasterizer's reflection probe (a cube map from the sphere's centre) must come
+// much closer to the traced reflection than no reflection at all.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,31 +45,55 @@ std::vector<bool> mirrorMask(const SceneDesc& scene) {
   return mask;
 }
 
-}  // namespace
+Result<SceneDesc> cornell() { return loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell.json"); }
 
-TEST(RasterVsRaytrace, CornellAgreesAwayFromTheMirror) {
-  auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell.json");
-  ASSERT_TRUE(scene.ok()) << scene.error().message;
-
+Image rayTraced(const SceneDesc& scene) {
   rt::RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.samplesPerPixel = 1;  // pixel centres, as the rasterizer samples
-  auto traced = rt::raytraceScene(*scene, 0.0, settings);
-  ASSERT_TRUE(traced.ok()) << traced.error().message;
+  auto traced = rt::raytraceScene(scene, 0.0, settings);
+  EXPECT_TRUE(traced.ok()) << traced.error().message;
+  return traced.ok() ? traced->image : Image{};
+}
 
+// `probeSize` < 0: the scene's own setting.
+Image rasterized(const SceneDesc& scene, int probeSize = -1) {
   SceneRenderOptions options;
   options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
-  demo::SceneGame game(*scene, options);
+  options.reflectionProbeOverride = probeSize;
+  demo::SceneGame game(scene, options);
   RunOptions run;
   run.width = kWidth;
   run.height = kHeight;
-  Image rasterized;
-  ASSERT_TRUE(runHeadless(Backend::Egl, game, run, &rasterized).ok());
+  Image image;
+  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &image).ok());
+  return image;
+}
+
+// Mean absolute difference over the RGB channels of the pixels where `mask` is set.
+double meanInside(const Image& a, const Image& b, const std::vector<bool>& mask) {
+  double sum = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    for (size_t c = 0; c < 3; ++c) sum += std::abs(int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]));
+    count += 3;
+  }
+  return count ? sum / count : 0.0;
+}
+
+}  // namespace
+
+TEST(RasterVsRaytrace, CornellAgreesAwayFromTheMirror) {
+  auto scene = cornell();
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  const Image traced = rayTraced(*scene), raster = rasterized(*scene);
+  ASSERT_FALSE(traced.pixels.empty() || raster.pixels.empty());
 
   // Blank the mirror in both, then compare.
   const auto mask = mirrorMask(*scene);
-  Image a = traced->image, b = rasterized;
+  Image a = traced, b = raster;
   int masked = 0;
   for (size_t i = 0; i < mask.size(); ++i) {
     if (!mask[i]) continue;
@@ -88,4 +113,24 @@ TEST(RasterVsRaytrace, CornellAgreesAwayFromTheMirror) {
   EXPECT_LT(diff->shareOver, 0.005);
   EXPECT_LT(diff->meanAbs, 0.5);
   EXPECT_GT(diff->psnr, 35.0);
+}
+
+TEST(RasterVsRaytrace, CornellMirrorProbeApproachesTheTracedReflection) {
+  auto scene = cornell();
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  const Image traced = rayTraced(*scene);
+  const Image withProbe = rasterized(*scene, 256), withoutProbe = rasterized(*scene, 0);
+  ASSERT_FALSE(traced.pixels.empty() || withProbe.pixels.empty() || withoutProbe.pixels.empty());
+  const auto mask = mirrorMask(*scene);
+  const double probeError = meanInside(traced, withProbe, mask), bareError = meanInside(traced, withoutProbe, mask);
+  std::printf("Cornell mirror pixels, mean abs error against the ray tracer: probe 256 %.2f, no probe %.2f\n",
+              probeError, bareError);
+  // Without a probe the mirror shows only its dark diffuse part, far from the
+  // traced reflection of the bright walls. With it, what differs is parallax (the
+  // probe sees from the centre, not from the surface), the rim pixels and the
+  // missing second bounce. Measured here: 18.1 with the probe against 66.4 without;
+  // a probe sampled upside down, mirrored in x or along the wrong direction measured
+  // 35.8, 34.8 and 39.3. The limits sit between, with room for driver rounding.
+  EXPECT_LT(probeError, 25.0);
+  EXPECT_LT(probeError, 0.4 * bareError);
 }
