@@ -188,6 +188,8 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
       skinned ? glm::mat4(toCamera) : glm::mat4(toCamera * glm::dmat4(frame.nodeWorlds[n]));
   pr.set("u_model", model4);
   pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
+  // scene.vert's tiling of analytic shapes: a program may be shared with them.
+  pr.set("u_uvScale", glm::vec2(1.0f));
   if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
   if (skinned) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.skinBuffers[size_t(node.skin)].id());

@@ -200,8 +200,8 @@ Mesh quad(float w, float h, glm::vec2 repeat = glm::vec2(1.0f), bool tangent = f
   return m;
 }
 
-// A uv sphere, u around from +z, v from the north pole down: the seam and the
-// poles are where generated tangents are hardest.
+// A uv sphere, u around from +z, v from the north pole down, with its exact
+// tangents (the validator warns about normal-mapped meshes without TANGENT).
 Mesh sphere(float radius, int around, int down, glm::vec2 repeat) {
   Mesh m;
   for (int j = 0; j <= down; ++j) {
@@ -212,6 +212,9 @@ Mesh sphere(float radius, int around, int down, glm::vec2 repeat) {
       m.positions.push_back(n * radius);
       m.normals.push_back(n);
       m.uvs.push_back(glm::vec2(u, v) * repeat);
+      // u grows eastward: the tangent is d(position)/d(phi), defined at the poles
+      // too; v grows southward, so up the image is north and w = +1.
+      m.tangents.emplace_back(std::cos(phi), 0.0f, -std::sin(phi), 1.0f);
     }
   }
   const int row = around + 1;
@@ -338,7 +341,7 @@ MaterialsModel buildMaterialsModel(const std::string& baseName) {
                                                     0.0f, 0.1f)},
                        {"alphaMode", "BLEND"}});
   materials.push_back({{"name", "two_sided"},
-                       {"pbrMetallicRoughness", pbr({{"baseColorFactor", {0.9f, 0.45f, 0.1f, 1.0f}}}, 0.0f, 0.6f)},
+                       {"pbrMetallicRoughness", pbr({{"baseColorFactor", {0.6f, 0.22f, 0.04f, 1.0f}}}, 0.0f, 0.6f)},
                        {"doubleSided", true}});
   materials.push_back({{"name", "one_sided"},
                        {"pbrMetallicRoughness", pbr({{"baseColorFactor", {0.1f, 0.3f, 0.9f, 1.0f}}}, 0.0f, 0.6f)}});
@@ -358,8 +361,8 @@ MaterialsModel buildMaterialsModel(const std::string& baseName) {
       {"tiled_sphere", sphere(0.6f, 48, 24, {4.0f, 2.0f}), 1, {0.7f, 0.6f, -1.4f}, 0.0f},
       {"emissive_panel", quad(1.0f, 1.0f), 2, {2.4f, 0.3f, -2.0f}, -20.0f},
       {"bush", crossedCards(1.2f, 1.2f), 3, {-2.3f, 0.0f, 0.2f}, 30.0f},
-      {"glass_back", quad(1.0f, 1.2f), 4, {-0.3f, 0.1f, 0.2f}, 10.0f},
-      {"glass_front", quad(1.0f, 1.2f), 5, {0.25f, 0.2f, 1.2f}, -10.0f},
+      {"glass_back", quad(1.0f, 1.2f), 4, {-0.9f, 0.1f, 0.0f}, 10.0f},
+      {"glass_front", quad(1.0f, 1.2f), 5, {-0.35f, 0.15f, 1.0f}, -10.0f},
       {"two_sided_quad", quad(0.8f, 0.8f), 6, {1.6f, 0.0f, 0.9f}, 160.0f},
       {"one_sided_quad", quad(0.8f, 0.8f), 7, {2.6f, 0.0f, 0.9f}, 160.0f},
   };

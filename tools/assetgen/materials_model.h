@@ -4,8 +4,10 @@
 // model can be seen and tested without borrowing anyone's model:
 //   a brick wall       base colour, normal map and TANGENT attribute, an ORM map
 //                      (occlusion R, roughness G, metallic B: occlusion + MR textures)
-//   a tiled sphere     normal map without TANGENT (the loader generates them) and a
-//                      metallic-roughness checker of metal and rough tiles
+//   a tiled sphere     normal map (exact TANGENTs along u) and a metallic-roughness
+//                      checker of metal and rough tiles
+// (Tangent generation for files without TANGENT is tested on its own: the Khronos
+// validator warns about such files, and shipped models are validator-clean.)
 //   an emissive panel  emissive texture (sRGB)
 //   a leafy bush       alpha MASK, double-sided crossed cards
 //   two glass panes    alpha BLEND, tinted, one behind the other
