@@ -199,7 +199,9 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   } else if (!frame.depthOnly) {
     gpu.image(-1, true).bind(0);
   }
-  const bool twoSided = material && material->doubleSided;
+  // Double-sided: no culling for this draw; the caller's setting is restored (the
+  // point-light shadow pass draws everything without culling).
+  const bool twoSided = material && material->doubleSided && glIsEnabled(GL_CULL_FACE);
   if (twoSided) glDisable(GL_CULL_FACE);
   prim.vao.bind();
   const GLenum mode = GLenum(data.mode);
