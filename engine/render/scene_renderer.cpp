@@ -526,6 +526,7 @@ void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnl
 // back to front across models (whole primitives by the centre of their bounds,
 // so intersecting panes can still be out of order), depth test on, no depth write.
 void SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection) {
+  if (!blendPass) return;
   struct Item {
     CharacterDraw* character;
     BlendPrimitive primitive;
