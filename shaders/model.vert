@@ -9,6 +9,7 @@ layout(location = 2) in vec2 a_uv;
 #ifdef SKINNED
 #include "common/skinning.glsl"
 #endif
+#include "common/mesh_tangent.glsl"
 
 uniform mat4 u_model;
 uniform mat3 u_normalMatrix;
@@ -21,8 +22,14 @@ out vec2 v_uv;
 void main() {
   vec3 position = a_position;
   vec3 normal = a_normal;
-#ifdef SKINNED
+#if defined(SKINNED) && defined(NORMAL_MAP)
+  vec3 tangent = a_tangent.xyz;
+  skin(position, normal, tangent);
+  setTangent(tangent, u_model);
+#elif defined(SKINNED)
   skin(position, normal);
+#elif defined(NORMAL_MAP)
+  setTangent(a_tangent.xyz, u_model);
 #endif
   vec4 world = u_model * vec4(position, 1.0);
   v_position = world.xyz;

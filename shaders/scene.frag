@@ -1,19 +1,22 @@
 #version 450 core
 // Shading of scene meshes into the HDR target. Variants (#defines) are chosen per
 // scene and per material: CLASSIC (the course's ambient + diffuse model) or PBR
-// (glTF metallic-roughness, GGX), TEXTURED, SUN_SHADOWS, POINT_SHADOWS, FOG.
+// (glTF metallic-roughness, GGX), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
+// material inputs of common/material.glsl (TEXTURED, NORMAL_MAP, MR_TEXTURE,
+// EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK). Alpha goes out with the colour: BLEND
+// materials are drawn with blending on, in linear HDR.
 #include "common/frame.glsl"
 #include "common/shading.glsl"
 #include "common/shadows.glsl"
+#include "common/material.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;
-
-#ifdef TEXTURED
-layout(binding = 0) uniform sampler2D u_baseColorTexture;
+#ifdef NORMAL_MAP
+in vec4 v_tangent;
 #endif
-uniform vec4 u_baseColorFactor;
+
 uniform float u_metallic;
 uniform float u_roughness;
 uniform float u_ambient;   // classic weights
@@ -26,20 +29,29 @@ uniform vec3 u_emissive;
 layout(location = 0) out vec4 o_color;
 
 void main() {
-  vec3 n = normalize(v_normal);
-  if (!gl_FrontFacing) n = -n;  // planes and double-sided meshes
-  vec3 toEye = normalize(-v_position);
-  vec4 base = u_baseColorFactor;
-#ifdef TEXTURED
-  base *= texture(u_baseColorTexture, v_uv);
+  vec4 base = materialBaseColor(v_uv);
+  materialAlphaTest(base.a);
+  // Planes and double-sided meshes: a back face is lit as the other side (normal,
+  // tangent and bitangent all flipped, which flips the perturbed normal).
+  float side = gl_FrontFacing ? 1.0 : -1.0;
+  vec3 geometric = normalize(v_normal);
+  vec3 n = geometric;
+#ifdef NORMAL_MAP
+  n = materialNormal(geometric, v_tangent, v_uv);
 #endif
-  Surface s = Surface(base.rgb, n, toEye, v_position, u_metallic, u_roughness, u_ambient, u_diffuse,
+  n *= side;
+  // Shadow lookups take the surface's own normal: the offset that keeps acne away
+  // is about the geometry, not the bumps painted on it.
+  geometric *= side;
+  vec3 toEye = normalize(-v_position);
+  vec2 mr = materialMetallicRoughness(u_metallic, u_roughness, v_uv);
+  Surface s = Surface(base.rgb, n, toEye, v_position, mr.x, mr.y, u_ambient, u_diffuse,
                       u_specular, u_shininess, u_reflection);
-  vec3 color = u_emissive + shadeAmbient(s);
+  vec3 color = materialEmissive(u_emissive, v_uv) + shadeAmbient(s) * materialOcclusion(v_uv);
   if (u_sunDirection.w > 0.0) {
     float visibility = 1.0;
 #ifdef SUN_SHADOWS
-    visibility = sunShadow(v_position, n);
+    visibility = sunShadow(v_position, geometric);
 #endif
     color += shadeLight(s, u_sunDirection.xyz, u_sunColor.rgb, visibility);
   }
@@ -48,7 +60,7 @@ void main() {
     float d2 = dot(toLight, toLight);
     float visibility = 1.0;
 #ifdef POINT_SHADOWS
-    if (i == 0 && u_pointColor[0].w > 0.0) visibility = pointShadow(v_position, n);
+    if (i == 0 && u_pointColor[0].w > 0.0) visibility = pointShadow(v_position, geometric);
 #endif
     vec3 radiance = u_pointColor[i].rgb / (u_pointPosition[i].w > 0.0 ? max(d2, 1e-8) : 1.0);
     color += shadeLight(s, toLight * inversesqrt(max(d2, 1e-30)), radiance, visibility);
@@ -57,5 +69,5 @@ void main() {
 #ifdef FOG
   color = mix(u_fog.rgb, color, exp(-u_fog.w * length(v_position)));
 #endif
-  o_color = vec4(color, 1.0);
+  o_color = vec4(color, base.a);
 }

@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "asset/gltf_accessor.h"
+#include "asset/tangents.h"
 #include "core/log.h"
 #include "core/math.h"
 
@@ -490,31 +491,84 @@ class Converter {
     return true;
   }
 
-  int textureImage(int texture) const {
-    if (!validIndex(texture, gltf_.textures.size())) return -1;
-    int source = gltf_.textures[static_cast<std::size_t>(texture)].source;
-    return validIndex(source, out_.images.size()) ? source : -1;
+  // The image behind a material's texture slot, or -1. A texture index or source
+  // out of range, or a texture set other than TEXCOORD_0, is a warning naming the
+  // material and the slot, and the slot is left empty (or sampled with set 0).
+  template <typename Info>
+  int textureImage(const Info& info, const std::string& material, const char* slot) {
+    if (info.index < 0) return -1;
+    const std::string where = material + ": " + slot + " " + str(info.index);
+    if (!validIndex(info.index, gltf_.textures.size())) {
+      warn(where + " does not exist; drawn without it");
+      return -1;
+    }
+    const int source = gltf_.textures[static_cast<std::size_t>(info.index)].source;
+    if (!validIndex(source, out_.images.size())) {
+      warn(where + ": image " + str(source) + " does not exist; drawn without it");
+      return -1;
+    }
+    if (info.texCoord != 0) warn(where + ": TEXCOORD_" + str(info.texCoord) + " is not supported; TEXCOORD_0 is used");
+    return source;
+  }
+
+  std::string imageName(int image) const {
+    const ImageData& data = out_.images[static_cast<std::size_t>(image)];
+    return "image " + str(image) + (data.uri.empty() ? "" : " (" + data.uri + ")");
   }
 
   Status convertMaterials() {
-    for (const tinygltf::Material& src : gltf_.materials) {
+    for (std::size_t i = 0; i < gltf_.materials.size(); ++i) {
+      const tinygltf::Material& src = gltf_.materials[i];
+      const std::string name = "material " + str(i) + (src.name.empty() ? "" : " (\"" + src.name + "\")");
       MaterialData m;
       m.name = src.name;
       const auto& pbr = src.pbrMetallicRoughness;
       if (pbr.baseColorFactor.size() == 4)
         m.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1],
                                       pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
-      m.baseColorImage = textureImage(pbr.baseColorTexture.index);
+      m.baseColorImage = textureImage(pbr.baseColorTexture, name, "baseColorTexture");
       m.metallicFactor = static_cast<float>(pbr.metallicFactor);
       m.roughnessFactor = static_cast<float>(pbr.roughnessFactor);
-      m.normalImage = textureImage(src.normalTexture.index);
+      m.metallicRoughnessImage = textureImage(pbr.metallicRoughnessTexture, name, "metallicRoughnessTexture");
+      m.normalImage = textureImage(src.normalTexture, name, "normalTexture");
+      m.normalScale = static_cast<float>(src.normalTexture.scale);
+      // A missing image becomes white (see convertImages), which is neutral for
+      // every slot but the normal map, where it would tilt every normal: there the
+      // fallback is the mesh's own normals.
+      if (m.normalImage >= 0 && out_.images[static_cast<std::size_t>(m.normalImage)].missing) {
+        warn(name + ": normalTexture " + imageName(m.normalImage) + " is missing; drawn with the mesh normals");
+        m.normalImage = -1;
+      }
+      m.occlusionImage = textureImage(src.occlusionTexture, name, "occlusionTexture");
+      m.occlusionStrength = static_cast<float>(src.occlusionTexture.strength);
+      m.emissiveImage = textureImage(src.emissiveTexture, name, "emissiveTexture");
       if (src.emissiveFactor.size() == 3)
         m.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
       m.doubleSided = src.doubleSided;
-      m.alphaBlend = src.alphaMode == "BLEND";
+      m.alphaMode = src.alphaMode == "BLEND" ? AlphaMode::Blend : src.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Opaque;
+      m.alphaCutoff = static_cast<float>(src.alphaCutoff);
+      const bool finite = std::isfinite(m.normalScale) && std::isfinite(m.occlusionStrength) &&
+                          std::isfinite(m.alphaCutoff) && std::isfinite(m.metallicFactor) &&
+                          std::isfinite(m.roughnessFactor) && std::isfinite(m.baseColorFactor.x + m.baseColorFactor.y +
+                                                                            m.baseColorFactor.z + m.baseColorFactor.w) &&
+                          std::isfinite(m.emissiveFactor.x + m.emissiveFactor.y + m.emissiveFactor.z);
+      if (!finite) return error(name + ": a factor is NaN or infinite");
       out_.materials.push_back(std::move(m));
     }
     return Ok{};
+  }
+
+  // Normal maps need tangents: primitives without TANGENT get generated ones, as
+  // glTF asks; without NORMAL or TEXCOORD_0 there is nothing to build them from,
+  // and the primitive is drawn without its normal map.
+  void addMissingTangents(PrimitiveData& prim, const std::string& name) {
+    if (prim.material < 0 || !prim.tangents.empty()) return;
+    if (out_.materials[static_cast<std::size_t>(prim.material)].normalImage < 0) return;
+    if (prim.normals.empty() || prim.uvs.empty() || prim.mode != 4) {
+      warn(name + ": a normal map needs NORMAL, TEXCOORD_0 and triangles to build tangents; drawn without it");
+      return;
+    }
+    prim.tangents = generateTangents(prim.positions, prim.normals, prim.uvs, prim.indices);
   }
 
   // Reads an attribute that must have `components` per element and `count`
@@ -593,6 +647,7 @@ class Converter {
     prim.material = src.material;
     prim.mode = src.mode < 0 ? 4 : src.mode;
     if (Status s = readIndices(src, prim, name); !s) return s;
+    addMissingTangents(prim, name);
     return readSkinAttributes(src, prim, name);
   }
 

@@ -46,16 +46,27 @@ struct MeshData {
   std::vector<PrimitiveData> primitives;
 };
 
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// glTF 2.0's metallic-roughness material. Image indices are into
+// ModelData::images, -1 = none. Only TEXCOORD_0 is read: a texture that asks for
+// another set is still sampled with the first (the loader warns).
 struct MaterialData {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
-  int baseColorImage = -1;  // index into ModelData::images, -1 = none
+  int baseColorImage = -1;  // sRGB
   float metallicFactor = 1.0f;
   float roughnessFactor = 1.0f;
-  int normalImage = -1;
+  int metallicRoughnessImage = -1;  // linear: G = roughness, B = metallic
+  int normalImage = -1;             // linear, tangent space, +Y up (OpenGL convention)
+  float normalScale = 1.0f;         // scales the map's X and Y
+  int occlusionImage = -1;          // linear, R; darkens the ambient term only
+  float occlusionStrength = 1.0f;
+  int emissiveImage = -1;  // sRGB
   glm::vec3 emissiveFactor{0.0f};
-  bool doubleSided = false;
-  bool alphaBlend = false;  // alphaMode BLEND
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // MASK: fragments with alpha below it are discarded
+  bool doubleSided = false;  // no back-face culling; back faces flip the normal
 };
 
 struct ImageData {

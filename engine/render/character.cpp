@@ -111,8 +111,8 @@ void CharacterInstance::uploadPalettes(SkinMode mode) {
   }
 }
 
-Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-                               const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly) {
+ModelFrame CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mode,
+                                   const std::function<void(const gl::Program&)>& setUniforms) {
   // Shadow passes draw the same pose: upload the palettes once per pose.
   if (!palettesCurrent_ || uploadedMode_ != mode) {
     uploadPalettes(mode);
@@ -126,8 +126,26 @@ Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewPr
   frame.skinBuffers = skinBuffers_;
   frame.skinMode = mode;
   frame.setUniforms = setUniforms;
-  frame.depthOnly = depthOnly;
-  return drawModel(variants, asset_->model, asset_->gpu, frame);
+  return frame;
+}
+
+Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+                               const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly,
+                               bool includeBlend) {
+  ModelFrame f = frame(viewProjection, mode, setUniforms);
+  f.depthOnly = depthOnly;
+  f.includeBlend = includeBlend;
+  return drawModel(variants, asset_->model, asset_->gpu, f);
+}
+
+std::vector<BlendPrimitive> CharacterInstance::blendPrimitives() const {
+  return engine::blendPrimitives(asset_->model, asset_->gpu, nodeWorlds_);
+}
+
+Status CharacterInstance::drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+                                    const std::function<void(const gl::Program&)>& setUniforms,
+                                    const BlendPrimitive& primitive) {
+  return drawBlendPrimitive(variants, asset_->model, asset_->gpu, frame(viewProjection, mode, setUniforms), primitive);
 }
 
 Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,

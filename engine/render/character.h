@@ -43,10 +43,17 @@ class CharacterInstance {
   // Joint matrices relative to the camera: root = camera offset * `transform`,
   // composed in double so that characters far from the origin stay precise.
   void computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition);
-  // Uploads the skin palettes (once per computeModels) and draws every primitive.
+  // Uploads the skin palettes (once per computeModels) and draws every primitive;
+  // without `includeBlend` the BLEND ones are left for drawBlend.
   // `setUniforms` sets the program's lights and shadows.
   Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-              const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly = false);
+              const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly = false,
+              bool includeBlend = true);
+  // The BLEND primitives and their distances from the camera of the last
+  // computeModels, for a scene to sort with those of other models.
+  std::vector<BlendPrimitive> blendPrimitives() const;
+  Status drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+                   const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive);
   // The same with lit.frag's lighting uniforms (the viewer).
   Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
               const Lighting& lighting);
@@ -56,6 +63,8 @@ class CharacterInstance {
 
  private:
   void uploadPalettes(SkinMode mode);
+  ModelFrame frame(const glm::mat4& viewProjection, SkinMode mode,
+                   const std::function<void(const gl::Program&)>& setUniforms);
 
   std::shared_ptr<const CharacterAsset> asset_;
   Player player_;

@@ -1,5 +1,6 @@
 #include "render/model_renderer.h"
 
+#include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace engine {
@@ -9,6 +10,11 @@ std::string ShaderVariant::describe() const {
                                      : std::string(mode == SkinMode::DualQuat ? "dqs" : "lbs") +
                                            std::to_string(influences);
   if (textured) name += "+textured";
+  if (normalMap) name += "+normalmap";
+  if (metallicRoughnessTexture) name += "+mr";
+  if (emissiveTexture) name += "+emissive";
+  if (occlusion) name += "+occlusion";
+  if (alphaMask) name += "+mask";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -21,6 +27,11 @@ Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& variant,
   std::vector<std::string> defines = defines_;
   if (variant.textured) defines.push_back("TEXTURED 1");
   if (variant.depthOnly) defines.push_back("DEPTH_ONLY 1");
+  if (variant.normalMap) defines.push_back("NORMAL_MAP 1");
+  if (variant.metallicRoughnessTexture) defines.push_back("MR_TEXTURE 1");
+  if (variant.emissiveTexture) defines.push_back("EMISSIVE_TEXTURE 1");
+  if (variant.occlusion) defines.push_back("OCCLUSION 1");
+  if (variant.alphaMask) defines.push_back("ALPHA_MASK 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -57,6 +68,19 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
   pr.set("u_specular", 0.5f * (1.0f - roughness));
   pr.set("u_shininess", 32.0f);
   pr.set("u_reflection", 0.0f);
+  if (!material) return;
+  pr.set("u_normalScale", material->normalScale);
+  pr.set("u_occlusionStrength", material->occlusionStrength);
+  pr.set("u_alphaCutoff", material->alphaCutoff);
+}
+
+// Texture units of common/material.glsl.
+void bindMaterialTextures(const GpuModel& gpu, const MaterialData& m, const ShaderVariant& v) {
+  if (v.textured) gpu.image(m.baseColorImage, true).bind(0);
+  if (v.normalMap) gpu.image(m.normalImage, false).bind(1);
+  if (v.metallicRoughnessTexture) gpu.image(m.metallicRoughnessImage, false).bind(2);
+  if (v.emissiveTexture) gpu.image(m.emissiveImage, true).bind(3);
+  if (v.occlusion) gpu.image(m.occlusionImage, false).bind(6);
 }
 
 template <typename T>
@@ -71,7 +95,7 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
   prim.vertexCount = static_cast<GLsizei>(data.positions.size());
   prim.influences = data.influences;
   prim.material = data.material;
-  prim.buffers.reserve(7);
+  prim.buffers.reserve(8);
   // One buffer per attribute: glTF keeps them apart and the shaders need only
   // some of them; missing normals and uvs get a constant attribute value.
   prim.vao.vertexBuffer(0, addBuffer(prim, data.positions), sizeof(glm::vec3));
@@ -97,14 +121,123 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
       prim.vao.attribute(6, 4, 4, 4 * sizeof(float));
     }
   }
+  // Location 7 (common/mesh_tangent.glsl), binding 5.
+  if (!data.tangents.empty()) {
+    prim.vao.vertexBuffer(5, addBuffer(prim, data.tangents), sizeof(glm::vec4));
+    prim.vao.attribute(7, 5, 4, 0);
+    prim.hasTangents = true;
+  }
   if (!data.indices.empty()) {
     prim.vao.indexBuffer(addBuffer(prim, data.indices));
     prim.indexCount = static_cast<GLsizei>(data.indices.size());
   }
+  if (!data.positions.empty()) {
+    glm::vec3 lo(data.positions[0]), hi(data.positions[0]);
+    for (const glm::vec3& p : data.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    prim.center = (lo + hi) * 0.5f;
+  }
   return prim;
 }
 
+gl::Texture uploadImage(const Image& image, GLenum format) {
+  gl::Texture t = gl::Texture::create2D(format, image.width, image.height, 0);
+  // glTF images are top row first and uv (0,0) is the top-left: upload as is.
+  t.uploadRgba8(image.pixels.data());
+  t.generateMipmaps();
+  t.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  t.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  return t;
+}
+
+const MaterialData* materialOf(const ModelData& model, int material) {
+  return material >= 0 && material < int(model.materials.size()) ? &model.materials[size_t(material)] : nullptr;
+}
+
+bool isBlend(const ModelData& model, int material) {
+  const MaterialData* m = materialOf(model, material);
+  return m && m->alphaMode == AlphaMode::Blend;
+}
+
+// Draws primitive `p` of node `n`, with whatever blend state is set.
+Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu, const ModelFrame& frame,
+                     size_t n, size_t p) {
+  // Camera-relative rendering: the camera offset is applied in double before the
+  // matrices become float.
+  const glm::dmat4 toCamera = glm::translate(glm::dmat4(1.0), -frame.cameraPosition);
+  const NodeData& node = model.nodes[n];
+  const GpuPrimitive& prim = gpu.meshes()[size_t(node.mesh)][p];
+  const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[p];
+  const ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly);
+  const bool skinned = variant.influences > 0;
+  const MaterialData* material = materialOf(model, prim.material);
+  auto program = variants.get(variant);
+  if (!program) return program.error();
+  const gl::Program& pr = **program;
+  pr.use();
+  if (frame.setUniforms) frame.setUniforms(pr);
+  if (!frame.depthOnly) {
+    setMaterialUniforms(pr, material);
+  } else if (variant.alphaMask) {
+    pr.set("u_baseColorFactor", material->baseColorFactor);
+    pr.set("u_alphaCutoff", material->alphaCutoff);
+  }
+  const glm::mat4 model4 =
+      skinned ? glm::mat4(toCamera) : glm::mat4(toCamera * glm::dmat4(frame.nodeWorlds[n]));
+  pr.set("u_model", model4);
+  pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
+  // scene.vert's tiling of analytic shapes: a program may be shared with them.
+  pr.set("u_uvScale", glm::vec2(1.0f));
+  if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
+  if (skinned) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.skinBuffers[size_t(node.skin)].id());
+  }
+  if (material) {
+    bindMaterialTextures(gpu, *material, variant);
+  } else if (!frame.depthOnly) {
+    gpu.image(-1, true).bind(0);
+  }
+  // Double-sided: no culling for this draw; the caller's setting is restored (the
+  // point-light shadow pass draws everything without culling).
+  const bool twoSided = material && material->doubleSided && glIsEnabled(GL_CULL_FACE);
+  if (twoSided) glDisable(GL_CULL_FACE);
+  prim.vao.bind();
+  const GLenum mode = GLenum(data.mode);
+  if (prim.indexCount > 0) {
+    glDrawElements(mode, prim.indexCount, GL_UNSIGNED_INT, nullptr);
+  } else {
+    glDrawArrays(mode, 0, prim.vertexCount);
+  }
+  if (twoSided) glEnable(GL_CULL_FACE);
+  return Ok{};
+}
+
 }  // namespace
+
+ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, const PrimitiveData& prim,
+                               SkinMode mode, bool depthOnly) {
+  ShaderVariant v;
+  const bool skinned = node.skin >= 0 && prim.influences > 0 && mode != SkinMode::None;
+  v.influences = skinned ? prim.influences : 0;
+  v.mode = mode;
+  v.depthOnly = depthOnly;
+  const MaterialData* m = materialOf(model, prim.material);
+  if (!m) return v;
+  v.alphaMask = m->alphaMode == AlphaMode::Mask;
+  // A shadow pass needs the material only to cut out MASK holes.
+  if (depthOnly) {
+    v.textured = v.alphaMask && m->baseColorImage >= 0;
+    return v;
+  }
+  v.textured = m->baseColorImage >= 0;
+  v.normalMap = m->normalImage >= 0 && !prim.tangents.empty();
+  v.metallicRoughnessTexture = m->metallicRoughnessImage >= 0;
+  v.emissiveTexture = m->emissiveImage >= 0;
+  v.occlusion = m->occlusionImage >= 0;
+  return v;
+}
 
 Result<GpuModel> GpuModel::upload(const ModelData& model) {
   GpuModel gpu;
@@ -113,69 +246,86 @@ Result<GpuModel> GpuModel::upload(const ModelData& model) {
     for (const PrimitiveData& p : mesh.primitives) prims.push_back(uploadPrimitive(p));
     gpu.meshes_.push_back(std::move(prims));
   }
-  for (const ImageData& image : model.images) {
-    gl::Texture t = gl::Texture::create2D(GL_SRGB8_ALPHA8, image.image.width, image.image.height, 0);
-    // glTF images are top row first and uv (0,0) is the top-left: upload as is.
-    t.uploadRgba8(image.image.pixels.data());
-    t.generateMipmaps();
-    t.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    t.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gpu.images_.push_back(std::move(t));
+  std::vector<char> srgb(model.images.size(), 0), linear(model.images.size(), 0);
+  auto use = [](std::vector<char>& used, int image) {
+    if (image >= 0 && image < int(used.size())) used[size_t(image)] = 1;
+  };
+  for (const MaterialData& m : model.materials) {
+    use(srgb, m.baseColorImage);
+    use(srgb, m.emissiveImage);
+    use(linear, m.normalImage);
+    use(linear, m.metallicRoughnessImage);
+    use(linear, m.occlusionImage);
   }
-  for (const MaterialData& m : model.materials) gpu.materialImage_.push_back(m.baseColorImage);
+  gpu.srgbImages_.resize(model.images.size());
+  gpu.linearImages_.resize(model.images.size());
+  for (size_t i = 0; i < model.images.size(); ++i) {
+    const Image& image = model.images[i].image;
+    if (srgb[i]) gpu.srgbImages_[i] = uploadImage(image, GL_SRGB8_ALPHA8);
+    if (linear[i]) gpu.linearImages_[i] = uploadImage(image, GL_RGBA8);
+  }
   gpu.white_ = gl::Texture::create2D(GL_SRGB8_ALPHA8, 1, 1, 1);
   const std::uint8_t white[4] = {255, 255, 255, 255};
   gpu.white_.uploadRgba8(white);
   return gpu;
 }
 
-const gl::Texture& GpuModel::baseColor(int material) const {
-  if (material < 0 || material >= int(materialImage_.size())) return white_;
-  const int image = materialImage_[size_t(material)];
-  return image >= 0 && image < int(images_.size()) ? images_[size_t(image)] : white_;
+const gl::Texture& GpuModel::image(int image, bool srgb) const {
+  const auto& images = srgb ? srgbImages_ : linearImages_;
+  if (image < 0 || image >= int(images.size()) || images[size_t(image)].id() == 0) return white_;
+  return images[size_t(image)];
+}
+
+std::vector<BlendPrimitive> blendPrimitives(const ModelData& model, const GpuModel& gpu,
+                                            std::span<const glm::mat4> nodeWorlds) {
+  std::vector<BlendPrimitive> out;
+  for (size_t n = 0; n < model.nodes.size() && n < nodeWorlds.size(); ++n) {
+    const NodeData& node = model.nodes[n];
+    if (node.mesh < 0) continue;
+    const auto& prims = gpu.meshes()[size_t(node.mesh)];
+    for (size_t p = 0; p < prims.size(); ++p) {
+      if (!isBlend(model, prims[p].material)) continue;
+      // A skinned primitive is placed by its joints, not its node; the node's
+      // place is close enough to order whole primitives.
+      const glm::dvec3 center(nodeWorlds[n] * glm::vec4(prims[p].center, 1.0f));
+      out.push_back({int(n), int(p), glm::length(center)});
+    }
+  }
+  return out;
+}
+
+Status drawBlendPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
+                          const ModelFrame& frame, const BlendPrimitive& primitive) {
+  glEnable(GL_BLEND);
+  // Over, in the target's linear colour; the target's alpha is left alone.
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  glDepthMask(GL_FALSE);
+  Status status = drawPrimitive(variants, model, gpu, frame, size_t(primitive.node), size_t(primitive.primitive));
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  return status;
 }
 
 Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
                  const ModelFrame& frame) {
-  // Camera-relative rendering: the camera offset is applied in double before the
-  // matrices become float.
-  const glm::dmat4 toCamera = glm::translate(glm::dmat4(1.0), -frame.cameraPosition);
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const NodeData& node = model.nodes[n];
     if (node.mesh < 0) continue;
     const auto& prims = gpu.meshes()[size_t(node.mesh)];
     for (size_t p = 0; p < prims.size(); ++p) {
-      const GpuPrimitive& prim = prims[p];
-      const bool skinned = node.skin >= 0 && prim.influences > 0 && frame.skinMode != SkinMode::None;
-      const MaterialData* material =
-          prim.material >= 0 ? &model.materials[size_t(prim.material)] : nullptr;
-      const bool textured = !frame.depthOnly && material && material->baseColorImage >= 0;
-      const ShaderVariant variant{skinned ? prim.influences : 0, frame.skinMode, textured, frame.depthOnly};
-      auto program = variants.get(variant);
-      if (!program) return program.error();
-      const gl::Program& pr = **program;
-      pr.use();
-      if (frame.setUniforms) frame.setUniforms(pr);
-      if (!frame.depthOnly) setMaterialUniforms(pr, material);
-      const glm::mat4 model4 =
-          skinned ? glm::mat4(toCamera) : glm::mat4(toCamera * glm::dmat4(frame.nodeWorlds[n]));
-      pr.set("u_model", model4);
-      pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
-      if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
-      if (skinned) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.skinBuffers[size_t(node.skin)].id());
-      }
-      if (!frame.depthOnly) gpu.baseColor(prim.material).bind(0);
-      if (material && material->doubleSided) glDisable(GL_CULL_FACE);
-      prim.vao.bind();
-      const GLenum mode = GLenum(model.meshes[size_t(node.mesh)].primitives[p].mode);
-      if (prim.indexCount > 0) {
-        glDrawElements(mode, prim.indexCount, GL_UNSIGNED_INT, nullptr);
-      } else {
-        glDrawArrays(mode, 0, prim.vertexCount);
-      }
-      if (material && material->doubleSided) glEnable(GL_CULL_FACE);
+      if (isBlend(model, prims[p].material)) continue;
+      if (auto s = drawPrimitive(variants, model, gpu, frame, n, p); !s) return s;
     }
+  }
+  if (!frame.includeBlend || frame.depthOnly) return Ok{};
+  // Camera-relative node worlds: the camera is at cameraPosition.
+  std::vector<glm::mat4> relative(frame.nodeWorlds.begin(), frame.nodeWorlds.end());
+  for (glm::mat4& m : relative) m[3] -= glm::vec4(glm::vec3(frame.cameraPosition), 0.0f);
+  auto blend = blendPrimitives(model, gpu, relative);
+  std::stable_sort(blend.begin(), blend.end(),
+                   [](const BlendPrimitive& a, const BlendPrimitive& b) { return a.distance > b.distance; });
+  for (const BlendPrimitive& b : blend) {
+    if (auto s = drawBlendPrimitive(variants, model, gpu, frame, b); !s) return s;
   }
   return Ok{};
 }

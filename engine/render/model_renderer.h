@@ -21,11 +21,18 @@ namespace engine {
 // None draws skinned meshes in their bind pose with the static shader.
 enum class SkinMode { Linear, DualQuat, None };
 
+// One program of a vertex + fragment pair: each flag is a #define of the shaders
+// (common/material.glsl lists the material ones), set only when a mesh needs it.
 struct ShaderVariant {
   int influences = 0;  // 0 = static, 4 or 8
   SkinMode mode = SkinMode::Linear;
   bool textured = false;   // samples a base colour texture
   bool depthOnly = false;  // shadow passes
+  bool normalMap = false;  // tangent-space normal map (the mesh has tangents)
+  bool metallicRoughnessTexture = false;
+  bool emissiveTexture = false;
+  bool occlusion = false;  // occlusion texture
+  bool alphaMask = false;  // alphaMode MASK: discard below the cutoff
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -61,23 +68,32 @@ struct GpuPrimitive {
   GLsizei indexCount = 0;  // 0: not indexed
   int influences = 0;
   int material = -1;
+  bool hasTangents = false;
+  glm::vec3 center{0.0f};  // of the bind-pose bounds, mesh space: sorting BLEND draws
 };
 
 class GpuModel {
  public:
-  // Uploads every mesh and image of `model`.
+  // Uploads every mesh and image of `model`. An image is uploaded as sRGB when a
+  // material uses it for colour (base colour, emissive) and as linear data when
+  // one uses it for normals, metallic-roughness or occlusion; both when both.
   static Result<GpuModel> upload(const ModelData& model);
 
   const std::vector<std::vector<GpuPrimitive>>& meshes() const { return meshes_; }
-  // The base colour texture of a material, or a white one.
-  const gl::Texture& baseColor(int material) const;
+  // The texture of `image` in the wanted colour space, or a white one (no image).
+  const gl::Texture& image(int image, bool srgb) const;
 
  private:
   std::vector<std::vector<GpuPrimitive>> meshes_;
-  std::vector<gl::Texture> images_;
-  std::vector<int> materialImage_;
+  std::vector<gl::Texture> srgbImages_;    // empty texture where no colour slot uses the image
+  std::vector<gl::Texture> linearImages_;  // the same for data slots
   gl::Texture white_;
 };
+
+// The variant a primitive of `node` is drawn with (skinning mode, material
+// textures, alpha mask), for a colour pass or, with `depthOnly`, a shadow pass.
+ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, const PrimitiveData& prim,
+                               SkinMode mode, bool depthOnly);
 
 // One frame's inputs for drawing a model.
 struct ModelFrame {
@@ -91,10 +107,33 @@ struct ModelFrame {
   // Sets what the program needs besides the mesh and material (lights, shadows).
   std::function<void(const gl::Program&)> setUniforms;
   bool depthOnly = false;  // shadow passes: no material, depth-only variant
+  // Whether drawModel also draws the BLEND primitives (after the others, back to
+  // front, blending on). A scene turns it off and sorts them across all models.
+  bool includeBlend = true;
 };
 
-// Draws every (node, primitive) instance of the model.
+// A BLEND primitive of a model and its distance from the camera (the centre of
+// its bounds), for sorting back to front.
+struct BlendPrimitive {
+  int node = -1;
+  int primitive = -1;
+  double distance = 0.0;
+};
+
+// The model's BLEND primitives with their distances; `nodeWorlds` are
+// camera-relative (the camera at the origin).
+std::vector<BlendPrimitive> blendPrimitives(const ModelData& model, const GpuModel& gpu,
+                                            std::span<const glm::mat4> nodeWorlds);
+
+// Draws every opaque and MASK (node, primitive) instance of the model, then, when
+// frame.includeBlend and not frame.depthOnly, the BLEND ones back to front.
+// BLEND materials cast no shadow: a tinted glass pane in a depth map would be an
+// opaque sheet.
 Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
                  const ModelFrame& frame);
+// Draws one BLEND primitive, with the blend state set around it (blending in
+// the target's linear colour, depth test on, depth writes off).
+Status drawBlendPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
+                          const ModelFrame& frame, const BlendPrimitive& primitive);
 
 }  // namespace engine

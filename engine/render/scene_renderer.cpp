@@ -168,6 +168,7 @@ struct SceneRenderer::Impl {
   gl::Renderbuffer probeDepth;
   gl::Framebuffer probeFbo;
   bool probesValid = false;  // static scenes draw their probes once
+  bool blendPass = false;  // some model has a BLEND material
   std::unique_ptr<terrain::Terrain> terrain;
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
@@ -192,6 +193,7 @@ struct SceneRenderer::Impl {
   void renderProbes(const glm::dvec3& cameraPosition);
   void drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
                       const glm::mat4& viewProjection);
+  void drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection);
   void renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
                        double nearPlane);
   void renderPointShadow(const glm::dvec3& cameraPosition);
@@ -422,10 +424,10 @@ Status SceneRenderer::Impl::buildVariants() {
     for (const NodeData& node : model.nodes) {
       if (node.mesh < 0) continue;
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        const int influences = node.skin >= 0 && mode != SkinMode::None ? prim.influences : 0;
-        const bool textured = prim.material >= 0 && model.materials[size_t(prim.material)].baseColorImage >= 0;
-        needed.push_back({influences, mode, textured, false});
-        if (sunShadows || pointShadows) needed.push_back({influences, mode, false, true});
+        needed.push_back(primitiveVariant(model, node, prim, mode, false));
+        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
+        if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true));
+        blendPass = blendPass || blend;
       }
     }
   }
@@ -566,7 +568,7 @@ void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnl
       setUniforms(p);
       if (depthOnly) p.set("u_lightViewProjection", lightViewProjection);
     };
-    (void)c.instance->draw(*variants, viewProjection, mode, set, depthOnly);
+    (void)c.instance->draw(*variants, viewProjection, mode, set, depthOnly, false);
     const ModelData& model = c.instance->asset().model;
     for (const NodeData& node : model.nodes) {
       if (node.mesh < 0) continue;
@@ -575,6 +577,32 @@ void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnl
       stats->programChanges += prims;
     }
     ++stats->objectsDrawn;
+  }
+}
+
+// BLEND primitives of every model, after everything opaque and the sky: sorted
+// back to front across models (whole primitives by the centre of their bounds,
+// so intersecting panes can still be out of order), depth test on, no depth write.
+void SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection) {
+  if (!blendPass) return;
+  struct Item {
+    CharacterDraw* character;
+    BlendPrimitive primitive;
+  };
+  std::vector<Item> items;
+  for (CharacterDraw& c : characters) {
+    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
+    if (planes && !sphereVisible(planes, center, c.localRadius)) continue;
+    for (const BlendPrimitive& b : c.instance->blendPrimitives()) items.push_back({&c, b});
+  }
+  std::stable_sort(items.begin(), items.end(),
+                   [](const Item& a, const Item& b) { return a.primitive.distance > b.primitive.distance; });
+  auto set = [this](const gl::Program& p) { setUniforms(p); };
+  for (const Item& item : items) {
+    (void)item.character->instance->drawBlend(*variants, viewProjection, skinModeOf(item.character->desc), set,
+                                              item.primitive);
+    ++stats->drawCalls;
+    ++stats->programChanges;
   }
 }
 
@@ -672,6 +700,7 @@ void SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool usePro
   if (terrain) drawTerrain(view.viewProjection, view.fovy, view.height);
   drawShapes(view.planes, false, glm::mat4(1.0f), skipShape, useProbes);
   drawCharacters(view.planes, false, glm::mat4(1.0f), glm::mat4(view.viewProjection));
+  drawBlended(view.planes, glm::mat4(view.viewProjection));
 }
 
 // Each probe's six faces, seen from the mirror's centre without the mirror itself.
@@ -848,6 +877,7 @@ std::string SceneRenderer::describe() const {
   if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
+  if (s.blendPass) out << " blend(sorted)";
   out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   out << "\nshading: " << (s.scene.render.shading == Shading::Classic ? "classic" : "pbr");
   out << "\nvariants:";

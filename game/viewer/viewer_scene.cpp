@@ -106,7 +106,7 @@ void ViewerScene::update(double time, double dt) {
 }
 
 void ViewerScene::drawGround(const glm::mat4& viewProjection) {
-  auto program = gpu_->variants.get({0, SkinMode::Linear});
+  auto program = gpu_->variants.get({0, SkinMode::Linear, true});  // textured: the checker
   if (!program) return;
   const gl::Program& pr = **program;
   pr.use();

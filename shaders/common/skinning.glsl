@@ -16,6 +16,8 @@ layout(location = 5) in uvec4 a_joints1;
 layout(location = 6) in vec4 a_weights1;
 #endif
 
+// The blended transform of a vertex is computed once and applied to the
+// position, the normal and (for normal maps) the tangent: skin() below.
 #ifdef DUAL_QUAT
 void addDualQuat(inout vec4 real, inout vec4 dual, uint joint, float weight) {
   vec4 r = u_dualQuats[2u * joint];
@@ -29,8 +31,13 @@ void addDualQuat(inout vec4 real, inout vec4 dual, uint joint, float weight) {
 
 vec3 rotateByQuat(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 
-// Skins a position and a normal by the blended, normalised dual quaternion.
-void skin(inout vec3 position, inout vec3 normal) {
+// The blended, normalised dual quaternion as a rotation and a translation.
+struct SkinTransform {
+  vec4 rotation;
+  vec3 translation;
+};
+
+SkinTransform skinTransform() {
   vec4 real = vec4(0.0), dual = vec4(0.0);
   addDualQuat(real, dual, a_joints0.x, a_weights0.x);
   addDualQuat(real, dual, a_joints0.y, a_weights0.y);
@@ -47,21 +54,43 @@ void skin(inout vec3 position, inout vec3 normal) {
   dual /= len;
   // Translation t = 2 * dual * conjugate(real).
   vec3 t = 2.0 * (real.w * dual.xyz - dual.w * real.xyz + cross(real.xyz, dual.xyz));
-  position = rotateByQuat(real, position) + t;
-  normal = rotateByQuat(real, normal);
+  return SkinTransform(real, t);
 }
+
+vec3 skinPoint(SkinTransform s, vec3 p) { return rotateByQuat(s.rotation, p) + s.translation; }
+vec3 skinDirection(SkinTransform s, vec3 v) { return rotateByQuat(s.rotation, v); }
 #else
 // Linear blend skinning: the weighted sum of the joints' palette matrices.
-void skin(inout vec3 position, inout vec3 normal) {
+struct SkinTransform {
+  mat4 m;
+};
+
+SkinTransform skinTransform() {
   mat4 m = a_weights0.x * u_palette[a_joints0.x] + a_weights0.y * u_palette[a_joints0.y] +
            a_weights0.z * u_palette[a_joints0.z] + a_weights0.w * u_palette[a_joints0.w];
 #if INFLUENCES == 8
   m += a_weights1.x * u_palette[a_joints1.x] + a_weights1.y * u_palette[a_joints1.y] +
        a_weights1.z * u_palette[a_joints1.z] + a_weights1.w * u_palette[a_joints1.w];
 #endif
-  position = (m * vec4(position, 1.0)).xyz;
-  // Inverse transpose would be exact for non-uniform scale; skins rarely scale
-  // non-uniformly and the cost is per vertex.
-  normal = mat3(m) * normal;
+  return SkinTransform(m);
 }
+
+vec3 skinPoint(SkinTransform s, vec3 p) { return (s.m * vec4(p, 1.0)).xyz; }
+// Inverse transpose would be exact for normals under non-uniform scale; skins
+// rarely scale non-uniformly and the cost is per vertex. Tangents lie in the
+// surface and take the matrix itself.
+vec3 skinDirection(SkinTransform s, vec3 v) { return mat3(s.m) * v; }
 #endif
+
+void skin(inout vec3 position, inout vec3 normal) {
+  SkinTransform s = skinTransform();
+  position = skinPoint(s, position);
+  normal = skinDirection(s, normal);
+}
+
+void skin(inout vec3 position, inout vec3 normal, inout vec3 tangent) {
+  SkinTransform s = skinTransform();
+  position = skinPoint(s, position);
+  normal = skinDirection(s, normal);
+  tangent = skinDirection(s, tangent);
+}

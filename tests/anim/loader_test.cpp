@@ -389,3 +389,101 @@ TEST_F(LoaderTest, MorphWeightsChannelIsIgnoredWithAWarning) {
 
 }  // namespace
 }  // namespace engine
+
+namespace engine {
+namespace {
+
+// The test model with NORMAL and TEXCOORD_0 (appended to its buffer) and a
+// normal-mapped material, for the material checks below.
+TestModel normalMappedModel(const std::string& imageUri) {
+  TestModel m;
+  m.bin.resize(272 + 36 + 24, 0);
+  const float normals[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+  m.put(272, normals, sizeof normals);
+  const float uvs[6] = {0, 1, 1, 1, 0, 0};
+  m.put(308, uvs, sizeof uvs);
+  m.doc["buffers"][0]["byteLength"] = m.bin.size();
+  m.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 272}, {"byteLength", 36}});
+  m.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 308}, {"byteLength", 24}});
+  m.doc["accessors"].push_back({{"bufferView", 7}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+  m.doc["accessors"].push_back({{"bufferView", 8}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+  auto& attributes = m.doc["meshes"][0]["primitives"][0]["attributes"];
+  attributes["NORMAL"] = 7;
+  attributes["TEXCOORD_0"] = 8;
+  m.doc["images"] = {{{"uri", imageUri}}};
+  m.doc["textures"] = {{{"source", 0}}};
+  m.doc["materials"] = {{{"name", "brick"}, {"normalTexture", {{"index", 0}, {"scale", 0.5}}}}};
+  m.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  return m;
+}
+
+bool hasWarning(const ModelData& model, std::initializer_list<std::string> needles) {
+  for (const std::string& w : model.warnings) {
+    bool all = true;
+    for (const std::string& n : needles) all = all && w.find(n) != std::string::npos;
+    if (all) return true;
+  }
+  return false;
+}
+
+std::string allWarnings(const ModelData& model) {
+  std::string out;
+  for (const std::string& w : model.warnings) out += w + "\n";
+  return out;
+}
+
+TEST_F(LoaderTest, NormalMapWithoutTangentsGetsGeneratedOnes) {
+  TestModel m = normalMappedModel("normal.png");
+  Image png(2, 2);
+  std::fill(png.pixels.begin(), png.pixels.end(), std::uint8_t{200});
+  ASSERT_TRUE(writePng((dir_ / "models" / "normal.png").string(), png).ok());
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const MaterialData& material = model->materials[0];
+  EXPECT_EQ(material.normalImage, 0);
+  EXPECT_FLOAT_EQ(material.normalScale, 0.5f);
+  const PrimitiveData& prim = model->meshes[0].primitives[0];
+  ASSERT_EQ(prim.tangents.size(), 3u);
+  // u runs along +x, v down the image along -y: tangent +x, right-handed.
+  for (const glm::vec4& t : prim.tangents) {
+    EXPECT_NEAR(glm::distance(glm::vec3(t), glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+    EXPECT_EQ(t.w, 1.0f);
+  }
+}
+
+TEST_F(LoaderTest, MissingNormalMapFallsBackToTheMeshNormals) {
+  auto model = loadGltf(write(normalMappedModel("bricks_normal.png")));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  // The white fallback would tilt every normal: the map is dropped instead, and
+  // the warning names the file, the material and the slot.
+  EXPECT_EQ(model->materials[0].normalImage, -1);
+  EXPECT_TRUE(hasWarning(*model, {"model.gltf", "material 0 (\"brick\")", "normalTexture", "bricks_normal.png"}))
+      << allWarnings(*model);
+  EXPECT_TRUE(model->meshes[0].primitives[0].tangents.empty());
+}
+
+TEST_F(LoaderTest, MaterialTextureIndexOutOfRangeIsIgnoredWithAWarning) {
+  TestModel m = normalMappedModel("normal.png");
+  m.doc["materials"][0]["normalTexture"]["index"] = 7;
+  m.doc["materials"][0]["occlusionTexture"] = {{"index", 3}};
+  m.doc["materials"][0]["pbrMetallicRoughness"] = {{"metallicRoughnessTexture", {{"index", -2}}}};
+  m.doc["materials"][0]["emissiveTexture"] = {{"index", 0}, {"texCoord", 1}};
+  m.doc["materials"][0]["alphaMode"] = "MASK";
+  m.doc["materials"][0]["alphaCutoff"] = 0.25;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const MaterialData& material = model->materials[0];
+  EXPECT_EQ(material.normalImage, -1);
+  EXPECT_EQ(material.occlusionImage, -1);
+  EXPECT_EQ(material.metallicRoughnessImage, -1);
+  EXPECT_EQ(material.emissiveImage, 0);
+  EXPECT_EQ(material.alphaMode, AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(material.alphaCutoff, 0.25f);
+  EXPECT_TRUE(hasWarning(*model, {"model.gltf", "material 0 (\"brick\")", "normalTexture 7 does not exist"}))
+      << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"occlusionTexture 3 does not exist"})) << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"emissiveTexture 0", "TEXCOORD_1"})) << allWarnings(*model);
+}
+
+}  // namespace
+}  // namespace engine

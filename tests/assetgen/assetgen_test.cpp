@@ -260,7 +260,57 @@ TEST(AssetgenTest, EngineLoaderReadsTheCharacter) {
   EXPECT_FALSE(model->images[0].missing);
   EXPECT_EQ(model->images[0].image.width, kAtlasSize);
 }
+
+// The material test model through the engine's loader: every feature it exists
+// to show is there, with tangents orthogonal to the normals.
+TEST(AssetgenTest, EngineLoaderReadsTheMaterialModel) {
+  const auto model = engine::loadGltf((kModels / "materials.gltf").string());
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(model->warnings.empty()) << model->warnings.front();
+  for (const engine::ImageData& image : model->images) EXPECT_FALSE(image.missing) << image.uri;
+  auto material = [&](const std::string& name) -> const engine::MaterialData& {
+    for (const auto& m : model->materials)
+      if (m.name == name) return m;
+    ADD_FAILURE() << "no material " << name;
+    return model->materials.front();
+  };
+  const auto& bricks = material("bricks");
+  EXPECT_GE(bricks.normalImage, 0);
+  EXPECT_GE(bricks.metallicRoughnessImage, 0);
+  EXPECT_EQ(bricks.occlusionImage, bricks.metallicRoughnessImage);  // one ORM image
+  EXPECT_GE(material("tiles").normalImage, 0);
+  EXPECT_GE(material("emissive_panel").emissiveImage, 0);
+  EXPECT_EQ(material("leaves").alphaMode, engine::AlphaMode::Mask);
+  EXPECT_TRUE(material("leaves").doubleSided);
+  EXPECT_EQ(material("glass_blue").alphaMode, engine::AlphaMode::Blend);
+  EXPECT_EQ(material("glass_amber").alphaMode, engine::AlphaMode::Blend);
+  EXPECT_TRUE(material("two_sided").doubleSided);
+  EXPECT_FALSE(material("one_sided").doubleSided);
+  for (const auto& mesh : model->meshes) {
+    if (mesh.name != "brick_wall" && mesh.name != "tiled_sphere") continue;
+    const auto& prim = mesh.primitives[0];
+    ASSERT_EQ(prim.tangents.size(), prim.positions.size()) << mesh.name;
+    for (size_t v = 0; v < prim.tangents.size(); ++v)
+      EXPECT_NEAR(glm::dot(glm::vec3(prim.tangents[v]), prim.normals[v]), 0.0f, 1e-5f) << mesh.name << " " << v;
+  }
+}
 #endif
+
+TEST(AssetgenTest, CommittedMaterialModelMatchesTheGenerator) {
+  const fs::path out = fs::path(ENGINE_BINARY_DIR) / "test-output" / "assetgen" / "generated_materials";
+  fs::remove_all(out);
+  const auto written = writeMaterialsModel(out.string(), "materials");
+  ASSERT_TRUE(written.ok()) << written.error().message;
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(readFile(entry.path()) == readFile(kModels / name))
+        << "assets/models/" << name << " differs from the generator's output in " << out
+        << "; run `build/bin/assetgen` from the project root and commit the result";
+    ++files;
+  }
+  EXPECT_EQ(files, 10);  // .gltf, .bin and 8 images
+}
 
 }  // namespace
 }  // namespace assetgen

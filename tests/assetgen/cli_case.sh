@@ -8,7 +8,7 @@ rm -rf "$WORK" && mkdir -p "$WORK" || exit 1
 fail() { echo "FAIL: $*"; cat "$WORK/err" 2>/dev/null; exit 1; }
 
 "$ASSETGEN" --out "$WORK/new/models" >"$WORK/out" 2>"$WORK/err" || fail "--out new folder exited $?"
-for f in character.gltf character.bin character_albedo.png; do
+for f in character.gltf character.bin character_albedo.png materials.gltf materials.bin materials_bricks_normal.png; do
   [ -s "$WORK/new/models/$f" ] || fail "$f not written"
 done
 echo "ok: writes into a new folder"

@@ -82,6 +82,19 @@ PY
     expect 0 "shadow-sun" -- "$BIN/demo" --describe
     for want in "sky" "terrain(cdlod" "opaque+fog" "lbs4+textured" "dqs4+depth" "shading: pbr"; do
       grep -qF "$want" "$OUT" || { echo "FAIL: --describe lacks $want"; cat "$OUT"; exit 1; }
+    done
+    # Its robots have a base colour texture and nothing else: no material variant
+    # and no blend pass is built for what the scene does not contain.
+    for unwanted in "normalmap" "+mr" "+emissive" "+occlusion" "+mask" "blend"; do
+      if grep -qF -- "$unwanted" "$OUT"; then echo "FAIL: demo built $unwanted"; cat "$OUT"; exit 1; fi
+    done ;;
+  describe_materials)
+    # The material test model: one variant per combination it uses, a masked
+    # shadow variant for the cut-out leaves, and the sorted blend pass.
+    expect 0 "blend\\(sorted\\)" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --describe
+    for want in "static+textured+normalmap+mr+occlusion" "static+normalmap+mr" "static+emissive" \
+                "static+textured+mask " "static+textured+mask+depth"; do
+      grep -qF -- "$want" "$OUT" || { echo "FAIL: --describe lacks $want"; cat "$OUT"; exit 1; }
     done ;;
   describe_cornell)
     # The course room: one point light with a cube shadow, classic shading, and

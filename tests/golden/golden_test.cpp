@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum class SceneKind { Demo, Cornell, TerrainValley, TerrainOverview, RobotWalk, RobotWaveDqs };
+enum class SceneKind { Demo, Cornell, TerrainValley, TerrainOverview, RobotWalk, RobotWaveDqs, Materials };
 
 struct GoldenCase {
   const char* name;
@@ -39,7 +39,9 @@ struct GoldenCase {
 // two times, with MSAA, with supersampling and with hard shadows; the terrain scene
 // from two viewpoints; the course's
 // Cornell room (classic shading, point-light cube shadow) hard and soft (PCF); the
-// viewer's robot with linear-blend and dual-quaternion skinning.
+// viewer's robot with linear-blend and dual-quaternion skinning; the glTF material
+// test model (normal, metallic-roughness, emissive and occlusion maps, alpha mask
+// with cut-out shadows, sorted blending, double-sided and culled quads).
 const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"demo_t2", SceneKind::Demo, 2.0},
                              {"demo_t1_msaa4", SceneKind::Demo, 1.0, 4},
@@ -50,7 +52,8 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"terrain_valley", SceneKind::TerrainValley, 1.0},
                              {"terrain_overview", SceneKind::TerrainOverview, 1.0},
                              {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3},
-                             {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6}};
+                             {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6},
+                             {"materials", SceneKind::Materials, 0.0}};
 
 const std::string kShaders = std::string(ENGINE_SOURCE_DIR) + "/shaders";
 const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
@@ -58,8 +61,9 @@ const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
 std::unique_ptr<Game> makeScene(const GoldenCase& c) {
   if (c.scene != SceneKind::RobotWalk && c.scene != SceneKind::RobotWaveDqs) {
     const char* file = c.scene == SceneKind::Demo      ? "/scenes/demo.json"
-                       : c.scene == SceneKind::Cornell ? "/scenes/cornell.json"
-                                                       : "/scenes/terrain.json";
+                       : c.scene == SceneKind::Cornell   ? "/scenes/cornell.json"
+                       : c.scene == SceneKind::Materials ? "/scenes/materials.json"
+                                                         : "/scenes/terrain.json";
     auto scene = loadSceneFile(kAssets + file);
     if (!scene) return nullptr;
     if (c.scene == SceneKind::TerrainOverview) {

@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "gltf_writer.h"
+#include "materials_model.h"
 #include "robot_clips.h"
 #include "robot_mesh.h"
 #include "robot_rig.h"
@@ -72,6 +73,17 @@ engine::Status writeCharacter(const Character& character, const std::string& fol
   if (auto bin = writeBytes(dir / names.bin, files.bin.data(), files.bin.size()); !bin) return bin;
   if (auto png = engine::writePng((dir / names.image).string(), character.albedo); !png) return png;
   return writeBytes(dir / names.gltf, files.json.data(), files.json.size());
+}
+
+engine::Status writeMaterialsModel(const std::string& folder, const std::string& baseName) {
+  if (auto ready = prepareFolder(folder); !ready) return ready;
+  const fs::path dir(folder);
+  const MaterialsModel model = buildMaterialsModel(baseName);
+  if (auto bin = writeBytes(dir / (baseName + ".bin"), model.bin.data(), model.bin.size()); !bin) return bin;
+  for (const auto& [name, image] : model.images) {
+    if (auto png = engine::writePng((dir / name).string(), image); !png) return png;
+  }
+  return writeBytes(dir / (baseName + ".gltf"), model.json.data(), model.json.size());
 }
 
 }  // namespace assetgen

@@ -28,4 +28,8 @@ Character buildRobot();
 engine::Status writeCharacter(const Character& character, const std::string& folder,
                               const std::string& baseName);
 
+// Writes the material test model (materials_model.h) as `<baseName>.gltf`, `.bin`
+// and `<baseName>_*.png` into `folder`, in the same order and as safely.
+engine::Status writeMaterialsModel(const std::string& folder, const std::string& baseName);
+
 }  // namespace assetgen

@@ -1,6 +1,7 @@
 // assetgen: writes the project's own animated character (assets/models/character.*)
-// as glTF 2.0. Usage: assetgen [--out DIR]. Exit codes: 0 written, 2 bad options or
-// an output folder that cannot be written.
+// and the material test model (assets/models/materials.*) as glTF 2.0.
+// Usage: assetgen [--out DIR]. Exit codes: 0 written, 2 bad options or an output
+// folder that cannot be written.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -12,11 +13,12 @@ namespace {
 
 constexpr int kExitBadInput = 2;
 constexpr const char* kBaseName = "character";
+constexpr const char* kMaterialsBaseName = "materials";
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Writes the project's skinned, animated robot as glTF 2.0 (.gltf, .bin, .png)."};
+  CLI::App app{"Writes the project's skinned, animated robot and its material test model as glTF 2.0 (.gltf, .bin, .png)."};
   std::string out = "assets/models";
   app.add_option("--out", out, "output folder (created when missing)")->capture_default_str();
   try {
@@ -36,5 +38,11 @@ int main(int argc, char** argv) {
   std::printf("wrote %s/%s (%zu joints, %zu vertices, %zu triangles, %zu clips), %s, %s\n",
               out.c_str(), names.gltf.c_str(), robot.joints.size(), robot.vertices.size(),
               robot.indices.size() / 3, robot.clips.size(), names.bin.c_str(), names.image.c_str());
+  if (auto written = assetgen::writeMaterialsModel(out, kMaterialsBaseName); !written) {
+    std::fprintf(stderr, "assetgen: %s\n", written.error().message.c_str());
+    return kExitBadInput;
+  }
+  std::printf("wrote %s/%s.gltf (the material test model), %s.bin, %s_*.png\n", out.c_str(), kMaterialsBaseName,
+              kMaterialsBaseName, kMaterialsBaseName);
   return 0;
 }
