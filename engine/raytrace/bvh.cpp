@@ -192,7 +192,7 @@ std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
   };
   Entry stack[kStackSize];
   int top = 0;
-  T tRoot;
+  T tRoot = 0;
   if (!intersectBounds(nodes_[0].bounds, ray, ray.tMax, invDir, dirIsNeg, tRoot)) return std::nullopt;
   std::uint32_t current = 0;
   for (;;) {
@@ -208,7 +208,7 @@ std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
       }
     } else {
       const std::uint32_t first = current + 1, second = node.offset;
-      T t0, t1;
+      T t0 = 0, t1 = 0;
       const bool hit0 = intersectBounds(nodes_[first].bounds, ray, ray.tMax, invDir, dirIsNeg, t0);
       const bool hit1 = intersectBounds(nodes_[second].bounds, ray, ray.tMax, invDir, dirIsNeg, t1);
       if (hit0 && hit1) {
