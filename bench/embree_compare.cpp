@@ -285,7 +285,7 @@ int run(const Options& o) {
           em = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return medium.occluded(r); });
           eh = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return high.occluded(r); });
         }
-        std::printf("| %s | %zu | %s %zu | %d | %.2f | %.2f | %.2f | %.2f | %.2f%% |\n", name.c_str(), tris.size(),
+        std::printf("| %s | %zu | %s %zu | %d | %.2f | %.2f | %.2f | %.2f | %.3f%% |\n", name.c_str(), tris.size(),
                     kind == 0 ? "primary (nearest)" : "shadow (any)", set.size(), threads, mrays(set.size(), ours),
                     mrays(set.size(), em), mrays(set.size(), eh), eh / ours, 100.0 * agree);
         std::fflush(stdout);
