@@ -174,42 +174,65 @@ Vec3<T> toT(const glm::vec3& v) {
 
 }  // namespace
 
+// Children are tested from their parent: both boxes, then the nearer entered first
+// and the farther pushed with its entry distance, which is checked again when it is
+// popped (a nearest hit found meanwhile skips it without touching the node). The
+// per-ray part of the triangle test is computed once.
 template <typename T, bool kAnyHit>
 std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
   if (nodes_.empty()) return std::nullopt;
   Ray<T> ray = rayIn;
   const Vec3<T> invDir = T(1) / ray.d;
   const int dirIsNeg[3] = {invDir.x < 0, invDir.y < 0, invDir.z < 0};
+  const TriangleRay<T> triRay(ray);
   std::optional<BvhHit<T>> best;
-  std::uint32_t stack[kStackSize];
+  struct Entry {
+    std::uint32_t node;
+    T tEntry;
+  };
+  Entry stack[kStackSize];
   int top = 0;
+  T tRoot = 0;
+  if (!intersectBounds(nodes_[0].bounds, ray, ray.tMax, invDir, dirIsNeg, tRoot)) return std::nullopt;
   std::uint32_t current = 0;
   for (;;) {
     const Node& node = nodes_[current];
-    if (intersectBounds(node.bounds, ray, ray.tMax, invDir, dirIsNeg)) {
-      if (node.count > 0) {
-        for (std::uint32_t k = 0; k < node.count; ++k) {
-          const TriangleVerts& tri = triangles_[node.offset + k];
-          if (auto hit = intersectTriangle(ray, toT<T>(tri.p0), toT<T>(tri.p1), toT<T>(tri.p2))) {
-            best = BvhHit<T>{*hit, order_[node.offset + k]};
-            if constexpr (kAnyHit) return best;
-            ray.tMax = hit->t;
-          }
+    if (node.count > 0) {
+      for (std::uint32_t k = 0; k < node.count; ++k) {
+        const TriangleVerts& tri = triangles_[node.offset + k];
+        if (auto hit = intersectTriangle(triRay, ray.tMax, toT<T>(tri.p0), toT<T>(tri.p1), toT<T>(tri.p2))) {
+          best = BvhHit<T>{*hit, order_[node.offset + k]};
+          if constexpr (kAnyHit) return best;
+          ray.tMax = hit->t;
         }
-        if (top == 0) break;
-        current = stack[--top];
-      } else if (dirIsNeg[node.axis]) {
-        // Visit the child nearer the ray first: its hits shorten tMax for the other.
-        stack[top++] = current + 1;
-        current = node.offset;
-      } else {
-        stack[top++] = node.offset;
-        current = current + 1;
       }
     } else {
-      if (top == 0) break;
-      current = stack[--top];
+      const std::uint32_t first = current + 1, second = node.offset;
+      T t0 = 0, t1 = 0;
+      const bool hit0 = intersectBounds(nodes_[first].bounds, ray, ray.tMax, invDir, dirIsNeg, t0);
+      const bool hit1 = intersectBounds(nodes_[second].bounds, ray, ray.tMax, invDir, dirIsNeg, t1);
+      if (hit0 && hit1) {
+        const bool firstNearer = t0 <= t1;
+        stack[top++] = firstNearer ? Entry{second, t1} : Entry{first, t0};
+        current = firstNearer ? first : second;
+        continue;
+      }
+      if (hit0 || hit1) {
+        current = hit0 ? first : second;
+        continue;
+      }
     }
+    // Pop the next box the ray still enters before its nearest hit.
+    bool found = false;
+    while (top > 0) {
+      const Entry e = stack[--top];
+      if (e.tEntry < ray.tMax) {
+        current = e.node;
+        found = true;
+        break;
+      }
+    }
+    if (!found) break;
   }
   return best;
 }

@@ -56,7 +56,7 @@ class Bvh {
     Bounds3f bounds;
     std::uint32_t offset = 0;  // leaf: first triangle; interior: second child
     std::uint16_t count = 0;   // triangles in a leaf, 0 for an interior node
-    std::uint8_t axis = 0;     // interior: the split axis, for front-to-back order
+    std::uint8_t axis = 0;     // interior: the split axis (traversal orders by entry distance)
   };
   static_assert(sizeof(Node) == 32, "two nodes per cache line");
 

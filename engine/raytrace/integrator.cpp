@@ -71,8 +71,9 @@ class Tracer {
     const Vec3<T> v = glm::normalize(ray.d);
     // Surfaces are two-sided: shade with the normal that faces the viewer.
     const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
-    glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, n, v, rng, counters)
-                                                              : shadeClassic(*hit, m, n, v, rng, counters);
+    const glm::vec3 albedo = scene_.baseColor(hit->material, hit->uv);
+    glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, albedo, n, v, rng, counters)
+                                                              : shadeClassic(*hit, m, albedo, n, v, rng, counters);
     if (m.reflection > 0.0f && depth < settings_.maxDepth) {
       // The course's mirror: R = V + 2 N c1 with c1 = -N.V.
       const T c1 = -glm::dot(n, v);
@@ -80,14 +81,21 @@ class Tracer {
       ++counters.reflection;
       color += m.reflection * Li(hit->spawnRay(r), depth + 1, rng, counters);
     }
+    // The rasterizer's distance fog (shaders/scene.frag, common/fog.glsl) on what the
+    // camera sees directly: mix(fog colour, colour, exp(-density * distance)).
+    const FogDesc& fog = scene_.fog();
+    if (depth == 0 && fog.enabled) {
+      const float distance = float(hit->t * glm::length(ray.d));
+      color = glm::mix(fog.color, color, std::clamp(std::exp(-fog.density * distance), 0.0f, 1.0f));
+    }
     return color;
   }
 
  private:
   // colour * (ambient + diffuse * sum of light * max(N.L, 0) * visibility), plus an
   // optional Blinn-Phong highlight; the mirror term is added by Li.
-  glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const MaterialDesc& m, const Vec3<T>& n,
-                         const Vec3<T>& v, Pcg32& rng, RayCounters& counters) const {
+  glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const MaterialDesc& m, const glm::vec3& albedo,
+                         const Vec3<T>& n, const Vec3<T>& v, Pcg32& rng, RayCounters& counters) const {
     glm::vec3 diffuse(0.0f), specular(0.0f);
     for (const LightDesc& light : scene_.lights()) {
       const LightSample<T> ls = sampleLight(si, light, rng, counters);
@@ -100,19 +108,19 @@ class Tracer {
         specular += ls.radiance * (m.specular * std::pow(nDotH, m.shininess) * ls.visibility);
       }
     }
-    return m.color * (m.ambient + m.diffuse * diffuse) + specular;
+    return albedo * (m.ambient + m.diffuse * diffuse) + specular;
   }
 
   // Lambert + GGX (Trowbridge-Reitz D, Smith-Schlick G, Schlick F) per light, and an
   // ambient term from the sky's hemisphere (or white) scaled by the material's ambient.
-  glm::vec3 shadePbr(const SurfaceInteraction<T>& si, const MaterialDesc& m, const Vec3<T>& n, const Vec3<T>& v,
-                     Pcg32& rng, RayCounters& counters) const {
+  glm::vec3 shadePbr(const SurfaceInteraction<T>& si, const MaterialDesc& m, const glm::vec3& albedo,
+                     const Vec3<T>& n, const Vec3<T>& v, Pcg32& rng, RayCounters& counters) const {
     const glm::vec3 nf(n);
     const glm::vec3 toEye = -glm::vec3(v);
     const float alpha = std::max(m.roughness * m.roughness, 1e-3f);
     const float a2 = alpha * alpha;
     const float k = (m.roughness + 1.0f) * (m.roughness + 1.0f) / 8.0f;
-    const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), m.color, m.metallic);
+    const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), albedo, m.metallic);
     const float nDotV = std::max(glm::dot(nf, toEye), 1e-4f);
     glm::vec3 color(0.0f);
     for (const LightDesc& light : scene_.lights()) {
@@ -131,12 +139,12 @@ class Tracer {
       const glm::vec3 kd = (glm::vec3(1.0f) - f) * (1.0f - m.metallic);
       // Light intensities are what a white Lambert surface facing the light reflects
       // (the rasterizer's convention, shaders/common/shading.glsl), so pi cancels.
-      color += (kd * m.color / std::numbers::pi_v<float> + spec) * ls.radiance *
+      color += (kd * albedo / std::numbers::pi_v<float> + spec) * ls.radiance *
                (nDotL * ls.visibility * std::numbers::pi_v<float>);
     }
     // The same hemisphere ambient as the rasterizer's shadeAmbient.
     const glm::vec3 ambientLight = glm::mix(scene_.ambientGround(), scene_.ambientSky(), 0.5f + 0.5f * nf.y);
-    return color + ambientLight * (m.color * (1.0f - m.metallic) + f0 * (1.0f - m.roughness) * 0.5f);
+    return color + ambientLight * (albedo * (1.0f - m.metallic) + f0 * (1.0f - m.roughness) * 0.5f);
   }
 
   LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,

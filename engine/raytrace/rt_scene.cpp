@@ -1,7 +1,13 @@
 #include "raytrace/rt_scene.h"
 
+#include "asset/material_texture.h"
+
+#include <algorithm>
 #include <chrono>
 #include <string>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace engine::rt {
 namespace {
@@ -10,20 +16,49 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A box as 12 triangles, wound counter-clockwise seen from outside, flat shaded.
-RtMesh boxMesh(const glm::dvec3& lo, const glm::dvec3& hi, int material) {
+// A box as 12 triangles, flat shaded, laid out as the rasterizer's makeCube
+// (render/mesh.cpp) scaled to the box: per face the normal and the two axes u, v
+// (u x v = normal, so counter-clockwise from outside), corners at uv (0,0) (1,0)
+// (1,1) (0,1) times the material's texture scale.
+RtMesh boxMesh(const glm::dvec3& lo, const glm::dvec3& hi, int material, float uvScale) {
   RtMesh mesh;
   mesh.material = material;
-  for (int i = 0; i < 8; ++i) {
-    mesh.positions.emplace_back(glm::vec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z));
-  }
-  // Faces as corner quads (a, b, c, d) ordered around the outward normal.
-  const std::uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  const glm::dvec3 center = (lo + hi) * 0.5, half = (hi - lo) * 0.5;
+  const glm::dvec3 faces[6][3] = {{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                                  {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+                                  {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}}};
+  const glm::dvec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (const auto& f : faces) {
-    mesh.indices.insert(mesh.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+    const auto base = std::uint32_t(mesh.positions.size());
+    for (const glm::dvec2& c : corners) {
+      const glm::dvec3 local = f[0] + f[1] * (c.x * 2 - 1) + f[2] * (c.y * 2 - 1);
+      mesh.positions.emplace_back(glm::vec3(center + local * half));
+      mesh.uvs.emplace_back(glm::vec2(c) * uvScale);
+    }
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   return mesh;
+}
+
+// The rasterizer's rotationFromTo (render/scene_renderer.cpp): the rotation taking
+// +y to a plane's normal, which fixes the plane's texture axes.
+glm::dmat3 rotationFromYTo(const glm::dvec3& to) {
+  const glm::dvec3 from(0, 1, 0);
+  const glm::dvec3 axis = glm::cross(from, to);
+  const double c = glm::dot(from, to);
+  if (glm::length(axis) < 1e-12) {
+    return c > 0.0 ? glm::dmat3(1.0) : glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::pi<double>(), glm::dvec3(1, 0, 0)));
+  }
+  return glm::dmat3(glm::rotate(glm::dmat4(1.0), std::atan2(glm::length(axis), c), glm::normalize(axis)));
+}
+
+// The rasterizer's sphere (render/mesh.cpp makeSphere): n = (sin t sin p, cos t,
+// sin t cos p) at uv = (p / 2 pi, t / pi).
+glm::vec2 sphereUv(const glm::dvec3& n) {
+  const double theta = std::acos(std::clamp(n.y, -1.0, 1.0));
+  double phi = std::atan2(n.x, n.z);
+  if (phi < 0.0) phi += 2.0 * glm::pi<double>();
+  return glm::vec2(float(phi / (2.0 * glm::pi<double>())), float(theta / glm::pi<double>()));
 }
 
 }  // namespace
@@ -32,17 +67,26 @@ RtScene::RtScene() {
   MaterialDesc fallback;
   fallback.name = "default";
   materials_.push_back(fallback);
+  materialTexture_.push_back(-1);
 }
 
 Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
   RtScene scene;
   if (!desc.materials.empty()) scene.materials_ = desc.materials;
+  scene.materialTexture_.assign(scene.materials_.size(), -1);
+  for (size_t i = 0; i < desc.materials.size(); ++i) {
+    auto image = loadMaterialTexture(desc, desc.materials[i]);
+    if (!image) return image.error();
+    // The rasterizer uploads the scene's textures flipped: uv (0, 0) is the bottom-left.
+    if (!image->empty()) (void)scene.setMaterialTexture(int(i), RtTexture(*image, TextureOrigin::BottomLeft));
+  }
   scene.camera_ = desc.camera;
   scene.lights_ = desc.lights;
   scene.sky_ = desc.sky;
   scene.ambientSky_ = ambientSkyColor(desc);
   scene.ambientGround_ = ambientGroundColor(desc);
   scene.render_ = desc.render;
+  scene.fog_ = desc.fog;
   const int materialCount = int(scene.materials_.size());
   for (std::size_t i = 0; i < desc.primitives.size(); ++i) {
     const PrimitiveDesc& p = desc.primitives[i];
@@ -55,10 +99,10 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
         scene.addSphere(p.center, p.radius, p.material);
         break;
       case PrimitiveType::Plane:
-        scene.addPlane(p.point, p.normal, p.material);
+        scene.addPlane(p.point, p.normal, p.material, p.extent > 0.0 ? p.extent : desc.camera.farPlane);
         break;
       case PrimitiveType::Box: {
-        auto id = scene.addMesh(boxMesh(p.min, p.max, p.material));
+        auto id = scene.addMesh(boxMesh(p.min, p.max, p.material, scene.materials_[size_t(p.material)].textureScale));
         if (!id) return id.error();
         break;
       }
@@ -70,7 +114,23 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
 
 int RtScene::addMaterial(const MaterialDesc& material) {
   materials_.push_back(material);
+  materialTexture_.push_back(-1);
   return int(materials_.size() - 1);
+}
+
+Status RtScene::setMaterialTexture(int material, RtTexture texture) {
+  if (material < 0 || material >= int(materials_.size())) {
+    return makeError("material " + std::to_string(material) + " out of range");
+  }
+  materialTexture_[size_t(material)] = int(textures_.size());
+  textures_.push_back(std::move(texture));
+  return Ok{};
+}
+
+glm::vec3 RtScene::baseColor(int material, glm::vec2 uv) const {
+  const glm::vec3 color = materials_[size_t(material)].color;
+  const int texture = materialTexture_[size_t(material)];
+  return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv);
 }
 
 void RtScene::addSphere(const glm::dvec3& center, double radius, int material) {
@@ -78,11 +138,18 @@ void RtScene::addSphere(const glm::dvec3& center, double radius, int material) {
   spheresF_.push_back(Sphere<float>{glm::vec3(center), float(radius), material});
 }
 
-void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material) {
+void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent) {
   const glm::dvec3 n = glm::normalize(normal);
+  const glm::dmat3 r = rotationFromYTo(n);
+  planeUvs_.push_back(PlaneUv{point, r * glm::dvec3(1, 0, 0), r * glm::dvec3(0, 0, 1), extent});
   const double d = glm::dot(n, point);
   planesD_.push_back(Plane<double>{n, d, material});
   planesF_.push_back(Plane<float>{glm::vec3(n), float(d), material});
+}
+
+int RtScene::addGroup() {
+  groups_.emplace_back();
+  return int(groups_.size() - 1);
 }
 
 Result<MeshId> RtScene::addMesh(RtMesh mesh) {
@@ -95,11 +162,21 @@ Result<MeshId> RtScene::addMesh(RtMesh mesh) {
     return makeError(where + ": " + std::to_string(mesh.normals.size()) + " normals for " +
                      std::to_string(mesh.positions.size()) + " positions");
   }
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
+    return makeError(where + ": " + std::to_string(mesh.uvs.size()) + " uvs for " +
+                     std::to_string(mesh.positions.size()) + " positions");
+  }
   if (mesh.material < 0 || mesh.material >= int(materials_.size())) {
     return makeError(where + ": material " + std::to_string(mesh.material) + " out of range");
   }
+  if (mesh.group < 0 || mesh.group >= int(groups_.size())) {
+    return makeError(where + ": group " + std::to_string(mesh.group) + " does not exist");
+  }
+  Group& group = groups_[std::size_t(mesh.group)];
+  group.meshes.push_back(std::uint32_t(meshes_.size()));
+  group.topologyDirty = true;
   meshes_.push_back(std::move(mesh));
-  topologyDirty_ = true;
+  meshFirstTriangle_.push_back(0);
   return MeshId(meshes_.size() - 1);
 }
 
@@ -116,43 +193,68 @@ Status RtScene::updateMesh(MeshId id, std::span<const glm::vec3> positions, std:
   }
   mesh.positions.assign(positions.begin(), positions.end());
   if (!normals.empty()) mesh.normals.assign(normals.begin(), normals.end());
+  groups_[std::size_t(mesh.group)].moved = true;
   return Ok{};
 }
 
 void RtScene::clearMeshes() {
   meshes_.clear();
-  topologyDirty_ = true;
+  meshFirstTriangle_.clear();
+  groups_.assign(1, Group{});
 }
 
-void RtScene::gatherTriangles() {
-  triangles_.clear();
-  triangleMesh_.clear();
-  meshFirstTriangle_.clear();
-  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+std::size_t RtScene::triangleCount() const {
+  std::size_t n = 0;
+  for (const Group& g : groups_) n += g.triangles.size();
+  return n;
+}
+
+void RtScene::gatherTriangles(int groupIndex) {
+  Group& group = groups_[std::size_t(groupIndex)];
+  group.triangles.clear();
+  group.triangleMesh.clear();
+  for (std::uint32_t m : group.meshes) {
     const RtMesh& mesh = meshes_[m];
-    meshFirstTriangle_.push_back(std::uint32_t(triangles_.size()));
+    meshFirstTriangle_[m] = std::uint32_t(group.triangles.size());
     for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-      triangles_.push_back(TriangleVerts{mesh.positions[mesh.indices[i]], mesh.positions[mesh.indices[i + 1]],
-                                         mesh.positions[mesh.indices[i + 2]]});
-      triangleMesh_.push_back(std::uint32_t(m));
+      group.triangles.push_back(TriangleVerts{mesh.positions[mesh.indices[i]], mesh.positions[mesh.indices[i + 1]],
+                                              mesh.positions[mesh.indices[i + 2]]});
+      group.triangleMesh.push_back(m);
     }
   }
 }
 
-double RtScene::build() {
+double RtScene::buildGroup(int groupIndex) {
   const auto start = std::chrono::steady_clock::now();
-  gatherTriangles();
-  bvh_.build(triangles_);
-  topologyDirty_ = false;
+  gatherTriangles(groupIndex);
+  Group& group = groups_[std::size_t(groupIndex)];
+  group.bvh.build(group.triangles);
+  group.topologyDirty = group.moved = false;
   return secondsSince(start);
 }
 
-double RtScene::refit() {
-  if (topologyDirty_) return build();
+double RtScene::refitGroup(int groupIndex) {
+  if (groups_[std::size_t(groupIndex)].topologyDirty) return buildGroup(groupIndex);
   const auto start = std::chrono::steady_clock::now();
-  gatherTriangles();
-  bvh_.refit(triangles_);
+  gatherTriangles(groupIndex);
+  Group& group = groups_[std::size_t(groupIndex)];
+  group.bvh.refit(group.triangles);
+  group.moved = false;
   return secondsSince(start);
+}
+
+double RtScene::build() {
+  double total = 0.0;
+  for (int g = 0; g < groupCount(); ++g) total += buildGroup(g);
+  return total;
+}
+
+double RtScene::refit() {
+  double total = 0.0;
+  for (int g = 0; g < groupCount(); ++g) {
+    if (groups_[std::size_t(g)].topologyDirty || groups_[std::size_t(g)].moved) total += refitGroup(g);
+  }
+  return total;
 }
 
 template <>
@@ -173,8 +275,8 @@ const std::vector<Plane<double>>& RtScene::planes<double>() const {
 }
 
 template <typename T>
-SurfaceInteraction<T> RtScene::meshInteraction(const BvhHit<T>& hit) const {
-  const std::uint32_t meshIndex = triangleMesh_[hit.triangle];
+SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<T>& hit) const {
+  const std::uint32_t meshIndex = group.triangleMesh[hit.triangle];
   const RtMesh& mesh = meshes_[meshIndex];
   const std::size_t first = 3 * std::size_t(hit.triangle - meshFirstTriangle_[meshIndex]);
   const std::uint32_t i0 = mesh.indices[first], i1 = mesh.indices[first + 1], i2 = mesh.indices[first + 2];
@@ -185,6 +287,9 @@ SurfaceInteraction<T> RtScene::meshInteraction(const BvhHit<T>& hit) const {
                        hit.hit.b2 * Vec3<T>(mesh.normals[i2]);
     const T len = glm::length(ns);
     if (len > T(0)) si.ns = ns / len;
+  }
+  if (!mesh.uvs.empty()) {
+    si.uv = float(hit.hit.b0) * mesh.uvs[i0] + float(hit.hit.b1) * mesh.uvs[i1] + float(hit.hit.b2) * mesh.uvs[i2];
   }
   si.material = mesh.material;
   return si;
@@ -212,9 +317,31 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
       index = i;
     }
   }
-  if (auto hit = bvh_.intersect(ray)) return meshInteraction(*hit);
-  if (kind == 1) return sphereList[index].interaction(ray, ray.tMax);
-  if (kind == 2) return planeList[index].interaction(ray, ray.tMax);
+  // Each group's traversal starts with its root box against the shortened tMax, so
+  // groups behind the nearest hit so far cost one box test.
+  const Group* hitGroup = nullptr;
+  std::optional<BvhHit<T>> meshHit;
+  for (const Group& group : groups_) {
+    if (auto hit = group.bvh.intersect(ray)) {
+      ray.tMax = hit->hit.t;
+      meshHit = hit;
+      hitGroup = &group;
+    }
+  }
+  if (hitGroup) return meshInteraction(*hitGroup, *meshHit);
+  if (kind == 1) {
+    SurfaceInteraction<T> si = sphereList[index].interaction(ray, ray.tMax);
+    si.uv = sphereUv(glm::dvec3(si.n)) * materials_[size_t(si.material)].textureScale;
+    return si;
+  }
+  if (kind == 2) {
+    SurfaceInteraction<T> si = planeList[index].interaction(ray, ray.tMax);
+    const PlaneUv& q = planeUvs_[index];
+    const glm::dvec3 local = glm::dvec3(si.p) - q.point;
+    si.uv = glm::vec2(glm::dvec2(glm::dot(local, q.axisU) + q.extent, glm::dot(local, q.axisV) + q.extent) *
+                      double(materials_[size_t(si.material)].textureScale));
+    return si;
+  }
   return std::nullopt;
 }
 
@@ -226,7 +353,10 @@ bool RtScene::intersectAny(const Ray<T>& ray) const {
   for (const auto& p : planes<T>()) {
     if (p.intersect(ray)) return true;
   }
-  return bvh_.intersectAny(ray);
+  for (const Group& group : groups_) {
+    if (group.bvh.intersectAny(ray)) return true;
+  }
+  return false;
 }
 
 template std::optional<SurfaceInteraction<float>> RtScene::intersect(const Ray<float>&) const;

@@ -1,8 +1,15 @@
 #pragma once
 // What the ray tracer traces: analytic spheres and planes, triangle meshes in world
-// space under one BVH, lights, materials, camera and sky. Built from the SceneDesc the
-// rasterizer also reads; the caller adds meshes (skinned characters, terrain) and, per
-// frame, moves their vertices and calls refit() (or build() when triangles change).
+// space, lights, materials, camera and sky. Built from the SceneDesc the rasterizer
+// also reads; the caller adds meshes (skinned characters, terrain) and, per frame,
+// moves their vertices and calls refit() (or build() when triangles change).
+//
+// Two levels: meshes belong to groups, each group has its own BVH, and a ray visits
+// every group whose bounds it crosses. Group 0 holds the static world (boxes, the
+// 1.3M-triangle terrain), built once; each character gets a group of its own, so a
+// new pose refits that character's BVH (its vertices move, its triangles stay) and
+// never touches the terrain's. A linear top level suits the few groups a scene has
+// (the demo: 5); hundreds of instances would want a BVH over the groups.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -15,6 +22,7 @@
 #include "raytrace/bvh.h"
 #include "raytrace/ray.h"
 #include "raytrace/shapes.h"
+#include "raytrace/texture.h"
 
 namespace engine::rt {
 
@@ -23,8 +31,10 @@ namespace engine::rt {
 struct RtMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;  // empty, or one per position (glTF TEXCOORD_0)
   std::vector<std::uint32_t> indices;  // three per triangle
   int material = 0;
+  int group = 0;  // the BVH it lives in: 0 the static world, or one from addGroup()
 };
 
 using MeshId = int;
@@ -37,25 +47,38 @@ class RtScene {
   static Result<RtScene> fromSceneDesc(const SceneDesc& desc);
 
   int addMaterial(const MaterialDesc& material);
+  // A base colour texture that multiplies `material`'s colour (the rasterizer's
+  // baseColorFactor * texture(uv)); the material's meshes need uvs to show it.
+  Status setMaterialTexture(int material, RtTexture texture);
+  // The material's colour times its texture at the hit's uv, linear RGB.
+  glm::vec3 baseColor(int material, glm::vec2 uv) const;
   void addLight(const LightDesc& light) { lights_.push_back(light); }
   void addSphere(const glm::dvec3& center, double radius, int material);
-  void addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material);
+  // `extent`: the half size of the square the rasterizer draws, which sets the
+  // plane's texture coordinates (the plane itself stays infinite).
+  void addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent = 1.0);
   void setCamera(const CameraDesc& camera) { camera_ = camera; }
   void setSky(const SkyDesc& sky) { sky_ = sky; }
   void setRender(const RenderDesc& render) { render_ = render; }
+  void setFog(const FogDesc& fog) { fog_ = fog; }
 
-  // Validates the mesh (indices in range, one normal per position, a known material);
-  // the BVH is rebuilt at the next build() (or refit(), which then builds).
+  // A new, empty BVH group for meshes that move together (one character).
+  int addGroup();
+  // Validates the mesh (indices in range, one normal per position, a known material
+  // and group); its group's BVH is rebuilt at the next build() or refit().
   Result<MeshId> addMesh(RtMesh mesh);
   // New vertex positions (and normals, if the mesh has them) for the same triangles.
   Status updateMesh(MeshId id, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals = {});
   void clearMeshes();
 
-  // Rebuilds the BVH over every mesh with the SAH; returns the seconds it took.
+  // Rebuilds every group's BVH with the SAH; returns the seconds it took.
   double build();
-  // Refits the BVH to moved vertices (builds instead if meshes were added or removed
-  // since the last build); returns the seconds it took.
+  // Refits the BVH of each group whose meshes moved (updateMesh) and builds those
+  // that gained meshes since their last build; returns the seconds it took.
   double refit();
+  // The same for one group (the per-character figures of the benchmark).
+  double buildGroup(int group);
+  double refitGroup(int group);
 
   // The nearest hit in (0, ray.tMax) over every shape, and whether any hit exists.
   template <typename T>
@@ -71,9 +94,11 @@ class RtScene {
   glm::vec3 ambientSky() const { return ambientSky_; }
   glm::vec3 ambientGround() const { return ambientGround_; }
   const RenderDesc& render() const { return render_; }
+  const FogDesc& fog() const { return fog_; }
   const std::vector<RtMesh>& meshes() const { return meshes_; }
-  const Bvh& bvh() const { return bvh_; }
-  std::size_t triangleCount() const { return triangles_.size(); }
+  int groupCount() const { return int(groups_.size()); }
+  const Bvh& bvh(int group = 0) const { return groups_[std::size_t(group)].bvh; }
+  std::size_t triangleCount() const;
   std::size_t sphereCount() const { return spheresF_.size(); }
   std::size_t planeCount() const { return planesF_.size(); }
 
@@ -82,29 +107,47 @@ class RtScene {
   const std::vector<Sphere<T>>& spheres() const;
   template <typename T>
   const std::vector<Plane<T>>& planes() const;
+  struct Group;
   template <typename T>
-  SurfaceInteraction<T> meshInteraction(const BvhHit<T>& hit) const;
-  void gatherTriangles();
+  SurfaceInteraction<T> meshInteraction(const Group& group, const BvhHit<T>& hit) const;
+  void gatherTriangles(int group);
 
   CameraDesc camera_;
   std::vector<LightDesc> lights_;
   std::vector<MaterialDesc> materials_;
+  std::vector<int> materialTexture_;  // per material: index into textures_, -1 none
+  std::vector<RtTexture> textures_;
+  // Per plane, what its texture coordinates need: the rasterizer draws it as a square
+  // of half size `extent` rotated from +y to its normal, with uv = (local + extent) *
+  // texture scale along that square's x and z.
+  struct PlaneUv {
+    glm::dvec3 point{0.0}, axisU{1, 0, 0}, axisV{0, 0, 1};
+    double extent = 1.0;
+  };
+  std::vector<PlaneUv> planeUvs_;
   SkyDesc sky_;
   glm::vec3 ambientSky_{0.1f};
   glm::vec3 ambientGround_{0.1f};
   RenderDesc render_;
+  FogDesc fog_;
   // Each analytic shape in both precisions, so neither path converts per ray.
   std::vector<Sphere<float>> spheresF_;
   std::vector<Sphere<double>> spheresD_;
   std::vector<Plane<float>> planesF_;
   std::vector<Plane<double>> planesD_;
 
+  struct Group {
+    std::vector<std::uint32_t> meshes;
+    std::vector<TriangleVerts> triangles;     // its meshes' triangles, in mesh order
+    std::vector<std::uint32_t> triangleMesh;  // triangle -> mesh
+    Bvh bvh;
+    bool topologyDirty = false;  // meshes added since the last build
+    bool moved = false;          // vertices updated since the last build or refit
+  };
+
   std::vector<RtMesh> meshes_;
-  std::vector<TriangleVerts> triangles_;       // every mesh's triangles, in mesh order
-  std::vector<std::uint32_t> triangleMesh_;    // triangle -> mesh
-  std::vector<std::uint32_t> meshFirstTriangle_;
-  bool topologyDirty_ = false;
-  Bvh bvh_;
+  std::vector<std::uint32_t> meshFirstTriangle_;  // into its group's triangles
+  std::vector<Group> groups_{1};
 };
 
 }  // namespace engine::rt

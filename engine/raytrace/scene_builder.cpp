@@ -15,7 +15,6 @@
 #include "terrain/terrain.h"
 
 namespace engine::rt {
-namespace {
 
 struct LoadedModel {
   ModelData model;
@@ -23,34 +22,32 @@ struct LoadedModel {
   std::vector<int> materials;  // glTF material -> RtScene material
 };
 
-// The ray tracer has no textures: a textured glTF material becomes its factor
-// times the texture's mean colour (in linear space), the colour it shows from afar.
-glm::vec3 meanLinearColor(const Image& image) {
-  if (image.empty()) return glm::vec3(1.0f);
-  glm::dvec3 sum(0.0);
-  for (size_t i = 0; i < image.pixels.size(); i += 4) {
-    for (int c = 0; c < 3; ++c) sum[c] += std::pow(image.pixels[i + size_t(c)] / 255.0, 2.2);
-  }
-  return glm::vec3(sum / double(image.pixels.size() / 4));
-}
+namespace {
 
+// glTF base colour: the factor times the texture (uploaded as is by the rasterizer,
+// so uv (0, 0) is the image's top-left).
 void addMaterials(LoadedModel& loaded, RtScene& scene) {
   for (const MaterialData& m : loaded.model.materials) {
     MaterialDesc desc;
     desc.name = m.name;
-    glm::vec3 color(m.baseColorFactor);
-    if (m.baseColorImage >= 0) color *= meanLinearColor(loaded.model.images[size_t(m.baseColorImage)].image);
-    desc.color = color;
+    desc.color = glm::vec3(m.baseColorFactor);
     desc.metallic = m.metallicFactor;
     desc.roughness = m.roughnessFactor;
     desc.specular = 0.5f * (1.0f - m.roughnessFactor);
-    loaded.materials.push_back(scene.addMaterial(desc));
+    const int material = scene.addMaterial(desc);
+    if (m.baseColorImage >= 0) {
+      (void)scene.setMaterialTexture(
+          material, RtTexture(loaded.model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft));
+    }
+    loaded.materials.push_back(material);
   }
 }
 
-// Poses one model instance at `time` and adds its primitives as meshes.
-Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, double time, double ground,
-                        RtScene& scene, SceneBuildStats& stats) {
+// Poses one model instance at `time` into `meshes`, one per triangle primitive:
+// positions and normals skinned (or moved rigidly) into world space; material and
+// indices are filled the first time only, as they never change.
+Status poseInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, double time, double ground,
+                    std::vector<RtMesh>& meshes) {
   const Skeleton& skeleton = loaded.animated.skeleton;
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
   if (clip >= 0) {
@@ -62,16 +59,28 @@ Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int cl
   std::vector<glm::mat4> models(locals.size());
   LocalToModelJob{skeleton.parents(), locals, glm::mat4(modelTransform(desc, ground)), models}.run();
   const SkinningMethod method = desc.dualQuat ? SkinningMethod::DualQuat : SkinningMethod::Linear;
+  const bool first = meshes.empty();
+  std::size_t next = 0;
   for (size_t n = 0; n < loaded.model.nodes.size(); ++n) {
     const NodeData& node = loaded.model.nodes[n];
     if (node.mesh < 0) continue;
     const glm::mat4& world = models[size_t(skeleton.jointOfRaw(int(n)))];
     for (const PrimitiveData& prim : loaded.model.meshes[size_t(node.mesh)].primitives) {
       if (prim.mode != 4) continue;  // triangles only
-      RtMesh mesh;
-      mesh.material = prim.material >= 0 ? loaded.materials[size_t(prim.material)] : 0;
-      mesh.positions.resize(prim.positions.size());
-      if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
+      if (first) {
+        RtMesh mesh;
+        mesh.material = prim.material >= 0 ? loaded.materials[size_t(prim.material)] : 0;
+        mesh.positions.resize(prim.positions.size());
+        if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
+        mesh.uvs = prim.uvs;
+        if (prim.indices.empty()) {
+          for (std::uint32_t i = 0; i < std::uint32_t(prim.positions.size()); ++i) mesh.indices.push_back(i);
+        } else {
+          mesh.indices = prim.indices;
+        }
+        meshes.push_back(std::move(mesh));
+      }
+      RtMesh& mesh = meshes[next++];
       if (node.skin >= 0 && prim.influences > 0) {
         if (!skinPrimitive(prim, loaded.animated.skins[size_t(node.skin)], models, method, mesh.positions,
                            mesh.normals)) {
@@ -84,15 +93,6 @@ Status addModelInstance(const LoadedModel& loaded, const ModelDesc& desc, int cl
           if (!mesh.normals.empty()) mesh.normals[v] = glm::normalize(normalMatrix * prim.normals[v]);
         }
       }
-      if (prim.indices.empty()) {
-        for (std::uint32_t i = 0; i < std::uint32_t(prim.positions.size()); ++i) mesh.indices.push_back(i);
-      } else {
-        mesh.indices = prim.indices;
-      }
-      stats.triangles += int(mesh.indices.size() / 3);
-      ++stats.meshes;
-      auto added = scene.addMesh(std::move(mesh));
-      if (!added) return added.error();
     }
   }
   return Ok{};
@@ -137,11 +137,19 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
   return Ok{};
 }
 
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
-Result<RtScene> buildRtScene(const SceneDesc& desc, double time, int viewportHeight, SceneBuildStats* statsOut) {
+Result<AnimatedRtScene> AnimatedRtScene::create(const SceneDesc& desc, double time, int viewportHeight,
+                                                SceneBuildStats* statsOut) {
   auto scene = RtScene::fromSceneDesc(desc);
   if (!scene) return scene.error();
+  AnimatedRtScene out;
+  out.scene_ = std::move(scene).value();
+  RtScene& rt = out.scene_;
   SceneBuildStats stats;
   const auto start = std::chrono::steady_clock::now();
   std::optional<terrain::Terrain> field;
@@ -150,34 +158,93 @@ Result<RtScene> buildRtScene(const SceneDesc& desc, double time, int viewportHei
     if (!created) return makeError(desc.path + ": /terrain: " + created.error().message);
     field.emplace(std::move(created).value());
   }
-  std::map<std::string, LoadedModel> cache;
   for (size_t i = 0; i < desc.models.size(); ++i) {
     const ModelDesc& m = desc.models[i];
     const std::string where = desc.path + ": /models/" + std::to_string(i);
-    auto it = cache.find(m.path);
-    if (it == cache.end()) {
+    auto it = out.models_.find(m.path);
+    if (it == out.models_.end()) {
       auto model = loadGltf(m.path);
       if (!model) return makeError(where + "/path: " + model.error().message);
       auto animated = buildAnimatedModel(*model);
       if (!animated) return makeError(where + ": " + animated.error().message);
-      LoadedModel loaded{std::move(model).value(), std::move(animated).value(), {}};
-      addMaterials(loaded, *scene);
-      it = cache.emplace(m.path, std::move(loaded)).first;
+      auto loaded = std::make_unique<LoadedModel>(LoadedModel{std::move(model).value(), std::move(animated).value(), {}});
+      addMaterials(*loaded, rt);
+      it = out.models_.emplace(m.path, std::move(loaded)).first;
     }
-    auto clip = findClip(it->second.animated, m.clip, m.path);
+    auto clip = findClip(it->second->animated, m.clip, m.path);
     if (!clip) return makeError(where + "/clip: " + clip.error().message);
-    const double ground = m.onTerrain && field ? field->heightAt(m.position.x, m.position.z) : 0.0;
-    if (auto s = addModelInstance(it->second, m, *clip, time, ground, *scene, stats); !s) {
+    Instance instance;
+    instance.model = it->second.get();
+    instance.desc = m;
+    instance.clip = *clip;
+    instance.ground = m.onTerrain && field ? field->heightAt(m.position.x, m.position.z) : 0.0;
+    instance.group = rt.addGroup();
+    if (auto s = poseInstance(*instance.model, m, instance.clip, time, instance.ground, instance.meshes); !s) {
       return makeError(where + ": " + s.error().message);
     }
+    for (const RtMesh& mesh : instance.meshes) {
+      RtMesh copy = mesh;
+      copy.group = instance.group;
+      stats.triangles += int(copy.indices.size() / 3);
+      ++stats.meshes;
+      auto added = rt.addMesh(std::move(copy));
+      if (!added) return makeError(where + ": " + added.error().message);
+      instance.ids.push_back(*added);
+    }
+    out.instances_.push_back(std::move(instance));
   }
   if (field) {
-    if (auto s = addTerrain(desc, *field, viewportHeight, *scene, stats); !s) return s.error();
+    if (auto s = addTerrain(desc, *field, viewportHeight, rt, stats); !s) return s.error();
   }
-  stats.skinSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  stats.bvhSeconds = scene->build();
+  stats.skinSeconds = secondsSince(start);
+  stats.bvhSeconds = rt.buildGroup(0);
+  for (const Instance& instance : out.instances_) {
+    InstanceStats is;
+    for (const RtMesh& mesh : instance.meshes) is.triangles += int(mesh.indices.size() / 3);
+    is.bvhSeconds = rt.buildGroup(instance.group);
+    stats.bvhSeconds += is.bvhSeconds;
+    stats.instances.push_back(is);
+  }
   if (statsOut) *statsOut = stats;
-  return scene;
+  return out;
+}
+
+Status AnimatedRtScene::setTime(double time, SceneBuildStats* statsOut) {
+  SceneBuildStats stats;
+  for (Instance& instance : instances_) {
+    InstanceStats is;
+    const auto start = std::chrono::steady_clock::now();
+    if (auto s = poseInstance(*instance.model, instance.desc, instance.clip, time, instance.ground, instance.meshes);
+        !s) {
+      return s;
+    }
+    for (std::size_t k = 0; k < instance.meshes.size(); ++k) {
+      if (auto s = scene_.updateMesh(instance.ids[k], instance.meshes[k].positions, instance.meshes[k].normals); !s) {
+        return s;
+      }
+      is.triangles += int(instance.meshes[k].indices.size() / 3);
+    }
+    is.skinSeconds = secondsSince(start);
+    is.bvhSeconds = scene_.refitGroup(instance.group);
+    stats.skinSeconds += is.skinSeconds;
+    stats.bvhSeconds += is.bvhSeconds;
+    stats.triangles += is.triangles;
+    stats.meshes += int(instance.meshes.size());
+    stats.instances.push_back(is);
+  }
+  if (statsOut) *statsOut = stats;
+  return Ok{};
+}
+
+AnimatedRtScene::AnimatedRtScene() = default;
+AnimatedRtScene::~AnimatedRtScene() = default;
+AnimatedRtScene::AnimatedRtScene(AnimatedRtScene&&) noexcept = default;
+AnimatedRtScene& AnimatedRtScene::operator=(AnimatedRtScene&&) noexcept = default;
+
+Result<RtScene> buildRtScene(const SceneDesc& desc, double time, int viewportHeight, SceneBuildStats* stats) {
+  auto animated = AnimatedRtScene::create(desc, time, viewportHeight, stats);
+  if (!animated) return animated.error();
+  return std::move(animated->scene());
 }
 
 Result<RaytraceRun> raytraceScene(const SceneDesc& desc, double time, const RenderSettings& settings) {

@@ -3,6 +3,11 @@
 // lights of the SceneDesc, plus every glTF model posed at that time and skinned on
 // the CPU with the same jobs and palettes the rasterizer uses (anim/jobs.h), as
 // triangle meshes in the BVH.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "asset/scene_desc.h"
 #include "core/image.h"
 #include "core/result.h"
@@ -11,16 +16,62 @@
 
 namespace engine::rt {
 
-struct SceneBuildStats {
-  int meshes = 0;
+// One model instance (a character): its triangles, the time its pose took (sample,
+// local-to-model, skin) and its BVH's build (create) or refit (setTime).
+struct InstanceStats {
   int triangles = 0;
   double skinSeconds = 0.0;
   double bvhSeconds = 0.0;
 };
 
-// Errors name the scene file and the model element, like the rasterizer's. The
-// terrain is triangulated exactly as the rasterizer draws it for this camera and
-// an image `viewportHeight` pixels high (the same CDLOD selection and morph).
+struct SceneBuildStats {
+  int meshes = 0;
+  int triangles = 0;
+  double skinSeconds = 0.0;
+  double bvhSeconds = 0.0;
+  std::vector<InstanceStats> instances;  // in the scene file's order
+};
+
+struct LoadedModel;
+
+// A scene file's ray-traced view that follows time: the static world (primitives,
+// terrain) in BVH group 0, built once; each model instance in a group of its own,
+// skinned on the CPU at the new time and refitted (not rebuilt) by setTime.
+class AnimatedRtScene {
+ public:
+  // Errors name the scene file and the model element, like the rasterizer's. The
+  // terrain is triangulated exactly as the rasterizer draws it for this camera and
+  // an image `viewportHeight` pixels high (the same CDLOD selection and morph).
+  static Result<AnimatedRtScene> create(const SceneDesc& scene, double time, int viewportHeight = 720,
+                                        SceneBuildStats* stats = nullptr);
+  // Poses every model instance at `time` and refits its BVH; stats cover only them.
+  Status setTime(double time, SceneBuildStats* stats = nullptr);
+
+  RtScene& scene() { return scene_; }
+  const RtScene& scene() const { return scene_; }
+
+  AnimatedRtScene(AnimatedRtScene&&) noexcept;
+  AnimatedRtScene& operator=(AnimatedRtScene&&) noexcept;
+  ~AnimatedRtScene();
+
+ private:
+  AnimatedRtScene();
+
+  struct Instance {
+    const LoadedModel* model = nullptr;
+    ModelDesc desc;
+    int clip = -1;
+    double ground = 0.0;
+    int group = 0;
+    std::vector<RtMesh> meshes;  // the pose being built; copied into the scene
+    std::vector<MeshId> ids;
+  };
+  RtScene scene_;
+  std::map<std::string, std::unique_ptr<LoadedModel>> models_;
+  std::vector<Instance> instances_;
+};
+
+// The scene at one time, as AnimatedRtScene::create builds it.
 Result<RtScene> buildRtScene(const SceneDesc& scene, double time, int viewportHeight = 720,
                              SceneBuildStats* stats = nullptr);
 

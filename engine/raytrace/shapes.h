@@ -19,6 +19,7 @@ struct SurfaceInteraction {
   Vec3<T> ns{0, 1, 0};  // shading normal (interpolated vertex normals), unit
   T t = 0;
   int material = 0;
+  glm::vec2 uv{0.0f};  // texture coordinates, as the rasterizer interpolates them
 
   // A ray leaving this point toward w, offset so that it cannot hit this surface.
   Ray<T> spawnRay(const Vec3<T>& w) const { return Ray<T>{offsetRayOrigin(p, pError, n, w), w}; }
@@ -138,35 +139,44 @@ Vec3<T> permute(const Vec3<T>& v, int x, int y, int z) {
 
 }  // namespace detail
 
+// The part of the watertight test that depends on the ray only (the permutation that
+// makes the ray's largest direction component z, and the shear to +z), computed once
+// per ray by the BVH rather than once per triangle.
+template <typename T>
+struct TriangleRay {
+  Vec3<T> o;
+  int kx = 0, ky = 0, kz = 0;
+  T sx = 0, sy = 0, sz = 0;
+
+  explicit TriangleRay(const Ray<T>& ray) : o(ray.o) {
+    kz = detail::maxComponentIndex(glm::abs(ray.d));
+    kx = kz == 2 ? 0 : kz + 1;
+    ky = kx == 2 ? 0 : kx + 1;
+    const Vec3<T> d = detail::permute(ray.d, kx, ky, kz);
+    sx = -d.x / d.z;
+    sy = -d.y / d.z;
+    sz = T(1) / d.z;
+  }
+};
+
 // Watertight ray/triangle intersection (Woop, Benthin and Wald, JCGT 2013), as pbrt-v4
 // writes it: translate the vertices to the ray origin, permute so the ray's largest
 // direction component is z, shear so the ray is +z, then the three 2D edge functions
 // decide the hit; points on a shared edge are inside one triangle or the other, never
 // neither. The final test rejects t that rounding could have made positive.
 template <typename T>
-std::optional<TriangleIntersection<T>> intersectTriangle(const Ray<T>& ray, const Vec3<T>& p0, const Vec3<T>& p1,
-                                                         const Vec3<T>& p2) {
+std::optional<TriangleIntersection<T>> intersectTriangle(const TriangleRay<T>& r, T tMax, const Vec3<T>& p0,
+                                                         const Vec3<T>& p1, const Vec3<T>& p2) {
   using detail::permute;
-  Vec3<T> p0t = p0 - ray.o;
-  Vec3<T> p1t = p1 - ray.o;
-  Vec3<T> p2t = p2 - ray.o;
-  const int kz = detail::maxComponentIndex(glm::abs(ray.d));
-  const int kx = kz == 2 ? 0 : kz + 1;
-  const int ky = kx == 2 ? 0 : kx + 1;
-  const Vec3<T> d = permute(ray.d, kx, ky, kz);
-  p0t = permute(p0t, kx, ky, kz);
-  p1t = permute(p1t, kx, ky, kz);
-  p2t = permute(p2t, kx, ky, kz);
-
-  const T sx = -d.x / d.z;
-  const T sy = -d.y / d.z;
-  const T sz = T(1) / d.z;
-  p0t.x += sx * p0t.z;
-  p0t.y += sy * p0t.z;
-  p1t.x += sx * p1t.z;
-  p1t.y += sy * p1t.z;
-  p2t.x += sx * p2t.z;
-  p2t.y += sy * p2t.z;
+  Vec3<T> p0t = permute(p0 - r.o, r.kx, r.ky, r.kz);
+  Vec3<T> p1t = permute(p1 - r.o, r.kx, r.ky, r.kz);
+  Vec3<T> p2t = permute(p2 - r.o, r.kx, r.ky, r.kz);
+  p0t.x += r.sx * p0t.z;
+  p0t.y += r.sy * p0t.z;
+  p1t.x += r.sx * p1t.z;
+  p1t.y += r.sy * p1t.z;
+  p2t.x += r.sx * p2t.z;
+  p2t.y += r.sy * p2t.z;
 
   const T e0 = detail::edgeFunction(p1t.x, p1t.y, p2t.x, p2t.y);
   const T e1 = detail::edgeFunction(p2t.x, p2t.y, p0t.x, p0t.y);
@@ -175,12 +185,12 @@ std::optional<TriangleIntersection<T>> intersectTriangle(const Ray<T>& ray, cons
   const T det = e0 + e1 + e2;
   if (det == T(0)) return std::nullopt;
 
-  p0t.z *= sz;
-  p1t.z *= sz;
-  p2t.z *= sz;
+  p0t.z *= r.sz;
+  p1t.z *= r.sz;
+  p2t.z *= r.sz;
   const T tScaled = e0 * p0t.z + e1 * p1t.z + e2 * p2t.z;
-  if (det < 0 && (tScaled >= 0 || tScaled < ray.tMax * det)) return std::nullopt;
-  if (det > 0 && (tScaled <= 0 || tScaled > ray.tMax * det)) return std::nullopt;
+  if (det < 0 && (tScaled >= 0 || tScaled < tMax * det)) return std::nullopt;
+  if (det > 0 && (tScaled <= 0 || tScaled > tMax * det)) return std::nullopt;
 
   const T invDet = T(1) / det;
   const T t = tScaled * invDet;
@@ -197,6 +207,12 @@ std::optional<TriangleIntersection<T>> intersectTriangle(const Ray<T>& ray, cons
   const T deltaT = T(3) * (gamma<T>(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * std::abs(invDet);
   if (t <= deltaT) return std::nullopt;
   return TriangleIntersection<T>{e0 * invDet, e1 * invDet, e2 * invDet, t};
+}
+
+template <typename T>
+std::optional<TriangleIntersection<T>> intersectTriangle(const Ray<T>& ray, const Vec3<T>& p0, const Vec3<T>& p1,
+                                                         const Vec3<T>& p2) {
+  return intersectTriangle(TriangleRay<T>(ray), ray.tMax, p0, p1, p2);
 }
 
 // The hit point from barycentrics and its error bound (pbrt: gamma(7) times the sum

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "asset/gltf_loader.h"
+#include "asset/material_texture.h"
 #include "render/character.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
@@ -343,16 +344,9 @@ void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double f
 
 Status SceneRenderer::Impl::loadMaterials() {
   for (const MaterialDesc& m : scene.materials) {
-    if (m.texture.empty()) {
-      materialTextures.emplace_back();
-    } else if (m.texture == "checker") {
-      materialTextures.push_back(uploadTexture(makeChecker(256, 2, {235, 235, 235}, {90, 90, 90}), true));
-    } else {
-      const auto folder = scene.path.substr(0, scene.path.find_last_of('/') + 1);
-      auto image = readPng(folder + m.texture);
-      if (!image) return makeError(scene.path + ": /materials/" + m.name + "/texture: " + image.error().message);
-      materialTextures.push_back(uploadTexture(*image, true));
-    }
+    auto image = loadMaterialTexture(scene, m);
+    if (!image) return image.error();
+    materialTextures.push_back(image->empty() ? gl::Texture{} : uploadTexture(*image, true));
   }
   return Ok{};
 }

@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "app/runner.h"
 #include "asset/scene_file.h"
 #include "core/image.h"
 #include "raytrace/scene_builder.h"
+#include "raytrace/tone_map.h"
 #include "scene_game.h"
 
 using namespace engine;
@@ -133,4 +135,85 @@ TEST(RasterVsRaytrace, CornellMirrorProbeApproachesTheTracedReflection) {
   // 35.8, 34.8 and 39.3. The limits sit between, with room for driver rounding.
   EXPECT_LT(probeError, 25.0);
   EXPECT_LT(probeError, 0.4 * bareError);
+}
+
+namespace {
+
+// The demo scene at t = 1 s, ray traced at pixel centres, and the same with the ray
+// tracer's textures and fog switched off (each material's plain colour, no fog).
+struct DemoImages {
+  Image raster, traced, plain;
+};
+
+DemoImages renderDemo(int width, int height) {
+  DemoImages out;
+  auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/demo.json");
+  EXPECT_TRUE(scene.ok()) << scene.error().message;
+  if (!scene) return out;
+  rt::RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.samplesPerPixel = 1;
+  auto traced = rt::raytraceScene(*scene, 1.0, settings);
+  EXPECT_TRUE(traced.ok()) << traced.error().message;
+  if (traced) out.traced = traced->image;
+
+  SceneDesc plain = *scene;
+  plain.fog.enabled = false;
+  for (auto& m : plain.materials) m.texture.clear();
+  auto built = rt::buildRtScene(plain, 1.0, height);
+  EXPECT_TRUE(built.ok());
+  if (built) {
+    // glTF textures off too: a fresh scene whose glTF materials keep only the factor
+    // would need the builder's insides; the characters are a small share of the frame,
+    // so the plain image differs from the textured one by the ground, crates and fog.
+    out.plain = rt::toImage(rt::Integrator(*built, settings).render().image, built->render());
+  }
+
+  SceneRenderOptions options;
+  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
+  demo::SceneGame game(*scene, options);
+  RunOptions run;
+  run.width = width;
+  run.height = height;
+  run.time = 1.0;
+  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &out.raster).ok());
+  return out;
+}
+
+}  // namespace
+
+// The demo scene (sun, shadows, PBR, textured ground, crates and characters, fog,
+// terrain) at low resolution: the two renderers draw the same picture, and the ray
+// tracer's textures and fog bring it closer to the rasterizer than without them.
+TEST(RasterVsRaytrace, DemoAgreesAtLowResolution) {
+  constexpr int kW = 320, kH = 180;
+  const DemoImages images = renderDemo(kW, kH);
+  ASSERT_FALSE(images.raster.empty());
+  ASSERT_FALSE(images.traced.empty());
+  ASSERT_FALSE(images.plain.empty());
+  auto diff = compareImages(images.traced, images.raster, 16);
+  auto plainDiff = compareImages(images.plain, images.raster, 16);
+  ASSERT_TRUE(diff.ok() && plainDiff.ok());
+  std::printf("raster vs ray traced demo %dx%d: mean %.3f, PSNR %.2f dB, %.2f%% over 16; "
+              "without textures and fog: mean %.3f, PSNR %.2f dB, %.2f%% over 16\n",
+              kW, kH, diff->meanAbs, diff->psnr, diff->shareOver * 100.0, plainDiff->meanAbs, plainDiff->psnr,
+              plainDiff->shareOver * 100.0);
+  if (HasFailure() || std::getenv("ENGINE_WRITE_DIFFS")) {
+    (void)writePng("raster_vs_raytrace_demo_traced.png", images.traced);
+    (void)writePng("raster_vs_raytrace_demo_raster.png", images.raster);
+  }
+  // Measured (llvmpipe, Mesa 22): mean 8.9, PSNR 22.4 dB, 17% of pixels over 16;
+  // without the ray tracer's textures and fog: mean 27.7, PSNR 14.9 dB, 45%. What
+  // remains is known and not a bug: the distant checkerboard aliases in the ray
+  // tracer (one ray per pixel at the full-resolution texture, where GL averages
+  // mipmap levels), the terrain is one flat grass colour in the ray tracer (the
+  // rasterizer blends textured layers), shadow-map texels against exact shadow
+  // rays, and the metal spheres (the rasterizer reflects the sky, the ray tracer
+  // reflects only mirror materials). The limits sit about a third above the
+  // measure: losing the textures or the fog (mean 27.7) fails them.
+  EXPECT_LT(diff->meanAbs, 12.0);
+  EXPECT_GT(diff->psnr, 20.0);
+  EXPECT_LT(diff->shareOver, 0.25);
+  EXPECT_LT(diff->meanAbs, plainDiff->meanAbs);
 }

@@ -132,6 +132,66 @@ TEST(Bvh, BuildAndRefitTimesOfA10kTriangleMesh) {
   EXPECT_NEAR(hit->p.y, mesh.positions[35 * kSide + 35].y, 1e-5f);
 }
 
+// Two levels: a static mesh in group 0 and two "characters" in groups of their own.
+// One character moves (updateMesh + refit, so only its group refits); the scene's
+// nearest hit and any hit must then equal brute force over all current triangles.
+TEST(RtScene, GroupRefitMatchesBruteForce) {
+  std::mt19937 rng(7);
+  rt::RtScene scene;
+  const auto meshOf = [](const std::vector<rt::TriangleVerts>& tris, int group) {
+    rt::RtMesh m;
+    for (const auto& t : tris) {
+      const auto i = std::uint32_t(m.positions.size());
+      m.positions.insert(m.positions.end(), {t.p0, t.p1, t.p2});
+      m.indices.insert(m.indices.end(), {i, i + 1, i + 2});
+    }
+    m.group = group;
+    return m;
+  };
+  const std::vector<rt::TriangleVerts> world = randomSoup(2000, rng);
+  std::vector<rt::TriangleVerts> a = randomSoup(500, rng), b = randomSoup(500, rng);
+  ASSERT_TRUE(scene.addMesh(meshOf(world, 0)).ok());
+  const int ga = scene.addGroup(), gb = scene.addGroup();
+  auto ida = scene.addMesh(meshOf(a, ga));
+  ASSERT_TRUE(ida.ok());
+  ASSERT_TRUE(scene.addMesh(meshOf(b, gb)).ok());
+  EXPECT_FALSE(scene.addMesh(meshOf(b, 3)).ok()) << "group 3 does not exist";
+  scene.build();
+  EXPECT_EQ(scene.groupCount(), 3);
+  EXPECT_EQ(scene.triangleCount(), 3000u);
+  const std::size_t worldNodes = scene.bvh(0).nodeCount();
+
+  // Character a walks 3 units and bends: every vertex moves.
+  std::normal_distribution<float> jitter(0.0f, 0.3f);
+  for (auto& t : a) {
+    const glm::vec3 shift = glm::vec3(3.0f, 0.0f, 0.0f) + glm::vec3(jitter(rng), jitter(rng), jitter(rng));
+    t.p0 += shift;
+    t.p1 += shift;
+    t.p2 += shift + glm::vec3(jitter(rng));
+  }
+  const rt::RtMesh moved = meshOf(a, ga);
+  ASSERT_TRUE(scene.updateMesh(*ida, moved.positions).ok());
+  scene.refit();
+  EXPECT_EQ(scene.bvh(0).nodeCount(), worldNodes);
+
+  std::vector<rt::TriangleVerts> all = world;
+  all.insert(all.end(), a.begin(), a.end());
+  all.insert(all.end(), b.begin(), b.end());
+  std::uniform_real_distribution<float> pos(-14.0f, 14.0f), dir(-1.0f, 1.0f);
+  int hits = 0, mismatches = 0, anyMismatches = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const rt::Ray<float> ray{glm::vec3(pos(rng), pos(rng), pos(rng)), glm::vec3(dir(rng), dir(rng), dir(rng))};
+    const auto expected = bruteForce(all, ray);
+    const auto actual = scene.intersect(ray);
+    hits += expected ? 1 : 0;
+    if (bool(expected) != bool(actual) || (expected && expected->hit.t != actual->t)) ++mismatches;
+    if (scene.intersectAny(ray) != bool(expected)) ++anyMismatches;
+  }
+  EXPECT_EQ(mismatches, 0) << hits << " hits";
+  EXPECT_EQ(anyMismatches, 0);
+  EXPECT_GT(hits, 300);
+}
+
 TEST(RtScene, RejectsBadMeshes) {
   rt::RtScene scene;
   rt::RtMesh mesh;

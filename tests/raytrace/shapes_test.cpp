@@ -3,10 +3,12 @@
 // origin offset that keeps a surface from hitting itself at 1e5 from the origin.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "raytrace/shapes.h"
+#include "raytrace/texture.h"
 
 namespace rt = engine::rt;
 
@@ -184,3 +186,32 @@ TYPED_TEST(ShapesTest, OffsetRaysNeverHitTheirOwnSurfaceFarFromTheOrigin) {
 }
 
 }  // namespace
+
+// Texture sampling as GL does it for the rasterizer: bilinear between texel centres,
+// sRGB decoded per texel before filtering, repeat outside [0, 1), and the row that
+// v = 0 reads set by the origin.
+TEST(RtTexture, BilinearSrgbRepeatAndOrigin) {
+  engine::Image image(2, 1);
+  const std::uint8_t white[4] = {255, 255, 255, 255}, black[4] = {0, 0, 0, 255};
+  std::copy(white, white + 4, image.at(0, 0));
+  std::copy(black, black + 4, image.at(1, 0));
+  const rt::RtTexture t(image, rt::TextureOrigin::TopLeft);
+  EXPECT_FLOAT_EQ(t.sample({0.25f, 0.5f}).x, 1.0f);   // texel 0's centre
+  EXPECT_FLOAT_EQ(t.sample({0.75f, 0.5f}).x, 0.0f);   // texel 1's centre
+  EXPECT_FLOAT_EQ(t.sample({0.5f, 0.5f}).x, 0.5f);    // linear average, not sRGB 128
+  EXPECT_FLOAT_EQ(t.sample({0.0f, 0.5f}).x, 0.5f);    // wraps to texel 1 on the left
+  EXPECT_FLOAT_EQ(t.sample({1.25f, 0.5f}).x, 1.0f);   // repeat
+  EXPECT_FLOAT_EQ(t.sample({-0.75f, 0.5f}).x, 1.0f);
+
+  engine::Image gray(1, 1);
+  const std::uint8_t g[4] = {188, 188, 188, 255};
+  std::copy(g, g + 4, gray.at(0, 0));
+  // sRGB 188 / 255 is linear ((0.737 + 0.055) / 1.055)^2.4 = 0.5029.
+  EXPECT_NEAR(rt::RtTexture(gray, rt::TextureOrigin::TopLeft).sample({0.3f, 0.7f}).y, 0.5029f, 1e-4f);
+
+  engine::Image column(1, 2);
+  std::copy(white, white + 4, column.at(0, 0));
+  std::copy(black, black + 4, column.at(0, 1));
+  EXPECT_FLOAT_EQ(rt::RtTexture(column, rt::TextureOrigin::TopLeft).sample({0.5f, 0.25f}).z, 1.0f);
+  EXPECT_FLOAT_EQ(rt::RtTexture(column, rt::TextureOrigin::BottomLeft).sample({0.5f, 0.25f}).z, 0.0f);
+}
