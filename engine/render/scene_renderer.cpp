@@ -8,6 +8,7 @@
 
 #include "asset/gltf_loader.h"
 #include "render/character.h"
+#include "render/frame_block.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
 #include "render/textures.h"
@@ -19,24 +20,8 @@
 namespace engine {
 namespace {
 
-constexpr int kMaxPointLights = 4;
 constexpr double kSunShadowDistance = 60.0;  // metres of view the sun's map covers
 constexpr int kMaxCubeShadowSize = 1024;
-
-// The uniform block of shaders/common/frame.glsl (std140: vec4-aligned members).
-struct FrameBlock {
-  glm::mat4 viewProjection{1.0f};
-  glm::mat4 sunShadowMatrix{1.0f};
-  glm::vec4 sunDirection{0.0f};
-  glm::vec4 sunColor{0.0f};
-  glm::vec4 pointPosition[kMaxPointLights]{};
-  glm::vec4 pointColor[kMaxPointLights]{};
-  glm::vec4 ambientSky{0.0f};
-  glm::vec4 ambientGround{0.0f};
-  glm::vec4 fog{0.0f};
-  glm::vec4 shadowParams{0.0f};
-  glm::ivec4 counts{0};
-};
 
 // A unit shape placed in the world, with a bounding sphere for culling
 // (radius < 0: unbounded, never culled).
@@ -154,8 +139,11 @@ struct SceneRenderer::Impl {
   SceneStats* stats = nullptr;
 
   Status init(const SceneRenderOptions& options);
-  Status loadTerrain();
+  Status loadTerrain(const std::vector<std::string>& defines);
+  terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
+  void drawTerrainShadow(const glm::dmat4& lightView, double radius, double fovy,
+                         const glm::mat4& lightViewProjection);
   Status loadMaterials();
   Status loadModels();
   void addShapes();
@@ -212,7 +200,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   emptyVao = gl::VertexArray::create();
   frameUbo = gl::Buffer::create(sizeof(FrameBlock));
 
-  if (auto s = loadTerrain(); !s) return s;
+  if (auto s = loadTerrain(defines); !s) return s;
   if (auto s = loadMaterials(); !s) return s;
   if (auto s = loadModels(); !s) return s;
   addShapes();
@@ -245,41 +233,54 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   return buildVariants();
 }
 
-Status SceneRenderer::Impl::loadTerrain() {
+Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
   if (!scene.terrain.enabled) return Ok{};
   auto created = terrain::Terrain::create(terrain::settingsFromScene(scene.terrain));
   if (!created) return makeError(scene.path + ": /terrain: " + created.error().message);
   terrain = std::make_unique<terrain::Terrain>(std::move(created).value());
-  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, {"HDR_OUTPUT 1"});
+  // The scene programs' variant: the terrain is lit and shadowed as they are.
+  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, defines);
   if (!renderer) return renderer.error();
   terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
   return Ok{};
 }
 
-void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
+// The view camera's LOD (its position, field of view and viewport fix every
+// patch's level and morph), culled against `cullViewProjection`; coarsened if it
+// would need more height pages than the GPU pool holds.
+terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullViewProjection, double fovy,
+                                                         int viewportHeight) const {
   terrain::LodCamera camera;
   camera.position = eye;
-  camera.viewProjection = glm::mat4(viewProjection);
+  camera.viewProjection = cullViewProjection;
   camera.fovY = fovy;
   camera.viewportHeight = viewportHeight;
-  const auto selection = terrain::selectLod(*terrain, camera, scene.terrain.errorPixels);
-  // The terrain shader takes lit.frag's lighting uniforms.
-  Lighting lighting;
-  if (sunLight >= 0) {
-    const LightDesc& sun = scene.lights[size_t(sunLight)];
-    lighting.sunDirection = glm::vec3(sun.direction);
-    lighting.sunColor = sun.color * sun.intensity;
-  } else {
-    lighting.sunColor = glm::vec3(0.0f);
-  }
-  lighting.ambientSky = ambientSkyColor(scene);
-  lighting.ambientGround = ambientGroundColor(scene);
-  lighting.skyHorizon = scene.fog.color;
-  lighting.fogDensity = scene.fog.enabled ? scene.fog.density : 0.0f;
-  const auto drawn = terrainRenderer->draw(selection, glm::mat4(viewProjection), eye,
-                                           [&lighting](const gl::Program& p) { setLightingUniforms(p, lighting); });
+  return terrain::selectLodWithin(*terrain, camera, scene.terrain.errorPixels,
+                                  std::size_t(terrainRenderer->pageSlots()));
+}
+
+void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
+  const auto selection = selectTerrain(glm::mat4(viewProjection), fovy, viewportHeight);
+  const auto drawn = terrainRenderer->draw(selection, eye, [this](const gl::Program& p) { setUniforms(p); });
   stats->drawCalls += 1;
   stats->terrainTriangles = int(drawn.trianglesDrawn);
+}
+
+// The terrain into the sun's shadow map, with the same patches and morph as the
+// view (a coarser mesh would poke through the drawn one and shadow it), culled
+// against the light's box stretched toward the sun over the whole field: with depth
+// clamping, a mountain in front of the light's near plane still casts, at depth 0.
+void SceneRenderer::Impl::drawTerrainShadow(const glm::dmat4& lightView, double radius, double fovy,
+                                            const glm::mat4& lightViewProjection) {
+  const terrain::HeightRange h = terrain->heightRange();
+  const double reach = std::hypot(double(terrain->cellsX()), double(terrain->cellsZ())) * terrain->spacing() +
+                       double(h.max - h.min);
+  const glm::dmat4 cullProjection = glm::orthoRH_ZO(-radius, radius, -radius, radius, -reach, 2.0 * radius + reach);
+  const auto selection = selectTerrain(glm::mat4(cullProjection * lightView), fovy, targetHeight);
+  glEnable(GL_DEPTH_CLAMP);
+  terrainRenderer->drawDepth(selection, lightViewProjection);
+  glDisable(GL_DEPTH_CLAMP);
+  stats->drawCalls += 1;
 }
 
 Status SceneRenderer::Impl::loadMaterials() {
@@ -566,6 +567,7 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
   glPolygonOffset(1.5f, 2.0f);
   drawShapes(nullptr, true, lightViewProjection);
   drawCharacters(nullptr, true, lightViewProjection, lightViewProjection);
+  if (terrain) drawTerrainShadow(lightView, radius, fovy, lightViewProjection);
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 

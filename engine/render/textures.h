@@ -13,7 +13,8 @@ Image makeChecker(int size, int cells, glm::u8vec3 a, glm::u8vec3 b);
 Image makeTiles(int size, int tiles, glm::u8vec3 tile, glm::u8vec3 grout);
 
 // Uploads an RGBA8 image (top row first) as a mipmapped, repeating, trilinear
-// texture; `srgb` for colour data.
-gl::Texture uploadTexture(const Image& image, bool srgb);
+// texture; `srgb` for colour data. One implementation, in gl (the terrain's layers
+// use it too).
+inline gl::Texture uploadTexture(const Image& image, bool srgb) { return gl::Texture::fromImage(image, srgb); }
 
 }  // namespace engine
