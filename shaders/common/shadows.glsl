@@ -21,7 +21,11 @@ float sunShadow(vec3 position, vec3 n) {
   float sum = 0.0;
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) sum += texture(u_sunShadowMap, vec3(uvz.xy + vec2(x, y) * texel, uvz.z));
-  return sum / float((2 * r + 1) * (2 * r + 1));
+  // Fade to lit over the map's outer tenth: beyond it nothing is known, and a
+  // terrain shadow (a mountain's, at low sun) would otherwise stop at a straight edge.
+  vec2 edge = min(uvz.xy, 1.0 - uvz.xy);
+  float known = smoothstep(0.0, 0.1, min(edge.x, edge.y));
+  return mix(1.0, sum / float((2 * r + 1) * (2 * r + 1)), known);
 }
 #endif
 
