@@ -4,13 +4,16 @@
 // map with the terrain casting, terrain, fog, post) offscreen with EGL, and prints a
 // Markdown table: patches and triangles drawn, the largest stated geometric error,
 // the largest screen-space error measured against the full-resolution grid, and
-// the median and 90th-percentile frame time (render + glFinish).
-//   build/bin/terrain_frames [--frames N] [--size WxH] [--backend egl|osmesa]
+// the median and 90th-percentile frame time (render + glFinish), frames of all
+// targets interleaved.
+//   build/bin/terrain_frames [--frames N] [--size WxH] [--targets P,P,...] [--shadows on|off]
+//                            [--backend egl|osmesa]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,11 +37,13 @@ struct Options {
   int frames = 15;
   int width = 1280, height = 720;
   Backend backend = Backend::Egl;
+  std::vector<double> targets{0.5, 1.0, 2.0, 4.0, 8.0};
+  bool shadows = true;
   std::string command;
 };
 
 [[noreturn]] void usage(const char* message) {
-  std::fprintf(stderr, "terrain_frames: %s\nusage: terrain_frames [--frames N] [--size WxH] [--backend egl|osmesa]\n",
+  std::fprintf(stderr, "terrain_frames: %s\nusage: terrain_frames [--frames N] [--size WxH] [--targets P,P,...] [--shadows on|off] [--backend egl|osmesa]\n",
                message);
   std::exit(2);
 }
@@ -58,6 +63,18 @@ Options parse(int argc, char** argv) {
     } else if (a == "--size") {
       if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16)
         usage("--size: WxH, at least 16x16");
+    } else if (a == "--targets") {
+      o.targets.clear();
+      for (std::size_t at = 0; at < v.size();) {
+        const std::size_t comma = std::min(v.find(',', at), v.size());
+        const double t = std::atof(v.substr(at, comma - at).c_str());
+        if (!(t > 0.0)) usage("--targets: comma-separated pixels, each > 0");
+        o.targets.push_back(t);
+        at = comma + 1;
+      }
+    } else if (a == "--shadows") {
+      if (v != "on" && v != "off") usage("--shadows: on or off");
+      o.shadows = v == "on";
     } else if (a == "--backend") {
       const auto b = parseBackend(v);
       if (!b || *b == Backend::Window) usage("--backend: egl or osmesa");
@@ -70,7 +87,7 @@ Options parse(int argc, char** argv) {
 }
 
 // The micro_bench table's field (bench/micro/terrain_bench.cpp, terrainOf(4096)).
-SceneDesc sceneFor(double errorPixels) {
+SceneDesc sceneFor(double errorPixels, bool shadows) {
   SceneDesc scene;
   scene.path = "terrain_frames";
   scene.terrain.enabled = true;
@@ -84,6 +101,7 @@ SceneDesc sceneFor(double errorPixels) {
   sun.direction = glm::normalize(glm::dvec3(-0.6, 0.5, -0.3));
   sun.color = {1.0f, 0.93f, 0.85f};
   sun.intensity = 2.6f;
+  sun.shadows = shadows;
   scene.lights.push_back(sun);
   scene.fog.enabled = true;
   scene.fog.density = 0.0006f;
@@ -107,7 +125,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "terrain_frames: %s\n", context.error().message.c_str());
     return 1;
   }
-  const SceneDesc base = sceneFor(1.0);
+  const SceneDesc base = sceneFor(1.0, options.shadows);
   auto field = terrain::Terrain::create(terrain::settingsFromScene(base.terrain));
   if (!field) {
     std::fprintf(stderr, "terrain_frames: %s\n", field.error().message.c_str());
@@ -128,8 +146,11 @@ int main(int argc, char** argv) {
 
   std::printf("| target (px) | patches | triangles | max geometric error (m) | max screen error (px) | frame median (ms) | frame p90 (ms) |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (double pixels : {0.5, 1.0, 2.0, 4.0, 8.0}) {
-    SceneDesc scene = sceneFor(pixels);
+  // One renderer per target, all alive, frames taken round-robin: load from other
+  // work on the machine then falls on every target alike, and the ratios hold.
+  std::vector<std::unique_ptr<SceneRenderer>> renderers;
+  for (double pixels : options.targets) {
+    SceneDesc scene = sceneFor(pixels, options.shadows);
     scene.camera.position = camera.position;
     scene.camera.forward = camera.forward();
     scene.camera.nearPlane = camera.nearPlane;
@@ -141,15 +162,22 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "terrain_frames: %s\n", renderer.error().message.c_str());
       return 1;
     }
-    target.bind();
-    std::vector<double> ms;
-    for (int i = -2; i < options.frames; ++i) {  // two frames to warm up (pages, shaders)
+    renderers.push_back(std::move(renderer).value());
+  }
+  target.bind();
+  std::vector<std::vector<double>> ms(renderers.size());
+  for (int i = -2; i < options.frames; ++i) {  // two rounds to warm up (pages, shaders)
+    for (std::size_t r = 0; r < renderers.size(); ++r) {
       const auto t0 = std::chrono::steady_clock::now();
-      (*renderer)->render(camera, options.width, options.height);
+      renderers[r]->render(camera, options.width, options.height);
       glFinish();
       const auto t1 = std::chrono::steady_clock::now();
-      if (i >= 0) ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      if (i >= 0) ms[r].push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     }
+  }
+
+  for (std::size_t r = 0; r < renderers.size(); ++r) {
+    const double pixels = options.targets[r];
     // The same selection the renderer made (same camera, viewport and culling
     // matrix: reverse-Z projection times the view rotation), for the errors.
     terrain::LodCamera lod;
@@ -160,18 +188,18 @@ int main(int argc, char** argv) {
     lod.viewProjection = glm::mat4(glm::perspectiveRH_ZO(lod.fovY, aspect, camera.farPlane, camera.nearPlane) *
                                    glm::lookAt(glm::dvec3(0.0), camera.forward(), glm::dvec3(0, 1, 0)));
     const terrain::LodSelection selection = terrain::selectLod(*field, lod, pixels);
-    const int drawn = (*renderer)->stats().terrainTriangles;
+    const int drawn = renderers[r]->stats().terrainTriangles;
     if (std::size_t(drawn) != selection.stats.triangles)
       std::fprintf(stderr, "terrain_frames: note: the renderer drew %d triangles, the mirror selection has %zu\n",
                    drawn, selection.stats.triangles);
-    std::printf("| %.1f | %zu | %d | %.3f | %.3f | %.1f | %.1f |\n", pixels, selection.stats.patches, drawn,
+    std::printf("| %.2g | %zu | %d | %.3f | %.3f | %.1f | %.1f |\n", pixels, selection.stats.patches, drawn,
                 double(selection.stats.maxGeometricError),
-                terrain::bench::measuredScreenError(*field, selection, lod), percentile(ms, 0.5),
-                percentile(ms, 0.9));
-    std::fflush(stdout);
+                terrain::bench::measuredScreenError(*field, selection, lod), percentile(ms[r], 0.5),
+                percentile(ms[r], 0.9));
   }
-  std::printf("\n%s, %dx%d, %d frames per target after 2 warm-up frames; command: %s\n",
-              (*context)->renderer().c_str(), options.width, options.height, options.frames,
-              options.command.c_str());
+  std::printf("\n%s, %dx%d, sun shadows %s, %d frames per target taken round-robin after 2 warm-up rounds; "
+              "command: %s\n",
+              (*context)->renderer().c_str(), options.width, options.height, options.shadows ? "on" : "off",
+              options.frames, options.command.c_str());
   return 0;
 }

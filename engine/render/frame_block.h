@@ -20,6 +20,8 @@ struct FrameBlock {
   glm::vec4 fog{0.0f};
   glm::vec4 shadowParams{0.0f};
   glm::ivec4 counts{0};
+  glm::mat4 sunShadowMatrixFar{1.0f};
+  glm::vec4 sunFarParams{0.0f};
 };
 
 }  // namespace engine

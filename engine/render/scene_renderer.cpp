@@ -21,6 +21,7 @@ namespace engine {
 namespace {
 
 constexpr double kSunShadowDistance = 60.0;  // metres of view the sun's map covers
+constexpr double kSunFarShadowDistance = 4000.0;  // and the far (terrain) map
 constexpr int kMaxCubeShadowSize = 1024;
 
 // A unit shape placed in the world, with a bounding sphere for culling
@@ -77,6 +78,18 @@ glm::dmat4 reverseZProjection(double fovyRadians, double aspect, double nearPlan
   return glm::perspectiveRH_ZO(fovyRadians, aspect, farPlane, nearPlane);
 }
 
+// A depth map compared in hardware (sampler2DShadow), for the sun.
+gl::Texture makeSunShadowMap(int size) {
+  gl::Texture map = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size, 1);
+  map.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  map.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  map.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  map.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return map;
+}
+
 bool sphereVisible(const glm::dvec4 planes[6], const glm::dvec3& center, double radius) {
   if (radius < 0.0) return true;
   for (int i = 0; i < 6; ++i) {
@@ -126,6 +139,10 @@ struct SceneRenderer::Impl {
   std::vector<int> pointLights;
   gl::Texture sunShadowMap, pointShadowMap;
   gl::Framebuffer sunShadowFbo, pointShadowFbo;
+  // Terrain scenes: a second sun map of the terrain alone, far out (shadows.glsl).
+  bool sunFarShadows = false;
+  gl::Texture sunShadowMapFar;
+  gl::Framebuffer sunShadowFarFbo;
   int sunShadowSize = 0, cubeSize = 0;
   double sunTexelWorld = 0.0;
   double pointNear = 0.05, pointFar = 50.0;
@@ -142,8 +159,14 @@ struct SceneRenderer::Impl {
   Status loadTerrain(const std::vector<std::string>& defines);
   terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
-  void drawTerrainShadow(const glm::dmat4& lightView, double radius, double fovy,
-                         const glm::mat4& lightViewProjection);
+  struct SunBox {
+    glm::dmat4 view{1.0}, projection{1.0};  // camera-relative world -> the light's clip space
+    glm::mat4 shadowMatrix{1.0f};           // camera-relative world -> map [0,1]^3
+    double radius = 0.0, texelWorld = 0.0;
+  };
+  SunBox fitSunBox(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
+                   double nearPlane, double farPlane) const;
+  void drawTerrainShadow(const SunBox& box, double fovy);
   Status loadMaterials();
   Status loadModels();
   void addShapes();
@@ -184,6 +207,8 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   std::vector<std::string> defines;
   if (scene.render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
+  sunFarShadows = sunShadows && scene.terrain.enabled;
+  if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
   if (scene.fog.enabled) defines.push_back("FOG 1");
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
@@ -207,15 +232,14 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
 
   if (sunShadows) {
     sunShadowSize = render.shadowMapSize;
-    sunShadowMap = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, sunShadowSize, sunShadowSize, 1);
-    sunShadowMap.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    sunShadowMap.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    sunShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    sunShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    sunShadowMap.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    sunShadowMap.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    sunShadowMap = makeSunShadowMap(sunShadowSize);
     sunShadowFbo = gl::Framebuffer::create();
     sunShadowFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMap);
+  }
+  if (sunFarShadows) {
+    sunShadowMapFar = makeSunShadowMap(sunShadowSize);
+    sunShadowFarFbo = gl::Framebuffer::create();
+    sunShadowFarFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMapFar);
   }
   if (pointShadows) {
     cubeSize = std::min(render.shadowMapSize, kMaxCubeShadowSize);
@@ -270,15 +294,15 @@ void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double f
 // view (a coarser mesh would poke through the drawn one and shadow it), culled
 // against the light's box stretched toward the sun over the whole field: with depth
 // clamping, a mountain in front of the light's near plane still casts, at depth 0.
-void SceneRenderer::Impl::drawTerrainShadow(const glm::dmat4& lightView, double radius, double fovy,
-                                            const glm::mat4& lightViewProjection) {
+void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy) {
   const terrain::HeightRange h = terrain->heightRange();
   const double reach = std::hypot(double(terrain->cellsX()), double(terrain->cellsZ())) * terrain->spacing() +
                        double(h.max - h.min);
-  const glm::dmat4 cullProjection = glm::orthoRH_ZO(-radius, radius, -radius, radius, -reach, 2.0 * radius + reach);
-  const auto selection = selectTerrain(glm::mat4(cullProjection * lightView), fovy, targetHeight);
+  const double r = box.radius;
+  const glm::dmat4 cullProjection = glm::orthoRH_ZO(-r, r, -r, r, -reach, 2.0 * r + reach);
+  const auto selection = selectTerrain(glm::mat4(cullProjection * box.view), fovy, targetHeight);
   glEnable(GL_DEPTH_CLAMP);
-  terrainRenderer->drawDepth(selection, lightViewProjection);
+  terrainRenderer->drawDepth(selection, glm::mat4(box.projection * box.view));
   glDisable(GL_DEPTH_CLAMP);
   stats->drawCalls += 1;
 }
@@ -422,6 +446,7 @@ void SceneRenderer::Impl::setUniforms(const gl::Program& program) const {
   if (sunShadows) {
     program.set("u_sunTexelWorld", float(sunTexelWorld));
     sunShadowMap.bind(4);
+    if (sunFarShadows) sunShadowMapFar.bind(6);
   }
   if (pointShadows) {
     program.set("u_pointNear", float(pointNear));
@@ -521,10 +546,11 @@ void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnl
   }
 }
 
-void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
-                                          double aspect, double nearPlane) {
-  // Bounding sphere of the view frustum up to the shadow distance, camera-relative.
-  const double farPlane = std::min(scene.camera.farPlane, kSunShadowDistance);
+// The sun's orthographic box around the view frustum's slice [nearPlane, farPlane]
+// (its bounding sphere, camera-relative), texel-snapped.
+SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const glm::dvec3& cameraPosition, const glm::dmat4& view,
+                                                           double fovy, double aspect, double nearPlane,
+                                                           double farPlane) const {
   const glm::dmat4 invView = glm::inverse(view);
   const double ty = std::tan(fovy * 0.5), tx = ty * aspect;
   glm::dvec3 corners[8];
@@ -543,19 +569,30 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
   const glm::dvec3 lx = glm::normalize(glm::cross(up, l)), ly = glm::cross(l, lx);
   // Snap the centre to whole texels in world space: the map then slides in texel
   // steps as the camera moves, and shadow edges do not shimmer.
-  const double texel = 2.0 * radius / double(sunShadowSize);
+  SunBox box;
+  box.radius = radius;
+  box.texelWorld = 2.0 * radius / double(sunShadowSize);
+  const double texel = box.texelWorld;
   const glm::dvec3 world = center + cameraPosition;
   const double u = glm::dot(world, lx), v = glm::dot(world, ly);
   center += lx * (std::floor(u / texel) * texel - u) + ly * (std::floor(v / texel) * texel - v);
-  sunTexelWorld = texel;
 
   const double casterMargin = 200.0;  // casters behind the view still throw shadows into it
-  const glm::dmat4 lightView = glm::lookAt(center + l * (radius + casterMargin), center, ly);
-  const glm::dmat4 lightProj = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0, 2.0 * radius + casterMargin);
-  const glm::mat4 lightViewProjection(lightProj * lightView);
+  box.view = glm::lookAt(center + l * (radius + casterMargin), center, ly);
+  box.projection = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0, 2.0 * radius + casterMargin);
   const glm::dmat4 bias = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.0)) *
                           glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 1.0));
-  frame.sunShadowMatrix = glm::mat4(bias * lightProj * lightView);
+  box.shadowMatrix = glm::mat4(bias * box.projection * box.view);
+  return box;
+}
+
+void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
+                                          double aspect, double nearPlane) {
+  const SunBox box = fitSunBox(cameraPosition, view, fovy, aspect, nearPlane,
+                               std::min(scene.camera.farPlane, kSunShadowDistance));
+  sunTexelWorld = box.texelWorld;
+  frame.sunShadowMatrix = box.shadowMatrix;
+  const glm::mat4 lightViewProjection(box.projection * box.view);
 
   sunShadowFbo.bind();
   glViewport(0, 0, sunShadowSize, sunShadowSize);
@@ -567,7 +604,18 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
   glPolygonOffset(1.5f, 2.0f);
   drawShapes(nullptr, true, lightViewProjection);
   drawCharacters(nullptr, true, lightViewProjection, lightViewProjection);
-  if (terrain) drawTerrainShadow(lightView, radius, fovy, lightViewProjection);
+  if (terrain) drawTerrainShadow(box, fovy);
+
+  if (sunFarShadows) {
+    // The far map: the terrain alone (mountains over valleys), out to a few km.
+    const SunBox far = fitSunBox(cameraPosition, view, fovy, aspect, nearPlane,
+                                 std::min(scene.camera.farPlane, kSunFarShadowDistance));
+    frame.sunShadowMatrixFar = far.shadowMatrix;
+    frame.sunFarParams = glm::vec4(1.0f / float(sunShadowSize), float(far.texelWorld), 0.0f, 0.0f);
+    sunShadowFarFbo.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    drawTerrainShadow(far, fovy);
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
@@ -727,6 +775,7 @@ std::string SceneRenderer::describe() const {
   std::ostringstream out;
   out << "passes:";
   if (s.sunShadows) out << " shadow-sun(" << s.sunShadowSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
+  if (s.sunFarShadows) out << " shadow-sun-far(" << s.sunShadowSize << ", terrain, " << kSunFarShadowDistance << " m)";
   if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
   if (s.scene.sky.enabled) out << " sky";
   if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";

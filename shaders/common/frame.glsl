@@ -13,4 +13,6 @@ layout(std140, binding = 0) uniform Frame {
   vec4 u_fog;               // rgb colour, w = density (0 = none)
   vec4 u_shadowParams;      // x: sun texel size, y: PCF radius in texels, z: point far, w: point texel angle
   ivec4 u_counts;           // x: point lights
+  mat4 u_sunShadowMatrixFar;  // the far sun map (terrain scenes): as u_sunShadowMatrix
+  vec4 u_sunFarParams;      // x: far map texel size (uv), y: its texel's world size
 };

@@ -70,10 +70,10 @@ std::unique_ptr<Game> makeScene(const GoldenCase& c) {
       scene->camera.forward = glm::normalize(glm::dvec3(0.0, -450.0, -1500.0));
     }
     if (c.scene == SceneKind::TerrainLowSun) {
-      // The valley at a low sun behind the mountains ahead: the terrain casts into
-      // the sun's map, so the mountains shade the valley and the robots in it (up
-      // to the map's reach, where the shadow fades out).
-      scene->lights[0].direction = glm::normalize(glm::dvec3(-0.3, 0.12, -0.95));
+      // The valley at a low sun from the left: the mountains on that side shade the
+      // valley and the robots in it (near and far sun maps, the terrain casting)
+      // while the far slopes facing the sun stay lit.
+      scene->lights[0].direction = glm::normalize(glm::dvec3(-0.95, 0.2, 0.2));
     }
     SceneRenderOptions options;
     options.shaderDir = kShaders;
