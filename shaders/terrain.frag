@@ -1,9 +1,12 @@
 #version 450 core
-// Terrain materials: grass, rock and snow blended by height and slope, lit with the
-// same sun, hemispheric ambient, fog and tone map as lit.frag.
-#include "common/lighting.glsl"
-#include "common/fog.glsl"
-#include "common/terrain_shadow.glsl"
+// Terrain materials: grass, rock and snow blended by height and slope, shaded into
+// the HDR target with the same frame block, lighting model (common/shading.glsl),
+// sun and point shadows and fog as scene.frag, so a rock and the ground beside it
+// agree. Variants as scene.frag: CLASSIC, SUN_SHADOWS, POINT_SHADOWS, FOG.
+#include "common/frame.glsl"
+#include "common/shading.glsl"
+#include "common/shadows.glsl"
+#include "common/direct_light.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -14,12 +17,6 @@ layout(binding = 1) uniform sampler2D u_grassTexture;
 layout(binding = 2) uniform sampler2D u_rockTexture;
 layout(binding = 3) uniform sampler2D u_snowTexture;
 uniform float u_heightScale;
-uniform vec3 u_sunDirection;
-uniform vec3 u_sunColor;
-uniform vec3 u_skyColor;
-uniform vec3 u_groundColor;
-uniform vec3 u_fogColor;
-uniform float u_fogDensity;
 
 layout(location = 0) out vec4 o_color;
 
@@ -43,15 +40,14 @@ void main() {
   vec3 snow = texture(u_snowTexture, v_uv).rgb;
   vec3 w = layerWeights(v_height / u_heightScale, 1.0 - n.y, rock.r * 2.0 - 0.5);
   vec3 albedo = grass * w.x + rock * w.y + snow * w.z;
+  // Rough dielectrics; snow a little glossier. Classic weights: the scene's ambient
+  // (frame block), full diffuse, a faint highlight on snow.
+  float roughness = dot(w, vec3(0.95, 0.8, 0.5));
   float specular = mix(0.02, 0.25, w.z);
-  Sun sun = Sun(u_sunDirection, u_sunColor);
-  vec3 color = albedo * hemisphereAmbient(n, u_skyColor, u_groundColor) +
-               blinnPhong(albedo, n, toEye, sun, specular, 24.0) * shadowFactor(v_position);
-  color = applyFog(color, length(v_position), u_fogColor, u_fogDensity);
-#ifdef HDR_OUTPUT
-  o_color = vec4(color, 1.0);  // the scene renderer's post pass tone maps
-#else
-  // Linear out, with lit.frag's Reinhard so terrain and meshes share a tone curve.
-  o_color = vec4(color / (1.0 + color), 1.0);
+  Surface s = Surface(albedo, n, toEye, v_position, 0.0, roughness, u_ambientSky.w, 1.0, specular, 24.0, 0.0);
+  vec3 color = shadeAmbient(s) + shadeDirectLight(s);
+#ifdef FOG
+  color = mix(u_fog.rgb, color, exp(-u_fog.w * length(v_position)));
 #endif
+  o_color = vec4(color, 1.0);
 }

@@ -5,6 +5,10 @@
 
 #include "gl/object.h"
 
+namespace engine {
+struct Image;
+}
+
 namespace engine::gl {
 
 class Buffer : public Object<BufferDeleter> {
@@ -56,6 +60,9 @@ class Texture : public Object<TextureDeleter> {
     texture.height_ = height;
     return texture;
   }
+  // An RGBA8 image (top row first) as a mipmapped, repeating, trilinear texture
+  // whose uv (0,0) is the image's bottom-left; `srgb` for colour data.
+  static Texture fromImage(const Image& image, bool srgb);
   // Uploads RGBA8 pixels, bottom row first (GL's order), into level 0.
   void uploadRgba8(const void* pixels) const;
   void generateMipmaps() const { glGenerateTextureMipmap(id()); }

@@ -9,6 +9,7 @@
 #include "asset/gltf_loader.h"
 #include "asset/material_texture.h"
 #include "render/character.h"
+#include "render/frame_block.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
 #include "render/textures.h"
@@ -20,8 +21,8 @@
 namespace engine {
 namespace {
 
-constexpr int kMaxPointLights = 4;
 constexpr double kSunShadowDistance = 60.0;  // metres of view the sun's map covers
+constexpr double kSunFarShadowDistance = 4000.0;  // and the far (terrain) map
 constexpr int kMaxCubeShadowSize = 1024;
 constexpr int kMaxReflectionProbes = 4;
 constexpr double kProbeNear = 0.01;
@@ -30,21 +31,6 @@ constexpr double kProbeNear = 0.01;
 // cube map's lookup expects it.
 constexpr glm::dvec3 kCubeFaceDirections[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 constexpr glm::dvec3 kCubeFaceUps[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-
-// The uniform block of shaders/common/frame.glsl (std140: vec4-aligned members).
-struct FrameBlock {
-  glm::mat4 viewProjection{1.0f};
-  glm::mat4 sunShadowMatrix{1.0f};
-  glm::vec4 sunDirection{0.0f};
-  glm::vec4 sunColor{0.0f};
-  glm::vec4 pointPosition[kMaxPointLights]{};
-  glm::vec4 pointColor[kMaxPointLights]{};
-  glm::vec4 ambientSky{0.0f};
-  glm::vec4 ambientGround{0.0f};
-  glm::vec4 fog{0.0f};
-  glm::vec4 shadowParams{0.0f};
-  glm::ivec4 counts{0};
-};
 
 // A unit shape placed in the world, with a bounding sphere for culling
 // (radius < 0: unbounded, never culled).
@@ -107,6 +93,18 @@ glm::dmat4 reverseZProjection(double fovyRadians, double aspect, double nearPlan
   return glm::perspectiveRH_ZO(fovyRadians, aspect, farPlane, nearPlane);
 }
 
+// A depth map compared in hardware (sampler2DShadow), for the sun.
+gl::Texture makeSunShadowMap(int size) {
+  gl::Texture map = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size, 1);
+  map.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  map.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  map.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  map.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return map;
+}
+
 bool sphereVisible(const glm::dvec4 planes[6], const glm::dvec3& center, double radius) {
   if (radius < 0.0) return true;
   for (int i = 0; i < 6; ++i) {
@@ -156,6 +154,10 @@ struct SceneRenderer::Impl {
   std::vector<int> pointLights;
   gl::Texture sunShadowMap, pointShadowMap;
   gl::Framebuffer sunShadowFbo, pointShadowFbo;
+  // Terrain scenes: a second sun map of the terrain alone, far out (shadows.glsl).
+  bool sunFarShadows = false;
+  gl::Texture sunShadowMapFar;
+  gl::Framebuffer sunShadowFarFbo;
   int sunShadowSize = 0, cubeSize = 0;
   double sunTexelWorld = 0.0;
   double pointNear = 0.05, pointFar = 50.0;
@@ -178,8 +180,17 @@ struct SceneRenderer::Impl {
   bool primitivesValid = false;
 
   Status init(const SceneRenderOptions& options);
-  Status loadTerrain();
+  Status loadTerrain(const std::vector<std::string>& defines);
+  terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
+  struct SunBox {
+    glm::dmat4 view{1.0}, projection{1.0};  // camera-relative world -> the light's clip space
+    glm::mat4 shadowMatrix{1.0f};           // camera-relative world -> map [0,1]^3
+    double radius = 0.0, texelWorld = 0.0;
+  };
+  SunBox fitSunBox(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
+                   double nearPlane, double farPlane) const;
+  void drawTerrainShadow(const SunBox& box, double fovy);
   Status loadMaterials();
   Status loadModels();
   void addShapes();
@@ -226,6 +237,8 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   std::vector<std::string> defines;
   if (scene.render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
+  sunFarShadows = sunShadows && scene.terrain.enabled;
+  if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
   if (scene.fog.enabled) defines.push_back("FOG 1");
   probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
@@ -245,7 +258,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   emptyVao = gl::VertexArray::create();
   frameUbo = gl::Buffer::create(sizeof(FrameBlock));
 
-  if (auto s = loadTerrain(); !s) return s;
+  if (auto s = loadTerrain(defines); !s) return s;
   if (auto s = loadMaterials(); !s) return s;
   if (auto s = loadModels(); !s) return s;
   addShapes();
@@ -253,15 +266,14 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
 
   if (sunShadows) {
     sunShadowSize = render.shadowMapSize;
-    sunShadowMap = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, sunShadowSize, sunShadowSize, 1);
-    sunShadowMap.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    sunShadowMap.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    sunShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    sunShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    sunShadowMap.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    sunShadowMap.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    sunShadowMap = makeSunShadowMap(sunShadowSize);
     sunShadowFbo = gl::Framebuffer::create();
     sunShadowFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMap);
+  }
+  if (sunFarShadows) {
+    sunShadowMapFar = makeSunShadowMap(sunShadowSize);
+    sunShadowFarFbo = gl::Framebuffer::create();
+    sunShadowFarFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMapFar);
   }
   if (pointShadows) {
     cubeSize = std::min(render.shadowMapSize, kMaxCubeShadowSize);
@@ -305,41 +317,54 @@ Status SceneRenderer::Impl::makeProbes() {
   return Ok{};
 }
 
-Status SceneRenderer::Impl::loadTerrain() {
+Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
   if (!scene.terrain.enabled) return Ok{};
   auto created = terrain::Terrain::create(terrain::settingsFromScene(scene.terrain));
   if (!created) return makeError(scene.path + ": /terrain: " + created.error().message);
   terrain = std::make_unique<terrain::Terrain>(std::move(created).value());
-  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, {"HDR_OUTPUT 1"});
+  // The scene programs' variant: the terrain is lit and shadowed as they are.
+  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, defines);
   if (!renderer) return renderer.error();
   terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
   return Ok{};
 }
 
-void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
+// The view camera's LOD (its position, field of view and viewport fix every
+// patch's level and morph), culled against `cullViewProjection`; coarsened if it
+// would need more height pages than the GPU pool holds.
+terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullViewProjection, double fovy,
+                                                         int viewportHeight) const {
   terrain::LodCamera camera;
   camera.position = eye;
-  camera.viewProjection = glm::mat4(viewProjection);
+  camera.viewProjection = cullViewProjection;
   camera.fovY = fovy;
   camera.viewportHeight = viewportHeight;
-  const auto selection = terrain::selectLod(*terrain, camera, scene.terrain.errorPixels);
-  // The terrain shader takes lit.frag's lighting uniforms.
-  Lighting lighting;
-  if (sunLight >= 0) {
-    const LightDesc& sun = scene.lights[size_t(sunLight)];
-    lighting.sunDirection = glm::vec3(sun.direction);
-    lighting.sunColor = sun.color * sun.intensity;
-  } else {
-    lighting.sunColor = glm::vec3(0.0f);
-  }
-  lighting.ambientSky = ambientSkyColor(scene);
-  lighting.ambientGround = ambientGroundColor(scene);
-  lighting.skyHorizon = scene.fog.color;
-  lighting.fogDensity = scene.fog.enabled ? scene.fog.density : 0.0f;
-  const auto drawn = terrainRenderer->draw(selection, glm::mat4(viewProjection), eye,
-                                           [&lighting](const gl::Program& p) { setLightingUniforms(p, lighting); });
+  return terrain::selectLodWithin(*terrain, camera, scene.terrain.errorPixels,
+                                  std::size_t(terrainRenderer->pageSlots()));
+}
+
+void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
+  const auto selection = selectTerrain(glm::mat4(viewProjection), fovy, viewportHeight);
+  const auto drawn = terrainRenderer->draw(selection, eye, [this](const gl::Program& p) { setUniforms(p); });
   stats->drawCalls += 1;
   stats->terrainTriangles = int(drawn.trianglesDrawn);
+}
+
+// The terrain into the sun's shadow map, with the same patches and morph as the
+// view (a coarser mesh would poke through the drawn one and shadow it), culled
+// against the light's box stretched toward the sun over the whole field: with depth
+// clamping, a mountain in front of the light's near plane still casts, at depth 0.
+void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy) {
+  const terrain::HeightRange h = terrain->heightRange();
+  const double reach = std::hypot(double(terrain->cellsX()), double(terrain->cellsZ())) * terrain->spacing() +
+                       double(h.max - h.min);
+  const double r = box.radius;
+  const glm::dmat4 cullProjection = glm::orthoRH_ZO(-r, r, -r, r, -reach, 2.0 * r + reach);
+  const auto selection = selectTerrain(glm::mat4(cullProjection * box.view), fovy, targetHeight);
+  glEnable(GL_DEPTH_CLAMP);
+  terrainRenderer->drawDepth(selection, glm::mat4(box.projection * box.view));
+  glDisable(GL_DEPTH_CLAMP);
+  stats->drawCalls += 1;
 }
 
 Status SceneRenderer::Impl::loadMaterials() {
@@ -467,6 +492,7 @@ void SceneRenderer::Impl::setUniforms(const gl::Program& program) const {
   if (sunShadows) {
     program.set("u_sunTexelWorld", float(sunTexelWorld));
     sunShadowMap.bind(4);
+    if (sunFarShadows) sunShadowMapFar.bind(7);
   }
   if (pointShadows) {
     program.set("u_pointNear", float(pointNear));
@@ -538,7 +564,7 @@ void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, c
       if (!probes.empty()) {
         const bool probed = useProbes && s.probe >= 0;
         p.set("u_hasProbe", probed ? 1 : 0);
-        if (probed) probes[size_t(s.probe)].cube.bind(6);
+        if (probed) probes[size_t(s.probe)].cube.bind(8);
       }
     }
     if (s.twoSided) glDisable(GL_CULL_FACE);
@@ -600,10 +626,11 @@ void SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat4&
   }
 }
 
-void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
-                                          double aspect, double nearPlane) {
-  // Bounding sphere of the view frustum up to the shadow distance, camera-relative.
-  const double farPlane = std::min(scene.camera.farPlane, kSunShadowDistance);
+// The sun's orthographic box around the view frustum's slice [nearPlane, farPlane]
+// (its bounding sphere, camera-relative), texel-snapped.
+SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const glm::dvec3& cameraPosition, const glm::dmat4& view,
+                                                           double fovy, double aspect, double nearPlane,
+                                                           double farPlane) const {
   const glm::dmat4 invView = glm::inverse(view);
   const double ty = std::tan(fovy * 0.5), tx = ty * aspect;
   glm::dvec3 corners[8];
@@ -622,19 +649,30 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
   const glm::dvec3 lx = glm::normalize(glm::cross(up, l)), ly = glm::cross(l, lx);
   // Snap the centre to whole texels in world space: the map then slides in texel
   // steps as the camera moves, and shadow edges do not shimmer.
-  const double texel = 2.0 * radius / double(sunShadowSize);
+  SunBox box;
+  box.radius = radius;
+  box.texelWorld = 2.0 * radius / double(sunShadowSize);
+  const double texel = box.texelWorld;
   const glm::dvec3 world = center + cameraPosition;
   const double u = glm::dot(world, lx), v = glm::dot(world, ly);
   center += lx * (std::floor(u / texel) * texel - u) + ly * (std::floor(v / texel) * texel - v);
-  sunTexelWorld = texel;
 
   const double casterMargin = 200.0;  // casters behind the view still throw shadows into it
-  const glm::dmat4 lightView = glm::lookAt(center + l * (radius + casterMargin), center, ly);
-  const glm::dmat4 lightProj = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0, 2.0 * radius + casterMargin);
-  const glm::mat4 lightViewProjection(lightProj * lightView);
+  box.view = glm::lookAt(center + l * (radius + casterMargin), center, ly);
+  box.projection = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0, 2.0 * radius + casterMargin);
   const glm::dmat4 bias = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.0)) *
                           glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 1.0));
-  frame.sunShadowMatrix = glm::mat4(bias * lightProj * lightView);
+  box.shadowMatrix = glm::mat4(bias * box.projection * box.view);
+  return box;
+}
+
+void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
+                                          double aspect, double nearPlane) {
+  const SunBox box = fitSunBox(cameraPosition, view, fovy, aspect, nearPlane,
+                               std::min(scene.camera.farPlane, kSunShadowDistance));
+  sunTexelWorld = box.texelWorld;
+  frame.sunShadowMatrix = box.shadowMatrix;
+  const glm::mat4 lightViewProjection(box.projection * box.view);
 
   sunShadowFbo.bind();
   glViewport(0, 0, sunShadowSize, sunShadowSize);
@@ -646,6 +684,18 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
   glPolygonOffset(1.5f, 2.0f);
   drawShapes(nullptr, true, lightViewProjection);
   drawCharacters(nullptr, true, lightViewProjection, lightViewProjection);
+  if (terrain) drawTerrainShadow(box, fovy);
+
+  if (sunFarShadows) {
+    // The far map: the terrain alone (mountains over valleys), out to a few km.
+    const SunBox far = fitSunBox(cameraPosition, view, fovy, aspect, nearPlane,
+                                 std::min(scene.camera.farPlane, kSunFarShadowDistance));
+    frame.sunShadowMatrixFar = far.shadowMatrix;
+    frame.sunFarParams = glm::vec4(1.0f / float(sunShadowSize), float(far.texelWorld), 0.0f, 0.0f);
+    sunShadowFarFbo.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    drawTerrainShadow(far, fovy);
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
@@ -865,6 +915,7 @@ std::string SceneRenderer::describe() const {
   std::ostringstream out;
   out << "passes:";
   if (s.sunShadows) out << " shadow-sun(" << s.sunShadowSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
+  if (s.sunFarShadows) out << " shadow-sun-far(" << s.sunShadowSize << ", terrain, " << kSunFarShadowDistance << " m)";
   if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
   if (!s.probes.empty()) out << " reflection-probes(" << s.probes.size() << " x cube " << s.probeSize << ")";
   if (s.scene.sky.enabled) out << " sky";

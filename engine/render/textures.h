@@ -9,7 +9,8 @@
 namespace engine {
 
 // Uploads an RGBA8 image (top row first) as a mipmapped, repeating, trilinear
-// texture; `srgb` for colour data.
-gl::Texture uploadTexture(const Image& image, bool srgb);
+// texture; `srgb` for colour data. One implementation, in gl (the terrain's layers
+// use it too).
+inline gl::Texture uploadTexture(const Image& image, bool srgb) { return gl::Texture::fromImage(image, srgb); }
 
 }  // namespace engine

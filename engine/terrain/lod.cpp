@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 namespace engine::terrain {
 namespace {
@@ -163,11 +164,37 @@ LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double e
   out.stats.patches = out.patches.size();
   out.stats.triangles = out.patches.size() * kPatchQuads * kPatchQuads * 2;
   out.stats.finestLevel = terrain.levelCount() - 1;
+  out.stats.targetPixels = errorPixels;
   for (const LodPatch& p : out.patches) {
     out.stats.maxGeometricError = std::max(out.stats.maxGeometricError, p.error);
     out.stats.finestLevel = std::min(out.stats.finestLevel, p.level);
   }
+  std::unordered_set<PageKey, PageKeyHash> nodes;
+  for (const LodPatch& p : out.patches) nodes.insert(p.node);
+  out.stats.pages = nodes.size();
   return out;
+}
+
+// 1.25^64: a target a million times the asked one; ranges are at their floor long before.
+constexpr int kMaxCoarsenings = 64;
+
+LodSelection selectLodWithin(const Terrain& terrain, const LodCamera& camera, double errorPixels,
+                             std::size_t maxPages) {
+  LodSelection s = selectLod(terrain, camera, errorPixels);
+  int coarsenings = 0;
+  double target = errorPixels;
+  while (s.stats.pages > maxPages) {
+    target *= kCoarsenStep;
+    LodSelection coarser = selectLod(terrain, camera, target);
+    ++coarsenings;
+    // Ranges have a floor (each level's at least its nodes' reach), so past some
+    // target nothing changes: stop there rather than loop forever.
+    const bool shrank = coarser.stats.pages < s.stats.pages;
+    s = std::move(coarser);
+    if ((!shrank && coarsenings > 8) || coarsenings >= kMaxCoarsenings) break;
+  }
+  s.stats.coarsenings = coarsenings;
+  return s;
 }
 
 float morphFactor(const LodSelection& sel, int level, int gx, int gz) {

@@ -57,6 +57,9 @@ struct LodStats {
   std::size_t triangles = 0;
   float maxGeometricError = 0.0f;  // metres, over the drawn patches
   int finestLevel = 0;
+  std::size_t pages = 0;     // distinct height pages (nodes) the patches read
+  double targetPixels = 0;   // the error target the selection was made for
+  int coarsenings = 0;       // times selectLodWithin raised the target to fit a page budget
 };
 
 struct LodSelection {
@@ -75,6 +78,17 @@ struct LodSelection {
 };
 
 LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels);
+
+// Each step of selectLodWithin multiplies the error target by this.
+inline constexpr double kCoarsenStep = 1.25;
+
+// selectLod, but never needing more than `maxPages` height pages: while it would,
+// the target is raised by kCoarsenStep and the selection made again (counted in
+// stats.coarsenings; stats.targetPixels is the target used). If coarsening stops
+// shrinking the page count first, the last selection is returned as it is and the
+// caller sees stats.pages > maxPages.
+LodSelection selectLodWithin(const Terrain& terrain, const LodCamera& camera, double errorPixels,
+                             std::size_t maxPages);
 
 // The CPU mirror of terrain.vert: morph factor of the vertex at global sample
 // (gx, gz) of a level-`level` grid, and the camera-relative position of patch

@@ -10,7 +10,7 @@ namespace {
 
 constexpr int kLayerImageSize = 256;
 constexpr GLsizei kIndexCount = kPatchQuads * kPatchQuads * 6;
-constexpr int kMaxPatchesPerDraw = 4 * kGpuPageSlots;
+constexpr std::size_t kInitialInstances = 1024;
 
 struct Instance {
   GLint gx, gz, level, slot;
@@ -39,33 +39,27 @@ std::vector<std::uint16_t> gridIndices() {
   return idx;
 }
 
-gl::Texture uploadLayer(const Image& image) {
-  gl::Texture t = gl::Texture::create2D(GL_SRGB8_ALPHA8, image.width, image.height, 0);
-  t.uploadRgba8(image.pixels.data());
-  t.generateMipmaps();
-  t.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  t.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  t.parameter(GL_TEXTURE_WRAP_S, GL_REPEAT);
-  t.parameter(GL_TEXTURE_WRAP_T, GL_REPEAT);
-  return t;
-}
-
 }  // namespace
 
 Result<TerrainRenderer> TerrainRenderer::create(const std::string& shaderDir, const Terrain& terrain,
-                                                const std::vector<std::string>& defines) {
+                                                const std::vector<std::string>& defines,
+                                                std::size_t gpuBudgetBytes) {
   auto program = gl::Program::build(
       shaderDir, {{GL_VERTEX_SHADER, "terrain.vert"}, {GL_FRAGMENT_SHADER, "terrain.frag"}}, defines);
   if (!program) return program.error();
+  auto depthProgram = gl::Program::build(
+      shaderDir, {{GL_VERTEX_SHADER, "terrain.vert"}, {GL_FRAGMENT_SHADER, "depth.frag"}}, {"DEPTH_ONLY 1"});
+  if (!depthProgram) return depthProgram.error();
   TerrainRenderer r;
   r.terrain_ = &terrain;
   r.program_ = std::move(program).value();
+  r.depthProgram_ = std::move(depthProgram).value();
 
   const auto vertices = gridVertices();
   const auto indices = gridIndices();
   r.vertices_ = gl::Buffer::fromSpan(std::span<const std::uint16_t>(vertices), 0);
   r.indices_ = gl::Buffer::fromSpan(std::span<const std::uint16_t>(indices), 0);
-  r.instances_ = gl::Buffer::create(sizeof(Instance) * kMaxPatchesPerDraw);
+  r.instances_ = gl::Buffer::create(sizeof(Instance) * kInitialInstances);
   r.vertexArray_ = gl::VertexArray::create();
   r.vertexArray_.integerAttribute(0, 0, 2, 0, GL_UNSIGNED_SHORT);
   r.vertexArray_.vertexBuffer(0, r.vertices_, 2 * sizeof(std::uint16_t));
@@ -74,65 +68,106 @@ Result<TerrainRenderer> TerrainRenderer::create(const std::string& shaderDir, co
   glVertexArrayBindingDivisor(r.vertexArray_.id(), 1, 1);
   r.vertexArray_.indexBuffer(r.indices_);
 
+  // Slots from the budget, rounded down to whole atlas layers.
   GLint maxLayers = 0;
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  r.slots_ = std::min(kGpuPageSlots, int(maxLayers));
+  const std::size_t budgetLayers = gpuBudgetBytes / (kGpuPageBytes * kPagesPerLayer);
+  r.atlasLayers_ = int(std::clamp<std::size_t>(budgetLayers, kMinGpuPageSlots / kPagesPerLayer,
+                                                std::size_t(std::max(maxLayers, 1))));
+  r.slots_ = r.atlasLayers_ * kPagesPerLayer;
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
   r.heightPages_ = gl::Object<gl::TextureDeleter>(id);
-  glTextureStorage3D(id, 1, GL_R32F, kPageSide, kPageSide, r.slots_);
+  glTextureStorage3D(id, 1, GL_R32F, kPageSide * kPageAtlas, kPageSide * kPageAtlas, r.atlasLayers_);
   glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   r.slotKey_.assign(std::size_t(r.slots_), PageKey{-1, 0, 0});
   r.slotUsed_.assign(std::size_t(r.slots_), 0);
 
-  for (TerrainLayer layer : kTerrainLayers) r.layers_.push_back(uploadLayer(makeLayerImage(layer, kLayerImageSize)));
+  for (TerrainLayer layer : kTerrainLayers) {
+    const Image image = makeLayerImage(layer, kLayerImageSize);
+    r.layers_.push_back(gl::Texture::fromImage(image, true));
+    r.layerBytes_ += image.pixels.size() * 4 / 3;  // with its mip chain
+  }
   return r;
 }
 
-// The slot holding `key`, uploading it into a free or least recently used slot;
-// -1 when every slot already serves this frame.
-int TerrainRenderer::residentSlot(const PageKey& key, std::size_t& uploads) {
-  if (auto it = slotOf_.find(key); it != slotOf_.end()) {
-    slotUsed_[std::size_t(it->second)] = frame_;
-    return it->second;
-  }
-  const auto oldest = std::min_element(slotUsed_.begin(), slotUsed_.end());
-  if (*oldest == frame_) return -1;
-  const int slot = int(oldest - slotUsed_.begin());
-  if (slotKey_[std::size_t(slot)].level >= 0) slotOf_.erase(slotKey_[std::size_t(slot)]);
-  auto page = terrain_->page(key);
-  glTextureSubImage3D(heightPages_.id(), 0, 0, 0, slot, kPageSide, kPageSide, 1, GL_RED, GL_FLOAT,
-                      page->heights.data());
-  slotKey_[std::size_t(slot)] = key;
-  slotUsed_[std::size_t(slot)] = frame_;
-  slotOf_[key] = slot;
-  ++uploads;
-  return slot;
+std::size_t TerrainRenderer::gpuBytes() const {
+  return std::size_t(slots_) * kGpuPageBytes + instances_.size() + vertices_.size() + indices_.size() +
+         layerBytes_;
 }
 
-TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm::mat4& viewProjection,
-                                       const glm::dvec3& cameraPosition, const UniformSetter& setUniforms) {
+// Puts the `missing` pages into the slots not used by this draw, least recently
+// used first. The caller has checked that there are enough such slots.
+void TerrainRenderer::assignSlots(const std::vector<PageKey>& missing, std::size_t& uploads) {
+  if (missing.empty()) return;
+  std::vector<int> candidates;
+  candidates.reserve(slotUsed_.size());
+  for (int i = 0; i < slots_; ++i)
+    if (slotUsed_[std::size_t(i)] != frame_) candidates.push_back(i);
+  const auto oldestFirst = [this](int a, int b) { return slotUsed_[std::size_t(a)] < slotUsed_[std::size_t(b)]; };
+  const auto end = candidates.begin() + std::ptrdiff_t(missing.size());
+  std::nth_element(candidates.begin(), end - 1, candidates.end(), oldestFirst);
+  for (std::size_t i = 0; i < missing.size(); ++i) {
+    const int slot = candidates[i];
+    const std::size_t si = std::size_t(slot);
+    if (slotKey_[si].level >= 0) slotOf_.erase(slotKey_[si]);
+    const auto page = terrain_->page(missing[i]);
+    const int tile = slot % kPagesPerLayer;
+    glTextureSubImage3D(heightPages_.id(), 0, (tile % kPageAtlas) * kPageSide, (tile / kPageAtlas) * kPageSide,
+                        slot / kPagesPerLayer, kPageSide, kPageSide, 1, GL_RED, GL_FLOAT, page->heights.data());
+    slotKey_[si] = missing[i];
+    slotUsed_[si] = frame_;
+    slotOf_[missing[i]] = slot;
+    ++uploads;
+  }
+}
+
+// Makes the selection's pages resident and fills the instance buffer.
+TerrainDrawStats TerrainRenderer::upload(const LodSelection& selection) {
   TerrainDrawStats stats;
   ++frame_;
+  // Pass 1: mark what is resident, list what is not (once per page).
+  std::vector<PageKey> missing;
+  std::unordered_map<PageKey, int, PageKeyHash> pending;
+  for (const LodPatch& p : selection.patches) {
+    if (auto it = slotOf_.find(p.node); it != slotOf_.end()) {
+      slotUsed_[std::size_t(it->second)] = frame_;
+    } else if (pending.emplace(p.node, 0).second) {
+      missing.push_back(p.node);
+    }
+  }
+  std::size_t inUse = 0;
+  for (std::uint64_t used : slotUsed_) inUse += used == frame_;
+  // Over budget (only for a selection not made with selectLodWithin): the pages
+  // that do not fit are left out, and so are their patches, counted.
+  const std::size_t fits = std::min(missing.size(), std::size_t(slots_) - inUse);
+  missing.resize(fits);
+  assignSlots(missing, stats.pagesUploaded);
+
   std::vector<Instance> instances;
   instances.reserve(selection.patches.size());
   for (const LodPatch& p : selection.patches) {
-    const int slot = instances.size() < std::size_t(kMaxPatchesPerDraw) ? residentSlot(p.node, stats.pagesUploaded) : -1;
-    if (slot < 0) {
+    const auto it = slotOf_.find(p.node);
+    if (it == slotOf_.end() || slotUsed_[std::size_t(it->second)] != frame_) {
       ++stats.patchesSkipped;
       continue;
     }
-    instances.push_back({p.gx, p.gz, p.level, slot});
+    instances.push_back({p.gx, p.gz, p.level, it->second});
     stats.maxGeometricError = std::max(stats.maxGeometricError, p.error);
   }
   stats.patchesDrawn = instances.size();
   stats.trianglesDrawn = instances.size() * kPatchQuads * kPatchQuads * 2;
-  if (instances.empty()) return stats;
-  instances_.upload(0, instances.size() * sizeof(Instance), instances.data());
+  const std::size_t bytes = instances.size() * sizeof(Instance);
+  if (bytes > instances_.size()) {
+    instances_ = gl::Buffer::create(std::max(bytes, 2 * instances_.size()));
+    vertexArray_.vertexBuffer(1, instances_, sizeof(Instance));
+  }
+  if (bytes > 0) instances_.upload(0, bytes, instances.data());
+  return stats;
+}
 
-  const gl::Program& p = program_;
-  p.set("u_viewProjection", viewProjection);
+void TerrainRenderer::setGridUniforms(const gl::Program& p, const LodSelection& selection) const {
   glProgramUniform2i(p.id(), p.location("u_cameraCell"), selection.cameraCell.x, selection.cameraCell.y);
   glProgramUniform2f(p.id(), p.location("u_cameraFraction"), selection.cameraFraction.x,
                      selection.cameraFraction.y);
@@ -142,6 +177,21 @@ TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm:
   p.set("u_spacing", selection.spacing);
   glProgramUniform1fv(p.id(), p.location("u_morphStart"), kMaxLevels, selection.morphStart.data());
   glProgramUniform1fv(p.id(), p.location("u_morphEnd"), kMaxLevels, selection.morphEnd.data());
+}
+
+void TerrainRenderer::drawInstances(std::size_t count) const {
+  glBindTextureUnit(0, heightPages_.id());
+  vertexArray_.bind();
+  glDrawElementsInstanced(GL_TRIANGLES, kIndexCount, GL_UNSIGNED_SHORT, nullptr, GLsizei(count));
+  glBindVertexArray(0);
+}
+
+TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                                       const UniformSetter& setUniforms) {
+  const TerrainDrawStats stats = upload(selection);
+  if (stats.patchesDrawn == 0) return stats;
+  const gl::Program& p = program_;
+  setGridUniforms(p, selection);
   p.set("u_heightScale", std::max(terrain_->heightRange().max, 1e-3f));
   // Texture coordinates are camera-relative too: the camera's offset from the
   // origin in tiles, reduced to [0, 1) in double, keeps them small and exact.
@@ -150,14 +200,20 @@ TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm:
   const glm::vec2 uvOffset(tiles - glm::floor(tiles));
   glProgramUniform2f(p.id(), p.location("u_uvOffset"), uvOffset.x, uvOffset.y);
   p.set("u_tileMetres", kLayerTileMetres);
-  if (setUniforms) setUniforms(p);
-
   p.use();
-  glBindTextureUnit(0, heightPages_.id());
+  if (setUniforms) setUniforms(p);
   for (std::size_t i = 0; i < layers_.size(); ++i) layers_[i].bind(GLuint(1 + i));
-  vertexArray_.bind();
-  glDrawElementsInstanced(GL_TRIANGLES, kIndexCount, GL_UNSIGNED_SHORT, nullptr, GLsizei(instances.size()));
-  glBindVertexArray(0);
+  drawInstances(stats.patchesDrawn);
+  return stats;
+}
+
+TerrainDrawStats TerrainRenderer::drawDepth(const LodSelection& selection, const glm::mat4& lightViewProjection) {
+  const TerrainDrawStats stats = upload(selection);
+  if (stats.patchesDrawn == 0) return stats;
+  setGridUniforms(depthProgram_, selection);
+  depthProgram_.set("u_lightViewProjection", lightViewProjection);
+  depthProgram_.use();
+  drawInstances(stats.patchesDrawn);
   return stats;
 }
 

@@ -1,9 +1,11 @@
 #pragma once
 // Draws a CDLOD selection: one grid of kPatchQuads^2 quads instanced once per patch,
-// the height pages of the selected nodes in an R32F texture array (a fixed number
-// of slots, reused least-recently-used first), and grass/rock/snow layers blended
-// by height and slope, lit like every other mesh (common/lighting.glsl, fog, the
-// same tone map as lit.frag).
+// the height pages of the selected nodes in an R32F texture-array atlas (a pool of
+// page slots sized from a GPU byte budget, filled per draw with only the pages the
+// selection reads, least recently used evicted first), and grass/rock/snow layers
+// blended by height and slope. Shaded like every scene mesh: the frame block
+// (common/frame.glsl, bound at binding 0 by the caller), common/shading.glsl, the
+// sun and point shadows and fog, into an HDR target.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -20,54 +22,75 @@
 
 namespace engine::terrain {
 
-// GPU budget: height-page slots in the texture array, each kPageSide^2 floats
-// (about 17.5 KiB): 2048 slots are 36 MiB. Fewer when the driver allows fewer layers.
-inline constexpr int kGpuPageSlots = 2048;
+// Pages are packed kPageAtlas x kPageAtlas per array layer (the layer count is
+// capped at 2048 on many drivers; the atlas lifts the cap to 32768 pages).
+inline constexpr int kPageAtlas = 4;
+inline constexpr int kPagesPerLayer = kPageAtlas * kPageAtlas;
+// GPU bytes per page slot: kPageSide^2 floats, 17.5 KiB.
+inline constexpr std::size_t kGpuPageBytes = kPageSamples * sizeof(float);
+// Default GPU budget for height pages: 128 MiB, 7,472 slots. A 16 km field at 1 m
+// spacing seen from 40 m up at 1280x720 with a 0.5 px target reads about 4,300.
+inline constexpr std::size_t kDefaultGpuPageBudgetBytes = 128ull * 1024 * 1024;
+// Below this many slots even the coarsest selection may not fit.
+inline constexpr int kMinGpuPageSlots = 512;
 
 struct TerrainDrawStats {
   std::size_t patchesDrawn = 0;
   std::size_t trianglesDrawn = 0;
   std::size_t pagesUploaded = 0;
-  // Patches left out because one frame needed more pages than there are slots.
+  // Patches left out because one draw needed more pages than there are slots.
+  // Zero whenever the selection came from selectLodWithin(..., pageSlots()).
   std::size_t patchesSkipped = 0;
   float maxGeometricError = 0.0f;
 };
 
 class TerrainRenderer {
  public:
-  // Sets whatever the caller's lighting needs on the terrain program: the uniforms
-  // of lit.frag (u_sunDirection, u_sunColor, u_skyColor, u_groundColor,
-  // u_fogColor, u_fogDensity), e.g. with render's setLightingUniforms.
+  // Sets whatever else the caller's lighting needs on the colour program (shadow
+  // map bindings and u_sunTexelWorld, u_pointNear, as for scene programs).
   using UniformSetter = std::function<void(const gl::Program&)>;
 
   // Needs a current GL 4.5 context. `terrain` must outlive the renderer.
-  // `defines` select shader variants (e.g. "SHADOWS" once the lead wires them).
+  // `defines` select the colour program's variant, the scene programs' own
+  // (CLASSIC, SUN_SHADOWS, POINT_SHADOWS, FOG). `gpuBudgetBytes` sizes the page
+  // pool (at least kMinGpuPageSlots slots, at most what the driver's layer limit allows).
   static Result<TerrainRenderer> create(const std::string& shaderDir, const Terrain& terrain,
-                                        const std::vector<std::string>& defines = {});
+                                        const std::vector<std::string>& defines = {},
+                                        std::size_t gpuBudgetBytes = kDefaultGpuPageBudgetBytes);
 
-  // Draws into the bound framebuffer with depth test on; `viewProjection` is the
-  // camera-relative one the selection was made with.
-  TerrainDrawStats draw(const LodSelection& selection, const glm::mat4& viewProjection,
-                        const glm::dvec3& cameraPosition, const UniformSetter& setUniforms);
+  // Draws into the bound framebuffer with depth test on. The frame block must be
+  // bound, its view-projection the camera-relative one the selection was made with.
+  TerrainDrawStats draw(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                        const UniformSetter& setUniforms);
+  // Depth only, through `lightViewProjection` (camera-relative world -> clip), for
+  // a shadow map.
+  TerrainDrawStats drawDepth(const LodSelection& selection, const glm::mat4& lightViewProjection);
 
   const gl::Program& program() const { return program_; }
   int pageSlots() const { return slots_; }
+  int pagesResident() const { return int(slotOf_.size()); }
+  // Bytes this renderer holds on the GPU: page atlas, instance buffer, grid, layers.
+  std::size_t gpuBytes() const;
 
  private:
   TerrainRenderer() = default;
-  int residentSlot(const PageKey& key, std::size_t& uploads);
+  TerrainDrawStats upload(const LodSelection& selection);
+  void assignSlots(const std::vector<PageKey>& missing, std::size_t& uploads);
+  void setGridUniforms(const gl::Program& p, const LodSelection& selection) const;
+  void drawInstances(std::size_t count) const;
 
   const Terrain* terrain_ = nullptr;
-  gl::Program program_;
+  gl::Program program_, depthProgram_;
   gl::Buffer vertices_, indices_, instances_;
   gl::VertexArray vertexArray_;
-  gl::Object<gl::TextureDeleter> heightPages_;  // GL_TEXTURE_2D_ARRAY, R32F
+  gl::Object<gl::TextureDeleter> heightPages_;  // GL_TEXTURE_2D_ARRAY, R32F atlas
   std::vector<gl::Texture> layers_;
-  int slots_ = 0;
+  std::size_t layerBytes_ = 0;
+  int slots_ = 0, atlasLayers_ = 0;
   std::uint64_t frame_ = 0;
   std::unordered_map<PageKey, int, PageKeyHash> slotOf_;
   std::vector<PageKey> slotKey_;
-  std::vector<std::uint64_t> slotUsed_;  // frame of last use; 0 = free
+  std::vector<std::uint64_t> slotUsed_;  // draw of last use; 0 = free
 };
 
 }  // namespace engine::terrain

@@ -1,5 +1,10 @@
 // Per-frame data shared by every scene program (uniform block, binding 0), filled
 // once per frame by engine/render/scene_renderer.cpp. Positions are camera-relative.
+//
+// Texture units of the scene programs (one owner each; a shared unit with two
+// sampler types is a draw-time GL error): 0 base colour, 1 normal map, 2
+// metallic-roughness, 3 emissive (terrain: 1-3 its layers, 0 its height pages),
+// 4 sun shadow, 5 point shadow cube, 6 occlusion, 7 far sun shadow, 8 reflection probe.
 #define MAX_POINT_LIGHTS 4
 layout(std140, binding = 0) uniform Frame {
   mat4 u_viewProjection;
@@ -13,4 +18,6 @@ layout(std140, binding = 0) uniform Frame {
   vec4 u_fog;               // rgb colour, w = density (0 = none)
   vec4 u_shadowParams;      // x: sun texel size, y: PCF radius in texels, z: point far, w: point texel angle
   ivec4 u_counts;           // x: point lights
+  mat4 u_sunShadowMatrixFar;  // the far sun map (terrain scenes): as u_sunShadowMatrix
+  vec4 u_sunFarParams;      // x: far map texel size (uv), y: its texel's world size
 };

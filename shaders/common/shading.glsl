@@ -69,7 +69,7 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
 // A mirror reflects the cube map of the scene seen from its centre: right in
 // direction, off by parallax for things close to the mirror, one bounce only. The
 // ray tracer traces the reflected ray itself; the difference is measured.
-layout(binding = 6) uniform samplerCube u_reflectionProbe;
+layout(binding = 8) uniform samplerCube u_reflectionProbe;
 uniform int u_hasProbe;
 
 vec3 reflectedEnvironment(Surface s) {

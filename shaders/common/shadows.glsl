@@ -7,21 +7,45 @@
 #ifdef SUN_SHADOWS
 layout(binding = 4) uniform sampler2DShadow u_sunShadowMap;
 uniform float u_sunTexelWorld;  // world size of one shadow texel
+#ifdef SUN_FAR_SHADOWS
+// Terrain scenes: a second, coarse map of the terrain over the view out to a few
+// kilometres, so mountains shade valleys beyond the near map's reach.
+layout(binding = 7) uniform sampler2DShadow u_sunShadowMapFar;
+#endif
+
+// Visibility through one map with an N x N PCF kernel (radius `r` texels), and in
+// `inside` how far within the map the point lies: 1 inside, fading to 0 over the
+// map's outer tenth (beyond it nothing is known), 0 outside.
+float sunMapVisibility(sampler2DShadow map, mat4 shadowMatrix, vec3 position, vec3 n, float texelWorld,
+                       float texel, int r, out float inside) {
+  vec4 p = shadowMatrix * vec4(position + n * texelWorld * 1.5, 1.0);
+  vec3 uvz = p.xyz / p.w;
+  vec2 edge = min(uvz.xy, 1.0 - uvz.xy);
+  inside = uvz.z < 0.0 || uvz.z > 1.0 ? 0.0 : smoothstep(0.0, 0.1, min(edge.x, edge.y));
+  if (inside <= 0.0) return 1.0;
+  float sum = 0.0;
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x) sum += texture(map, vec3(uvz.xy + vec2(x, y) * texel, uvz.z));
+  return sum / float((2 * r + 1) * (2 * r + 1));
+}
 
 float sunShadow(vec3 position, vec3 n) {
   float nDotL = dot(n, u_sunDirection.xyz);
   // Faces turned away are dark anyway; no lookup, no acne on them.
   if (nDotL <= 0.0) return 0.0;
-  vec3 offset = n * u_sunTexelWorld * 1.5;
-  vec4 p = u_sunShadowMatrix * vec4(position + offset, 1.0);
-  vec3 uvz = p.xyz / p.w;
-  if (any(lessThan(uvz, vec3(0.0))) || any(greaterThan(uvz, vec3(1.0)))) return 1.0;
-  int r = int(u_shadowParams.y);
-  float texel = u_shadowParams.x;
-  float sum = 0.0;
-  for (int y = -r; y <= r; ++y)
-    for (int x = -r; x <= r; ++x) sum += texture(u_sunShadowMap, vec3(uvz.xy + vec2(x, y) * texel, uvz.z));
-  return sum / float((2 * r + 1) * (2 * r + 1));
+  float inside;
+  float near = sunMapVisibility(u_sunShadowMap, u_sunShadowMatrix, position, n, u_sunTexelWorld,
+                                u_shadowParams.x, int(u_shadowParams.y), inside);
+  float far = 1.0;
+#ifdef SUN_FAR_SHADOWS
+  if (inside < 1.0) {
+    float insideFar;
+    far = sunMapVisibility(u_sunShadowMapFar, u_sunShadowMatrixFar, position, n, u_sunFarParams.y,
+                           u_sunFarParams.x, 1, insideFar);
+    far = mix(1.0, far, insideFar);
+  }
+#endif
+  return mix(far, near, inside);
 }
 #endif
 

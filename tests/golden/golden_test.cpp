@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum class SceneKind { Demo, Cornell, TerrainValley, TerrainOverview, RobotWalk, RobotWaveDqs, Materials };
+enum class SceneKind { Demo, Cornell, TerrainValley, TerrainOverview, TerrainLowSun, RobotWalk, RobotWaveDqs, Materials };
 
 struct GoldenCase {
   const char* name;
@@ -37,7 +37,7 @@ struct GoldenCase {
 
 // The default scene (PBR, sun shadows with PCF, sky, fog, four skinned robots) at
 // two times, with MSAA, with supersampling and with hard shadows; the terrain scene
-// from two viewpoints; the course's
+// from two viewpoints and at a low sun; the course's
 // Cornell room (classic shading, point-light cube shadow) hard and soft (PCF); the
 // viewer's robot with linear-blend and dual-quaternion skinning; the glTF material
 // test model (normal, metallic-roughness, emissive and occlusion maps, alpha mask
@@ -51,6 +51,7 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"cornell_pcf5", SceneKind::Cornell, 0.0, 0, 0, 5},
                              {"terrain_valley", SceneKind::TerrainValley, 1.0},
                              {"terrain_overview", SceneKind::TerrainOverview, 1.0},
+                             {"terrain_low_sun", SceneKind::TerrainLowSun, 1.0},
                              {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3},
                              {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6},
                              {"materials", SceneKind::Materials, 0.0}};
@@ -71,6 +72,12 @@ std::unique_ptr<Game> makeScene(const GoldenCase& c) {
       // mountains, where coarse LOD levels and the morph between them show.
       scene->camera.position = glm::dvec3(800.0, 650.0, 1500.0);
       scene->camera.forward = glm::normalize(glm::dvec3(0.0, -450.0, -1500.0));
+    }
+    if (c.scene == SceneKind::TerrainLowSun) {
+      // The valley at a low sun from the left: the mountains on that side shade the
+      // valley and the robots in it (near and far sun maps, the terrain casting)
+      // while the far slopes facing the sun stay lit.
+      scene->lights[0].direction = glm::normalize(glm::dvec3(-0.95, 0.2, 0.2));
     }
     SceneRenderOptions options;
     options.shaderDir = kShaders;

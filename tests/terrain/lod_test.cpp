@@ -227,6 +227,42 @@ TEST(Lod, FinerTargetsDrawMoreAndErrOnlyWithinTarget) {
   }
 }
 
+TEST(Lod, PageBudgetCoarsensTheTargetInsteadOfDroppingPatches) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(1000.0, t->heightAt(1000.0, 1000.0) + 10.0, 1000.0);
+  const LodCamera camera = makeCamera(eye, eye + glm::dvec3(1, -0.1, 1));
+  const LodSelection fine = selectLod(*t, camera, 0.5);
+  // stats.pages counts distinct nodes.
+  std::set<std::array<int, 3>> nodes;
+  for (const LodPatch& p : fine.patches) nodes.insert({p.node.level, p.node.nx, p.node.nz});
+  EXPECT_EQ(fine.stats.pages, nodes.size());
+
+  // A budget the full target fits: nothing changes.
+  const LodSelection same = selectLodWithin(*t, camera, 0.5, fine.stats.pages);
+  EXPECT_EQ(same.stats.coarsenings, 0);
+  EXPECT_EQ(same.patches.size(), fine.patches.size());
+  EXPECT_EQ(same.stats.targetPixels, 0.5);
+
+  // Half of it: a coarser target, each step by kCoarsenStep, that fits.
+  const std::size_t budget = fine.stats.pages / 2;
+  const LodSelection fitted = selectLodWithin(*t, camera, 0.5, budget);
+  EXPECT_GT(fitted.stats.coarsenings, 0);
+  EXPECT_LE(fitted.stats.pages, budget);
+  EXPECT_NEAR(fitted.stats.targetPixels, 0.5 * std::pow(kCoarsenStep, fitted.stats.coarsenings), 1e-9);
+  // The step before did not fit, so the target is the finest that does.
+  const LodSelection before = selectLod(*t, camera, fitted.stats.targetPixels / kCoarsenStep);
+  EXPECT_GT(before.stats.pages, budget);
+  // Coarser: fewer triangles, no smaller a stated error.
+  EXPECT_LT(fitted.stats.triangles, fine.stats.triangles);
+  EXPECT_GE(fitted.stats.maxGeometricError, fine.stats.maxGeometricError);
+
+  // An impossible budget ends (the ranges have a floor), reporting what it needs.
+  const LodSelection impossible = selectLodWithin(*t, camera, 0.5, 1);
+  EXPECT_GT(impossible.stats.pages, 1u);
+  EXPECT_GT(impossible.stats.coarsenings, 0);
+}
+
 TEST(Frustum, BoxesAgainstPlanes) {
   // Looking down -z from the origin, 90 degrees, near 1, far 100.
   const glm::mat4 vp = glm::perspective(glm::radians(90.0f), 1.0f, 1.0f, 100.0f);
