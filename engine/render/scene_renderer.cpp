@@ -337,6 +337,7 @@ terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullVi
   terrain::LodCamera camera;
   camera.position = eye;
   camera.viewProjection = cullViewProjection;
+  camera.zeroToOneDepth = true;  // reverse-Z and the sun's box both clip depth to 0..w
   camera.fovY = fovy;
   camera.viewportHeight = viewportHeight;
   return terrain::selectLodWithin(*terrain, camera, scene.terrain.errorPixels,

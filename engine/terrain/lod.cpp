@@ -116,12 +116,13 @@ void computeRanges(const Terrain& terrain, const LodCamera& camera, double error
 
 }  // namespace
 
-Frustum Frustum::fromViewProjection(const glm::mat4& m) {
-  // Gribb and Hartmann: the clip-space inequalities -w <= x, y, z <= w written as
-  // planes in the space the matrix takes points from.
+Frustum Frustum::fromViewProjection(const glm::mat4& m, bool zeroToOneDepth) {
+  // Gribb and Hartmann: the clip-space inequalities -w <= x, y <= w and -w <= z <= w
+  // (or 0 <= z <= w) written as planes in the space the matrix takes points from.
+  // Read as -w <= z, a reverse-Z matrix would cull nothing beyond its far plane.
   Frustum f;
   const glm::dvec4 r0 = row(m, 0), r1 = row(m, 1), r2 = row(m, 2), r3 = row(m, 3);
-  f.planes = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2};
+  f.planes = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, zeroToOneDepth ? r2 : r3 + r2, r3 - r2};
   return f;
 }
 
@@ -155,7 +156,7 @@ LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double e
   out.spacing = float(s);
   out.cells = {terrain.cellsX(), terrain.cellsZ()};
 
-  Selector selector{terrain, camera, out, Frustum::fromViewProjection(camera.viewProjection), cam,
+  Selector selector{terrain, camera, out, Frustum::fromViewProjection(camera.viewProjection, camera.zeroToOneDepth), cam,
                     // The selection uses the same squared height as the vertices.
                     double(out.morphDy2)};
   const PageKey root{terrain.levelCount() - 1, 0, 0};

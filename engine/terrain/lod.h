@@ -29,9 +29,11 @@ inline constexpr double kMorphEndRatio = 0.999;
 
 struct LodCamera {
   glm::dvec3 position{0.0};
-  // Camera-relative: the view has no translation (camera at the origin). Clip
-  // space as in OpenGL; culling uses the six planes of this matrix.
+  // Camera-relative: the view has no translation (camera at the origin). Culling
+  // uses the six planes of this matrix, whose depth range is GL's default -w..w
+  // unless `zeroToOneDepth` (glClipControl's 0..w, as reverse-Z projections use).
   glm::mat4 viewProjection{1.0f};
+  bool zeroToOneDepth = false;
   double fovY = 1.0471975511965976;  // vertical, radians
   int viewportHeight = 720;
   bool cull = true;
@@ -40,7 +42,7 @@ struct LodCamera {
 // Six planes (a, b, c, d): inside when a*x + b*y + c*z + d >= 0.
 struct Frustum {
   std::array<glm::dvec4, 6> planes{};
-  static Frustum fromViewProjection(const glm::mat4& viewProjection);
+  static Frustum fromViewProjection(const glm::mat4& viewProjection, bool zeroToOneDepth = false);
   // False only when the box is wholly outside one plane (conservative).
   bool intersects(const glm::dvec3& lo, const glm::dvec3& hi) const;
 };

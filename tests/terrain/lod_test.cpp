@@ -276,6 +276,20 @@ TEST(Frustum, BoxesAgainstPlanes) {
   EXPECT_TRUE(f.intersects({9, -1, -11}, {12, 1, -9}));        // straddles the right plane
 }
 
+TEST(Frustum, ReverseZeroToOneDepthCullsBeyondTheFarPlane) {
+  // The scene renderer's projection: reverse-Z (near at depth 1, far at 0), clip
+  // depth 0..w. Read with GL's -w..w planes it would keep everything past far.
+  const glm::mat4 vp = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 100.0f, 1.0f);
+  const Frustum f = Frustum::fromViewProjection(vp, true);
+  EXPECT_TRUE(f.intersects({-1, -1, -11}, {1, 1, -9}));       // straight ahead
+  EXPECT_TRUE(f.intersects({-1, -1, -99.5}, {1, 1, -98}));    // just inside far
+  EXPECT_FALSE(f.intersects({-1, -1, -300}, {1, 1, -200}));   // beyond the far plane
+  EXPECT_FALSE(f.intersects({-1, -1, -0.8}, {1, 1, -0.5}));   // nearer than near
+  EXPECT_FALSE(f.intersects({-1, -1, 9}, {1, 1, 11}));        // behind
+  // Why the flag exists: GL's planes on this matrix keep the box beyond far.
+  EXPECT_TRUE(Frustum::fromViewProjection(vp, false).intersects({-1, -1, -300}, {1, 1, -200}));
+}
+
 // Culling only removes patches, and only ones wholly outside the view: each has
 // all its vertices beyond one clip plane.
 TEST(Frustum, CulledPatchesAreWhollyOutside) {
