@@ -63,9 +63,12 @@ std::vector<glm::vec3> cpuSkin(const PrimitiveData& prim, const Posed& posed, Sk
   return out;
 }
 
-std::vector<glm::vec3> gpuSkin(ShaderVariants& variants, const GpuPrimitive& prim, const Posed& posed,
-                               SkinMode mode) {
-  auto program = variants.get({prim.influences, mode}, {"v_position"});
+// Runs `variant` over every vertex of `prim` with transform feedback and returns
+// the captured `varying` (one T per vertex, in order).
+template <typename T>
+std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim, const Posed& posed,
+                              const ShaderVariant& variant, const std::string& varying) {
+  auto program = variants.get(variant, {varying});
   EXPECT_TRUE(program.ok()) << program.error().message;
   if (!program) return {};
   const gl::Program& p = **program;
@@ -73,11 +76,11 @@ std::vector<glm::vec3> gpuSkin(ShaderVariants& variants, const GpuPrimitive& pri
   p.set("u_model", glm::mat4(1.0f));
   p.set("u_normalMatrix", glm::mat3(1.0f));
   p.set("u_viewProjection", glm::mat4(1.0f));
-  const gl::Buffer skin = mode == SkinMode::DualQuat
+  const gl::Buffer skin = variant.mode == SkinMode::DualQuat
                               ? gl::Buffer::fromSpan(std::span<const DualQuat>(posed.dualQuats))
                               : gl::Buffer::fromSpan(std::span<const glm::mat4>(posed.palette));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, skin.id());
-  const gl::Buffer captured = gl::Buffer::create(size_t(prim.vertexCount) * sizeof(glm::vec3));
+  const gl::Buffer captured = gl::Buffer::create(size_t(prim.vertexCount) * sizeof(T));
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
   // EGL surfaceless has no default framebuffer; draws need one bound even when
   // rasterisation is discarded.
@@ -90,9 +93,14 @@ std::vector<glm::vec3> gpuSkin(ShaderVariants& variants, const GpuPrimitive& pri
   glDrawArrays(GL_POINTS, 0, prim.vertexCount);  // one output per vertex, in order
   glEndTransformFeedback();
   glDisable(GL_RASTERIZER_DISCARD);
-  std::vector<glm::vec3> out(size_t(prim.vertexCount));
-  glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec3)), out.data());
+  std::vector<T> out(size_t(prim.vertexCount));
+  glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(out.size() * sizeof(T)), out.data());
   return out;
+}
+
+std::vector<glm::vec3> gpuSkin(ShaderVariants& variants, const GpuPrimitive& prim, const Posed& posed,
+                               SkinMode mode) {
+  return captureVarying<glm::vec3>(variants, prim, posed, {prim.influences, mode}, "v_position");
 }
 
 double sizeOf(const std::vector<glm::vec3>& points) {
@@ -270,30 +278,8 @@ TEST_P(GpuSkinning, TangentsAreSkinnedLikePositions) {
     SCOPED_TRACE(mode == SkinMode::DualQuat ? "DQS" : "LBS");
     ShaderVariant variant{8, mode};
     variant.normalMap = true;
-    auto program = variants.get(variant, {"v_tangent"});
-    ASSERT_TRUE(program.ok()) << program.error().message;
-    const gl::Program& p = **program;
-    p.use();
-    p.set("u_model", glm::mat4(1.0f));
-    p.set("u_normalMatrix", glm::mat3(1.0f));
-    p.set("u_viewProjection", glm::mat4(1.0f));
-    const gl::Buffer skin = mode == SkinMode::DualQuat
-                                ? gl::Buffer::fromSpan(std::span<const DualQuat>(posed.dualQuats))
-                                : gl::Buffer::fromSpan(std::span<const glm::mat4>(posed.palette));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, skin.id());
-    const gl::Buffer captured = gl::Buffer::create(size_t(gpuPrim.vertexCount) * sizeof(glm::vec4));
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
-    auto target = RenderTarget::create(1, 1, 1);
-    ASSERT_TRUE(target.ok());
-    target->bind();
-    glEnable(GL_RASTERIZER_DISCARD);
-    gpuPrim.vao.bind();
-    glBeginTransformFeedback(GL_POINTS);
-    glDrawArrays(GL_POINTS, 0, gpuPrim.vertexCount);
-    glEndTransformFeedback();
-    glDisable(GL_RASTERIZER_DISCARD);
-    std::vector<glm::vec4> tangents(size_t(gpuPrim.vertexCount));
-    glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(tangents.size() * sizeof(glm::vec4)), tangents.data());
+    const auto tangents = captureVarying<glm::vec4>(variants, gpuPrim, posed, variant, "v_tangent");
+    ASSERT_EQ(tangents.size(), size_t(gpuPrim.vertexCount));
     const auto base = cpuSkin(prim, posed, mode), moved = cpuSkin(shiftedPrim, posed, mode);
     double worst = 0.0;
     for (size_t v = 0; v < tangents.size(); ++v) {
