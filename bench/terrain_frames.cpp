@@ -187,6 +187,7 @@ int main(int argc, char** argv) {
     const double aspect = double(options.width) / options.height;
     lod.viewProjection = glm::mat4(glm::perspectiveRH_ZO(lod.fovY, aspect, camera.farPlane, camera.nearPlane) *
                                    glm::lookAt(glm::dvec3(0.0), camera.forward(), glm::dvec3(0, 1, 0)));
+    lod.zeroToOneDepth = true;
     const terrain::LodSelection selection = terrain::selectLod(*field, lod, pixels);
     const int drawn = renderers[r]->stats().terrainTriangles;
     if (std::size_t(drawn) != selection.stats.triangles)
