@@ -63,12 +63,12 @@ class Bvh {
   // Four children's boxes as structure of arrays: box[0..2] the min x, y, z and
   // box[3..5] the max x, y, z of children 0-3, one SSE register each. An unused slot
   // has an empty box (min +inf, max -inf), which every ray misses.
-  struct alignas(64) Node4 {
+  struct alignas(128) Node4 {
     float box[6][4];
     std::uint32_t child[4];  // leaf: first triangle; interior: node index; unused: kNoChild
     std::uint8_t count[4];   // triangles in a leaf child, 0 otherwise
   };
-  static_assert(sizeof(Node4) == 128, "a node in two cache lines");
+  static_assert(sizeof(Node4) == 128, "a node in one aligned pair of cache lines");
   static constexpr std::uint32_t kNoChild = 0xffffffffu;
 
   struct BuildPrim {
