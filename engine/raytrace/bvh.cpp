@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+
+#include <immintrin.h>
 
 namespace engine::rt {
 namespace {
@@ -11,10 +14,10 @@ constexpr std::uint32_t kMaxLeafTriangles = 4;
 // SAH costs relative to one triangle test (pbrt's 1/8 for a node visit would give
 // deeper trees; a half keeps leaves of 2-4 triangles, faster for our small meshes).
 constexpr float kTraversalCost = 0.5f;
-// Past this depth splits are by object median, so the traversal stack (64) cannot
-// overflow whatever the triangles look like.
 constexpr int kMaxSahDepth = 48;
-constexpr int kStackSize = 64;
+// Past this depth splits are by object median, so the traversal stack cannot overflow
+// whatever the triangles look like: at most three children pushed per level.
+constexpr int kStackSize = 3 * 64 + 1;
 
 Bounds3f triangleBounds(const TriangleVerts& t) {
   Bounds3f b;
@@ -43,15 +46,15 @@ int binIndex(float c, float lo, float extent) {
 }  // namespace
 
 std::uint32_t Bvh::makeLeaf(std::span<BuildPrim> prims, std::uint32_t first) {
-  Node node;
+  BinaryNode node;
   node.offset = first;
   node.count = std::uint16_t(prims.size());
   for (std::size_t i = 0; i < prims.size(); ++i) {
     node.bounds.extend(prims[i].bounds);
     order_[first + i] = prims[i].index;
   }
-  nodes_.push_back(node);
-  return std::uint32_t(nodes_.size() - 1);
+  binary_.push_back(node);
+  return std::uint32_t(binary_.size() - 1);
 }
 
 std::uint32_t Bvh::buildRecursive(std::span<BuildPrim> prims, std::uint32_t first, int depth) {
@@ -119,20 +122,69 @@ std::uint32_t Bvh::buildRecursive(std::span<BuildPrim> prims, std::uint32_t firs
                      [&](const BuildPrim& a, const BuildPrim& b) { return a.centroid[axis] < b.centroid[axis]; });
   }
 
-  const std::uint32_t index = std::uint32_t(nodes_.size());
-  nodes_.push_back(Node{});
+  const std::uint32_t index = std::uint32_t(binary_.size());
+  binary_.push_back(BinaryNode{});
   buildRecursive(prims.subspan(0, mid), first, depth + 1);
   const std::uint32_t second = buildRecursive(prims.subspan(mid), first + std::uint32_t(mid), depth + 1);
-  Node& node = nodes_[index];
+  BinaryNode& node = binary_[index];
   node.bounds = bounds;
   node.offset = second;
   node.count = 0;
-  node.axis = std::uint8_t(axis);
+  return index;
+}
+
+// Gathers up to four descendants of a binary interior node, opening the largest
+// interior one each time (its children are the likeliest to be visited), and makes
+// them one Node4; interior ones are collapsed in turn, after their parent.
+std::uint32_t Bvh::collapse(std::uint32_t binary) {
+  std::array<std::uint32_t, 4> kids{binary + 1, binary_[binary].offset, 0, 0};
+  int n = 2;
+  while (n < 4) {
+    int open = -1;
+    float area = -1.0f;
+    for (int i = 0; i < n; ++i) {
+      const BinaryNode& kid = binary_[kids[i]];
+      if (kid.count == 0 && kid.bounds.surfaceArea() > area) {
+        open = i;
+        area = kid.bounds.surfaceArea();
+      }
+    }
+    if (open < 0) break;
+    const std::uint32_t opened = kids[open];
+    // The second child goes right after the first, keeping the tree's left-to-right order.
+    for (int i = n; i > open + 1; --i) kids[i] = kids[i - 1];
+    kids[open] = opened + 1;
+    kids[open + 1] = binary_[opened].offset;
+    ++n;
+  }
+  const std::uint32_t index = std::uint32_t(nodes_.size());
+  nodes_.push_back(Node4{});
+  for (int i = 0; i < 4; ++i) {
+    const Bounds3f b = i < n ? binary_[kids[i]].bounds : Bounds3f{};
+    std::uint32_t child = kNoChild;
+    std::uint8_t count = 0;
+    if (i < n) {
+      const BinaryNode& kid = binary_[kids[i]];
+      count = std::uint8_t(kid.count);
+      child = kid.count > 0 ? kid.offset : collapse(kids[i]);
+    }
+    Node4& node = nodes_[index];  // collapse() may have moved the vector
+    for (int axis = 0; axis < 3; ++axis) {
+      node.box[axis][i] = b.min[axis];
+      node.box[3 + axis][i] = b.max[axis];
+    }
+    node.child[i] = child;
+    node.count[i] = count;
+  }
   return index;
 }
 
 void Bvh::build(std::span<const TriangleVerts> triangles) {
   nodes_.clear();
+  binary_.clear();
+  rootBounds_ = Bounds3f{};
+  root_ = kNoChild;
+  rootCount_ = 0;
   depth_ = 0;
   order_.assign(triangles.size(), 0);
   triangles_.clear();
@@ -143,26 +195,62 @@ void Bvh::build(std::span<const TriangleVerts> triangles) {
     prims[i].centroid = prims[i].bounds.centroid();
     prims[i].index = std::uint32_t(i);
   }
-  nodes_.reserve(2 * triangles.size());
+  binary_.reserve(2 * triangles.size());
   buildRecursive(prims, 0, 0);
   triangles_.resize(triangles.size());
   for (std::size_t i = 0; i < order_.size(); ++i) triangles_[i] = triangles[order_[i]];
+
+  const BinaryNode& root = binary_[0];
+  rootBounds_ = root.bounds;
+  rootCount_ = std::uint8_t(root.count);
+  if (root.count > 0) {
+    root_ = root.offset;
+  } else {
+    nodes_.reserve(binary_.size() / 6 + 1);  // about a third of the interior nodes
+    root_ = collapse(0);
+  }
+  binary_ = {};  // the traversal reads only the Node4s
+}
+
+// A node's boxes from its children: leaves from their triangles, interior nodes from
+// their own (already refitted) boxes.
+void Bvh::refitNode(std::uint32_t index) {
+  Node4& node = nodes_[index];
+  for (int i = 0; i < 4; ++i) {
+    if (node.child[i] == kNoChild) continue;
+    Bounds3f b;
+    if (node.count[i] > 0) {
+      for (std::uint32_t k = 0; k < node.count[i]; ++k) b.extend(triangleBounds(triangles_[node.child[i] + k]));
+    } else {
+      const Node4& kid = nodes_[node.child[i]];
+      for (int j = 0; j < 4; ++j) {
+        b.extend(glm::vec3(kid.box[0][j], kid.box[1][j], kid.box[2][j]));
+        b.extend(glm::vec3(kid.box[3][j], kid.box[4][j], kid.box[5][j]));
+      }
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      node.box[axis][i] = b.min[axis];
+      node.box[3 + axis][i] = b.max[axis];
+    }
+  }
 }
 
 void Bvh::refit(std::span<const TriangleVerts> triangles) {
   for (std::size_t i = 0; i < order_.size(); ++i) triangles_[i] = triangles[order_[i]];
-  // Children follow their parents, so a reverse sweep sees both children first.
-  for (std::size_t i = nodes_.size(); i-- > 0;) {
-    Node& node = nodes_[i];
-    Bounds3f b;
-    if (node.count > 0) {
-      for (std::uint32_t k = 0; k < node.count; ++k) b.extend(triangleBounds(triangles_[node.offset + k]));
-    } else {
-      b = nodes_[i + 1].bounds;
-      b.extend(nodes_[node.offset].bounds);
+  if (triangles_.empty()) return;
+  // Children follow their parents, so a reverse sweep refits children first.
+  for (std::size_t i = nodes_.size(); i-- > 0;) refitNode(std::uint32_t(i));
+  Bounds3f b;
+  if (rootCount_ > 0) {
+    for (std::uint32_t k = 0; k < rootCount_; ++k) b.extend(triangleBounds(triangles_[root_ + k]));
+  } else {
+    const Node4& node = nodes_[root_];
+    for (int j = 0; j < 4; ++j) {
+      b.extend(glm::vec3(node.box[0][j], node.box[1][j], node.box[2][j]));
+      b.extend(glm::vec3(node.box[3][j], node.box[4][j], node.box[5][j]));
     }
-    node.bounds = b;
   }
+  rootBounds_ = b;
 }
 
 namespace {
@@ -172,53 +260,139 @@ Vec3<T> toT(const glm::vec3& v) {
   return Vec3<T>(v);
 }
 
+// The per-ray part of the box test: the ray's origin and inverse direction, and
+// which of a Node4's six rows is each axis' near and far slab. Any precision:
+// intersectBounds on each child box in turn.
+template <typename T>
+class ChildBoxTest {
+ public:
+  explicit ChildBoxTest(const Ray<T>& ray) : ray_(ray), invDir_(T(1) / ray.d) {
+    for (int axis = 0; axis < 3; ++axis) dirIsNeg_[axis] = invDir_[axis] < 0;
+  }
+
+  bool root(const Bounds3f& b, T& tEntry) const {
+    return intersectBounds(b, ray_, ray_.tMax, invDir_, dirIsNeg_, tEntry);
+  }
+
+  // The mask of the children hit before tMax, and their entry distances.
+  template <typename Node>
+  int operator()(const Node& node, T tMax, T tEntry[4]) const {
+    int mask = 0;
+    for (int i = 0; i < 4; ++i) {
+      Bounds3f b;
+      b.min = glm::vec3(node.box[0][i], node.box[1][i], node.box[2][i]);
+      b.max = glm::vec3(node.box[3][i], node.box[4][i], node.box[5][i]);
+      if (intersectBounds(b, ray_, tMax, invDir_, dirIsNeg_, tEntry[i])) mask |= 1 << i;
+    }
+    return mask;
+  }
+
+ private:
+  Ray<T> ray_;
+  Vec3<T> invDir_;
+  int dirIsNeg_[3];
+};
+
+// Float rays: the same test on all four boxes at once (SSE, part of every x86-64),
+// with the ray's values broadcast once per ray. Written to give intersectBounds'
+// answers bit for bit: _mm_max_ps and _mm_min_ps return their second operand when
+// either is NaN, which drops an axis whose slab the ray lies in exactly as the scalar
+// test's comparisons do (x: the NaN becomes the unbounded start value).
+template <>
+class ChildBoxTest<float> {
+ public:
+  explicit ChildBoxTest(const Ray<float>& ray) : ray_(ray), invDir_(1.0f / ray.d) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const int neg = invDir_[axis] < 0;
+      dirIsNeg_[axis] = neg;
+      nearRow_[axis] = axis + 3 * neg;
+      farRow_[axis] = axis + 3 * (1 - neg);
+      o_[axis] = _mm_set1_ps(ray.o[axis]);
+      inv_[axis] = _mm_set1_ps(invDir_[axis]);
+    }
+  }
+
+  bool root(const Bounds3f& b, float& tEntry) const {
+    return intersectBounds(b, ray_, ray_.tMax, invDir_, dirIsNeg_, tEntry);
+  }
+
+  template <typename Node>
+  [[gnu::always_inline]] int operator()(const Node& node, float tMax, float tEntry[4]) const {
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    const __m128 widen = _mm_set1_ps(1.0f + 2.0f * gamma<float>(3));
+    __m128 t0 = _mm_set1_ps(-kInf), t1 = _mm_set1_ps(kInf);
+    for (int axis = 0; axis < 3; ++axis) {
+      const __m128 near = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.box[nearRow_[axis]]), o_[axis]), inv_[axis]);
+      const __m128 far = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.box[farRow_[axis]]), o_[axis]), inv_[axis]);
+      t0 = _mm_max_ps(near, t0);
+      t1 = _mm_min_ps(_mm_mul_ps(far, widen), t1);
+    }
+    const __m128 inside = _mm_and_ps(_mm_cmple_ps(t0, t1), _mm_cmpgt_ps(t1, _mm_setzero_ps()));
+    const __m128 hit = _mm_and_ps(inside, _mm_cmplt_ps(t0, _mm_set1_ps(tMax)));
+    _mm_storeu_ps(tEntry, t0);
+    return _mm_movemask_ps(hit);
+  }
+
+ private:
+  __m128 o_[3], inv_[3];
+  int nearRow_[3], farRow_[3];
+  Ray<float> ray_;
+  Vec3<float> invDir_;
+  int dirIsNeg_[3];
+};
 }  // namespace
 
-// Children are tested from their parent: both boxes, then the nearer entered first
-// and the farther pushed with its entry distance, which is checked again when it is
-// popped (a nearest hit found meanwhile skips it without touching the node). The
-// per-ray part of the triangle test is computed once.
+// All four children's boxes are tested at once; those hit are visited nearest entry
+// first, the others pushed with their entry distances, which are checked again when
+// popped (a nearest hit found meanwhile skips them without touching their nodes).
+// The per-ray parts of the box and triangle tests are computed once.
 template <typename T, bool kAnyHit>
 std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
-  if (nodes_.empty()) return std::nullopt;
+  if (triangles_.empty()) return std::nullopt;
   Ray<T> ray = rayIn;
-  const Vec3<T> invDir = T(1) / ray.d;
-  const int dirIsNeg[3] = {invDir.x < 0, invDir.y < 0, invDir.z < 0};
+  const ChildBoxTest<T> boxTest(ray);
   const TriangleRay<T> triRay(ray);
   std::optional<BvhHit<T>> best;
   struct Entry {
-    std::uint32_t node;
+    std::uint32_t child;
+    std::uint32_t count;
     T tEntry;
   };
   Entry stack[kStackSize];
   int top = 0;
   T tRoot = 0;
-  if (!intersectBounds(nodes_[0].bounds, ray, ray.tMax, invDir, dirIsNeg, tRoot)) return std::nullopt;
-  std::uint32_t current = 0;
+  if (!boxTest.root(rootBounds_, tRoot)) return std::nullopt;
+  Entry current{root_, rootCount_, tRoot};
   for (;;) {
-    const Node& node = nodes_[current];
-    if (node.count > 0) {
-      for (std::uint32_t k = 0; k < node.count; ++k) {
-        const TriangleVerts& tri = triangles_[node.offset + k];
+    if (current.count > 0) {
+      for (std::uint32_t k = current.child; k < current.child + current.count; ++k) {
+        const TriangleVerts& tri = triangles_[k];
         if (auto hit = intersectTriangle(triRay, ray.tMax, toT<T>(tri.p0), toT<T>(tri.p1), toT<T>(tri.p2))) {
-          best = BvhHit<T>{*hit, order_[node.offset + k]};
+          best = BvhHit<T>{*hit, order_[k]};
           if constexpr (kAnyHit) return best;
           ray.tMax = hit->t;
         }
       }
     } else {
-      const std::uint32_t first = current + 1, second = node.offset;
-      T t0 = 0, t1 = 0;
-      const bool hit0 = intersectBounds(nodes_[first].bounds, ray, ray.tMax, invDir, dirIsNeg, t0);
-      const bool hit1 = intersectBounds(nodes_[second].bounds, ray, ray.tMax, invDir, dirIsNeg, t1);
-      if (hit0 && hit1) {
-        const bool firstNearer = t0 <= t1;
-        stack[top++] = firstNearer ? Entry{second, t1} : Entry{first, t0};
-        current = firstNearer ? first : second;
-        continue;
-      }
-      if (hit0 || hit1) {
-        current = hit0 ? first : second;
+      const Node4& node = nodes_[current.child];
+      // The children's indices lie in the node's second cache line: ask for it now, so
+      // that its miss overlaps the box test on the first.
+      _mm_prefetch(reinterpret_cast<const char*>(&node) + 64, _MM_HINT_T0);
+      T tEntry[4];
+      int mask = boxTest(node, ray.tMax, tEntry);
+      if (mask != 0) {
+        // The children hit, sorted by entry distance (insertion sort of at most four).
+        Entry hits[4];
+        int n = 0;
+        for (; mask != 0; mask &= mask - 1) {
+          const int i = __builtin_ctz(unsigned(mask));
+          Entry e{node.child[i], node.count[i], tEntry[i]};
+          int j = n++;
+          for (; j > 0 && hits[j - 1].tEntry > e.tEntry; --j) hits[j] = hits[j - 1];
+          hits[j] = e;
+        }
+        for (int j = n - 1; j > 0; --j) stack[top++] = hits[j];
+        current = hits[0];
         continue;
       }
     }
@@ -227,7 +401,7 @@ std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
     while (top > 0) {
       const Entry e = stack[--top];
       if (e.tEntry < ray.tMax) {
-        current = e.node;
+        current = e;
         found = true;
         break;
       }

@@ -1,9 +1,10 @@
 #pragma once
 // A bounding volume hierarchy over triangles (pbrt's BVHAggregate, reduced to what the
-// ray tracer needs): built top-down with the binned surface area heuristic, stored
-// flat in depth-first order (the first child follows its parent; the node holds the
-// second child's index), refitted bottom-up when vertices move but the triangles stay
-// the same, rebuilt when they do not.
+// ray tracer needs): built top-down as a binary tree with the binned surface area
+// heuristic, then collapsed into a 4-wide tree (Embree's BVH4) whose node holds its
+// four children's boxes side by side, so that one ray tests all four at once with SSE.
+// Stored flat in depth-first order (children follow their parent), refitted bottom-up
+// when vertices move but the triangles stay the same, rebuilt when they do not.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -41,24 +42,34 @@ class Bvh {
   template <typename T>
   bool intersectAny(const Ray<T>& ray) const;
 
-  bool empty() const { return nodes_.empty(); }
+  bool empty() const { return triangles_.empty(); }
   std::size_t nodeCount() const { return nodes_.size(); }
   std::size_t triangleCount() const { return triangles_.size(); }
   int depth() const { return depth_; }
-  Bounds3f bounds() const { return nodes_.empty() ? Bounds3f{} : nodes_[0].bounds; }
+  Bounds3f bounds() const { return rootBounds_; }
 
  private:
   // The one traversal both queries use: nearest hit, or (kAnyHit) the first found.
   template <typename T, bool kAnyHit>
   std::optional<BvhHit<T>> traverse(const Ray<T>& ray) const;
 
-  struct Node {
+  // The binary tree the builder makes; collapsed into Node4s, then dropped.
+  struct BinaryNode {
     Bounds3f bounds;
     std::uint32_t offset = 0;  // leaf: first triangle; interior: second child
     std::uint16_t count = 0;   // triangles in a leaf, 0 for an interior node
-    std::uint8_t axis = 0;     // interior: the split axis (traversal orders by entry distance)
   };
-  static_assert(sizeof(Node) == 32, "two nodes per cache line");
+
+  // Four children's boxes as structure of arrays: box[0..2] the min x, y, z and
+  // box[3..5] the max x, y, z of children 0-3, one SSE register each. An unused slot
+  // has an empty box (min +inf, max -inf), which every ray misses.
+  struct alignas(128) Node4 {
+    float box[6][4];
+    std::uint32_t child[4];  // leaf: first triangle; interior: node index; unused: kNoChild
+    std::uint8_t count[4];   // triangles in a leaf child, 0 otherwise
+  };
+  static_assert(sizeof(Node4) == 128, "a node in one aligned pair of cache lines");
+  static constexpr std::uint32_t kNoChild = 0xffffffffu;
 
   struct BuildPrim {
     Bounds3f bounds;
@@ -68,8 +79,14 @@ class Bvh {
 
   std::uint32_t buildRecursive(std::span<BuildPrim> prims, std::uint32_t first, int depth);
   std::uint32_t makeLeaf(std::span<BuildPrim> prims, std::uint32_t first);
+  std::uint32_t collapse(std::uint32_t binary);
+  void refitNode(std::uint32_t index);
 
-  std::vector<Node> nodes_;
+  std::vector<BinaryNode> binary_;           // during build() only
+  std::vector<Node4> nodes_;
+  Bounds3f rootBounds_;
+  std::uint32_t root_ = kNoChild;            // like a Node4 child: node index or first triangle
+  std::uint8_t rootCount_ = 0;               // triangles when the whole tree is one leaf
   std::vector<std::uint32_t> order_;         // leaf order -> index given to build()
   std::vector<TriangleVerts> triangles_;     // in leaf order, for traversal
   int depth_ = 0;
