@@ -9,6 +9,7 @@
 #include "common/shading.glsl"
 #include "common/shadows.glsl"
 #include "common/material.glsl"
+#include "common/direct_light.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -40,31 +41,13 @@ void main() {
   n = materialNormal(geometric, v_tangent, v_uv);
 #endif
   n *= side;
-  // Shadow lookups take the surface's own normal: the offset that keeps acne away
-  // is about the geometry, not the bumps painted on it.
-  geometric *= side;
+  geometric *= side;  // for the shadow lookups (common/direct_light.glsl)
   vec3 toEye = normalize(-v_position);
   vec2 mr = materialMetallicRoughness(u_metallic, u_roughness, v_uv);
   Surface s = Surface(base.rgb, n, toEye, v_position, mr.x, mr.y, u_ambient, u_diffuse,
                       u_specular, u_shininess, u_reflection);
   vec3 color = materialEmissive(u_emissive, v_uv) + shadeAmbient(s) * materialOcclusion(v_uv);
-  if (u_sunDirection.w > 0.0) {
-    float visibility = 1.0;
-#ifdef SUN_SHADOWS
-    visibility = sunShadow(v_position, geometric);
-#endif
-    color += shadeLight(s, u_sunDirection.xyz, u_sunColor.rgb, visibility);
-  }
-  for (int i = 0; i < u_counts.x; ++i) {
-    vec3 toLight = u_pointPosition[i].xyz - v_position;
-    float d2 = dot(toLight, toLight);
-    float visibility = 1.0;
-#ifdef POINT_SHADOWS
-    if (i == 0 && u_pointColor[0].w > 0.0) visibility = pointShadow(v_position, geometric);
-#endif
-    vec3 radiance = u_pointColor[i].rgb / (u_pointPosition[i].w > 0.0 ? max(d2, 1e-8) : 1.0);
-    color += shadeLight(s, toLight * inversesqrt(max(d2, 1e-30)), radiance, visibility);
-  }
+  color += shadeDirectLight(s, geometric);
   color += reflectedEnvironment(s);
 #ifdef FOG
   color = mix(u_fog.rgb, color, exp(-u_fog.w * length(v_position)));

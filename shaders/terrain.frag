@@ -45,7 +45,7 @@ void main() {
   float roughness = dot(w, vec3(0.95, 0.8, 0.5));
   float specular = mix(0.02, 0.25, w.z);
   Surface s = Surface(albedo, n, toEye, v_position, 0.0, roughness, u_ambientSky.w, 1.0, specular, 24.0, 0.0);
-  vec3 color = shadeAmbient(s) + shadeDirectLight(s);
+  vec3 color = shadeAmbient(s) + shadeDirectLight(s, n);
 #ifdef FOG
   color = mix(u_fog.rgb, color, exp(-u_fog.w * length(v_position)));
 #endif
