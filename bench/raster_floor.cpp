@@ -57,18 +57,13 @@ engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& sc
   camera.fovY = glm::radians(scene.camera.fovyDegrees);
   camera.viewportHeight = height;
   const auto selection = engine::terrain::selectLod(*field, camera, scene.terrain.errorPixels);
-  constexpr std::uint32_t n = engine::terrain::kPatchQuads;
+  const std::vector<std::uint32_t> indices = engine::terrain::patchIndices();
   for (const auto& patch : selection.patches) {
     const auto base = static_cast<std::uint32_t>(out.vertices.size());
     for (const glm::vec3& v : engine::terrain::patchVertices(*field, selection, patch)) {
       out.vertices.push_back({v, glm::vec3(0, 1, 0), {}});
     }
-    for (std::uint32_t j = 0; j < n; ++j) {
-      for (std::uint32_t i = 0; i < n; ++i) {
-        const std::uint32_t a = base + j * (n + 1) + i, b = a + 1, d = a + n + 1, e = d + 1;
-        out.indices.insert(out.indices.end(), {a, d, b, b, d, e});
-      }
-    }
+    for (std::uint32_t i : indices) out.indices.push_back(base + i);
   }
   return engine::Ok{};
 }

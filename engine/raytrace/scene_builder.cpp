@@ -117,18 +117,13 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
   grass.color = glm::vec3(0.2f, 0.32f, 0.12f);  // the grass layer's mean colour, linear
   grass.roughness = 0.9f;
   const int material = scene.addMaterial(grass);
+  const std::vector<std::uint32_t> indices = terrain::patchIndices();
   for (const auto& patch : selection.patches) {
-    const auto vertices = terrain::patchVertices(field, selection, patch);
-    const int n = int(std::lround(std::sqrt(double(vertices.size())))) - 1;
     RtMesh mesh;
     mesh.material = material;
-    for (const glm::vec3& v : vertices) mesh.positions.push_back(glm::vec3(glm::dvec3(v) + c.position));
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const std::uint32_t a = std::uint32_t(j * (n + 1) + i), b = a + 1, d = a + std::uint32_t(n + 1), e = d + 1;
-        mesh.indices.insert(mesh.indices.end(), {a, d, b, b, d, e});
-      }
-    }
+    for (const glm::vec3& v : terrain::patchVertices(field, selection, patch))
+      mesh.positions.push_back(glm::vec3(glm::dvec3(v) + c.position));
+    mesh.indices = indices;
     stats.triangles += int(mesh.indices.size() / 3);
     ++stats.meshes;
     auto added = scene.addMesh(std::move(mesh));

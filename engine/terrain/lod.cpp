@@ -241,4 +241,16 @@ std::vector<glm::vec3> patchVertices(const Terrain& terrain, const LodSelection&
   return out;
 }
 
+std::vector<std::uint32_t> patchIndices() {
+  std::vector<std::uint32_t> idx;
+  idx.reserve(std::size_t(kPatchQuads) * kPatchQuads * 6);
+  auto at = [](int i, int j) { return std::uint32_t(j * (kPatchQuads + 1) + i); };
+  for (int j = 0; j < kPatchQuads; ++j)
+    for (int i = 0; i < kPatchQuads; ++i) {
+      idx.insert(idx.end(), {at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+      idx.insert(idx.end(), {at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+    }
+  return idx;
+}
+
 }  // namespace engine::terrain

@@ -13,6 +13,7 @@
 // level, (b) a finer patch is fully morphed where it meets a coarser one and
 // (c) the coarser one is not morphed there at all (see lod.cpp).
 #include <array>
+#include <cstdint>
 #include <cstddef>
 #include <vector>
 
@@ -102,5 +103,9 @@ glm::vec3 patchVertex(const LodSelection& selection, const LodPatch& patch, cons
 // All (kPatchQuads + 1)^2 vertices, row by row (j outer).
 std::vector<glm::vec3> patchVertices(const Terrain& terrain, const LodSelection& selection,
                                      const LodPatch& patch);
+// The triangles of that grid, as every renderer draws them (GPU, ray tracer, floor
+// bench): each quad split along its (i, j)-(i+1, j+1) diagonal, the direction the
+// morph and the error estimate assume; counter-clockwise seen from above.
+std::vector<std::uint32_t> patchIndices();
 
 }  // namespace engine::terrain
