@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 #include <limits>
 
 #include <immintrin.h>
@@ -10,7 +11,7 @@ namespace engine::rt {
 namespace {
 
 constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafTriangles = 4;
+constexpr std::uint32_t kMaxLeafTriangles = 4;  // a leaf reference holds 1-4
 // SAH costs relative to one triangle test (pbrt's 1/8 for a node visit would give
 // deeper trees; a half keeps leaves of 2-4 triangles, faster for our small meshes).
 constexpr float kTraversalCost = 0.5f;
@@ -161,30 +162,29 @@ std::uint32_t Bvh::collapse(std::uint32_t binary) {
   nodes_.push_back(Node4{});
   for (int i = 0; i < 4; ++i) {
     const Bounds3f b = i < n ? binary_[kids[i]].bounds : Bounds3f{};
-    std::uint32_t child = kNoChild;
-    std::uint8_t count = 0;
-    if (i < n) {
-      const BinaryNode& kid = binary_[kids[i]];
-      count = std::uint8_t(kid.count);
-      child = kid.count > 0 ? kid.offset : collapse(kids[i]);
-    }
-    Node4& node = nodes_[index];  // collapse() may have moved the vector
+    const std::uint32_t child = i < n ? reference(kids[i]) : kNoChild;
+    Node4& node = nodes_[index];  // reference() may have moved the vector
     for (int axis = 0; axis < 3; ++axis) {
       node.box[axis][i] = b.min[axis];
       node.box[3 + axis][i] = b.max[axis];
     }
     node.child[i] = child;
-    node.count[i] = count;
   }
   return index;
 }
 
+// A binary node as a Node4 child: a leaf's triangles, or the interior node collapsed.
+std::uint32_t Bvh::reference(std::uint32_t binary) {
+  const BinaryNode& node = binary_[binary];
+  return node.count > 0 ? leafRef(node.offset, node.count) : collapse(binary);
+}
+
 void Bvh::build(std::span<const TriangleVerts> triangles) {
+  if (triangles.size() >= kMaxTriangles) throw std::length_error("Bvh::build: 2^28 triangles or more");
   nodes_.clear();
   binary_.clear();
   rootBounds_ = Bounds3f{};
   root_ = kNoChild;
-  rootCount_ = 0;
   depth_ = 0;
   order_.assign(triangles.size(), 0);
   triangles_.clear();
@@ -200,34 +200,34 @@ void Bvh::build(std::span<const TriangleVerts> triangles) {
   triangles_.resize(triangles.size());
   for (std::size_t i = 0; i < order_.size(); ++i) triangles_[i] = triangles[order_[i]];
 
-  const BinaryNode& root = binary_[0];
-  rootBounds_ = root.bounds;
-  rootCount_ = std::uint8_t(root.count);
-  if (root.count > 0) {
-    root_ = root.offset;
-  } else {
-    nodes_.reserve(binary_.size() / 6 + 1);  // about a third of the interior nodes
-    root_ = collapse(0);
-  }
+  rootBounds_ = binary_[0].bounds;
+  nodes_.reserve(binary_.size() / 6 + 1);  // about a third of the interior nodes
+  root_ = reference(0);
   binary_ = {};  // the traversal reads only the Node4s
 }
 
 // A node's boxes from its children: leaves from their triangles, interior nodes from
 // their own (already refitted) boxes.
+Bounds3f Bvh::childBounds(std::uint32_t ref) const {
+  Bounds3f b;
+  if (isLeaf(ref)) {
+    const std::uint32_t first = leafFirst(ref);
+    for (std::uint32_t k = first; k < first + leafCount(ref); ++k) b.extend(triangleBounds(triangles_[k]));
+  } else {
+    const Node4& kid = nodes_[ref];
+    for (int j = 0; j < 4; ++j) {
+      b.extend(glm::vec3(kid.box[0][j], kid.box[1][j], kid.box[2][j]));
+      b.extend(glm::vec3(kid.box[3][j], kid.box[4][j], kid.box[5][j]));
+    }
+  }
+  return b;
+}
+
 void Bvh::refitNode(std::uint32_t index) {
   Node4& node = nodes_[index];
   for (int i = 0; i < 4; ++i) {
     if (node.child[i] == kNoChild) continue;
-    Bounds3f b;
-    if (node.count[i] > 0) {
-      for (std::uint32_t k = 0; k < node.count[i]; ++k) b.extend(triangleBounds(triangles_[node.child[i] + k]));
-    } else {
-      const Node4& kid = nodes_[node.child[i]];
-      for (int j = 0; j < 4; ++j) {
-        b.extend(glm::vec3(kid.box[0][j], kid.box[1][j], kid.box[2][j]));
-        b.extend(glm::vec3(kid.box[3][j], kid.box[4][j], kid.box[5][j]));
-      }
-    }
+    const Bounds3f b = childBounds(node.child[i]);
     for (int axis = 0; axis < 3; ++axis) {
       node.box[axis][i] = b.min[axis];
       node.box[3 + axis][i] = b.max[axis];
@@ -240,17 +240,7 @@ void Bvh::refit(std::span<const TriangleVerts> triangles) {
   if (triangles_.empty()) return;
   // Children follow their parents, so a reverse sweep refits children first.
   for (std::size_t i = nodes_.size(); i-- > 0;) refitNode(std::uint32_t(i));
-  Bounds3f b;
-  if (rootCount_ > 0) {
-    for (std::uint32_t k = 0; k < rootCount_; ++k) b.extend(triangleBounds(triangles_[root_ + k]));
-  } else {
-    const Node4& node = nodes_[root_];
-    for (int j = 0; j < 4; ++j) {
-      b.extend(glm::vec3(node.box[0][j], node.box[1][j], node.box[2][j]));
-      b.extend(glm::vec3(node.box[3][j], node.box[4][j], node.box[5][j]));
-    }
-  }
-  rootBounds_ = b;
+  rootBounds_ = childBounds(root_);
 }
 
 namespace {
@@ -342,30 +332,67 @@ class ChildBoxTest<float> {
 };
 }  // namespace
 
-// All four children's boxes are tested at once; those hit are visited nearest entry
-// first, the others pushed with their entry distances, which are checked again when
-// popped (a nearest hit found meanwhile skips them without touching their nodes).
-// The per-ray parts of the box and triangle tests are computed once.
+// All four children's boxes are tested at once. Embree's order of cases: no child
+// hit pops the stack; one is entered without touching the stack; of two, the farther
+// is pushed; three or four are pushed sorted, nearest on top, and the nearest popped.
+// Ties go to the lower child slot, so a given tree always meets hits in one order.
+// A popped entry is skipped when the nearest hit found meanwhile is closer than where
+// the ray enters its box. The per-ray parts of the box and triangle tests are computed once.
 template <typename T, bool kAnyHit>
 std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
   if (triangles_.empty()) return std::nullopt;
   Ray<T> ray = rayIn;
   const ChildBoxTest<T> boxTest(ray);
+  T tRoot = 0;
+  if (!boxTest.root(rootBounds_, tRoot)) return std::nullopt;
   const TriangleRay<T> triRay(ray);
   std::optional<BvhHit<T>> best;
   struct Entry {
-    std::uint32_t child;
-    std::uint32_t count;
+    std::uint32_t ref;
     T tEntry;
   };
   Entry stack[kStackSize];
   int top = 0;
-  T tRoot = 0;
-  if (!boxTest.root(rootBounds_, tRoot)) return std::nullopt;
-  Entry current{root_, rootCount_, tRoot};
+  std::uint32_t ref = root_;
   for (;;) {
-    if (current.count > 0) {
-      for (std::uint32_t k = current.child; k < current.child + current.count; ++k) {
+    while (!isLeaf(ref)) {
+      const Node4& node = nodes_[ref];
+      // The children's references lie in the node's second cache line: ask for it now,
+      // so that its miss overlaps the box test on the first.
+      _mm_prefetch(reinterpret_cast<const char*>(&node) + 64, _MM_HINT_T0);
+      T tEntry[4];
+      unsigned mask = unsigned(boxTest(node, ray.tMax, tEntry));
+      if (mask == 0) goto pop;
+      const int i = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (mask == 0) {
+        ref = node.child[i];
+        continue;
+      }
+      const int j = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (mask == 0) {
+        const bool iFirst = tEntry[i] <= tEntry[j];
+        stack[top++] = iFirst ? Entry{node.child[j], tEntry[j]} : Entry{node.child[i], tEntry[i]};
+        ref = iFirst ? node.child[i] : node.child[j];
+        continue;
+      }
+      // Each later child has a higher slot, so on a tie it goes below the ones there.
+      const int base = top;
+      const auto push = [&](int k) {
+        const Entry e{node.child[k], tEntry[k]};
+        int at = top++;
+        for (; at > base && stack[at - 1].tEntry <= e.tEntry; --at) stack[at] = stack[at - 1];
+        stack[at] = e;
+      };
+      push(i);
+      push(j);
+      for (; mask != 0; mask &= mask - 1) push(__builtin_ctz(mask));
+      ref = stack[--top].ref;
+    }
+    {
+      const std::uint32_t first = leafFirst(ref), end = first + leafCount(ref);
+      for (std::uint32_t k = first; k < end; ++k) {
         const TriangleVerts& tri = triangles_[k];
         if (auto hit = intersectTriangle(triRay, ray.tMax, toT<T>(tri.p0), toT<T>(tri.p1), toT<T>(tri.p2))) {
           best = BvhHit<T>{*hit, order_[k]};
@@ -373,42 +400,15 @@ std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
           ray.tMax = hit->t;
         }
       }
-    } else {
-      const Node4& node = nodes_[current.child];
-      // The children's indices lie in the node's second cache line: ask for it now, so
-      // that its miss overlaps the box test on the first.
-      _mm_prefetch(reinterpret_cast<const char*>(&node) + 64, _MM_HINT_T0);
-      T tEntry[4];
-      int mask = boxTest(node, ray.tMax, tEntry);
-      if (mask != 0) {
-        // The children hit, sorted by entry distance (insertion sort of at most four).
-        Entry hits[4];
-        int n = 0;
-        for (; mask != 0; mask &= mask - 1) {
-          const int i = __builtin_ctz(unsigned(mask));
-          Entry e{node.child[i], node.count[i], tEntry[i]};
-          int j = n++;
-          for (; j > 0 && hits[j - 1].tEntry > e.tEntry; --j) hits[j] = hits[j - 1];
-          hits[j] = e;
-        }
-        for (int j = n - 1; j > 0; --j) stack[top++] = hits[j];
-        current = hits[0];
-        continue;
-      }
     }
-    // Pop the next box the ray still enters before its nearest hit.
-    bool found = false;
-    while (top > 0) {
-      const Entry e = stack[--top];
-      if (e.tEntry < ray.tMax) {
-        current = e;
-        found = true;
-        break;
-      }
-    }
-    if (!found) break;
+  pop:
+    // The next box the ray still enters before its nearest hit.
+    do {
+      if (top == 0) return best;
+      --top;
+    } while (!(stack[top].tEntry < ray.tMax));
+    ref = stack[top].ref;
   }
-  return best;
 }
 
 template <typename T>

@@ -29,7 +29,8 @@ struct BvhHit {
 
 class Bvh {
  public:
-  // Triangles of any size, degenerate ones included (they are never hit).
+  // Triangles of any size, degenerate ones included (they are never hit); fewer
+  // than 2^28 of them (std::length_error otherwise).
   void build(std::span<const TriangleVerts> triangles);
   // The same triangles as the last build(), in the same order, at new positions.
   // The tree keeps its shape, so traversal slows as the motion grows; rebuild then.
@@ -60,16 +61,27 @@ class Bvh {
     std::uint16_t count = 0;   // triangles in a leaf, 0 for an interior node
   };
 
+  // A child reference in one word: an interior node's index, or (top bit set) a leaf
+  // of 1-4 triangles, its count - 1 in bits 28-29 and its first triangle below; an
+  // unused slot is kNoChild. Traversal entries are then a word and a distance.
+  static constexpr std::uint32_t kLeafBit = 0x80000000u;
+  static constexpr std::uint32_t kNoChild = 0xffffffffu;
+  static constexpr std::uint32_t kMaxTriangles = 1u << 28;
+  static constexpr bool isLeaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
+  static constexpr std::uint32_t leafFirst(std::uint32_t ref) { return ref & (kMaxTriangles - 1); }
+  static constexpr std::uint32_t leafCount(std::uint32_t ref) { return ((ref >> 28) & 3u) + 1; }
+  static constexpr std::uint32_t leafRef(std::uint32_t first, std::uint32_t count) {
+    return kLeafBit | ((count - 1) << 28) | first;
+  }
+
   // Four children's boxes as structure of arrays: box[0..2] the min x, y, z and
   // box[3..5] the max x, y, z of children 0-3, one SSE register each. An unused slot
   // has an empty box (min +inf, max -inf), which every ray misses.
   struct alignas(128) Node4 {
     float box[6][4];
-    std::uint32_t child[4];  // leaf: first triangle; interior: node index; unused: kNoChild
-    std::uint8_t count[4];   // triangles in a leaf child, 0 otherwise
+    std::uint32_t child[4];  // references, as above
   };
   static_assert(sizeof(Node4) == 128, "a node in one aligned pair of cache lines");
-  static constexpr std::uint32_t kNoChild = 0xffffffffu;
 
   struct BuildPrim {
     Bounds3f bounds;
@@ -80,13 +92,14 @@ class Bvh {
   std::uint32_t buildRecursive(std::span<BuildPrim> prims, std::uint32_t first, int depth);
   std::uint32_t makeLeaf(std::span<BuildPrim> prims, std::uint32_t first);
   std::uint32_t collapse(std::uint32_t binary);
+  std::uint32_t reference(std::uint32_t binary);
+  Bounds3f childBounds(std::uint32_t ref) const;
   void refitNode(std::uint32_t index);
 
   std::vector<BinaryNode> binary_;           // during build() only
   std::vector<Node4> nodes_;
   Bounds3f rootBounds_;
-  std::uint32_t root_ = kNoChild;            // like a Node4 child: node index or first triangle
-  std::uint8_t rootCount_ = 0;               // triangles when the whole tree is one leaf
+  std::uint32_t root_ = kNoChild;            // a reference, like a Node4 child
   std::vector<std::uint32_t> order_;         // leaf order -> index given to build()
   std::vector<TriangleVerts> triangles_;     // in leaf order, for traversal
   int depth_ = 0;
