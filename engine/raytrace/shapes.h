@@ -114,12 +114,21 @@ struct TriangleIntersection {
 
 namespace detail {
 
-// The 2D edge function a.x b.y - a.y b.x. In float it is evaluated in double: the
-// products of floats are exact there, so the result is correctly rounded and its sign
-// exact, and the same for both triangles that share an edge (watertightness needs
-// that). In double it is the plain expression, as in pbrt.
+// The 2D edge function a.x b.y - a.y b.x, in T. Watertightness needs the two
+// triangles sharing an edge to get signs that agree, not exact values: they evaluate
+// the same two products in the opposite order, and round-to-nearest is symmetric, so
+// their results are exact negatives of each other (this holds only without fused
+// multiply-add, which the build does not enable). A result of zero is ambiguous, and
+// edgeFunctionExact settles it.
 template <typename T>
 T edgeFunction(T ax, T ay, T bx, T by) {
+  return ax * by - ay * bx;
+}
+
+// In float, evaluated in double: products of floats are exact there, so the result is
+// correctly rounded and its sign exact (pbrt-v4's fallback at triangle edges).
+template <typename T>
+T edgeFunctionExact(T ax, T ay, T bx, T by) {
   if constexpr (sizeof(T) == sizeof(float)) {
     return T(double(ax) * double(by) - double(ay) * double(bx));
   } else {
@@ -178,9 +187,14 @@ std::optional<TriangleIntersection<T>> intersectTriangle(const TriangleRay<T>& r
   p2t.x += r.sx * p2t.z;
   p2t.y += r.sy * p2t.z;
 
-  const T e0 = detail::edgeFunction(p1t.x, p1t.y, p2t.x, p2t.y);
-  const T e1 = detail::edgeFunction(p2t.x, p2t.y, p0t.x, p0t.y);
-  const T e2 = detail::edgeFunction(p0t.x, p0t.y, p1t.x, p1t.y);
+  T e0 = detail::edgeFunction(p1t.x, p1t.y, p2t.x, p2t.y);
+  T e1 = detail::edgeFunction(p2t.x, p2t.y, p0t.x, p0t.y);
+  T e2 = detail::edgeFunction(p0t.x, p0t.y, p1t.x, p1t.y);
+  if (sizeof(T) == sizeof(float) && (e0 == 0 || e1 == 0 || e2 == 0)) {
+    e0 = detail::edgeFunctionExact(p1t.x, p1t.y, p2t.x, p2t.y);
+    e1 = detail::edgeFunctionExact(p2t.x, p2t.y, p0t.x, p0t.y);
+    e2 = detail::edgeFunctionExact(p0t.x, p0t.y, p1t.x, p1t.y);
+  }
   if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return std::nullopt;
   const T det = e0 + e1 + e2;
   if (det == T(0)) return std::nullopt;
