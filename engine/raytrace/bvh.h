@@ -43,11 +43,19 @@ class Bvh {
   template <typename T>
   bool intersectAny(const Ray<T>& ray) const;
 
-  bool empty() const { return triangles_.empty(); }
+  bool empty() const { return triangleCount_ == 0; }
   std::size_t nodeCount() const { return nodes_.size(); }
-  std::size_t triangleCount() const { return triangles_.size(); }
+  std::size_t triangleCount() const { return triangleCount_; }
   int depth() const { return depth_; }
   Bounds3f bounds() const { return rootBounds_; }
+
+  // A leaf's triangles as structure of arrays, p[vertex][axis][lane], so that one ray
+  // tests all four at once (Embree's Triangle4). Lanes past the leaf's count are
+  // zero and never tested.
+  struct alignas(16) Triangle4 {
+    float p[3][3][4];
+    glm::vec3 vertex(int v, int lane) const { return {p[v][0][lane], p[v][1][lane], p[v][2][lane]}; }
+  };
 
  private:
   // The one traversal both queries use: nearest hit, or (kAnyHit) the first found.
@@ -57,21 +65,21 @@ class Bvh {
   // The binary tree the builder makes; collapsed into Node4s, then dropped.
   struct BinaryNode {
     Bounds3f bounds;
-    std::uint32_t offset = 0;  // leaf: first triangle; interior: second child
+    std::uint32_t offset = 0;  // leaf: its Triangle4; interior: second child
     std::uint16_t count = 0;   // triangles in a leaf, 0 for an interior node
   };
 
   // A child reference in one word: an interior node's index, or (top bit set) a leaf
-  // of 1-4 triangles, its count - 1 in bits 28-29 and its first triangle below; an
-  // unused slot is kNoChild. Traversal entries are then a word and a distance.
+  // of 1-4 triangles, its count - 1 in bits 28-29 and its Triangle4 below; an unused
+  // slot is kNoChild. Traversal entries are then a word and a distance.
   static constexpr std::uint32_t kLeafBit = 0x80000000u;
   static constexpr std::uint32_t kNoChild = 0xffffffffu;
   static constexpr std::uint32_t kMaxTriangles = 1u << 28;
   static constexpr bool isLeaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
   static constexpr std::uint32_t leafFirst(std::uint32_t ref) { return ref & (kMaxTriangles - 1); }
   static constexpr std::uint32_t leafCount(std::uint32_t ref) { return ((ref >> 28) & 3u) + 1; }
-  static constexpr std::uint32_t leafRef(std::uint32_t first, std::uint32_t count) {
-    return kLeafBit | ((count - 1) << 28) | first;
+  static constexpr std::uint32_t leafRef(std::uint32_t block, std::uint32_t count) {
+    return kLeafBit | ((count - 1) << 28) | block;
   }
 
   // Four children's boxes as structure of arrays: box[0..2] the min x, y, z and
@@ -89,8 +97,9 @@ class Bvh {
     std::uint32_t index;
   };
 
-  std::uint32_t buildRecursive(std::span<BuildPrim> prims, std::uint32_t first, int depth);
-  std::uint32_t makeLeaf(std::span<BuildPrim> prims, std::uint32_t first);
+  std::uint32_t buildRecursive(std::span<BuildPrim> prims, int depth);
+  std::uint32_t makeLeaf(std::span<BuildPrim> prims);
+  void fillLeaves(std::span<const TriangleVerts> triangles);
   std::uint32_t collapse(std::uint32_t binary);
   std::uint32_t reference(std::uint32_t binary);
   Bounds3f childBounds(std::uint32_t ref) const;
@@ -100,8 +109,9 @@ class Bvh {
   std::vector<Node4> nodes_;
   Bounds3f rootBounds_;
   std::uint32_t root_ = kNoChild;            // a reference, like a Node4 child
-  std::vector<std::uint32_t> order_;         // leaf order -> index given to build()
-  std::vector<TriangleVerts> triangles_;     // in leaf order, for traversal
+  std::vector<std::uint32_t> order_;         // 4 * leaf + lane -> index given to build(), kNoChild
+  std::vector<Triangle4> leaves_;            // in the order the tree's leaves were made
+  std::size_t triangleCount_ = 0;
   int depth_ = 0;
 };
 
