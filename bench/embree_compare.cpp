@@ -19,11 +19,12 @@
 // rays agree (same triangle, or t within 1e-4 relative, or both miss; any-hit: same
 // answer).
 //
-//   build/bin/embree_compare [--runs N] [--time T] [--width W --height H] [--embree-isa ISA] [scene.json ...]
+//   build/bin/embree_compare [--runs N] [--time T] [--width W --height H] [--isa sse2|avx2]
+//                            [--embree-isa ISA] [scene.json ...]
 //
 // Embree picks its kernels by the CPU: on an AVX-512 machine a BVH8 with four-triangle
 // leaves and AVX-512 code; --embree-isa sse4.2 (Embree's max_isa) holds it to SSE and
-// a BVH4, the instruction set our traversal is written for.
+// a BVH4. --isa picks ours (default: AVX2 where the CPU has it).
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -340,6 +341,17 @@ int main(int argc, char** argv) {
       o.width = std::max(1, std::atoi(value()));
     } else if (a == "--height") {
       o.height = std::max(1, std::atoi(value()));
+    } else if (a == "--isa") {
+      const std::string isa = value();
+      if (isa != "sse2" && isa != "avx2") {
+        std::fprintf(stderr, "embree_compare: --isa takes sse2 or avx2, not %s\n", isa.c_str());
+        return 2;
+      }
+      rt::Bvh::setIsa(isa == "sse2" ? rt::Bvh::Isa::kSse2 : rt::Bvh::Isa::kAvx2);
+      if ((rt::Bvh::isa() == rt::Bvh::Isa::kAvx2) != (isa == "avx2")) {
+        std::fprintf(stderr, "embree_compare: this CPU has no AVX2\n");
+        return 2;
+      }
     } else if (a == "--embree-isa") {
       o.embreeIsa = value();
     } else if (a.starts_with("--")) {
@@ -350,8 +362,9 @@ int main(int argc, char** argv) {
     }
   }
   if (o.scenes.empty()) o.scenes = {"assets/scenes/cornell.json", "assets/scenes/demo.json"};
-  std::printf("Embree %d.%d.%d (max_isa %s) vs engine::rt::Bvh, %dx%d, --runs %d --time %g\n\n", RTC_VERSION_MAJOR,
-              RTC_VERSION_MINOR, RTC_VERSION_PATCH, o.embreeIsa.empty() ? "the CPU's best" : o.embreeIsa.c_str(),
-              o.width, o.height, o.runs, o.time);
+  std::printf("Embree %d.%d.%d (max_isa %s) vs engine::rt::Bvh (%s), %dx%d, --runs %d --time %g\n\n",
+              RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
+              o.embreeIsa.empty() ? "the CPU's best" : o.embreeIsa.c_str(),
+              rt::Bvh::isa() == rt::Bvh::Isa::kAvx2 ? "AVX2" : "SSE2", o.width, o.height, o.runs, o.time);
   return run(o);
 }

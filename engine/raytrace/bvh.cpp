@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <type_traits>
 #include <stdexcept>
 #include <limits>
 
@@ -16,8 +18,7 @@ constexpr std::uint32_t kMaxLeafTriangles = 4;  // a leaf reference holds 1-4
 constexpr float kTraversalCost = 1.0f;  // Embree's
 constexpr int kMaxSahDepth = 48;
 // Past this depth splits are by object median, so the traversal stack cannot overflow
-// whatever the triangles look like: at most three children pushed per level.
-constexpr int kStackSize = 3 * 64 + 1;
+// whatever the triangles look like (Bvh::kStackSize).
 
 Bounds3f triangleBounds(const TriangleVerts& t) {
   Bounds3f b;
@@ -138,11 +139,11 @@ std::uint32_t Bvh::buildRecursive(std::span<BuildPrim> prims, int depth) {
 
 // Gathers up to four descendants of a binary interior node, opening the largest
 // interior one each time (its children are the likeliest to be visited), and makes
-// them one Node4; interior ones are collapsed in turn, after their parent.
+// them one Node; interior ones are collapsed in turn, after their parent.
 std::uint32_t Bvh::collapse(std::uint32_t binary) {
-  std::array<std::uint32_t, 4> kids{binary + 1, binary_[binary].offset, 0, 0};
+  std::array<std::uint32_t, kWidth> kids{binary + 1, binary_[binary].offset};
   int n = 2;
-  while (n < 4) {
+  while (n < kWidth) {
     int open = -1;
     float area = -1.0f;
     for (int i = 0; i < n; ++i) {
@@ -161,11 +162,11 @@ std::uint32_t Bvh::collapse(std::uint32_t binary) {
     ++n;
   }
   const std::uint32_t index = std::uint32_t(nodes_.size());
-  nodes_.push_back(Node4{});
-  for (int i = 0; i < 4; ++i) {
+  nodes_.push_back(Node{});
+  for (int i = 0; i < kWidth; ++i) {
     const Bounds3f b = i < n ? binary_[kids[i]].bounds : Bounds3f{};
     const std::uint32_t child = i < n ? reference(kids[i]) : kNoChild;
-    Node4& node = nodes_[index];  // reference() may have moved the vector
+    Node& node = nodes_[index];  // reference() may have moved the vector
     for (int axis = 0; axis < 3; ++axis) {
       node.box[axis][i] = b.min[axis];
       node.box[3 + axis][i] = b.max[axis];
@@ -175,7 +176,7 @@ std::uint32_t Bvh::collapse(std::uint32_t binary) {
   return index;
 }
 
-// A binary node as a Node4 child: a leaf's triangles, or the interior node collapsed.
+// A binary node as a Node's child: a leaf's triangles, or the interior node collapsed.
 std::uint32_t Bvh::reference(std::uint32_t binary) {
   const BinaryNode& node = binary_[binary];
   return node.count > 0 ? leafRef(node.offset, node.count) : collapse(binary);
@@ -205,9 +206,9 @@ void Bvh::build(std::span<const TriangleVerts> triangles) {
   fillLeaves(triangles);
 
   rootBounds_ = binary_[0].bounds;
-  nodes_.reserve(binary_.size() / 6 + 1);  // about a third of the interior nodes
+  nodes_.reserve(binary_.size() / 12 + 1);  // about a seventh of the interior nodes
   root_ = reference(0);
-  binary_ = {};  // the traversal reads only the Node4s
+  binary_ = {};  // the traversal reads only the Nodes
 }
 
 // A node's boxes from its children: leaves from their triangles, interior nodes from
@@ -220,8 +221,8 @@ Bounds3f Bvh::childBounds(std::uint32_t ref) const {
       for (int v = 0; v < 3; ++v) b.extend(leaf.vertex(v, int(lane)));
     }
   } else {
-    const Node4& kid = nodes_[ref];
-    for (int j = 0; j < 4; ++j) {
+    const Node& kid = nodes_[ref];
+    for (int j = 0; j < kWidth; ++j) {
       b.extend(glm::vec3(kid.box[0][j], kid.box[1][j], kid.box[2][j]));
       b.extend(glm::vec3(kid.box[3][j], kid.box[4][j], kid.box[5][j]));
     }
@@ -230,8 +231,8 @@ Bounds3f Bvh::childBounds(std::uint32_t ref) const {
 }
 
 void Bvh::refitNode(std::uint32_t index) {
-  Node4& node = nodes_[index];
-  for (int i = 0; i < 4; ++i) {
+  Node& node = nodes_[index];
+  for (int i = 0; i < kWidth; ++i) {
     if (node.child[i] == kNoChild) continue;
     const Bounds3f b = childBounds(node.child[i]);
     for (int axis = 0; axis < 3; ++axis) {
@@ -272,7 +273,7 @@ Vec3<T> toT(const glm::vec3& v) {
 }
 
 // The per-ray part of the box test: the ray's origin and inverse direction, and
-// which of a Node4's six rows is each axis' near and far slab. Any precision:
+// which of a Node's six rows is each axis' near and far slab. Any precision:
 // intersectBounds on each child box in turn.
 template <typename T>
 class ChildBoxTest {
@@ -286,10 +287,9 @@ class ChildBoxTest {
   }
 
   // The mask of the children hit before tMax, and their entry distances.
-  template <typename Node>
-  int operator()(const Node& node, T tMax, T tEntry[4]) const {
+  int operator()(const Bvh::Node& node, T tMax, T tEntry[Bvh::kWidth]) const {
     int mask = 0;
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < Bvh::kWidth; ++i) {
       Bounds3f b;
       b.min = glm::vec3(node.box[0][i], node.box[1][i], node.box[2][i]);
       b.max = glm::vec3(node.box[3][i], node.box[4][i], node.box[5][i]);
@@ -298,58 +298,64 @@ class ChildBoxTest {
     return mask;
   }
 
- private:
+ protected:
   Ray<T> ray_;
   Vec3<T> invDir_;
   int dirIsNeg_[3];
 };
 
-// Float rays: the same test on all four boxes at once (SSE, part of every x86-64),
-// with the ray's values broadcast once per ray. Written to give intersectBounds'
-// answers bit for bit: _mm_max_ps and _mm_min_ps return their second operand when
-// either is NaN, which drops an axis whose slab the ray lies in exactly as the scalar
-// test's comparisons do (x: the NaN becomes the unbounded start value).
-template <>
-class ChildBoxTest<float> {
+// What the SIMD box tests share: the near and far rows of each axis, chosen once per
+// ray. They give intersectBounds' answers bit for bit: max and min return their
+// second operand when either is NaN, which drops an axis whose slab the ray lies in
+// exactly as the scalar test's comparisons do (the NaN becomes the unbounded start
+// value), and widening the far distance once after the minimum equals widening each
+// axis' before it, since rounding is monotonic.
+class SimdBoxRows : public ChildBoxTest<float> {
  public:
-  explicit ChildBoxTest(const Ray<float>& ray) : ray_(ray), invDir_(1.0f / ray.d) {
+  explicit SimdBoxRows(const Ray<float>& ray) : ChildBoxTest<float>(ray) {
     for (int axis = 0; axis < 3; ++axis) {
-      const int neg = invDir_[axis] < 0;
-      dirIsNeg_[axis] = neg;
-      nearRow_[axis] = axis + 3 * neg;
-      farRow_[axis] = axis + 3 * (1 - neg);
+      nearRow_[axis] = axis + 3 * dirIsNeg_[axis];
+      farRow_[axis] = axis + 3 * (1 - dirIsNeg_[axis]);
+    }
+  }
+
+ protected:
+  static constexpr float kWiden = 1.0f + 2.0f * gamma<float>(3);
+  int nearRow_[3], farRow_[3];
+};
+
+// Float rays with SSE (part of every x86-64): the eight boxes as two halves of four.
+class ChildBoxTestSse : public SimdBoxRows {
+ public:
+  explicit ChildBoxTestSse(const Ray<float>& ray) : SimdBoxRows(ray) {
+    for (int axis = 0; axis < 3; ++axis) {
       o_[axis] = _mm_set1_ps(ray.o[axis]);
       inv_[axis] = _mm_set1_ps(invDir_[axis]);
     }
   }
 
-  bool root(const Bounds3f& b, float& tEntry) const {
-    return intersectBounds(b, ray_, ray_.tMax, invDir_, dirIsNeg_, tEntry);
-  }
-
-  template <typename Node>
-  [[gnu::always_inline]] int operator()(const Node& node, float tMax, float tEntry[4]) const {
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    const __m128 widen = _mm_set1_ps(1.0f + 2.0f * gamma<float>(3));
-    __m128 t0 = _mm_set1_ps(-kInf), t1 = _mm_set1_ps(kInf);
-    for (int axis = 0; axis < 3; ++axis) {
-      const __m128 near = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.box[nearRow_[axis]]), o_[axis]), inv_[axis]);
-      const __m128 far = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.box[farRow_[axis]]), o_[axis]), inv_[axis]);
-      t0 = _mm_max_ps(near, t0);
-      t1 = _mm_min_ps(_mm_mul_ps(far, widen), t1);
+  [[gnu::always_inline]] int operator()(const Bvh::Node& node, float tMax, float tEntry[Bvh::kWidth]) const {
+    int mask = 0;
+    for (int half = 0; half < Bvh::kWidth; half += 4) {
+      __m128 t0 = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+      __m128 t1 = _mm_set1_ps(std::numeric_limits<float>::infinity());
+      for (int axis = 0; axis < 3; ++axis) {
+        const __m128 nearSlab = _mm_load_ps(node.box[nearRow_[axis]] + half);
+        const __m128 farSlab = _mm_load_ps(node.box[farRow_[axis]] + half);
+        t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(nearSlab, o_[axis]), inv_[axis]), t0);
+        t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(farSlab, o_[axis]), inv_[axis]), t1);
+      }
+      t1 = _mm_mul_ps(t1, _mm_set1_ps(kWiden));
+      const __m128 inside = _mm_and_ps(_mm_cmple_ps(t0, t1), _mm_cmpgt_ps(t1, _mm_setzero_ps()));
+      const __m128 hit = _mm_and_ps(inside, _mm_cmplt_ps(t0, _mm_set1_ps(tMax)));
+      _mm_storeu_ps(tEntry + half, t0);
+      mask |= _mm_movemask_ps(hit) << half;
     }
-    const __m128 inside = _mm_and_ps(_mm_cmple_ps(t0, t1), _mm_cmpgt_ps(t1, _mm_setzero_ps()));
-    const __m128 hit = _mm_and_ps(inside, _mm_cmplt_ps(t0, _mm_set1_ps(tMax)));
-    _mm_storeu_ps(tEntry, t0);
-    return _mm_movemask_ps(hit);
+    return mask;
   }
 
  private:
   __m128 o_[3], inv_[3];
-  int nearRow_[3], farRow_[3];
-  Ray<float> ray_;
-  Vec3<float> invDir_;
-  int dirIsNeg_[3];
 };
 
 // A leaf's triangles against one ray, in any precision: the watertight test on each in
@@ -493,91 +499,81 @@ class LeafTest<float> {
 };
 }  // namespace
 
-// All four children's boxes are tested at once. Embree's order of cases: no child
-// hit pops the stack; one is entered without touching the stack; of two, the farther
-// is pushed; three or four are pushed sorted, nearest on top, and the nearest popped.
-// Ties go to the lower child slot, so a given tree always meets hits in one order.
-// A popped entry is skipped when the nearest hit found meanwhile is closer than where
-// the ray enters its box. The per-ray parts of the box and triangle tests are computed once.
-template <typename T, bool kAnyHit>
-std::optional<BvhHit<T>> Bvh::traverse(const Ray<T>& rayIn) const {
-  if (triangleCount_ == 0) return std::nullopt;
-  Ray<T> ray = rayIn;
-  const ChildBoxTest<T> boxTest(ray);
-  T tRoot = 0;
-  if (!boxTest.root(rootBounds_, tRoot)) return std::nullopt;
-  const LeafTest<T> leafTest(ray);
-  std::optional<BvhHit<T>> best;
-  struct Entry {
-    std::uint32_t ref;
-    T tEntry;
-  };
-  Entry stack[kStackSize];
-  int top = 0;
-  std::uint32_t ref = root_;
-  for (;;) {
-    while (!isLeaf(ref)) {
-      const Node4& node = nodes_[ref];
-      // The children's references lie in the node's second cache line: ask for it now,
-      // so that its miss overlaps the box test on the first.
-      _mm_prefetch(reinterpret_cast<const char*>(&node) + 64, _MM_HINT_T0);
-      T tEntry[4];
-      unsigned mask = unsigned(boxTest(node, ray.tMax, tEntry));
-      if (mask == 0) goto pop;
-      const int i = __builtin_ctz(mask);
-      mask &= mask - 1;
-      if (mask == 0) {
-        ref = node.child[i];
-        continue;
-      }
-      const int j = __builtin_ctz(mask);
-      mask &= mask - 1;
-      if (mask == 0) {
-        const bool iFirst = tEntry[i] <= tEntry[j];
-        stack[top++] = iFirst ? Entry{node.child[j], tEntry[j]} : Entry{node.child[i], tEntry[i]};
-        ref = iFirst ? node.child[i] : node.child[j];
-        continue;
-      }
-      // Each later child has a higher slot, so on a tie it goes below the ones there.
-      const int base = top;
-      const auto push = [&](int k) {
-        const Entry e{node.child[k], tEntry[k]};
-        int at = top++;
-        for (; at > base && stack[at - 1].tEntry <= e.tEntry; --at) stack[at] = stack[at - 1];
-        stack[at] = e;
-      };
-      push(i);
-      push(j);
-      for (; mask != 0; mask &= mask - 1) push(__builtin_ctz(mask));
-      ref = stack[--top].ref;
+namespace sse {
+template <typename T>
+using BoxTest = std::conditional_t<std::is_same_v<T, float>, ChildBoxTestSse, ChildBoxTest<T>>;
+#include "raytrace/bvh_traverse.inl"
+}  // namespace sse
+
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+
+// Float rays with AVX2: all eight boxes in one register, as ChildBoxTestSse computes
+// each half. Compiled for AVX2 (the pragma above) and run only where the CPU has it.
+class ChildBoxTestAvx2 : public SimdBoxRows {
+ public:
+  explicit ChildBoxTestAvx2(const Ray<float>& ray) : SimdBoxRows(ray) {
+    for (int axis = 0; axis < 3; ++axis) {
+      o_[axis] = _mm256_set1_ps(ray.o[axis]);
+      inv_[axis] = _mm256_set1_ps(invDir_[axis]);
     }
-    {
-      const std::uint32_t leaf = leafFirst(ref);
-      TriangleIntersection<T> hit{};
-      const int lane = leafTest.template intersect<kAnyHit>(leaves_[leaf], leafCount(ref), ray.tMax, hit);
-      if (lane >= 0) {
-        best = BvhHit<T>{hit, order_[4 * leaf + std::uint32_t(lane)]};
-        if constexpr (kAnyHit) return best;
-      }
-    }
-  pop:
-    // The next box the ray still enters before its nearest hit.
-    do {
-      if (top == 0) return best;
-      --top;
-    } while (!(stack[top].tEntry < ray.tMax));
-    ref = stack[top].ref;
   }
+
+  [[gnu::always_inline]] int operator()(const Bvh::Node& node, float tMax, float tEntry[Bvh::kWidth]) const {
+    __m256 t0 = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+    __m256 t1 = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+    for (int axis = 0; axis < 3; ++axis) {
+      const __m256 nearSlab = _mm256_load_ps(node.box[nearRow_[axis]]);
+      const __m256 farSlab = _mm256_load_ps(node.box[farRow_[axis]]);
+      t0 = _mm256_max_ps(_mm256_mul_ps(_mm256_sub_ps(nearSlab, o_[axis]), inv_[axis]), t0);
+      t1 = _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(farSlab, o_[axis]), inv_[axis]), t1);
+    }
+    t1 = _mm256_mul_ps(t1, _mm256_set1_ps(kWiden));
+    const __m256 inside =
+        _mm256_and_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ), _mm256_cmp_ps(t1, _mm256_setzero_ps(), _CMP_GT_OQ));
+    const __m256 hit = _mm256_and_ps(inside, _mm256_cmp_ps(t0, _mm256_set1_ps(tMax), _CMP_LT_OQ));
+    _mm256_storeu_ps(tEntry, t0);
+    return _mm256_movemask_ps(hit);
+  }
+
+ private:
+  __m256 o_[3], inv_[3];
+};
+
+template <typename T>
+using BoxTest = std::conditional_t<std::is_same_v<T, float>, ChildBoxTestAvx2, ChildBoxTest<T>>;
+#include "raytrace/bvh_traverse.inl"
+}  // namespace avx2
+#pragma GCC pop_options
+
+namespace {
+std::atomic<Bvh::Isa> gIsa{__builtin_cpu_supports("avx2") ? Bvh::Isa::kAvx2 : Bvh::Isa::kSse2};
+}  // namespace
+
+Bvh::Isa Bvh::isa() { return gIsa.load(std::memory_order_relaxed); }
+
+void Bvh::setIsa(Isa isa) {
+  if (isa == Isa::kAvx2 && !__builtin_cpu_supports("avx2")) return;
+  gIsa.store(isa, std::memory_order_relaxed);
 }
 
 template <typename T>
 std::optional<BvhHit<T>> Bvh::intersect(const Ray<T>& ray) const {
-  return traverse<T, false>(ray);
+  if (triangleCount_ == 0) return std::nullopt;
+  if constexpr (std::is_same_v<T, float>) {
+    if (isa() == Isa::kAvx2) return avx2::traverse<T, false>(view(), ray);
+  }
+  return sse::traverse<T, false>(view(), ray);
 }
 
 template <typename T>
 bool Bvh::intersectAny(const Ray<T>& ray) const {
-  return traverse<T, true>(ray).has_value();
+  if (triangleCount_ == 0) return false;
+  if constexpr (std::is_same_v<T, float>) {
+    if (isa() == Isa::kAvx2) return avx2::traverse<T, true>(view(), ray).has_value();
+  }
+  return sse::traverse<T, true>(view(), ray).has_value();
 }
 
 template std::optional<BvhHit<float>> Bvh::intersect(const Ray<float>&) const;

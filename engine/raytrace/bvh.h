@@ -1,8 +1,9 @@
 #pragma once
 // A bounding volume hierarchy over triangles (pbrt's BVHAggregate, reduced to what the
 // ray tracer needs): built top-down as a binary tree with the binned surface area
-// heuristic, then collapsed into a 4-wide tree (Embree's BVH4) whose node holds its
-// four children's boxes side by side, so that one ray tests all four at once with SSE.
+// heuristic, then collapsed into an 8-wide tree (Embree's BVH8) whose node holds its
+// eight children's boxes side by side, so that one ray tests them all at once: with
+// AVX2 where the CPU has it (chosen at run time), otherwise as two halves with SSE.
 // Stored flat in depth-first order (children follow their parent), refitted bottom-up
 // when vertices move but the triangles stay the same, rebuilt when they do not.
 #include <cstdint>
@@ -57,18 +58,6 @@ class Bvh {
     glm::vec3 vertex(int v, int lane) const { return {p[v][0][lane], p[v][1][lane], p[v][2][lane]}; }
   };
 
- private:
-  // The one traversal both queries use: nearest hit, or (kAnyHit) the first found.
-  template <typename T, bool kAnyHit>
-  std::optional<BvhHit<T>> traverse(const Ray<T>& ray) const;
-
-  // The binary tree the builder makes; collapsed into Node4s, then dropped.
-  struct BinaryNode {
-    Bounds3f bounds;
-    std::uint32_t offset = 0;  // leaf: its Triangle4; interior: second child
-    std::uint16_t count = 0;   // triangles in a leaf, 0 for an interior node
-  };
-
   // A child reference in one word: an interior node's index, or (top bit set) a leaf
   // of 1-4 triangles, its count - 1 in bits 28-29 and its Triangle4 below; an unused
   // slot is kNoChild. Traversal entries are then a word and a distance.
@@ -82,14 +71,44 @@ class Bvh {
     return kLeafBit | ((count - 1) << 28) | block;
   }
 
-  // Four children's boxes as structure of arrays: box[0..2] the min x, y, z and
-  // box[3..5] the max x, y, z of children 0-3, one SSE register each. An unused slot
+  // Eight children's boxes as structure of arrays: box[0..2] the min x, y, z and
+  // box[3..5] the max x, y, z of children 0-7, one AVX register each. An unused slot
   // has an empty box (min +inf, max -inf), which every ray misses.
-  struct alignas(128) Node4 {
-    float box[6][4];
-    std::uint32_t child[4];  // references, as above
+  static constexpr int kWidth = 8;
+  struct alignas(64) Node {
+    float box[6][kWidth];
+    std::uint32_t child[kWidth];  // references, as above
   };
-  static_assert(sizeof(Node4) == 128, "a node in one aligned pair of cache lines");
+  static_assert(sizeof(Node) == 256, "a node in four aligned cache lines");
+
+  // Past depth 48 the builder splits at the object median, so the binary tree is at
+  // most 48 + 28 levels deep; each level of the collapsed tree pushes at most kWidth - 1.
+  static constexpr int kStackSize = (kWidth - 1) * (48 + 28) + 1;
+
+  // What the traversal reads.
+  struct View {
+    const Node* nodes;
+    const Triangle4* leaves;
+    const std::uint32_t* order;
+    std::uint32_t root;
+    Bounds3f rootBounds;
+  };
+
+  // The instruction set of float traversal: the best the CPU has unless set otherwise
+  // (tests and benchmarks run both). setIsa(kAvx2) on a CPU without AVX2 is ignored.
+  enum class Isa { kSse2, kAvx2 };
+  static Isa isa();
+  static void setIsa(Isa isa);
+
+ private:
+  View view() const { return View{nodes_.data(), leaves_.data(), order_.data(), root_, rootBounds_}; }
+
+  // The binary tree the builder makes; collapsed into Nodes, then dropped.
+  struct BinaryNode {
+    Bounds3f bounds;
+    std::uint32_t offset = 0;  // leaf: its Triangle4; interior: second child
+    std::uint16_t count = 0;   // triangles in a leaf, 0 for an interior node
+  };
 
   struct BuildPrim {
     Bounds3f bounds;
@@ -106,9 +125,9 @@ class Bvh {
   void refitNode(std::uint32_t index);
 
   std::vector<BinaryNode> binary_;           // during build() only
-  std::vector<Node4> nodes_;
+  std::vector<Node> nodes_;
   Bounds3f rootBounds_;
-  std::uint32_t root_ = kNoChild;            // a reference, like a Node4 child
+  std::uint32_t root_ = kNoChild;            // a reference, like a Node's child
   std::vector<std::uint32_t> order_;         // 4 * leaf + lane -> index given to build(), kNoChild
   std::vector<Triangle4> leaves_;            // in the order the tree's leaves were made
   std::size_t triangleCount_ = 0;

@@ -41,8 +41,8 @@ std::optional<rt::BvhHit<T>> bruteForce(const std::vector<rt::TriangleVerts>& tr
 }
 
 template <typename T>
-void expectMatchesBruteForce(const rt::Bvh& bvh, const std::vector<rt::TriangleVerts>& tris, std::mt19937& rng,
-                             int rayCount) {
+void expectMatchesBruteForceOnce(const rt::Bvh& bvh, const std::vector<rt::TriangleVerts>& tris, std::mt19937& rng,
+                                 int rayCount) {
   std::uniform_real_distribution<double> pos(-14.0, 14.0), dir(-1.0, 1.0), len(1.0, 30.0);
   int hits = 0, mismatches = 0, anyMismatches = 0;
   for (int i = 0; i < rayCount; ++i) {
@@ -57,6 +57,20 @@ void expectMatchesBruteForce(const rt::Bvh& bvh, const std::vector<rt::TriangleV
   EXPECT_EQ(mismatches, 0) << "of " << rayCount << " rays, " << hits << " hits";
   EXPECT_EQ(anyMismatches, 0);
   EXPECT_GT(hits, rayCount / 10) << "the rays should mostly hit something";
+}
+
+// Every traversal this CPU can run: SSE always, AVX2 where it has it (float only).
+template <typename T>
+void expectMatchesBruteForce(const rt::Bvh& bvh, const std::vector<rt::TriangleVerts>& tris, std::mt19937& rng,
+                             int rayCount) {
+  const rt::Bvh::Isa best = rt::Bvh::isa();
+  for (const rt::Bvh::Isa isa : {rt::Bvh::Isa::kSse2, rt::Bvh::Isa::kAvx2}) {
+    rt::Bvh::setIsa(isa);
+    if (rt::Bvh::isa() != isa) continue;
+    SCOPED_TRACE(isa == rt::Bvh::Isa::kSse2 ? "SSE2" : "AVX2");
+    expectMatchesBruteForceOnce<T>(bvh, tris, rng, rayCount);
+  }
+  rt::Bvh::setIsa(best);
 }
 
 template <typename T>

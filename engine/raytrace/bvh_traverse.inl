@@ -1,0 +1,83 @@
+// The BVH traversal, written once and compiled once per instruction set: bvh.cpp
+// includes this file inside namespace sse and again inside namespace avx2 under
+// `#pragma GCC target("avx2")` (Embree's way: the same source, one copy per ISA, the
+// best picked at run time). No include guard, no includes: the including namespace
+// provides BoxTest<T> (the children's boxes against a ray), LeafTest<T> and toT.
+//
+// All of a node's children's boxes are tested at once. Embree's order of cases: no
+// child hit pops the stack; one is entered without touching the stack; of two, the
+// farther is pushed; more are pushed sorted, nearest on top, and the nearest popped.
+// Ties go to the lower child slot, so a given tree always meets hits in one order. A
+// popped entry is skipped when the nearest hit found meanwhile is closer than where
+// the ray enters its box. The per-ray parts of the box and triangle tests are
+// computed once.
+template <typename T, bool kAnyHit>
+std::optional<BvhHit<T>> traverse(const Bvh::View& bvh, const Ray<T>& rayIn) {
+  Ray<T> ray = rayIn;
+  const BoxTest<T> boxTest(ray);
+  T tRoot = 0;
+  if (!boxTest.root(bvh.rootBounds, tRoot)) return std::nullopt;
+  const LeafTest<T> leafTest(ray);
+  std::optional<BvhHit<T>> best;
+  struct Entry {
+    std::uint32_t ref;
+    T tEntry;
+  };
+  Entry stack[Bvh::kStackSize];
+  int top = 0;
+  std::uint32_t ref = bvh.root;
+  for (;;) {
+    while (!Bvh::isLeaf(ref)) {
+      const Bvh::Node& node = bvh.nodes[ref];
+      // A node is four cache lines; ask for the three after the one the test starts on.
+      for (int line = 1; line < int(sizeof(Bvh::Node) / 64); ++line) {
+        _mm_prefetch(reinterpret_cast<const char*>(&node) + 64 * line, _MM_HINT_T0);
+      }
+      T tEntry[Bvh::kWidth];
+      unsigned mask = unsigned(boxTest(node, ray.tMax, tEntry));
+      if (mask == 0) goto pop;
+      const int i = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (mask == 0) {
+        ref = node.child[i];
+        continue;
+      }
+      const int j = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (mask == 0) {
+        const bool iFirst = tEntry[i] <= tEntry[j];
+        stack[top++] = iFirst ? Entry{node.child[j], tEntry[j]} : Entry{node.child[i], tEntry[i]};
+        ref = iFirst ? node.child[i] : node.child[j];
+        continue;
+      }
+      // Each later child has a higher slot, so on a tie it goes below the ones there.
+      const int base = top;
+      const auto push = [&](int k) {
+        const Entry e{node.child[k], tEntry[k]};
+        int at = top++;
+        for (; at > base && stack[at - 1].tEntry <= e.tEntry; --at) stack[at] = stack[at - 1];
+        stack[at] = e;
+      };
+      push(i);
+      push(j);
+      for (; mask != 0; mask &= mask - 1) push(__builtin_ctz(mask));
+      ref = stack[--top].ref;
+    }
+    {
+      const std::uint32_t leaf = Bvh::leafFirst(ref);
+      TriangleIntersection<T> hit{};
+      const int lane = leafTest.template intersect<kAnyHit>(bvh.leaves[leaf], Bvh::leafCount(ref), ray.tMax, hit);
+      if (lane >= 0) {
+        best = BvhHit<T>{hit, bvh.order[4 * leaf + std::uint32_t(lane)]};
+        if constexpr (kAnyHit) return best;
+      }
+    }
+  pop:
+    // The next box the ray still enters before its nearest hit.
+    do {
+      if (top == 0) return best;
+      --top;
+    } while (!(stack[top].tEntry < ray.tMax));
+    ref = stack[top].ref;
+  }
+}
