@@ -249,6 +249,7 @@ int run(const Options& o) {
       std::size_t hits = 0;
       for (int k = 0; k < 10; ++k) {
         if (prof[0] == 'o') for (const auto& r : rays.primary) hits += bvh.intersect(r).has_value();
+        else if (prof[0] == 's') for (const auto& r : rays.shadow) hits += bvh.intersectAny(r);
         else if (prof[0] == 'r') for (const auto& r : rays.primary) for (int q = 0; q < 4; ++q) hits += bvh.intersect(r).has_value();
         else {
           Embree e(tris, 1, RTC_BUILD_QUALITY_MEDIUM, o.embreeIsa);

@@ -9,6 +9,9 @@
 
 #include <immintrin.h>
 
+
+
+#define PFL 4
 namespace engine::rt {
 namespace {
 
@@ -282,10 +285,6 @@ class ChildBoxTest {
     for (int axis = 0; axis < 3; ++axis) dirIsNeg_[axis] = invDir_[axis] < 0;
   }
 
-  bool root(const Bounds3f& b, T& tEntry) const {
-    return intersectBounds(b, ray_, ray_.tMax, invDir_, dirIsNeg_, tEntry);
-  }
-
   // The mask of the children hit before tMax, and their entry distances.
   int operator()(const Bvh::Node& node, T tMax, T tEntry[Bvh::kWidth]) const {
     int mask = 0;
@@ -393,15 +392,19 @@ class LeafTest {
 template <>
 class LeafTest<float> {
  public:
+  // The permutation and shear from a TriangleRay made here and dropped: kept as a
+  // member, its small int fields were read back as one word, a store-forwarding
+  // stall on every ray. The rare scalar fallback makes its own.
   explicit LeafTest(const Ray<float>& ray) : ray_(ray) {
-    const int k[3] = {ray_.kx, ray_.ky, ray_.kz};
+    const TriangleRay<float> r(ray);
+    const int k[3] = {r.kx, r.ky, r.kz};
     for (int axis = 0; axis < 3; ++axis) {
       row_[axis] = k[axis];
       o_[axis] = _mm_set1_ps(ray.o[k[axis]]);
     }
-    sx_ = _mm_set1_ps(ray_.sx);
-    sy_ = _mm_set1_ps(ray_.sy);
-    sz_ = _mm_set1_ps(ray_.sz);
+    sx_ = _mm_set1_ps(r.sx);
+    sy_ = _mm_set1_ps(r.sy);
+    sz_ = _mm_set1_ps(r.sz);
   }
 
   template <bool kAnyHit>
@@ -441,7 +444,7 @@ class LeafTest<float> {
     // Lanes with an edge exactly zero: the scalar test, which recomputes it in double.
     for (int mask = _mm_movemask_ps(anyZero); mask != 0; mask &= mask - 1) {
       const int lane = __builtin_ctz(unsigned(mask));
-      if (auto hit = intersectTriangle(ray_, tMax, leaf.vertex(0, lane), leaf.vertex(1, lane), leaf.vertex(2, lane))) {
+      if (auto hit = intersectTriangle(TriangleRay<float>(ray_), tMax, leaf.vertex(0, lane), leaf.vertex(1, lane), leaf.vertex(2, lane))) {
         out = *hit;
         tMax = hit->t;
         found = lane;
@@ -493,7 +496,7 @@ class LeafTest<float> {
     return lane;
   }
 
-  TriangleRay<float> ray_;
+  Ray<float> ray_;
   int row_[3];
   __m128 o_[3], sx_, sy_, sz_;
 };
@@ -558,22 +561,26 @@ void Bvh::setIsa(Isa isa) {
   gIsa.store(isa, std::memory_order_relaxed);
 }
 
+template <typename T, bool kAnyHit>
+bool Bvh::trace(const Ray<T>& ray, BvhHit<T>& hit) const {
+  if (triangleCount_ == 0) return false;
+  if constexpr (std::is_same_v<T, float>) {
+    if (isa() == Isa::kAvx2) return avx2::traverse<T, kAnyHit>(view(), ray, hit);
+  }
+  return sse::traverse<T, kAnyHit>(view(), ray, hit);
+}
+
 template <typename T>
 std::optional<BvhHit<T>> Bvh::intersect(const Ray<T>& ray) const {
-  if (triangleCount_ == 0) return std::nullopt;
-  if constexpr (std::is_same_v<T, float>) {
-    if (isa() == Isa::kAvx2) return avx2::traverse<T, false>(view(), ray);
-  }
-  return sse::traverse<T, false>(view(), ray);
+  BvhHit<T> hit;
+  if (!trace<T, false>(ray, hit)) return std::nullopt;
+  return hit;
 }
 
 template <typename T>
 bool Bvh::intersectAny(const Ray<T>& ray) const {
-  if (triangleCount_ == 0) return false;
-  if constexpr (std::is_same_v<T, float>) {
-    if (isa() == Isa::kAvx2) return avx2::traverse<T, true>(view(), ray).has_value();
-  }
-  return sse::traverse<T, true>(view(), ray).has_value();
+  BvhHit<T> hit;
+  return trace<T, true>(ray, hit);
 }
 
 template std::optional<BvhHit<float>> Bvh::intersect(const Ray<float>&) const;

@@ -102,6 +102,9 @@ class Bvh {
 
  private:
   View view() const { return View{nodes_.data(), leaves_.data(), order_.data(), root_, rootBounds_}; }
+  // Both queries: the traversal for this CPU and precision.
+  template <typename T, bool kAnyHit>
+  bool trace(const Ray<T>& ray, BvhHit<T>& hit) const;
 
   // The binary tree the builder makes; collapsed into Nodes, then dropped.
   struct BinaryNode {

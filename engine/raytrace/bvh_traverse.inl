@@ -10,15 +10,17 @@
 // Ties go to the lower child slot, so a given tree always meets hits in one order. A
 // popped entry is skipped when the nearest hit found meanwhile is closer than where
 // the ray enters its box. The per-ray parts of the box and triangle tests are
-// computed once.
+// computed once. Returns whether anything was hit; the nearest hit (kAnyHit: the
+// first found) goes to `best`. A bool and an out-parameter rather than an optional:
+// building the optional's return value cost a store-forwarding stall per ray.
 template <typename T, bool kAnyHit>
-std::optional<BvhHit<T>> traverse(const Bvh::View& bvh, const Ray<T>& rayIn) {
+bool traverse(const Bvh::View& bvh, const Ray<T>& rayIn, BvhHit<T>& best) {
+  // No test of the root's own box: its children's boxes are tested first thing
+  // (Embree does the same), and a root that is a leaf is tested exactly anyway.
   Ray<T> ray = rayIn;
   const BoxTest<T> boxTest(ray);
-  T tRoot = 0;
-  if (!boxTest.root(bvh.rootBounds, tRoot)) return std::nullopt;
   const LeafTest<T> leafTest(ray);
-  std::optional<BvhHit<T>> best;
+  bool found = false;
   struct Entry {
     std::uint32_t ref;
     T tEntry;
@@ -30,7 +32,7 @@ std::optional<BvhHit<T>> traverse(const Bvh::View& bvh, const Ray<T>& rayIn) {
     while (!Bvh::isLeaf(ref)) {
       const Bvh::Node& node = bvh.nodes[ref];
       // A node is four cache lines; ask for the three after the one the test starts on.
-      for (int line = 1; line < int(sizeof(Bvh::Node) / 64); ++line) {
+      for (int line = 1; line < PFL; ++line) {
         _mm_prefetch(reinterpret_cast<const char*>(&node) + 64 * line, _MM_HINT_T0);
       }
       T tEntry[Bvh::kWidth];
@@ -69,13 +71,14 @@ std::optional<BvhHit<T>> traverse(const Bvh::View& bvh, const Ray<T>& rayIn) {
       const int lane = leafTest.template intersect<kAnyHit>(bvh.leaves[leaf], Bvh::leafCount(ref), ray.tMax, hit);
       if (lane >= 0) {
         best = BvhHit<T>{hit, bvh.order[4 * leaf + std::uint32_t(lane)]};
-        if constexpr (kAnyHit) return best;
+        found = true;
+        if constexpr (kAnyHit) return true;
       }
     }
   pop:
     // The next box the ray still enters before its nearest hit.
     do {
-      if (top == 0) return best;
+      if (top == 0) return found;
       --top;
     } while (!(stack[top].tEntry < ray.tMax));
     ref = stack[top].ref;
