@@ -15,7 +15,7 @@
 namespace engine::rt {
 namespace {
 
-constexpr int kBins = 16;
+constexpr int kBins = 32;
 constexpr std::uint32_t kMaxLeafTriangles = 4;  // a leaf reference holds 1-4
 // SAH costs relative to one test of four triangles at once.
 constexpr float kTraversalCost = 1.0f;  // Embree's
