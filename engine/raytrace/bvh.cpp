@@ -429,6 +429,8 @@ class LeafTest<float> {
     const __m128 anyPos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero));
     const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
     __m128 ok = _mm_andnot_ps(_mm_or_ps(anyZero, _mm_and_ps(anyNeg, anyPos)), valid);
+    // Most leaves the ray reaches it passes beside: stop before the distances.
+    if ((_mm_movemask_ps(ok) | _mm_movemask_ps(anyZero)) == 0) return -1;
     ok = _mm_and_ps(ok, _mm_cmpneq_ps(det, zero));
     for (int v = 0; v < 3; ++v) z[v] = _mm_mul_ps(z[v], sz_);
     const __m128 tScaled = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, z[0]), _mm_mul_ps(e1, z[1])), _mm_mul_ps(e2, z[2]));
