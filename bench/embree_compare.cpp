@@ -244,23 +244,6 @@ int run(const Options& o) {
       ourBuild.push_back(seconds(start));
     }
     const RaySets rays = makeRays(*desc, bvh, tris, o);
-    if (const char* prof = std::getenv("PROFILE_ONLY")) {
-      const auto start = Clock::now();
-      std::size_t hits = 0;
-      for (int k = 0; k < 10; ++k) {
-        if (prof[0] == 'o') for (const auto& r : rays.primary) hits += bvh.intersect(r).has_value();
-        else if (prof[0] == 's') for (const auto& r : rays.shadow) hits += bvh.intersectAny(r);
-        else if (prof[0] == 'r') for (const auto& r : rays.primary) for (int q = 0; q < 4; ++q) hits += bvh.intersect(r).has_value();
-        else {
-          Embree e(tris, 1, RTC_BUILD_QUALITY_MEDIUM, o.embreeIsa);
-          e.commit();
-          for (const auto& r : rays.primary) hits += e.nearest(r).first != ~0u;
-        }
-      }
-      std::printf("%zu hits %.3f s\n", hits, seconds(start));
-      return 0;
-    }
-
     // Build times for both qualities on 1 and every thread; the HIGH ones are kept.
     std::vector<double> builds[2][2];
     for (int q = 0; q < 2; ++q) {
