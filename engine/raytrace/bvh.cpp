@@ -240,7 +240,7 @@ void Bvh::build(std::span<const TriangleVerts> triangles) {
 Bounds3f Bvh::childBounds(std::uint32_t ref) const {
   Bounds3f b;
   if (isLeaf(ref)) {
-    const Triangle4& leaf = leaves_[leafFirst(ref)];
+    const Triangle4& leaf = leaves_[leafIndex(ref)];
     for (std::uint32_t lane = 0; lane < leafCount(ref); ++lane) {
       for (int v = 0; v < 3; ++v) b.extend(leaf.vertex(v, int(lane)));
     }

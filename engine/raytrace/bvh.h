@@ -1,9 +1,11 @@
 #pragma once
-// A bounding volume hierarchy over triangles (pbrt's BVHAggregate, reduced to what the
-// ray tracer needs): built top-down as a binary tree with the binned surface area
-// heuristic, then collapsed into an 8-wide tree (Embree's BVH8) whose node holds its
-// eight children's boxes side by side, so that one ray tests them all at once: with
-// AVX2 where the CPU has it (chosen at run time), otherwise as two halves with SSE.
+// A bounding volume hierarchy over triangles, shaped after Embree's BVH8 with
+// Triangle4 leaves: built top-down as a binary tree with the binned surface area
+// heuristic (all three axes, leaves costed in blocks of four triangles), then
+// collapsed into an 8-wide tree whose node holds its eight children's boxes side by
+// side, so that one ray tests them all at once: with AVX2 where the CPU has it
+// (chosen at run time), otherwise as two halves with SSE. A leaf holds up to four
+// triangles as structure of arrays, tested together with the watertight test.
 // Stored flat in depth-first order (children follow their parent), refitted bottom-up
 // when vertices move but the triangles stay the same, rebuilt when they do not.
 #include <cstdint>
@@ -65,7 +67,7 @@ class Bvh {
   static constexpr std::uint32_t kNoChild = 0xffffffffu;
   static constexpr std::uint32_t kMaxTriangles = 1u << 28;
   static constexpr bool isLeaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
-  static constexpr std::uint32_t leafFirst(std::uint32_t ref) { return ref & (kMaxTriangles - 1); }
+  static constexpr std::uint32_t leafIndex(std::uint32_t ref) { return ref & (kMaxTriangles - 1); }
   static constexpr std::uint32_t leafCount(std::uint32_t ref) { return ((ref >> 28) & 3u) + 1; }
   static constexpr std::uint32_t leafRef(std::uint32_t block, std::uint32_t count) {
     return kLeafBit | ((count - 1) << 28) | block;
@@ -91,7 +93,6 @@ class Bvh {
     const Triangle4* leaves;
     const std::uint32_t* order;
     std::uint32_t root;
-    Bounds3f rootBounds;
   };
 
   // The instruction set of float traversal: the best the CPU has unless set otherwise
@@ -101,7 +102,7 @@ class Bvh {
   static void setIsa(Isa isa);
 
  private:
-  View view() const { return View{nodes_.data(), leaves_.data(), order_.data(), root_, rootBounds_}; }
+  View view() const { return View{nodes_.data(), leaves_.data(), order_.data(), root_}; }
   // Both queries: the traversal for this CPU and precision.
   template <typename T, bool kAnyHit>
   bool trace(const Ray<T>& ray, BvhHit<T>& hit) const;

@@ -66,7 +66,7 @@ bool traverse(const Bvh::View& bvh, const Ray<T>& rayIn, BvhHit<T>& best) {
       ref = stack[--top].ref;
     }
     {
-      const std::uint32_t leaf = Bvh::leafFirst(ref);
+      const std::uint32_t leaf = Bvh::leafIndex(ref);
       TriangleIntersection<T> hit{};
       const int lane = leafTest.template intersect<kAnyHit>(bvh.leaves[leaf], Bvh::leafCount(ref), ray.tMax, hit);
       if (lane >= 0) {
