@@ -50,50 +50,45 @@ int binIndex(float c, float lo, float extent) {
   return std::clamp(b, 0, kBins - 1);
 }
 
-// The cheapest binned SAH split along one axis: the primitives binned by centroid,
-// then swept from the right for each suffix's area and count, then from the left.
-// Costs are areas times leaf tests, not yet divided by the parent's area.
-template <typename Prim>
-Split bestSplitOnAxis(std::span<const Prim> prims, int axis, float lo, float extent) {
-  std::array<Bin, kBins> bins{};
-  for (const Prim& p : prims) {
-    Bin& b = bins[binIndex(p.centroid[axis], lo, extent)];
-    ++b.count;
-    b.bounds.extend(p.bounds);
-  }
-  std::array<float, kBins> rightArea{};
-  std::array<std::uint32_t, kBins> rightCount{};
-  Bounds3f acc;
-  std::uint32_t count = 0;
-  for (int i = kBins - 1; i > 0; --i) {
-    acc.extend(bins[i].bounds);
-    count += bins[i].count;
-    rightArea[i] = acc.surfaceArea();
-    rightCount[i] = count;
-  }
-  Split best;
-  acc = Bounds3f{};
-  count = 0;
-  for (int i = 0; i < kBins - 1; ++i) {
-    acc.extend(bins[i].bounds);
-    count += bins[i].count;
-    if (count == 0 || rightCount[i + 1] == 0) continue;
-    const float cost = acc.surfaceArea() * float(leafTests(count)) + rightArea[i + 1] * float(leafTests(rightCount[i + 1]));
-    if (best.axis < 0 || cost < best.cost) best = Split{axis, i, cost};
-  }
-  return best;
-}
-
-// The cheapest over all three axes (Embree's binned builder; the widest axis alone
-// left demo.json's primary rays a fifth slower).
+// The cheapest binned SAH split over all three axes (Embree's binned builder; the
+// widest axis alone left demo.json's primary rays a fifth slower). The primitives
+// are binned by centroid on every axis in one pass, then each axis is swept from the
+// right for each suffix's area and count, then from the left. Costs are areas times
+// leaf tests, not yet divided by the parent's area.
 template <typename Prim>
 Split bestSplit(std::span<const Prim> prims, const Bounds3f& centroids) {
+  std::array<std::array<Bin, kBins>, 3> bins{};
+  const glm::vec3 lo = centroids.min, extent = centroids.max - centroids.min;
+  for (const Prim& p : prims) {
+    for (int axis = 0; axis < 3; ++axis) {
+      Bin& b = bins[axis][extent[axis] > 0.0f ? binIndex(p.centroid[axis], lo[axis], extent[axis]) : 0];
+      ++b.count;
+      b.bounds.extend(p.bounds);
+    }
+  }
   Split best;
   for (int axis = 0; axis < 3; ++axis) {
-    const float lo = centroids.min[axis], extent = centroids.max[axis] - lo;
-    if (!(extent > 0.0f)) continue;
-    const Split s = bestSplitOnAxis(prims, axis, lo, extent);
-    if (s.axis >= 0 && (best.axis < 0 || s.cost < best.cost)) best = s;
+    if (!(extent[axis] > 0.0f)) continue;
+    std::array<float, kBins> rightArea{};
+    std::array<std::uint32_t, kBins> rightCount{};
+    Bounds3f acc;
+    std::uint32_t count = 0;
+    for (int i = kBins - 1; i > 0; --i) {
+      acc.extend(bins[axis][i].bounds);
+      count += bins[axis][i].count;
+      rightArea[i] = acc.surfaceArea();
+      rightCount[i] = count;
+    }
+    acc = Bounds3f{};
+    count = 0;
+    for (int i = 0; i < kBins - 1; ++i) {
+      acc.extend(bins[axis][i].bounds);
+      count += bins[axis][i].count;
+      if (count == 0 || rightCount[i + 1] == 0) continue;
+      const float cost =
+          acc.surfaceArea() * float(leafTests(count)) + rightArea[i + 1] * float(leafTests(rightCount[i + 1]));
+      if (best.axis < 0 || cost < best.cost) best = Split{axis, i, cost};
+    }
   }
   return best;
 }
