@@ -135,4 +135,17 @@ inline bool intersectBounds(const Bounds3f& b, const Ray<T>& ray, T tMax, const 
   return intersectBounds(b, ray, tMax, invDir, dirIsNeg, entry);
 }
 
+// A ray's inverse direction and slab order, made once and tested against many boxes.
+template <typename T>
+struct BoundsRay {
+  Vec3<T> invDir;
+  int dirIsNeg[3];
+
+  explicit BoundsRay(const Ray<T>& ray) : invDir(T(1) / ray.d) {
+    for (int axis = 0; axis < 3; ++axis) dirIsNeg[axis] = invDir[axis] < 0;
+  }
+  // `ray` is the one given to the constructor, its tMax perhaps shortened since.
+  bool hits(const Bounds3f& b, const Ray<T>& ray) const { return intersectBounds(b, ray, ray.tMax, invDir, dirIsNeg); }
+};
+
 }  // namespace engine::rt

@@ -317,11 +317,14 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
       index = i;
     }
   }
-  // Each group's traversal starts with its root box against the shortened tMax, so
-  // groups behind the nearest hit so far cost one box test.
+  // Each group's root box is tested against the shortened tMax first, so groups the
+  // ray misses, or that lie behind the nearest hit so far, cost one box test rather
+  // than a traversal's setup and its root node's eight boxes.
+  const BoundsRay<T> boxes(ray);
   const Group* hitGroup = nullptr;
   std::optional<BvhHit<T>> meshHit;
   for (const Group& group : groups_) {
+    if (!boxes.hits(group.bvh.bounds(), ray)) continue;
     if (auto hit = group.bvh.intersect(ray)) {
       ray.tMax = hit->hit.t;
       meshHit = hit;
@@ -353,8 +356,9 @@ bool RtScene::intersectAny(const Ray<T>& ray) const {
   for (const auto& p : planes<T>()) {
     if (p.intersect(ray)) return true;
   }
+  const BoundsRay<T> boxes(ray);
   for (const Group& group : groups_) {
-    if (group.bvh.intersectAny(ray)) return true;
+    if (boxes.hits(group.bvh.bounds(), ray) && group.bvh.intersectAny(ray)) return true;
   }
   return false;
 }
