@@ -32,7 +32,7 @@ bool traverse(const Bvh::View& bvh, const Ray<T>& rayIn, BvhHit<T>& best) {
     while (!Bvh::isLeaf(ref)) {
       const Bvh::Node& node = bvh.nodes[ref];
       // A node is four cache lines; ask for the three after the one the test starts on.
-      for (int line = 1; line < PFL; ++line) {
+      for (int line = 1; line < int(sizeof(Bvh::Node) / 64); ++line) {
         _mm_prefetch(reinterpret_cast<const char*>(&node) + 64 * line, _MM_HINT_T0);
       }
       T tEntry[Bvh::kWidth];
