@@ -117,6 +117,49 @@ TEST(Bvh, EmptyAndDegenerateInputs) {
   EXPECT_FLOAT_EQ(hit->hit.t, 5.0f);
 }
 
+// Watertightness through the whole BVH, whose leaves test four triangles at once in
+// float with a scalar double fallback where an edge function is exactly zero: a
+// 16 x 16 grid of quads at integer coordinates (two triangles each, so every interior
+// edge and vertex is shared), rays from integer origins aimed exactly at every vertex
+// and every edge midpoint, where the edge functions are exactly zero. None may slip
+// through, and each must agree with brute force on the distance.
+TEST(Bvh, RaysAtSharedEdgesAndVerticesNeverSlipThroughTheLeaves) {
+  constexpr int kSide = 16;
+  std::vector<rt::TriangleVerts> tris;
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      const glm::vec3 a(x, y, 7), b(x + 1, y, 7), c(x, y + 1, 7), d(x + 1, y + 1, 7);
+      tris.push_back({a, b, d});
+      tris.push_back({a, d, c});
+    }
+  }
+  rt::Bvh bvh;
+  bvh.build(tris);
+  const rt::Bvh::Isa best = rt::Bvh::isa();
+  for (const rt::Bvh::Isa isa : {rt::Bvh::Isa::kSse2, rt::Bvh::Isa::kAvx2}) {
+    rt::Bvh::setIsa(isa);
+    if (rt::Bvh::isa() != isa) continue;
+    int rays = 0, misses = 0, disagreements = 0;
+    for (const glm::vec3 origin : {glm::vec3(8, 8, 0), glm::vec3(-3, 2, -1), glm::vec3(20, -5, 2)}) {
+      for (int y = 1; y < 2 * kSide; ++y) {
+        for (int x = 1; x < 2 * kSide; ++x) {
+          const glm::vec3 target(0.5f * float(x), 0.5f * float(y), 7.0f);  // vertices, edge midpoints, quad centres
+          const rt::Ray<float> ray{origin, target - origin};
+          const auto hit = bvh.intersect(ray);
+          const auto expected = bruteForce(tris, ray);
+          ++rays;
+          misses += hit ? 0 : 1;
+          disagreements += bool(hit) == bool(expected) && (!hit || hit->hit.t == expected->hit.t) ? 0 : 1;
+          misses += bvh.intersectAny(ray) ? 0 : 1;
+        }
+      }
+    }
+    EXPECT_EQ(misses, 0) << "of " << rays << " rays, " << (isa == rt::Bvh::Isa::kSse2 ? "SSE2" : "AVX2");
+    EXPECT_EQ(disagreements, 0);
+  }
+  rt::Bvh::setIsa(best);
+}
+
 // A 10k-triangle grid (a wavy terrain patch): build and refit times for the report.
 TEST(Bvh, BuildAndRefitTimesOfA10kTriangleMesh) {
   constexpr int kSide = 71;  // 70 x 70 quads = 9800 triangles
