@@ -6,7 +6,8 @@
 //
 // All of a node's children's boxes are tested at once. Embree's order of cases: no
 // child hit pops the stack; one is entered without touching the stack; of two, the
-// farther is pushed; more are pushed sorted, nearest on top, and the nearest popped.
+// farther is pushed; more are pushed sorted, nearest on top, and the nearest popped
+// (for any hit: the first entered, the others pushed unsorted).
 // Ties go to the lower child slot, so a given tree always meets hits in one order. A
 // popped entry is skipped when the nearest hit found meanwhile is closer than where
 // the ray enters its box. The per-ray parts of the box and triangle tests are
@@ -41,6 +42,16 @@ bool traverse(const Bvh::View& bvh, const Ray<T>& rayIn, BvhHit<T>& best) {
       const int i = __builtin_ctz(mask);
       mask &= mask - 1;
       if (mask == 0) {
+        ref = node.child[i];
+        continue;
+      }
+      if constexpr (kAnyHit) {
+        // Any hit ends the search, so the order matters little: Embree does not sort
+        // for occlusion either. The first child is entered, the others pushed.
+        for (; mask != 0; mask &= mask - 1) {
+          const int k = __builtin_ctz(mask);
+          stack[top++] = Entry{node.child[k], tEntry[k]};
+        }
         ref = node.child[i];
         continue;
       }
