@@ -10,6 +10,7 @@
 #include "common/shadows.glsl"
 #include "common/material.glsl"
 #include "common/direct_light.glsl"
+#include "common/fog.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -50,7 +51,7 @@ void main() {
   color += shadeDirectLight(s, geometric);
   color += reflectedEnvironment(s);
 #ifdef FOG
-  color = mix(u_fog.rgb, color, exp(-u_fog.w * length(v_position)));
+  color = applyFog(color, length(v_position), u_fog.rgb, u_fog.w);
 #endif
   o_color = vec4(color, base.a);
 }

@@ -7,6 +7,7 @@
 #include "common/shading.glsl"
 #include "common/shadows.glsl"
 #include "common/direct_light.glsl"
+#include "common/fog.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -47,7 +48,7 @@ void main() {
   Surface s = Surface(albedo, n, toEye, v_position, 0.0, roughness, u_ambientSky.w, 1.0, specular, 24.0, 0.0);
   vec3 color = shadeAmbient(s) + shadeDirectLight(s, n);
 #ifdef FOG
-  color = mix(u_fog.rgb, color, exp(-u_fog.w * length(v_position)));
+  color = applyFog(color, length(v_position), u_fog.rgb, u_fog.w);
 #endif
   o_color = vec4(color, 1.0);
 }
