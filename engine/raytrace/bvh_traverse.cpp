@@ -1,7 +1,8 @@
 // The BVH's traversal: the box and leaf tests, the traversal compiled once per
-// instruction set (bvh_traverse.inl) and the choice between them at run time. Apart
-// from bvh.cpp's builder because it is compiled without auto-vectorisation (see
-// CMakeLists.txt), which the builder's bounds arithmetic wants.
+// instruction set (bvh_traverse.inl) and the choice between them at run time. Kept
+// apart from the builder (bvh.cpp) because this file is compiled without
+// auto-vectorisation (see CMakeLists.txt), which the builder's bounds arithmetic
+// gains from.
 #include <immintrin.h>
 
 #include <atomic>
@@ -18,9 +19,8 @@ Vec3<T> toT(const glm::vec3& v) {
   return Vec3<T>(v);
 }
 
-// The per-ray part of the box test: the ray's origin and inverse direction, and
-// which of a Node's six rows is each axis' near and far slab. Any precision:
-// intersectBounds on each child box in turn.
+// The per-ray part of the box test: the ray's origin, inverse direction and slab
+// order. Any precision: intersectBounds on each child box in turn.
 template <typename T>
 class ChildBoxTest {
  public:
