@@ -23,7 +23,9 @@ layout(location = 0) out vec4 o_color;
 
 // Layer weights, summing to one: rock where steep, snow high up where it can lie
 // (not on cliffs), grass elsewhere. The texture's own brightness jitters the snow
-// line so it does not follow a contour exactly.
+// line so it does not follow a contour exactly. The ray tracer's twin is
+// engine::terrain::layerWeights (engine/terrain/materials.cpp), which also holds
+// main's scales, roughness and highlight below (materials.h): change both together.
 vec3 layerWeights(float height01, float slope, float jitter) {
   float rock = smoothstep(0.28, 0.5, slope);
   float snow = smoothstep(0.6, 0.7, height01 + 0.05 * jitter) * (1.0 - smoothstep(0.35, 0.6, slope));

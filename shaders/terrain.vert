@@ -1,6 +1,7 @@
 #version 450 core
 // CDLOD terrain: one kPatchQuads^2 grid instanced per selected patch. Mirrors
-// engine/terrain/lod.cpp patchVertex operation for operation: change both together.
+// engine/terrain/lod.cpp patchVertex (and patchNormal for v_normal) operation for
+// operation: change both together.
 // Positions are camera-relative and built from integer sample indices minus the
 // camera's integer cell, so nothing large is ever held in a float and a vertex
 // shared by two patches gets the same bits in both.

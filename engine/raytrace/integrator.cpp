@@ -67,13 +67,13 @@ class Tracer {
   glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters) const {
     const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
     if (!hit) return escaped(ray.d);
-    const MaterialDesc& m = scene_.materials()[std::size_t(hit->material)];
+    // The terrain's layers read the unflipped shading normal, as terrain.frag does.
+    const HitMaterial m = scene_.materialAt(hit->material, hit->uv, double(hit->p.y), glm::vec3(hit->ns));
     const Vec3<T> v = glm::normalize(ray.d);
     // Surfaces are two-sided: shade with the normal that faces the viewer.
     const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
-    const glm::vec3 albedo = scene_.baseColor(hit->material, hit->uv);
-    glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, albedo, n, v, rng, counters)
-                                                              : shadeClassic(*hit, m, albedo, n, v, rng, counters);
+    glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, n, v, rng, counters)
+                                                              : shadeClassic(*hit, m, n, v, rng, counters);
     if (m.reflection > 0.0f && depth < settings_.maxDepth) {
       // The course's mirror: R = V + 2 N c1 with c1 = -N.V.
       const T c1 = -glm::dot(n, v);
@@ -94,8 +94,9 @@ class Tracer {
  private:
   // colour * (ambient + diffuse * sum of light * max(N.L, 0) * visibility), plus an
   // optional Blinn-Phong highlight; the mirror term is added by Li.
-  glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const MaterialDesc& m, const glm::vec3& albedo,
-                         const Vec3<T>& n, const Vec3<T>& v, Pcg32& rng, RayCounters& counters) const {
+  glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const HitMaterial& m, const Vec3<T>& n, const Vec3<T>& v,
+                         Pcg32& rng, RayCounters& counters) const {
+    const glm::vec3& albedo = m.albedo;
     glm::vec3 diffuse(0.0f), specular(0.0f);
     for (const LightDesc& light : scene_.lights()) {
       const LightSample<T> ls = sampleLight(si, light, rng, counters);
@@ -113,8 +114,9 @@ class Tracer {
 
   // Lambert + GGX (Trowbridge-Reitz D, Smith-Schlick G, Schlick F) per light, and an
   // ambient term from the sky's hemisphere (or white) scaled by the material's ambient.
-  glm::vec3 shadePbr(const SurfaceInteraction<T>& si, const MaterialDesc& m, const glm::vec3& albedo,
-                     const Vec3<T>& n, const Vec3<T>& v, Pcg32& rng, RayCounters& counters) const {
+  glm::vec3 shadePbr(const SurfaceInteraction<T>& si, const HitMaterial& m, const Vec3<T>& n, const Vec3<T>& v,
+                     Pcg32& rng, RayCounters& counters) const {
+    const glm::vec3& albedo = m.albedo;
     const glm::vec3 nf(n);
     const glm::vec3 toEye = -glm::vec3(v);
     const float alpha = std::max(m.roughness * m.roughness, 1e-3f);

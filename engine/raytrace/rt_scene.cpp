@@ -68,12 +68,14 @@ RtScene::RtScene() {
   fallback.name = "default";
   materials_.push_back(fallback);
   materialTexture_.push_back(-1);
+  materialTerrain_.push_back(-1);
 }
 
 Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
   RtScene scene;
   if (!desc.materials.empty()) scene.materials_ = desc.materials;
   scene.materialTexture_.assign(scene.materials_.size(), -1);
+  scene.materialTerrain_.assign(scene.materials_.size(), -1);
   for (size_t i = 0; i < desc.materials.size(); ++i) {
     auto image = loadMaterialTexture(desc, desc.materials[i]);
     if (!image) return image.error();
@@ -115,6 +117,7 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
 int RtScene::addMaterial(const MaterialDesc& material) {
   materials_.push_back(material);
   materialTexture_.push_back(-1);
+  materialTerrain_.push_back(-1);
   return int(materials_.size() - 1);
 }
 
@@ -131,6 +134,28 @@ glm::vec3 RtScene::baseColor(int material, glm::vec2 uv) const {
   const glm::vec3 color = materials_[size_t(material)].color;
   const int texture = materialTexture_[size_t(material)];
   return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv);
+}
+
+Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
+  if (material < 0 || material >= int(materials_.size())) {
+    return makeError("material " + std::to_string(material) + " out of range");
+  }
+  materialTerrain_[size_t(material)] = int(terrains_.size());
+  terrains_.push_back(std::move(layers));
+  return Ok{};
+}
+
+HitMaterial RtScene::materialAt(int material, glm::vec2 uv, double y, const glm::vec3& ns) const {
+  const MaterialDesc& m = materials_[size_t(material)];
+  HitMaterial out{baseColor(material, uv), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
+                  m.metallic, m.roughness};
+  if (const int terrain = materialTerrain_[size_t(material)]; terrain >= 0) {
+    const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv, y, ns.y);
+    out.albedo *= layers.albedo;
+    out.roughness = layers.roughness;
+    out.specular = layers.specular;
+  }
+  return out;
 }
 
 void RtScene::addSphere(const glm::dvec3& center, double radius, int material) {

@@ -22,6 +22,7 @@
 #include "raytrace/bvh.h"
 #include "raytrace/ray.h"
 #include "raytrace/shapes.h"
+#include "raytrace/terrain_material.h"
 #include "raytrace/texture.h"
 
 namespace engine::rt {
@@ -39,6 +40,15 @@ struct RtMesh {
 
 using MeshId = int;
 
+// What the integrator shades one hit with: its material's weights, with the albedo
+// (colour times texture) and, for the terrain's layered material, the roughness and
+// highlight evaluated at the hit.
+struct HitMaterial {
+  glm::vec3 albedo{0.8f};
+  float ambient = 0.1f, diffuse = 0.9f, specular = 0.0f, shininess = 32.0f, reflection = 0.0f;
+  float metallic = 0.0f, roughness = 0.6f;
+};
+
 class RtScene {
  public:
   RtScene();  // one default material, no shapes, no lights, the default camera
@@ -52,6 +62,11 @@ class RtScene {
   Status setMaterialTexture(int material, RtTexture texture);
   // The material's colour times its texture at the hit's uv, linear RGB.
   glm::vec3 baseColor(int material, glm::vec2 uv) const;
+  // Makes `material` the terrain's layers: its albedo (times its colour), roughness
+  // and specular come from `layers` at each hit's uv, height and shading normal.
+  Status setTerrainMaterial(int material, RtTerrainMaterial layers);
+  // The material at a hit with uv `uv`, world height `y` and unit shading normal `ns`.
+  HitMaterial materialAt(int material, glm::vec2 uv, double y, const glm::vec3& ns) const;
   void addLight(const LightDesc& light) { lights_.push_back(light); }
   void addSphere(const glm::dvec3& center, double radius, int material);
   // `extent`: the half size of the square the rasterizer draws, which sets the
@@ -117,6 +132,8 @@ class RtScene {
   std::vector<MaterialDesc> materials_;
   std::vector<int> materialTexture_;  // per material: index into textures_, -1 none
   std::vector<RtTexture> textures_;
+  std::vector<int> materialTerrain_;  // per material: index into terrains_, -1 none
+  std::vector<RtTerrainMaterial> terrains_;
   // Per plane, what its texture coordinates need: the rasterizer draws it as a square
   // of half size `extent` rotated from +y to its normal, with uv = (local + extent) *
   // texture scale along that square's x and z.

@@ -1,5 +1,6 @@
 #include "raytrace/scene_builder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
@@ -11,6 +12,7 @@
 #include "asset/gltf_loader.h"
 #include "raytrace/tone_map.h"
 #include "terrain/lod.h"
+#include "terrain/materials.h"
 #include "terrain/scene_terrain.h"
 #include "terrain/terrain.h"
 
@@ -112,17 +114,32 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
   // No culling: terrain outside the view still casts shadows into it.
   camera.cull = false;
   const auto selection = terrain::selectLod(field, camera, desc.terrain.errorPixels);
-  MaterialDesc grass;
-  grass.name = "terrain";
-  grass.color = glm::vec3(0.2f, 0.32f, 0.12f);  // the grass layer's mean colour, linear
-  grass.roughness = 0.9f;
-  const int material = scene.addMaterial(grass);
+  // terrain.frag's material: the layers per hit (RtTerrainMaterial), full diffuse,
+  // the scene's ambient and a shininess of 24 in the classic model.
+  MaterialDesc layered;
+  layered.name = "terrain";
+  layered.color = glm::vec3(1.0f);
+  layered.ambient = desc.ambient;
+  layered.diffuse = 1.0f;
+  layered.shininess = terrain::kLayerShininess;
+  const int material = scene.addMaterial(layered);
+  const auto heightScale = std::max(field.heightRange().max, 1e-3f);
+  if (auto s = scene.setTerrainMaterial(material, RtTerrainMaterial(field.origin().y, heightScale)); !s) return s;
+  // Layer uvs as terrain.vert makes them: camera-relative metres over the tile size
+  // plus the camera's offset from the origin in tiles reduced to [0, 1) (the far
+  // scale multiplies the whole uv, so the offset must be the rasterizer's).
+  const glm::dvec3 fromOrigin = c.position - field.origin();
+  const glm::dvec2 tiles = glm::dvec2(fromOrigin.x, fromOrigin.z) / double(terrain::kLayerTileMetres);
+  const glm::vec2 uvOffset(tiles - glm::floor(tiles));
   const std::vector<std::uint32_t> indices = terrain::patchIndices();
   for (const auto& patch : selection.patches) {
     RtMesh mesh;
     mesh.material = material;
-    for (const glm::vec3& v : terrain::patchVertices(field, selection, patch))
+    for (const glm::vec3& v : terrain::patchVertices(field, selection, patch)) {
       mesh.positions.push_back(glm::vec3(glm::dvec3(v) + c.position));
+      mesh.uvs.push_back(glm::vec2(v.x, v.z) / terrain::kLayerTileMetres + uvOffset);
+    }
+    mesh.normals = terrain::patchNormals(field, selection, patch);
     mesh.indices = indices;
     stats.triangles += int(mesh.indices.size() / 3);
     ++stats.meshes;

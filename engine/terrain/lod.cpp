@@ -231,6 +231,37 @@ glm::vec3 patchVertex(const LodSelection& sel, const LodPatch& patch, const Heig
   return {x, y, z};
 }
 
+namespace {
+
+// terrain.vert's pageNormal: central differences over the page's samples `step`
+// metres apart (the page's border supplies the neighbours at its edges).
+glm::vec3 pageNormal(const HeightPage& page, int li, int lj, float step) {
+  const float l = page.at(li - 1, lj), r = page.at(li + 1, lj);
+  const float d = page.at(li, lj - 1), u = page.at(li, lj + 1);
+  return glm::normalize(glm::vec3(l - r, 2.0f * step, d - u));
+}
+
+}  // namespace
+
+glm::vec3 patchNormal(const LodSelection& sel, const LodPatch& patch, const HeightPage& page, int i, int j) {
+  const int s = Terrain::stride(patch.level);
+  const float k = morphFactor(sel, patch.level, patch.gx + i * s, patch.gz + j * s);
+  const int oddX = i & 1, oddZ = j & 1;
+  const int li = (patch.gx / s) % kNodeQuads + i, lj = (patch.gz / s) % kNodeQuads + j;
+  const float step = float(s) * sel.spacing;
+  const float w = 1.0f - k;
+  return glm::normalize(pageNormal(page, li, lj, step) * w + pageNormal(page, li - oddX, lj - oddZ, step) * k);
+}
+
+std::vector<glm::vec3> patchNormals(const Terrain& terrain, const LodSelection& selection, const LodPatch& patch) {
+  auto page = terrain.page(patch.node);
+  std::vector<glm::vec3> out;
+  out.reserve(std::size_t(kPatchQuads + 1) * (kPatchQuads + 1));
+  for (int j = 0; j <= kPatchQuads; ++j)
+    for (int i = 0; i <= kPatchQuads; ++i) out.push_back(patchNormal(selection, patch, *page, i, j));
+  return out;
+}
+
 std::vector<glm::vec3> patchVertices(const Terrain& terrain, const LodSelection& selection,
                                      const LodPatch& patch) {
   auto page = terrain.page(patch.node);

@@ -103,6 +103,11 @@ glm::vec3 patchVertex(const LodSelection& selection, const LodPatch& patch, cons
 // All (kPatchQuads + 1)^2 vertices, row by row (j outer).
 std::vector<glm::vec3> patchVertices(const Terrain& terrain, const LodSelection& selection,
                                      const LodPatch& patch);
+// terrain.vert's v_normal of patch vertex (i, j): central differences of the page's
+// heights at the level's stride, morphed toward the parent's like the position;
+// and all of a patch's, in patchVertices' order.
+glm::vec3 patchNormal(const LodSelection& selection, const LodPatch& patch, const HeightPage& page, int i, int j);
+std::vector<glm::vec3> patchNormals(const Terrain& terrain, const LodSelection& selection, const LodPatch& patch);
 // The triangles of that grid, as every renderer draws them (GPU, ray tracer, floor
 // bench): each quad split along its (i, j)-(i+1, j+1) diagonal, the direction the
 // morph and the error estimate assume; counter-clockwise seen from above.

@@ -8,7 +8,6 @@
 namespace engine::terrain {
 namespace {
 
-constexpr int kLayerImageSize = 256;
 constexpr GLsizei kIndexCount = kPatchQuads * kPatchQuads * 6;
 constexpr std::size_t kInitialInstances = 1024;
 

@@ -207,6 +207,36 @@ TEST(Lod, UnmorphedVerticesSitExactlyOnSamples) {
   EXPECT_GT(checked, 100u);
 }
 
+// patchNormal mirrors terrain.vert's v_normal: at unmorphed full-resolution
+// vertices it is the central-difference normal that Terrain::normalAt gives there,
+// and every normal is unit length and points up.
+TEST(Lod, PatchNormalsAreTheTerrainsCentralDifferences) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(2000.0, t->heightAt(2000.0, 2000.0) + 3.0, 2000.0);
+  const LodSelection selection = selectLod(*t, makeCamera(eye, eye + glm::dvec3(1, 0, 0)), 1.0);
+  std::size_t checked = 0;
+  for (const LodPatch& p : selection.patches) {
+    const std::vector<glm::vec3> normals = patchNormals(*t, selection, p);
+    ASSERT_EQ(normals.size(), std::size_t(kPatchQuads + 1) * (kPatchQuads + 1));
+    for (const glm::vec3& n : normals) {
+      EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+      EXPECT_GT(n.y, 0.0f);
+    }
+    if (p.level != 0) continue;
+    for (int j = 1; j < kPatchQuads; j += 3)
+      for (int i = 1; i < kPatchQuads; i += 3) {
+        if (morphFactor(selection, 0, p.gx + i, p.gz + j) != 0.0f) continue;
+        const glm::vec3 n = normals[std::size_t(j * (kPatchQuads + 1) + i)];
+        const glm::vec3 expected = t->normalAt(t->origin().x + (p.gx + i) * t->spacing(),
+                                               t->origin().z + (p.gz + j) * t->spacing());
+        EXPECT_NEAR(glm::dot(n, expected), 1.0f, 1e-5f);
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 100u);
+}
+
 TEST(Lod, FinerTargetsDrawMoreAndErrOnlyWithinTarget) {
   auto t = makeNoise(glm::dvec3(0.0));
   ASSERT_TRUE(t.ok());

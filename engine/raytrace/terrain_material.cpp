@@ -1,0 +1,38 @@
+#include "raytrace/terrain_material.h"
+
+#include <algorithm>
+
+#include "terrain/materials.h"
+
+namespace engine::rt {
+namespace {
+
+// The GPU uploads the layer images flipped (gl::Texture::fromImage): uv (0, 0) is
+// the bottom-left texel.
+RtTexture layerTexture(terrain::TerrainLayer layer) {
+  return RtTexture(terrain::makeLayerImage(layer, terrain::kLayerImageSize), TextureOrigin::BottomLeft);
+}
+
+}  // namespace
+
+RtTerrainMaterial::RtTerrainMaterial(double originY, float heightScale)
+    : layers_{layerTexture(terrain::TerrainLayer::Grass), layerTexture(terrain::TerrainLayer::Rock),
+              layerTexture(terrain::TerrainLayer::Snow)},
+      originY_(originY),
+      heightScale_(std::max(heightScale, 1e-3f)) {}
+
+TerrainLayerSample RtTerrainMaterial::sample(glm::vec2 uv, double y, float normalY) const {
+  // terrain.frag's main: two scales of each layer break up visible repetition.
+  const glm::vec2 uvFar = uv * terrain::kLayerFarScale;
+  const glm::vec3 grass = layers_[0].sample(uv) * layers_[0].sample(uvFar) * 2.0f;
+  const glm::vec3 rock = layers_[1].sample(uv) * layers_[1].sample(uvFar) * 2.0f;
+  const glm::vec3 snow = layers_[2].sample(uv);
+  const glm::vec3 w = terrain::layerWeights(float(y - originY_) / heightScale_, 1.0f - normalY, rock.r * 2.0f - 0.5f);
+  TerrainLayerSample s;
+  s.albedo = grass * w.x + rock * w.y + snow * w.z;
+  s.roughness = glm::dot(w, terrain::kLayerRoughness);
+  s.specular = glm::mix(terrain::kLayerSpecular, terrain::kSnowSpecular, w.z);
+  return s;
+}
+
+}  // namespace engine::rt
