@@ -299,6 +299,16 @@ const std::vector<Plane<double>>& RtScene::planes<double>() const {
   return planesD_;
 }
 
+// Whether a plane's hit at t lies on the square the rasterizer draws (always, for an
+// unbounded plane), so that both renderers see the same ground's edge.
+template <typename T>
+bool RtScene::onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const {
+  const PlaneUv& q = planeUvs_[plane];
+  if (q.extent <= 0.0) return true;
+  const glm::dvec3 local = glm::dvec3(ray(t)) - q.point;
+  return std::abs(glm::dot(local, q.axisU)) <= q.extent && std::abs(glm::dot(local, q.axisV)) <= q.extent;
+}
+
 template <typename T>
 SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<T>& hit) const {
   const std::uint32_t meshIndex = group.triangleMesh[hit.triangle];
@@ -336,7 +346,7 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
   }
   const auto& planeList = planes<T>();
   for (std::size_t i = 0; i < planeList.size(); ++i) {
-    if (auto t = planeList[i].intersect(ray)) {
+    if (auto t = planeList[i].intersect(ray); t && onPlaneSquare(i, ray, *t)) {
       ray.tMax = *t;
       kind = 2;
       index = i;
@@ -378,8 +388,9 @@ bool RtScene::intersectAny(const Ray<T>& ray) const {
   for (const auto& s : spheres<T>()) {
     if (s.intersect(ray)) return true;
   }
-  for (const auto& p : planes<T>()) {
-    if (p.intersect(ray)) return true;
+  const auto& planeList = planes<T>();
+  for (std::size_t i = 0; i < planeList.size(); ++i) {
+    if (auto t = planeList[i].intersect(ray); t && onPlaneSquare(i, ray, *t)) return true;
   }
   const BoundsRay<T> boxes(ray);
   for (const Group& group : groups_) {

@@ -69,9 +69,9 @@ class RtScene {
   HitMaterial materialAt(int material, glm::vec2 uv, double y, const glm::vec3& ns) const;
   void addLight(const LightDesc& light) { lights_.push_back(light); }
   void addSphere(const glm::dvec3& center, double radius, int material);
-  // `extent`: the half size of the square the rasterizer draws, which sets the
-  // plane's texture coordinates (the plane itself stays infinite).
-  void addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent = 1.0);
+  // `extent`: the half size of the square the rasterizer draws; hits beyond it miss,
+  // and it sets the plane's texture coordinates. 0: an unbounded plane.
+  void addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent = 0.0);
   void setCamera(const CameraDesc& camera) { camera_ = camera; }
   void setSky(const SkyDesc& sky) { sky_ = sky; }
   void setRender(const RenderDesc& render) { render_ = render; }
@@ -125,6 +125,8 @@ class RtScene {
   struct Group;
   template <typename T>
   SurfaceInteraction<T> meshInteraction(const Group& group, const BvhHit<T>& hit) const;
+  template <typename T>
+  bool onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const;
   void gatherTriangles(int group);
 
   CameraDesc camera_;
@@ -134,12 +136,12 @@ class RtScene {
   std::vector<RtTexture> textures_;
   std::vector<int> materialTerrain_;  // per material: index into terrains_, -1 none
   std::vector<RtTerrainMaterial> terrains_;
-  // Per plane, what its texture coordinates need: the rasterizer draws it as a square
-  // of half size `extent` rotated from +y to its normal, with uv = (local + extent) *
-  // texture scale along that square's x and z.
+  // Per plane, its square and what its texture coordinates need: the rasterizer
+  // draws it as a square of half size `extent` (0: unbounded) rotated from +y to its
+  // normal, with uv = (local + extent) * texture scale along that square's x and z.
   struct PlaneUv {
     glm::dvec3 point{0.0}, axisU{1, 0, 0}, axisV{0, 0, 1};
-    double extent = 1.0;
+    double extent = 0.0;
   };
   std::vector<PlaneUv> planeUvs_;
   SkyDesc sky_;
