@@ -141,6 +141,20 @@ namespace {
 
 // The demo scene at t = 1 s, ray traced at pixel centres, and the same with the ray
 // tracer's textures and fog switched off (each material's plain colour, no fog).
+// `scene` through the real renderer at t = 1 s, offscreen (EGL); empty on failure.
+Image rasterize(const SceneDesc& scene, int width, int height) {
+  SceneRenderOptions options;
+  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
+  demo::SceneGame game(scene, options);
+  RunOptions run;
+  run.width = width;
+  run.height = height;
+  run.time = 1.0;
+  Image image;
+  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &image).ok());
+  return image;
+}
+
 struct DemoImages {
   Image raster, traced, plain;
 };
@@ -170,14 +184,7 @@ DemoImages renderDemo(int width, int height) {
     out.plain = rt::toImage(rt::Integrator(*built, settings).render().image, built->render());
   }
 
-  SceneRenderOptions options;
-  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
-  demo::SceneGame game(*scene, options);
-  RunOptions run;
-  run.width = width;
-  run.height = height;
-  run.time = 1.0;
-  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &out.raster).ok());
+  out.raster = rasterize(*scene, width, height);
   return out;
 }
 
@@ -238,15 +245,8 @@ TEST(RasterVsRaytrace, DemoTerrainAgreesAtLowResolution) {
   settings.samplesPerPixel = 1;
   auto traced = rt::raytraceScene(*scene, 1.0, settings);
   ASSERT_TRUE(traced.ok()) << traced.error().message;
-  SceneRenderOptions options;
-  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
-  demo::SceneGame game(*scene, options);
-  RunOptions run;
-  run.width = kW;
-  run.height = kH;
-  run.time = 1.0;
-  Image raster;
-  ASSERT_TRUE(runHeadless(Backend::Egl, game, run, &raster).ok());
+  const Image raster = rasterize(*scene, kW, kH);
+  ASSERT_FALSE(raster.empty());
   auto diff = compareImages(traced->image, raster, 16);
   ASSERT_TRUE(diff.ok());
   std::printf("raster vs ray traced demo terrain %dx%d: mean %.3f, PSNR %.2f dB, %.2f%% over 16\n", kW, kH,
