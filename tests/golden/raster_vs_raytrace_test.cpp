@@ -59,15 +59,18 @@ Image rayTraced(const SceneDesc& scene) {
   return traced.ok() ? traced->image : Image{};
 }
 
-// `probeSize` < 0: the scene's own setting.
-Image rasterized(const SceneDesc& scene, int probeSize = -1) {
+// `scene` through the real renderer, offscreen (EGL); empty on failure. `probeSize`
+// < 0: the scene's own setting.
+Image rasterized(const SceneDesc& scene, int probeSize = -1, int width = kWidth, int height = kHeight,
+                 double time = 0.0) {
   SceneRenderOptions options;
   options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
   options.reflectionProbeOverride = probeSize;
   demo::SceneGame game(scene, options);
   RunOptions run;
-  run.width = kWidth;
-  run.height = kHeight;
+  run.width = width;
+  run.height = height;
+  run.time = time;
   Image image;
   EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &image).ok());
   return image;
@@ -141,20 +144,6 @@ namespace {
 
 // The demo scene at t = 1 s, ray traced at pixel centres, and the same with the ray
 // tracer's textures and fog switched off (each material's plain colour, no fog).
-// `scene` through the real renderer at t = 1 s, offscreen (EGL); empty on failure.
-Image rasterize(const SceneDesc& scene, int width, int height) {
-  SceneRenderOptions options;
-  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
-  demo::SceneGame game(scene, options);
-  RunOptions run;
-  run.width = width;
-  run.height = height;
-  run.time = 1.0;
-  Image image;
-  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &image).ok());
-  return image;
-}
-
 struct DemoImages {
   Image raster, traced, plain;
 };
@@ -184,7 +173,7 @@ DemoImages renderDemo(int width, int height) {
     out.plain = rt::toImage(rt::Integrator(*built, settings).render().image, built->render());
   }
 
-  out.raster = rasterize(*scene, width, height);
+  out.raster = rasterized(*scene, -1, width, height, 1.0);
   return out;
 }
 
@@ -245,7 +234,7 @@ TEST(RasterVsRaytrace, DemoTerrainAgreesAtLowResolution) {
   settings.samplesPerPixel = 1;
   auto traced = rt::raytraceScene(*scene, 1.0, settings);
   ASSERT_TRUE(traced.ok()) << traced.error().message;
-  const Image raster = rasterize(*scene, kW, kH);
+  const Image raster = rasterized(*scene, -1, kW, kH, 1.0);
   ASSERT_FALSE(raster.empty());
   auto diff = compareImages(traced->image, raster, 16);
   ASSERT_TRUE(diff.ok());
