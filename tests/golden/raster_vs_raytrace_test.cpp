@@ -62,7 +62,7 @@ Image rayTraced(const SceneDesc& scene) {
 // `scene` through the real renderer, offscreen (EGL); empty on failure. `probeSize`
 // < 0: the scene's own setting.
 Image rasterized(const SceneDesc& scene, int probeSize = -1, int width = kWidth, int height = kHeight,
-                 double time = 0.0) {
+                 std::optional<double> time = std::nullopt) {
   SceneRenderOptions options;
   options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
   options.reflectionProbeOverride = probeSize;
