@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 
 #include "app/runner.h"
 #include "asset/scene_file.h"
