@@ -34,12 +34,23 @@ struct LightSample {
   float visibility = 1.0f;
 };
 
+// A ray cone: the footprint's width where the ray starts and its growth per unit of
+// distance (radians).
+struct RayCone {
+  float width = 0.0f;
+  float spread = 0.0f;
+};
+
 template <typename T>
 class Tracer {
  public:
   Tracer(const RtScene& scene, const RenderSettings& settings)
       : scene_(scene), settings_(settings), camera_(scene.camera(), settings.width, settings.height),
         strata_(strataFor(std::max(1, settings.samplesPerPixel))) {
+    // A pixel's angle (the course camera's image plane at z = 1 is 2 tan(fovy / 2)
+    // high), shared among the pixel's samples, which each cover 1 / spp of it.
+    pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
+                         (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
     for (const LightDesc& l : scene.lights()) {
       if (l.type == LightType::Sun) sunDirection_ = glm::normalize(glm::vec3(l.direction));
     }
@@ -50,7 +61,7 @@ class Tracer {
     const int spp = std::max(1, settings_.samplesPerPixel);
     if (spp == 1) {
       ++counters.primary;
-      return Li(camera_.generateRay<T>(x + 0.5, y + 0.5), 0, rng, counters);
+      return Li(camera_.generateRay<T>(x + 0.5, y + 0.5), 0, rng, counters, RayCone{0.0f, pixelSpread_});
     }
     glm::vec3 sum(0.0f);
     for (int j = 0; j < strata_.y; ++j) {
@@ -58,18 +69,26 @@ class Tracer {
         const double px = x + (i + double(rng.uniform())) / strata_.x;
         const double py = y + (j + double(rng.uniform())) / strata_.y;
         ++counters.primary;
-        sum += Li(camera_.generateRay<T>(px, py), 0, rng, counters);
+        sum += Li(camera_.generateRay<T>(px, py), 0, rng, counters, RayCone{0.0f, pixelSpread_});
       }
     }
     return sum / float(spp);
   }
 
-  glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters) const {
+  // `cone`: the ray's footprint (ray cones, Akenine-Moeller et al., Ray Tracing Gems
+  // ch. 20), which picks the textures' mipmap level as the rasterizer's screen-space
+  // derivatives do; {0, 0}: the full-resolution level.
+  glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {}) const {
     const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
     if (!hit) return escaped(ray.d);
-    // The terrain's layers read the unflipped shading normal, as terrain.frag does.
-    const HitMaterial m = scene_.materialAt(hit->material, hit->uv, double(hit->p.y), glm::vec3(hit->ns));
     const Vec3<T> v = glm::normalize(ray.d);
+    cone.width += cone.spread * float(hit->t * glm::length(ray.d));
+    // Foreshortening stretches the footprint along the slope by 1 / cos, and GL's
+    // isotropic level of detail takes the longer axis.
+    const float cosine = std::max(float(std::abs(glm::dot(hit->n, v))), 1e-2f);
+    const float footprint = cone.width / cosine * hit->uvPerMetre;
+    // The terrain's layers read the unflipped shading normal, as terrain.frag does.
+    const HitMaterial m = scene_.materialAt(hit->material, hit->uv, footprint, double(hit->p.y), glm::vec3(hit->ns));
     // Surfaces are two-sided: shade with the normal that faces the viewer.
     const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
     glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, n, v, rng, counters)
@@ -79,7 +98,7 @@ class Tracer {
       const T c1 = -glm::dot(n, v);
       const Vec3<T> r = v + T(2) * c1 * n;
       ++counters.reflection;
-      color += m.reflection * Li(hit->spawnRay(r), depth + 1, rng, counters);
+      color += m.reflection * Li(hit->spawnRay(r), depth + 1, rng, counters, cone);
     }
     // The rasterizer's distance fog (shaders/scene.frag, common/fog.glsl) on what the
     // camera sees directly: mix(fog colour, colour, exp(-density * distance)).
@@ -223,6 +242,7 @@ class Tracer {
   const RenderSettings& settings_;
   PinholeCamera camera_;
   glm::ivec2 strata_;
+  float pixelSpread_ = 0.0f;
   std::optional<glm::vec3> sunDirection_;
 };
 

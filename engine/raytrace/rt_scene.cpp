@@ -130,10 +130,10 @@ Status RtScene::setMaterialTexture(int material, RtTexture texture) {
   return Ok{};
 }
 
-glm::vec3 RtScene::baseColor(int material, glm::vec2 uv) const {
+glm::vec3 RtScene::baseColor(int material, glm::vec2 uv, float footprint) const {
   const glm::vec3 color = materials_[size_t(material)].color;
   const int texture = materialTexture_[size_t(material)];
-  return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv);
+  return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv, footprint);
 }
 
 Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
@@ -145,12 +145,12 @@ Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
   return Ok{};
 }
 
-HitMaterial RtScene::materialAt(int material, glm::vec2 uv, double y, const glm::vec3& ns) const {
+HitMaterial RtScene::materialAt(int material, glm::vec2 uv, float footprint, double y, const glm::vec3& ns) const {
   const MaterialDesc& m = materials_[size_t(material)];
-  HitMaterial out{baseColor(material, uv), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
+  HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
                   m.metallic, m.roughness};
   if (const int terrain = materialTerrain_[size_t(material)]; terrain >= 0) {
-    const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv, y, ns.y);
+    const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv, footprint, y, ns.y);
     out.albedo *= layers.albedo;
     out.roughness = layers.roughness;
     out.specular = layers.specular;
@@ -325,6 +325,10 @@ SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<
   }
   if (!mesh.uvs.empty()) {
     si.uv = float(hit.hit.b0) * mesh.uvs[i0] + float(hit.hit.b1) * mesh.uvs[i1] + float(hit.hit.b2) * mesh.uvs[i2];
+    const glm::vec2 du = mesh.uvs[i1] - mesh.uvs[i0], dv = mesh.uvs[i2] - mesh.uvs[i0];
+    const float uvArea = std::abs(du.x * dv.y - du.y * dv.x);
+    const float area = glm::length(glm::cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]));
+    si.uvPerMetre = area > 0.0f ? std::sqrt(uvArea / area) : 0.0f;
   }
   si.material = mesh.material;
   return si;
@@ -369,7 +373,10 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
   if (hitGroup) return meshInteraction(*hitGroup, *meshHit);
   if (kind == 1) {
     SurfaceInteraction<T> si = sphereList[index].interaction(ray, ray.tMax);
-    si.uv = sphereUv(glm::dvec3(si.n)) * materials_[size_t(si.material)].textureScale;
+    const float scale = materials_[size_t(si.material)].textureScale;
+    si.uv = sphereUv(glm::dvec3(si.n)) * scale;
+    // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
+    si.uvPerMetre = scale / (float(std::numbers::pi) * std::sqrt(2.0f) * float(sphereList[index].radius));
     return si;
   }
   if (kind == 2) {
@@ -378,6 +385,7 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
     const glm::dvec3 local = glm::dvec3(si.p) - q.point;
     si.uv = glm::vec2(glm::dvec2(glm::dot(local, q.axisU) + q.extent, glm::dot(local, q.axisV) + q.extent) *
                       double(materials_[size_t(si.material)].textureScale));
+    si.uvPerMetre = materials_[size_t(si.material)].textureScale;
     return si;
   }
   return std::nullopt;

@@ -60,13 +60,15 @@ class RtScene {
   // A base colour texture that multiplies `material`'s colour (the rasterizer's
   // baseColorFactor * texture(uv)); the material's meshes need uvs to show it.
   Status setMaterialTexture(int material, RtTexture texture);
-  // The material's colour times its texture at the hit's uv, linear RGB.
-  glm::vec3 baseColor(int material, glm::vec2 uv) const;
+  // The material's colour times its texture at the hit's uv, linear RGB; `footprint`
+  // as RtTexture::sample takes it.
+  glm::vec3 baseColor(int material, glm::vec2 uv, float footprint = 0.0f) const;
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
   // and specular come from `layers` at each hit's uv, height and shading normal.
   Status setTerrainMaterial(int material, RtTerrainMaterial layers);
-  // The material at a hit with uv `uv`, world height `y` and unit shading normal `ns`.
-  HitMaterial materialAt(int material, glm::vec2 uv, double y, const glm::vec3& ns) const;
+  // The material at a hit with uv `uv` (and `footprint`, as RtTexture::sample takes
+  // it), world height `y` and unit shading normal `ns`.
+  HitMaterial materialAt(int material, glm::vec2 uv, float footprint, double y, const glm::vec3& ns) const;
   void addLight(const LightDesc& light) { lights_.push_back(light); }
   void addSphere(const glm::dvec3& center, double radius, int material);
   // `extent`: the half size of the square the rasterizer draws; hits beyond it miss,

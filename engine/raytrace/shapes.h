@@ -20,6 +20,10 @@ struct SurfaceInteraction {
   T t = 0;
   int material = 0;
   glm::vec2 uv{0.0f};  // texture coordinates, as the rasterizer interpolates them
+  // How fast uv changes along the surface: the square root of uv area per unit of
+  // surface area (0 where nothing is mapped), to turn a ray cone's width into a
+  // texture footprint.
+  float uvPerMetre = 0.0f;
 
   // A ray leaving this point toward w, offset so that it cannot hit this surface.
   Ray<T> spawnRay(const Vec3<T>& w) const { return Ray<T>{offsetRayOrigin(p, pError, n, w), w}; }

@@ -21,12 +21,13 @@ RtTerrainMaterial::RtTerrainMaterial(double originY, float heightScale)
       originY_(originY),
       heightScale_(std::max(heightScale, 1e-3f)) {}
 
-TerrainLayerSample RtTerrainMaterial::sample(glm::vec2 uv, double y, float normalY) const {
+TerrainLayerSample RtTerrainMaterial::sample(glm::vec2 uv, float footprint, double y, float normalY) const {
   // terrain.frag's main: two scales of each layer break up visible repetition.
   const glm::vec2 uvFar = uv * terrain::kLayerFarScale;
-  const glm::vec3 grass = layers_[0].sample(uv) * layers_[0].sample(uvFar) * 2.0f;
-  const glm::vec3 rock = layers_[1].sample(uv) * layers_[1].sample(uvFar) * 2.0f;
-  const glm::vec3 snow = layers_[2].sample(uv);
+  const float footprintFar = footprint * terrain::kLayerFarScale;
+  const glm::vec3 grass = layers_[0].sample(uv, footprint) * layers_[0].sample(uvFar, footprintFar) * 2.0f;
+  const glm::vec3 rock = layers_[1].sample(uv, footprint) * layers_[1].sample(uvFar, footprintFar) * 2.0f;
+  const glm::vec3 snow = layers_[2].sample(uv, footprint);
   const glm::vec3 w = terrain::layerWeights(float(y - originY_) / heightScale_, 1.0f - normalY, rock.r * 2.0f - 0.5f);
   TerrainLayerSample s;
   s.albedo = grass * w.x + rock * w.y + snow * w.z;

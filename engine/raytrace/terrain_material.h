@@ -24,9 +24,9 @@ class RtTerrainMaterial {
   // u_heightScale (the terrain's highest sample above its origin, at least 1e-3).
   RtTerrainMaterial(double originY, float heightScale);
 
-  // At layer uv `uv` (terrain.vert's v_uv), world height `y` and unit shading
-  // normal y component `normalY`.
-  TerrainLayerSample sample(glm::vec2 uv, double y, float normalY) const;
+  // At layer uv `uv` (terrain.vert's v_uv) with `footprint` (RtTexture::sample's),
+  // world height `y` and unit shading normal y component `normalY`.
+  TerrainLayerSample sample(glm::vec2 uv, float footprint, double y, float normalY) const;
 
  private:
   std::array<RtTexture, 3> layers_;  // grass, rock, snow

@@ -1,5 +1,6 @@
 #include "raytrace/texture.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -26,36 +27,70 @@ int wrap(int i, int n) {
 
 }  // namespace
 
-RtTexture::RtTexture(const Image& srgb, TextureOrigin origin) {
-  if (srgb.empty()) {
-    texels_.assign(1, glm::vec3(1.0f));
-    return;
-  }
-  width_ = srgb.width;
-  height_ = srgb.height;
-  texels_.resize(std::size_t(width_) * std::size_t(height_));
-  const auto& table = decodeTable();
-  for (int y = 0; y < height_; ++y) {
-    const int row = origin == TextureOrigin::TopLeft ? y : height_ - 1 - y;
-    for (int x = 0; x < width_; ++x) {
-      const std::uint8_t* p = &srgb.pixels[(std::size_t(row) * std::size_t(width_) + std::size_t(x)) * 4];
-      texels_[std::size_t(y) * std::size_t(width_) + std::size_t(x)] = {table[p[0]], table[p[1]], table[p[2]]};
+// The next mipmap level: floor(size / 2), at least 1, each texel the average of the
+// 2x2 block above it (a single row or column at an odd edge is averaged as it is).
+RtTexture::Level RtTexture::halve(const Level& above) {
+  Level level;
+  level.width = std::max(1, above.width / 2);
+  level.height = std::max(1, above.height / 2);
+  level.texels.resize(std::size_t(level.width) * std::size_t(level.height));
+  const auto at = [&](int x, int y) {
+    return above.texels[std::size_t(std::min(y, above.height - 1)) * std::size_t(above.width) +
+                        std::size_t(std::min(x, above.width - 1))];
+  };
+  for (int y = 0; y < level.height; ++y) {
+    for (int x = 0; x < level.width; ++x) {
+      level.texels[std::size_t(y) * std::size_t(level.width) + std::size_t(x)] =
+          0.25f * (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1));
     }
   }
+  return level;
 }
 
-glm::vec3 RtTexture::sample(glm::vec2 uv) const {
+RtTexture::RtTexture(const Image& srgb, TextureOrigin origin) {
+  Level base;
+  if (srgb.empty()) {
+    base.texels.assign(1, glm::vec3(1.0f));
+    levels_.push_back(std::move(base));
+    return;
+  }
+  base.width = srgb.width;
+  base.height = srgb.height;
+  base.texels.resize(std::size_t(base.width) * std::size_t(base.height));
+  const auto& table = decodeTable();
+  for (int y = 0; y < base.height; ++y) {
+    const int row = origin == TextureOrigin::TopLeft ? y : base.height - 1 - y;
+    for (int x = 0; x < base.width; ++x) {
+      const std::uint8_t* p = &srgb.pixels[(std::size_t(row) * std::size_t(base.width) + std::size_t(x)) * 4];
+      base.texels[std::size_t(y) * std::size_t(base.width) + std::size_t(x)] = {table[p[0]], table[p[1]], table[p[2]]};
+    }
+  }
+  levels_.push_back(std::move(base));
+  while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(halve(levels_.back()));
+}
+
+glm::vec3 RtTexture::bilinear(const Level& level, glm::vec2 uv) {
   // Texel centres sit at (i + 0.5) / n; reduce to one period first, so that large uv
   // (a plane's tiling far from the origin) keep their fraction's precision.
-  const float u = (uv.x - std::floor(uv.x)) * float(width_) - 0.5f;
-  const float v = (uv.y - std::floor(uv.y)) * float(height_) - 0.5f;
-  if (!std::isfinite(u) || !std::isfinite(v)) return texels_[0];
+  const float u = (uv.x - std::floor(uv.x)) * float(level.width) - 0.5f;
+  const float v = (uv.y - std::floor(uv.y)) * float(level.height) - 0.5f;
+  if (!std::isfinite(u) || !std::isfinite(v)) return level.texels[0];
   const float fu = std::floor(u), fv = std::floor(v);
   const float tu = u - fu, tv = v - fv;
-  const int x0 = wrap(int(fu), width_), x1 = wrap(int(fu) + 1, width_);
-  const int y0 = wrap(int(fv), height_), y1 = wrap(int(fv) + 1, height_);
-  const auto at = [&](int x, int y) { return texels_[std::size_t(y) * std::size_t(width_) + std::size_t(x)]; };
+  const int x0 = wrap(int(fu), level.width), x1 = wrap(int(fu) + 1, level.width);
+  const int y0 = wrap(int(fv), level.height), y1 = wrap(int(fv) + 1, level.height);
+  const auto at = [&](int x, int y) { return level.texels[std::size_t(y) * std::size_t(level.width) + std::size_t(x)]; };
   return glm::mix(glm::mix(at(x0, y0), at(x1, y0), tu), glm::mix(at(x0, y1), at(x1, y1), tu), tv);
+}
+
+glm::vec3 RtTexture::sample(glm::vec2 uv, float footprint) const {
+  const float texels = footprint * float(std::max(width(), height()));
+  const float lod = texels > 1.0f ? std::min(std::log2(texels), float(levels() - 1)) : 0.0f;
+  if (!(lod > 0.0f)) return bilinear(levels_[0], uv);
+  const int below = int(lod);
+  const float t = lod - float(below);
+  const glm::vec3 a = bilinear(levels_[std::size_t(below)], uv);
+  return t > 0.0f ? glm::mix(a, bilinear(levels_[std::size_t(below + 1)], uv), t) : a;
 }
 
 }  // namespace engine::rt

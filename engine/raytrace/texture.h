@@ -2,9 +2,9 @@
 // A base colour texture as the rasterizer samples it, for the ray tracer: texels
 // decoded from sRGB to linear before filtering (GL does that for SRGB8_ALPHA8),
 // bilinear between texel centres, wrap repeat (GL's default, which every texture of
-// the rasterizer uses, glTF's default too). Only the full-resolution level: the
-// rasterizer's mipmaps average distant texels, which a single ray cannot know
-// without ray differentials, so far-away texture detail aliases here.
+// the rasterizer uses, glTF's default too), and mipmaps as glGenerateMipmap makes
+// them (each level the 2x2 average of the one above, in linear), sampled trilinearly
+// (GL_LINEAR_MIPMAP_LINEAR) at the level a ray cone's footprint picks.
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,15 +21,24 @@ class RtTexture {
  public:
   RtTexture(const Image& srgb, TextureOrigin origin);
 
-  // Linear RGB at uv (repeating outside [0, 1)).
-  glm::vec3 sample(glm::vec2 uv) const;
+  // Linear RGB at uv (repeating outside [0, 1)). `footprint`: the width of the
+  // pixel's footprint in uv units (0: the full-resolution level, as when magnified);
+  // its log2 in texels is GL's level of detail.
+  glm::vec3 sample(glm::vec2 uv, float footprint = 0.0f) const;
 
-  int width() const { return width_; }
-  int height() const { return height_; }
+  int width() const { return levels_[0].width; }
+  int height() const { return levels_[0].height; }
+  int levels() const { return int(levels_.size()); }
 
  private:
-  int width_ = 1, height_ = 1;
-  std::vector<glm::vec3> texels_;  // linear, rows with v = 0 first
+  struct Level {
+    int width = 1, height = 1;
+    std::vector<glm::vec3> texels;  // linear, rows with v = 0 first
+  };
+  static Level halve(const Level& above);
+  static glm::vec3 bilinear(const Level& level, glm::vec2 uv);
+
+  std::vector<Level> levels_;
 };
 
 }  // namespace engine::rt

@@ -383,9 +383,9 @@ TEST(TerrainMaterial, LayersFollowHeightAndSlope) {
   ASSERT_TRUE(scene.setTerrainMaterial(material, rt::RtTerrainMaterial(-50.0, 100.0f)).ok());
   const glm::vec2 uv(0.3f, 0.7f);
   const glm::vec3 up(0, 1, 0), cliff(1, 0, 0);
-  const rt::HitMaterial grass = scene.materialAt(material, uv, -50.0, up);
-  const rt::HitMaterial rock = scene.materialAt(material, uv, -20.0, cliff);
-  const rt::HitMaterial snow = scene.materialAt(material, uv, 50.0, up);
+  const rt::HitMaterial grass = scene.materialAt(material, uv, 0.0f, -50.0, up);
+  const rt::HitMaterial rock = scene.materialAt(material, uv, 0.0f, -20.0, cliff);
+  const rt::HitMaterial snow = scene.materialAt(material, uv, 0.0f, 50.0, up);
   EXPECT_FLOAT_EQ(grass.roughness, 0.95f);
   EXPECT_FLOAT_EQ(rock.roughness, 0.8f);
   EXPECT_FLOAT_EQ(snow.roughness, 0.5f);
@@ -397,6 +397,6 @@ TEST(TerrainMaterial, LayersFollowHeightAndSlope) {
   EXPECT_GT(snow.albedo.r, rock.albedo.r);
   EXPECT_NEAR(rock.albedo.r, rock.albedo.g, 0.1f);  // grey
   // A plain material is untouched.
-  const rt::HitMaterial plain = scene.materialAt(0, uv, 50.0, up);
+  const rt::HitMaterial plain = scene.materialAt(0, uv, 0.0f, 50.0, up);
   EXPECT_EQ(plain.roughness, scene.materials()[0].roughness);
 }

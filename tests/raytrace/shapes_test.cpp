@@ -215,3 +215,26 @@ TEST(RtTexture, BilinearSrgbRepeatAndOrigin) {
   EXPECT_FLOAT_EQ(rt::RtTexture(column, rt::TextureOrigin::TopLeft).sample({0.5f, 0.25f}).z, 1.0f);
   EXPECT_FLOAT_EQ(rt::RtTexture(column, rt::TextureOrigin::BottomLeft).sample({0.5f, 0.25f}).z, 0.0f);
 }
+
+// Mipmaps as glGenerateMipmap makes them, sampled as GL_LINEAR_MIPMAP_LINEAR does: a
+// 4 x 4 black-and-white checkerboard of single texels averages to linear grey from
+// the first level down; a footprint of a texel or less reads the full resolution,
+// two texels the first level, in between a blend of the two.
+TEST(RtTexture, MipmapsAverageAndTheFootprintPicksTheLevel) {
+  engine::Image checker(4, 4);
+  const std::uint8_t white[4] = {255, 255, 255, 255}, black[4] = {0, 0, 0, 255};
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) std::copy((x + y) % 2 ? black : white, ((x + y) % 2 ? black : white) + 4, checker.at(x, y));
+  const rt::RtTexture t(checker, rt::TextureOrigin::TopLeft);
+  EXPECT_EQ(t.levels(), 3);                                   // 4x4, 2x2, 1x1
+  const glm::vec2 centre0(0.125f, 0.125f);                    // texel (0, 0), white
+  EXPECT_FLOAT_EQ(t.sample(centre0).x, 1.0f);
+  EXPECT_FLOAT_EQ(t.sample(centre0, 0.25f).x, 1.0f);          // one texel: level 0
+  EXPECT_FLOAT_EQ(t.sample(centre0, 0.5f).x, 0.5f);           // two texels: level 1
+  EXPECT_FLOAT_EQ(t.sample(centre0, 100.0f).x, 0.5f);         // clamped to the last level
+  // sqrt(2) texels: level 0.5, half way between white and grey.
+  EXPECT_NEAR(t.sample(centre0, 0.25f * std::sqrt(2.0f)).x, 0.75f, 1e-5f);
+  // Odd and non-square sizes halve to floor(size / 2), down to 1 x 1.
+  EXPECT_EQ(rt::RtTexture(engine::Image(5, 2), rt::TextureOrigin::TopLeft).levels(), 3);  // 5x2, 2x1, 1x1
+  EXPECT_EQ(rt::RtTexture(engine::Image(1, 1), rt::TextureOrigin::TopLeft).levels(), 1);
+}
