@@ -4,6 +4,7 @@
 // Z = 1, with yScale = tan(fovy / 2) and xScale = yScale W / H; the direction is
 // normalised and rotated into the camera's basis (right, up, forward). Other sample
 // positions inside the pixel replace the 0.5s.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/glm.hpp>
@@ -17,7 +18,7 @@ class PinholeCamera {
  public:
   PinholeCamera(const CameraDesc& camera, int width, int height)
       : position_(camera.position), forward_(glm::normalize(camera.forward)), right_(camera.right()),
-        width_(width), height_(height) {
+        farPlane_(camera.farPlane), width_(width), height_(height) {
     // The up vector orthonormalised against forward, as the rasterizer's view matrix.
     up_ = glm::normalize(camera.up - glm::dot(camera.up, forward_) * forward_);
     yScale_ = std::tan(glm::radians(camera.fovyDegrees) * 0.5);
@@ -35,12 +36,22 @@ class PinholeCamera {
     return Ray<T>{Vec3<T>(position_), Vec3<T>(d)};
   }
 
+  // The ray stopped at the camera's far plane, where the rasterizer's depth range
+  // ends: a view-space depth of farPlane is t = farPlane / (d . forward) along it.
+  template <typename T>
+  Ray<T> clippedToFarPlane(Ray<T> ray) const {
+    const double depthPerT = glm::dot(glm::dvec3(ray.d), forward_);
+    if (depthPerT > 0.0) ray.tMax = std::min(ray.tMax, T(farPlane_ / depthPerT));
+    return ray;
+  }
+
   const glm::dvec3& right() const { return right_; }
   const glm::dvec3& up() const { return up_; }
   const glm::dvec3& forward() const { return forward_; }
 
  private:
   glm::dvec3 position_, forward_, right_, up_{0, 1, 0};
+  double farPlane_ = 1000.0;
   int width_, height_;
   double xScale_ = 1.0, yScale_ = 1.0;
 };

@@ -61,7 +61,7 @@ class Tracer {
     const int spp = std::max(1, settings_.samplesPerPixel);
     if (spp == 1) {
       ++counters.primary;
-      return Li(camera_.generateRay<T>(x + 0.5, y + 0.5), 0, rng, counters, RayCone{0.0f, pixelSpread_});
+      return Li(primaryRay(x + 0.5, y + 0.5), 0, rng, counters, RayCone{0.0f, pixelSpread_});
     }
     glm::vec3 sum(0.0f);
     for (int j = 0; j < strata_.y; ++j) {
@@ -69,7 +69,7 @@ class Tracer {
         const double px = x + (i + double(rng.uniform())) / strata_.x;
         const double py = y + (j + double(rng.uniform())) / strata_.y;
         ++counters.primary;
-        sum += Li(camera_.generateRay<T>(px, py), 0, rng, counters, RayCone{0.0f, pixelSpread_});
+        sum += Li(primaryRay(px, py), 0, rng, counters, RayCone{0.0f, pixelSpread_});
       }
     }
     return sum / float(spp);
@@ -111,6 +111,12 @@ class Tracer {
   }
 
  private:
+  // The camera's ray through the image point, ending at the far plane as the
+  // rasterizer's view does: past it both show the sky.
+  Ray<T> primaryRay(double px, double py) const {
+    return camera_.clippedToFarPlane(camera_.generateRay<T>(px, py));
+  }
+
   // colour * (ambient + diffuse * sum of light * max(N.L, 0) * visibility), plus an
   // optional Blinn-Phong highlight; the mirror term is added by Li.
   glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const HitMaterial& m, const Vec3<T>& n, const Vec3<T>& v,

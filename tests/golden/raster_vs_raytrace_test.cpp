@@ -200,17 +200,18 @@ TEST(RasterVsRaytrace, DemoAgreesAtLowResolution) {
     (void)writePng("raster_vs_raytrace_demo_traced.png", images.traced);
     (void)writePng("raster_vs_raytrace_demo_raster.png", images.raster);
   }
-  // Measured (llvmpipe, Mesa 22): mean 2.10, PSNR 31.2 dB, 1.5% of pixels over 16;
-  // without the ray tracer's textures and fog: mean 31.0, PSNR 14.0 dB, 44%. What
-  // remains is known and not a bug: the ray tracer does not clip at the camera's far
-  // plane (it shows a distant peak the rasterizer does not), shadow-map texels
-  // against exact shadow rays, and the metal spheres (the rasterizer reflects the
-  // sky, the ray tracer reflects only mirror materials). History: 8.87 with one flat
-  // grass colour for the terrain, 8.91 with its layers, 7.62 once the ray tracer's
-  // ground plane ended where the rasterizer's 70 m square does, 2.10 with mipmaps
-  // picked by ray cones (the distant checkerboard aliased before, where GL averages
-  // mipmap levels). The limits sit between the last two versions: losing the
-  // mipmaps (7.62, 23.0 dB, 13%), the textures or the fog (31.0) fails them.
+  // Measured (llvmpipe, Mesa 22): mean 1.89, PSNR 31.3 dB, 1.4% of pixels over 16;
+  // without the ray tracer's textures and fog: mean 27.4, PSNR 14.6 dB, 39%. What
+  // remains is known and not a bug: shadow-map texels against exact shadow rays, the
+  // metal spheres (the rasterizer reflects the sky, the ray tracer reflects only
+  // mirror materials), and ray cones against GL's per-quad derivatives. History:
+  // 8.87 with one flat grass colour for the terrain, 8.91 with its layers, 7.62 once
+  // the ray tracer's ground plane ended where the rasterizer's 70 m square does, 2.10
+  // with mipmaps picked by ray cones (the distant checkerboard aliased before, where
+  // GL averages mipmap levels), 1.89 with primary rays ending at the camera's far
+  // plane (a distant peak showed beyond it). The limits sit between the mipmaps and
+  // the version before: losing the mipmaps (7.62, 23.0 dB, 13%), the textures or
+  // the fog (27.4) fails them.
   EXPECT_LT(diff->meanAbs, 4.0);
   EXPECT_GT(diff->psnr, 27.0);
   EXPECT_LT(diff->shareOver, 0.05);
