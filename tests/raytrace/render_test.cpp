@@ -104,6 +104,21 @@ TEST(Camera, RaysAreTheCourseFormula) {
   }
 }
 
+// Primary rays end at the far plane (a view-space depth, so an oblique ray reaches
+// farther along itself), as the rasterizer's depth range does.
+TEST(Camera, PrimaryRaysEndAtTheFarPlane) {
+  CameraDesc c = lookAt({0, 1.5, -3}, {0, 1.5, 1});
+  c.farPlane = 10.0;
+  const rt::PinholeCamera camera(c, 320, 240);
+  for (auto [x, y] : {std::pair{160, 120}, {0, 0}, {319, 17}}) {
+    const rt::Ray<double> ray = camera.clippedToFarPlane(camera.generateRay<double>(x + 0.5, y + 0.5));
+    const glm::dvec3 end = ray(ray.tMax);
+    EXPECT_NEAR(glm::dot(end - ray.o, camera.forward()), 10.0, 1e-9) << x << ", " << y;
+  }
+  const rt::Ray<float> shorter = camera.clippedToFarPlane(rt::Ray<float>{glm::vec3(0), glm::vec3(0, 0, 1), 4.0f});
+  EXPECT_EQ(shorter.tMax, 4.0f);  // a tMax already short of the plane stays
+}
+
 // One diffuse sphere under a point light: colour * (ambient + diffuse * max(N.L, 0)),
 // with N and L computed here from the analytic hit point; unlit side: ambient only.
 TEST_P(RenderTest, DiffuseSphereMatchesTheClosedForm) {
