@@ -253,23 +253,30 @@ glm::vec3 patchNormal(const LodSelection& sel, const LodPatch& patch, const Heig
   return glm::normalize(pageNormal(page, li, lj, step) * w + pageNormal(page, li - oddX, lj - oddZ, step) * k);
 }
 
-std::vector<glm::vec3> patchNormals(const Terrain& terrain, const LodSelection& selection, const LodPatch& patch) {
+namespace {
+
+// `perVertex(selection, patch, page, i, j)` at every grid vertex of a patch, in the
+// order patchIndices() refers to them.
+template <typename PerVertex>
+std::vector<glm::vec3> overPatchGrid(const Terrain& terrain, const LodSelection& selection, const LodPatch& patch,
+                                     PerVertex perVertex) {
   auto page = terrain.page(patch.node);
   std::vector<glm::vec3> out;
   out.reserve(std::size_t(kPatchQuads + 1) * (kPatchQuads + 1));
   for (int j = 0; j <= kPatchQuads; ++j)
-    for (int i = 0; i <= kPatchQuads; ++i) out.push_back(patchNormal(selection, patch, *page, i, j));
+    for (int i = 0; i <= kPatchQuads; ++i) out.push_back(perVertex(selection, patch, *page, i, j));
   return out;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> patchNormals(const Terrain& terrain, const LodSelection& selection, const LodPatch& patch) {
+  return overPatchGrid(terrain, selection, patch, patchNormal);
 }
 
 std::vector<glm::vec3> patchVertices(const Terrain& terrain, const LodSelection& selection,
                                      const LodPatch& patch) {
-  auto page = terrain.page(patch.node);
-  std::vector<glm::vec3> out;
-  out.reserve(std::size_t(kPatchQuads + 1) * (kPatchQuads + 1));
-  for (int j = 0; j <= kPatchQuads; ++j)
-    for (int i = 0; i <= kPatchQuads; ++i) out.push_back(patchVertex(selection, patch, *page, i, j));
-  return out;
+  return overPatchGrid(terrain, selection, patch, patchVertex);
 }
 
 std::vector<std::uint32_t> patchIndices() {
