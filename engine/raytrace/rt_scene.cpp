@@ -121,10 +121,15 @@ int RtScene::addMaterial(const MaterialDesc& material) {
   return int(materials_.size() - 1);
 }
 
-Status RtScene::setMaterialTexture(int material, RtTexture texture) {
+Status RtScene::checkMaterial(int material) const {
   if (material < 0 || material >= int(materials_.size())) {
     return makeError("material " + std::to_string(material) + " out of range");
   }
+  return Ok{};
+}
+
+Status RtScene::setMaterialTexture(int material, RtTexture texture) {
+  if (auto s = checkMaterial(material); !s) return s;
   materialTexture_[size_t(material)] = int(textures_.size());
   textures_.push_back(std::move(texture));
   return Ok{};
@@ -137,9 +142,7 @@ glm::vec3 RtScene::baseColor(int material, glm::vec2 uv, float footprint) const 
 }
 
 Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
-  if (material < 0 || material >= int(materials_.size())) {
-    return makeError("material " + std::to_string(material) + " out of range");
-  }
+  if (auto s = checkMaterial(material); !s) return s;
   materialTerrain_[size_t(material)] = int(terrains_.size());
   terrains_.push_back(std::move(layers));
   return Ok{};

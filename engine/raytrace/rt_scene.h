@@ -129,6 +129,7 @@ class RtScene {
   SurfaceInteraction<T> meshInteraction(const Group& group, const BvhHit<T>& hit) const;
   template <typename T>
   bool onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const;
+  Status checkMaterial(int material) const;  // an error naming it when out of range
   void gatherTriangles(int group);
 
   CameraDesc camera_;
