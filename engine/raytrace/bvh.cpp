@@ -13,9 +13,6 @@ constexpr int kBins = 32;
 constexpr std::uint32_t kMaxLeafTriangles = 4;  // a leaf reference holds 1-4
 // SAH costs relative to one test of four triangles at once.
 constexpr float kTraversalCost = 1.0f;  // Embree's
-constexpr int kMaxSahDepth = 48;
-// Past this depth splits are by object median, so the traversal stack cannot overflow
-// whatever the triangles look like (Bvh::kStackSize).
 
 Bounds3f triangleBounds(const TriangleVerts& t) {
   Bounds3f b;

@@ -83,9 +83,12 @@ class Bvh {
   };
   static_assert(sizeof(Node) == 256, "a node in four aligned cache lines");
 
-  // Past depth 48 the builder splits at the object median, so the binary tree is at
-  // most 48 + 28 levels deep; each level of the collapsed tree pushes at most kWidth - 1.
-  static constexpr int kStackSize = (kWidth - 1) * (48 + 28) + 1;
+  // Past kMaxSahDepth the builder splits at the object median, so whatever the
+  // triangles look like the binary tree is at most kMaxSahDepth + 28 levels deep
+  // (fewer than 2^28 triangles); each level of the collapsed tree pushes at most
+  // kWidth - 1 entries, so the traversal stack cannot overflow.
+  static constexpr int kMaxSahDepth = 48;
+  static constexpr int kStackSize = (kWidth - 1) * (kMaxSahDepth + 28) + 1;
 
   // What the traversal reads.
   struct View {

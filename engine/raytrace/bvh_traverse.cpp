@@ -24,9 +24,7 @@ Vec3<T> toT(const glm::vec3& v) {
 template <typename T>
 class ChildBoxTest {
  public:
-  explicit ChildBoxTest(const Ray<T>& ray) : ray_(ray), invDir_(T(1) / ray.d) {
-    for (int axis = 0; axis < 3; ++axis) dirIsNeg_[axis] = invDir_[axis] < 0;
-  }
+  explicit ChildBoxTest(const Ray<T>& ray) : ray_(ray), slabs_(ray) {}
 
   // The mask of the children hit before tMax, and their entry distances.
   int operator()(const Bvh::Node& node, T tMax, T tEntry[Bvh::kWidth]) const {
@@ -35,15 +33,14 @@ class ChildBoxTest {
       Bounds3f b;
       b.min = glm::vec3(node.box[0][i], node.box[1][i], node.box[2][i]);
       b.max = glm::vec3(node.box[3][i], node.box[4][i], node.box[5][i]);
-      if (intersectBounds(b, ray_, tMax, invDir_, dirIsNeg_, tEntry[i])) mask |= 1 << i;
+      if (intersectBounds(b, ray_, tMax, slabs_.invDir, slabs_.dirIsNeg, tEntry[i])) mask |= 1 << i;
     }
     return mask;
   }
 
  protected:
   Ray<T> ray_;
-  Vec3<T> invDir_;
-  int dirIsNeg_[3];
+  BoundsRay<T> slabs_;
 };
 
 // What the SIMD box tests share: the near and far rows of each axis, chosen once per
@@ -56,8 +53,8 @@ class SimdBoxRows : public ChildBoxTest<float> {
  public:
   explicit SimdBoxRows(const Ray<float>& ray) : ChildBoxTest<float>(ray) {
     for (int axis = 0; axis < 3; ++axis) {
-      nearRow_[axis] = axis + 3 * dirIsNeg_[axis];
-      farRow_[axis] = axis + 3 * (1 - dirIsNeg_[axis]);
+      nearRow_[axis] = axis + 3 * slabs_.dirIsNeg[axis];
+      farRow_[axis] = axis + 3 * (1 - slabs_.dirIsNeg[axis]);
     }
   }
 
@@ -72,7 +69,7 @@ class ChildBoxTestSse : public SimdBoxRows {
   explicit ChildBoxTestSse(const Ray<float>& ray) : SimdBoxRows(ray) {
     for (int axis = 0; axis < 3; ++axis) {
       o_[axis] = _mm_set1_ps(ray.o[axis]);
-      inv_[axis] = _mm_set1_ps(invDir_[axis]);
+      inv_[axis] = _mm_set1_ps(slabs_.invDir[axis]);
     }
   }
 
@@ -264,7 +261,7 @@ class ChildBoxTestAvx2 : public SimdBoxRows {
   explicit ChildBoxTestAvx2(const Ray<float>& ray) : SimdBoxRows(ray) {
     for (int axis = 0; axis < 3; ++axis) {
       o_[axis] = _mm256_set1_ps(ray.o[axis]);
-      inv_[axis] = _mm256_set1_ps(invDir_[axis]);
+      inv_[axis] = _mm256_set1_ps(slabs_.invDir[axis]);
     }
   }
 
