@@ -82,7 +82,8 @@ class Tracer {
     const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
     if (!hit) return escaped(ray.d);
     const Vec3<T> v = glm::normalize(ray.d);
-    cone.width += cone.spread * float(hit->t * glm::length(ray.d));
+    const float distance = float(hit->t * glm::length(ray.d));
+    cone.width += cone.spread * distance;
     // Foreshortening stretches the footprint along the slope by 1 / cos, and GL's
     // isotropic level of detail takes the longer axis.
     const float cosine = std::max(float(std::abs(glm::dot(hit->n, v))), 1e-2f);
@@ -104,7 +105,6 @@ class Tracer {
     // camera sees directly: mix(fog colour, colour, exp(-density * distance)).
     const FogDesc& fog = scene_.fog();
     if (depth == 0 && fog.enabled) {
-      const float distance = float(hit->t * glm::length(ray.d));
       color = glm::mix(fog.color, color, std::clamp(std::exp(-fog.density * distance), 0.0f, 1.0f));
     }
     return color;
