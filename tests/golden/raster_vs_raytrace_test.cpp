@@ -50,12 +50,16 @@ std::vector<bool> mirrorMask(const SceneDesc& scene) {
 
 Result<SceneDesc> cornell() { return loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell.json"); }
 
-Image rayTraced(const SceneDesc& scene) {
+rt::RenderSettings pixelCentres(int width, int height) {
   rt::RenderSettings settings;
-  settings.width = kWidth;
-  settings.height = kHeight;
+  settings.width = width;
+  settings.height = height;
   settings.samplesPerPixel = 1;  // pixel centres, as the rasterizer samples
-  auto traced = rt::raytraceScene(scene, 0.0, settings);
+  return settings;
+}
+
+Image rayTraced(const SceneDesc& scene, int width = kWidth, int height = kHeight, double time = 0.0) {
+  auto traced = rt::raytraceScene(scene, time, pixelCentres(width, height));
   EXPECT_TRUE(traced.ok()) << traced.error().message;
   return traced.ok() ? traced->image : Image{};
 }
@@ -154,13 +158,7 @@ DemoImages renderDemo(int width, int height) {
   auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/demo.json");
   EXPECT_TRUE(scene.ok()) << scene.error().message;
   if (!scene) return out;
-  rt::RenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.samplesPerPixel = 1;
-  auto traced = rt::raytraceScene(*scene, 1.0, settings);
-  EXPECT_TRUE(traced.ok()) << traced.error().message;
-  if (traced) out.traced = traced->image;
+  out.traced = rayTraced(*scene, width, height, 1.0);
 
   SceneDesc plain = *scene;
   plain.fog.enabled = false;
@@ -171,7 +169,7 @@ DemoImages renderDemo(int width, int height) {
     // glTF textures off too: a fresh scene whose glTF materials keep only the factor
     // would need the builder's insides; the characters are a small share of the frame,
     // so the plain image differs from the textured one by the ground, crates and fog.
-    out.plain = rt::toImage(rt::Integrator(*built, settings).render().image, built->render());
+    out.plain = rt::toImage(rt::Integrator(*built, pixelCentres(width, height)).render().image, built->render());
   }
 
   out.raster = rasterized(*scene, -1, width, height, 1.0);
@@ -229,20 +227,16 @@ TEST(RasterVsRaytrace, DemoTerrainAgreesAtLowResolution) {
   scene->primitives.clear();
   scene->models.clear();
   scene->camera.farPlane = 4000.0;
-  rt::RenderSettings settings;
-  settings.width = kW;
-  settings.height = kH;
-  settings.samplesPerPixel = 1;
-  auto traced = rt::raytraceScene(*scene, 1.0, settings);
-  ASSERT_TRUE(traced.ok()) << traced.error().message;
+  const Image traced = rayTraced(*scene, kW, kH, 1.0);
+  ASSERT_FALSE(traced.empty());
   const Image raster = rasterized(*scene, -1, kW, kH, 1.0);
   ASSERT_FALSE(raster.empty());
-  auto diff = compareImages(traced->image, raster, 16);
+  auto diff = compareImages(traced, raster, 16);
   ASSERT_TRUE(diff.ok());
   std::printf("raster vs ray traced demo terrain %dx%d: mean %.3f, PSNR %.2f dB, %.2f%% over 16\n", kW, kH,
               diff->meanAbs, diff->psnr, diff->shareOver * 100.0);
   if (HasFailure() || std::getenv("ENGINE_WRITE_DIFFS")) {
-    (void)writePng("raster_vs_raytrace_terrain_traced.png", traced->image);
+    (void)writePng("raster_vs_raytrace_terrain_traced.png", traced);
     (void)writePng("raster_vs_raytrace_terrain_raster.png", raster);
   }
   // Measured (llvmpipe, Mesa 22): mean 1.26, PSNR 42.4 dB, no pixel over 16; with

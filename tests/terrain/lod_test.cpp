@@ -106,6 +106,12 @@ Result<Terrain> makeNoise(glm::dvec3 origin) {
   return Terrain::create(test::noiseSettings(4096.0, 600.0, origin));
 }
 
+// The 1-pixel selection from 3 m above the ground at (2000, 2000), looking along +x.
+LodSelection selectionNearTheGround(const Terrain& t) {
+  const glm::dvec3 eye(2000.0, t.heightAt(2000.0, 2000.0) + 3.0, 2000.0);
+  return selectLod(t, makeCamera(eye, eye + glm::dvec3(1, 0, 0)), 1.0);
+}
+
 }  // namespace
 
 class LodCracks : public ::testing::TestWithParam<glm::dvec3> {};
@@ -190,8 +196,7 @@ TEST(Lod, RenderedSurfaceIsWithinTheStatedErrorOfHeightAt) {
 TEST(Lod, UnmorphedVerticesSitExactlyOnSamples) {
   auto t = makeNoise(glm::dvec3(0.0));
   ASSERT_TRUE(t.ok());
-  const glm::dvec3 eye(2000.0, t->heightAt(2000.0, 2000.0) + 3.0, 2000.0);
-  const LodSelection selection = selectLod(*t, makeCamera(eye, eye + glm::dvec3(1, 0, 0)), 1.0);
+  const LodSelection selection = selectionNearTheGround(*t);
   std::size_t checked = 0;
   for (const LodPatch& p : selection.patches) {
     const auto page = t->page(p.node);
@@ -213,8 +218,7 @@ TEST(Lod, UnmorphedVerticesSitExactlyOnSamples) {
 TEST(Lod, PatchNormalsAreTheTerrainsCentralDifferences) {
   auto t = makeNoise(glm::dvec3(0.0));
   ASSERT_TRUE(t.ok());
-  const glm::dvec3 eye(2000.0, t->heightAt(2000.0, 2000.0) + 3.0, 2000.0);
-  const LodSelection selection = selectLod(*t, makeCamera(eye, eye + glm::dvec3(1, 0, 0)), 1.0);
+  const LodSelection selection = selectionNearTheGround(*t);
   std::size_t checked = 0;
   for (const LodPatch& p : selection.patches) {
     const std::vector<glm::vec3> normals = patchNormals(*t, selection, p);
