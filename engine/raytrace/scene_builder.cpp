@@ -126,11 +126,9 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
   const auto heightScale = std::max(field.heightRange().max, 1e-3f);
   if (auto s = scene.setTerrainMaterial(material, RtTerrainMaterial(field.origin().y, heightScale)); !s) return s;
   // Layer uvs as terrain.vert makes them: camera-relative metres over the tile size
-  // plus the camera's offset from the origin in tiles reduced to [0, 1) (the far
-  // scale multiplies the whole uv, so the offset must be the rasterizer's).
-  const glm::dvec3 fromOrigin = c.position - field.origin();
-  const glm::dvec2 tiles = glm::dvec2(fromOrigin.x, fromOrigin.z) / double(terrain::kLayerTileMetres);
-  const glm::vec2 uvOffset(tiles - glm::floor(tiles));
+  // plus the rasterizer's offset (the far scale multiplies the whole uv, so the
+  // offset must be the same).
+  const glm::vec2 uvOffset = terrain::layerUvOffset(c.position - field.origin());
   const std::vector<std::uint32_t> indices = terrain::patchIndices();
   for (const auto& patch : selection.patches) {
     RtMesh mesh;

@@ -57,6 +57,11 @@ float smoothstep(float edge0, float edge1, float x) {
 
 }  // namespace
 
+glm::vec2 layerUvOffset(const glm::dvec3& cameraFromOrigin) {
+  const glm::dvec2 tiles = glm::dvec2(cameraFromOrigin.x, cameraFromOrigin.z) / double(kLayerTileMetres);
+  return glm::vec2(tiles - glm::floor(tiles));
+}
+
 glm::vec3 layerWeights(float height01, float slope, float jitter) {
   const float rock = smoothstep(0.28f, 0.5f, slope);
   const float snow = smoothstep(0.6f, 0.7f, height01 + 0.05f * jitter) * (1.0f - smoothstep(0.35f, 0.6f, slope));

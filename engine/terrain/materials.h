@@ -21,6 +21,11 @@ inline constexpr int kLayerImageSize = 256;
 // its noise lattice wraps at the image edge.
 Image makeLayerImage(TerrainLayer layer, int size);
 
+// terrain.vert's u_uvOffset: the camera's offset from the terrain origin in tiles,
+// reduced to [0, 1) in double, so that the camera-relative layer uvs
+// (xz / kLayerTileMetres + this) stay small and exact far from the origin.
+glm::vec2 layerUvOffset(const glm::dvec3& cameraFromOrigin);
+
 // How the layers blend, as shaders/terrain.frag shades them (its layerWeights and
 // main): the two texture scales, and the roughness and classic highlight per layer.
 inline constexpr float kLayerFarScale = 0.173f;                       // uvFar = uv * this

@@ -185,11 +185,8 @@ TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm:
   const gl::Program& p = program_;
   setGridUniforms(p, selection);
   p.set("u_heightScale", std::max(terrain_->heightRange().max, 1e-3f));
-  // Texture coordinates are camera-relative too: the camera's offset from the
-  // origin in tiles, reduced to [0, 1) in double, keeps them small and exact.
-  const glm::dvec3 fromOrigin = cameraPosition - terrain_->origin();
-  const glm::dvec2 tiles = glm::dvec2(fromOrigin.x, fromOrigin.z) / double(kLayerTileMetres);
-  const glm::vec2 uvOffset(tiles - glm::floor(tiles));
+  // Texture coordinates are camera-relative too.
+  const glm::vec2 uvOffset = layerUvOffset(cameraPosition - terrain_->origin());
   glProgramUniform2f(p.id(), p.location("u_uvOffset"), uvOffset.x, uvOffset.y);
   p.set("u_tileMetres", kLayerTileMetres);
   p.use();
