@@ -3,6 +3,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <cstdlib>
 #include <string>
 
 #include "platform/backends.h"
@@ -18,14 +19,31 @@ std::string lastGlfwError() {
 
 void* glfwProc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
 
-// GLFW is process-wide; count windows so the last one terminates it.
-int gWindows = 0;
+// GLFW is process-wide, and so is its display connection: glfwInit opens it and
+// glfwTerminate closes it. The display probe and the window share one
+// initialisation, kept until the process exits: a bare X server (Xvfb with no other
+// client) resets when its last client disconnects, so a probe that closed its
+// connection before the window opened another found the server gone half the time
+// on busy machines. Windows come and go; the connection stays.
+// Why glfwInit failed, kept for every later caller (GLFW reports an error once).
+std::string gInitError;
+
+bool glfwReady() {
+  static const bool ready = [] {
+    if (!glfwInit()) {
+      gInitError = lastGlfwError();
+      return false;
+    }
+    std::atexit(glfwTerminate);
+    return true;
+  }();
+  return ready;
+}
 
 class GlfwContext final : public BackendContext {
  public:
   ~GlfwContext() override {
     if (window_) glfwDestroyWindow(window_);
-    if (initialised_ && --gWindows == 0) glfwTerminate();
   }
   Backend backend() const override { return Backend::Window; }
   void makeCurrent() override { glfwMakeContextCurrent(window_); }
@@ -33,12 +51,10 @@ class GlfwContext final : public BackendContext {
   GLFWwindow* window() override { return window_; }
 
   Status init(const ContextOptions& options) {
-    if (!glfwInit()) {
-      return makeError("window: no usable display (" + lastGlfwError() +
+    if (!glfwReady()) {
+      return makeError("window: no usable display (" + gInitError +
                        "); use --offscreen to render without one");
     }
-    initialised_ = true;
-    ++gWindows;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -56,7 +72,6 @@ class GlfwContext final : public BackendContext {
 
  private:
   GLFWwindow* window_ = nullptr;
-  bool initialised_ = false;
 };
 
 }  // namespace
@@ -69,8 +84,9 @@ Result<std::unique_ptr<GlContext>> createGlfwContext(const ContextOptions& optio
 
 bool displayAvailable() {
   // glfwInit succeeds only when it can reach a display server; a hidden 1x1
-  // window with our context settings is the real test.
-  if (!glfwInit()) return false;
+  // window with our context settings is the real test. The connection stays open
+  // for the window that follows (see glfwReady).
+  if (!glfwReady()) return false;
   glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
@@ -79,7 +95,6 @@ bool displayAvailable() {
   const bool ok = probe != nullptr;
   if (probe) glfwDestroyWindow(probe);
   glfwDefaultWindowHints();
-  if (gWindows == 0) glfwTerminate();
   return ok;
 }
 

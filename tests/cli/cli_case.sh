@@ -52,6 +52,25 @@ case "$CASE" in
     expect 0 "win\.png" -- xvfb-run -a "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
     cmp egl_w.png win.png || { echo "FAIL: window and EGL frames differ"; exit 1; }
     echo "ok: identical bytes" ;;
+  window_bare_xvfb)
+    # A bare X server (no other client) resets when its last client disconnects. The
+    # display probe and the window share one connection, so the window never meets
+    # the reset: 20 runs in a row with both cores busy (before the fix 10 of 20
+    # failed here with "Failed to open display").
+    command -v Xvfb >/dev/null || { echo "Xvfb missing: skipped"; exit 77; }
+    Xvfb -displayfd 3 -nolisten tcp 3>xvfb.fd 2>xvfb.log &
+    xvfb=$!
+    for _ in $(seq 50); do [ -s xvfb.fd ] && break; sleep 0.1; done
+    [ -s xvfb.fd ] || { echo "FAIL: Xvfb did not start"; cat xvfb.log; kill $xvfb; exit 1; }
+    busy=()
+    for _ in 1 2; do (while :; do :; done) & busy+=($!); done
+    trap 'kill ${busy[*]} $xvfb 2>/dev/null' EXIT
+    for i in $(seq 20); do
+      rm -f bare.png
+      expect 0 "bare\.png" -- env DISPLAY=":$(cat xvfb.fd)" "$BIN/demo" --frames 3 --size 160x90 --screenshot bare.png
+      [ -s bare.png ] || { echo "FAIL: run $i wrote no image"; exit 1; }
+    done
+    echo "ok: 20 windows in a row" ;;
   msaa_identical)
     rm -f egl4.png osmesa4.png
     expect 0 "egl4" -- "$BIN/demo" --offscreen=egl --msaa 4 --time 0.5 --size 320x180 --screenshot egl4.png
