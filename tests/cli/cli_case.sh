@@ -71,6 +71,24 @@ case "$CASE" in
       [ -s bare.png ] || { echo "FAIL: run $i wrote no image"; exit 1; }
     done
     echo "ok: 20 windows in a row" ;;
+  fuzz_reports_crash)
+    # scripts/fuzz runs under set -e: a crashing fuzzer must still get its log tail
+    # and the summary printed, and fail the script. A stand-in fuzzer crashes as
+    # libFuzzer would (a sanitizer report, a crash file, exit 1).
+    rm -rf fakefuzz && mkdir -p fakefuzz/bin
+    cat > fakefuzz/bin/fuzz_fake <<'SH'
+#!/usr/bin/env bash
+for a; do case "$a" in -artifact_prefix=*) echo boom > "${a#-artifact_prefix=}crash-0123"; esac; done
+echo "#2 INITED cov: 42 ft: 7 corp: 1/1b"
+echo "==1==ERROR: AddressSanitizer: heap-buffer-overflow on address 0xdead"
+exit 1
+SH
+    chmod +x fakefuzz/bin/fuzz_fake
+    expect 1 "AddressSanitizer: heap-buffer-overflow" -- env FUZZ_BUILD="$WORK/fakefuzz" FUZZ_PREBUILT=1 \
+      "$SRC/scripts/fuzz" 1 fake
+    for want in "crash-0123" "Log tail" "fuzz summary" "fake .*FAILED"; do
+      grep -Eq -- "$want" "$OUT" || { echo "FAIL: scripts/fuzz output lacks '$want'"; cat "$OUT" "$ERR"; exit 1; }
+    done ;;
   msaa_identical)
     rm -f egl4.png osmesa4.png
     expect 0 "egl4" -- "$BIN/demo" --offscreen=egl --msaa 4 --time 0.5 --size 320x180 --screenshot egl4.png
