@@ -21,9 +21,21 @@ std::string ShaderVariant::describe() const {
 
 Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& variant,
                                               const std::vector<std::string>& feedback) {
+  // Programs with transform feedback (one-off captures) live in their own cache:
+  // a pointer handed out for the plain variant stays valid and keeps its program.
   if (feedback.empty()) {
     if (auto it = programs_.find(variant); it != programs_.end()) return &it->second;
+  } else if (auto it = feedbackPrograms_.find({variant, feedback}); it != feedbackPrograms_.end()) {
+    return &it->second;
   }
+  auto program = build(variant, feedback);
+  if (!program) return program.error();
+  gl::Program& stored = feedback.empty() ? programs_[variant] : feedbackPrograms_[{variant, feedback}];
+  stored = std::move(program).value();
+  return &stored;
+}
+
+Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const std::vector<std::string>& feedback) const {
   std::vector<std::string> defines = defines_;
   if (variant.textured) defines.push_back("TEXTURED 1");
   if (variant.depthOnly) defines.push_back("DEPTH_ONLY 1");
@@ -38,13 +50,8 @@ Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& variant,
     if (variant.mode == SkinMode::DualQuat) defines.push_back("DUAL_QUAT 1");
   }
   const std::string fragment = variant.depthOnly ? "depth.frag" : fragmentShader_;
-  auto program = gl::Program::build(
-      shaderDir_, {{GL_VERTEX_SHADER, vertexShader_}, {GL_FRAGMENT_SHADER, fragment}}, defines, feedback);
-  if (!program) return program.error();
-  // Programs with transform feedback are for one-off captures; keep them apart.
-  auto [it, inserted] = programs_.insert_or_assign(variant, std::move(program).value());
-  (void)inserted;
-  return &it->second;
+  return gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, vertexShader_}, {GL_FRAGMENT_SHADER, fragment}}, defines,
+                            feedback);
 }
 
 std::vector<ShaderVariant> ShaderVariants::built() const {

@@ -54,11 +54,14 @@ class ShaderVariants {
   std::vector<ShaderVariant> built() const;
 
  private:
+  Result<gl::Program> build(const ShaderVariant& variant, const std::vector<std::string>& feedback) const;
+
   std::string shaderDir_;
   std::string vertexShader_;
   std::string fragmentShader_;
   std::vector<std::string> defines_;  // for every variant (shading model, shadows, fog)
   std::map<ShaderVariant, gl::Program> programs_;
+  std::map<std::pair<ShaderVariant, std::vector<std::string>>, gl::Program> feedbackPrograms_;
 };
 
 struct GpuPrimitive {

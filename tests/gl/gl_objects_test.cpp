@@ -8,6 +8,7 @@
 #include "../support/gl_test.h"
 #include "gl/resources.h"
 #include "gl/shader.h"
+#include "render/model_renderer.h"
 #include "render/render_target.h"
 
 using namespace engine;
@@ -139,4 +140,33 @@ TEST_P(ShaderErrors, LinkErrorNamesTheStages) {
   ASSERT_FALSE(program.ok());
   EXPECT_NE(program.error().message.find("a.vert + a.frag: link failed"), std::string::npos)
       << program.error().message;
+}
+
+// A capture program (transform feedback) of a variant must not replace the cached
+// plain program of that variant: a pointer handed out before stays the program it
+// was, and the cache hands out that same one after (ASan sees a use after free if
+// the capture's build deletes it).
+TEST_P(GlObjects, CaptureProgramsKeepTheCachedVariant) {
+  ShaderVariants variants(test::shaderDir());
+  const ShaderVariant variant{4, SkinMode::Linear};
+  auto plain = variants.get(variant);
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  const gl::Program* cached = *plain;
+  const GLuint id = cached->id();
+  auto capture = variants.get(variant, {"v_position"});
+  ASSERT_TRUE(capture.ok()) << capture.error().message;
+  EXPECT_NE(*capture, cached);
+  EXPECT_NE((*capture)->id(), id);
+  EXPECT_EQ(cached->id(), id);
+  EXPECT_TRUE(glIsProgram(id));
+  GLint varyings = -1;
+  glGetProgramiv(id, GL_TRANSFORM_FEEDBACK_VARYINGS, &varyings);
+  EXPECT_EQ(varyings, 0) << "the cached plain program was replaced by the capture";
+  auto again = variants.get(variant);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(*again, cached);
+  auto captureAgain = variants.get(variant, {"v_position"});
+  ASSERT_TRUE(captureAgain.ok());
+  EXPECT_EQ(*captureAgain, *capture);
+  EXPECT_EQ(variants.built().size(), 1u);  // --describe lists what frames draw with
 }
