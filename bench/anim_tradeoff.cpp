@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -38,6 +39,13 @@ struct Model {
   size_t vertices = 0;
 };
 
+// A job that rejects its inputs is a bug in this program: stop, naming the step.
+void require(bool ok, const char* what) {
+  if (ok) return;
+  std::fprintf(stderr, "anim_tradeoff: %s rejected its inputs\n", what);
+  std::exit(1);
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -48,8 +56,7 @@ void pose(const Model& m, const Clip& clip, double t, QuatInterpolation q, std::
   const Skeleton& s = m.animated.skeleton;
   SamplingJob job{&clip, t, s.restPose(), locals};
   job.rotations = q;
-  job.run();
-  LocalToModelJob{s.parents(), locals, glm::mat4(1.0f), models}.run();
+  require(job.run() && LocalToModelJob{s.parents(), locals, glm::mat4(1.0f), models}.run(), "posing");
 }
 
 // Skins every skinned primitive of the model; returns all positions, in order.
@@ -57,7 +64,7 @@ std::vector<glm::vec3> skinAll(const Model& m, const std::vector<glm::mat4>& mod
   std::vector<glm::vec3> out;
   for (const SkinnedPrim& sp : m.prims) {
     std::vector<glm::vec3> positions(sp.prim->positions.size());
-    skinPrimitive(*sp.prim, *sp.skin, models, method, positions);
+    require(skinPrimitive(*sp.prim, *sp.skin, models, method, positions), "skinning");
     out.insert(out.end(), positions.begin(), positions.end());
   }
   return out;
@@ -106,7 +113,7 @@ void measure(const Model& m, std::vector<Row>& rows) {
       for (int i = 0; i < kSamplesPerClip; ++i) {
         SamplingJob job{&clip, clip.duration() * i / kSamplesPerClip, m.animated.skeleton.restPose(), locals};
         job.rotations = q;
-        job.run();
+        require(job.run(), "sampling");
       }
       ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count() / kSamplesPerClip / double(joints));
     }

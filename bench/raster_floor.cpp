@@ -193,13 +193,15 @@ int main(int argc, char** argv) {
   floor.setViewProjection(viewProjection);
 
   std::vector<double> sceneMs, floorMs;
-  for (int i = 0; i < options.run.frames; ++i) {
+  engine::Status frame = engine::Ok{};
+  for (int i = 0; i < options.run.frames && frame; ++i) {
     sceneMs.push_back(timeFrame(*target, [&] {
       (*renderer)->update(time);
-      (*renderer)->render(camera, width, height);
+      frame = (*renderer)->render(camera, width, height);
     }));
     floorMs.push_back(timeFrame(*target, [&] { floor.draw(); }));
   }
+  if (!frame) return fail(frame.error().message);
   const engine::FrameSummary real = engine::summarize(sceneMs), bare = engine::summarize(floorMs);
   const engine::SceneStats& stats = (*renderer)->stats();
   std::printf("%s at %dx%d, t = %g s, %s, %d frames each, alternating\n\n", scenePath.c_str(), width, height, time,

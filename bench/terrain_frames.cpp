@@ -169,7 +169,10 @@ int main(int argc, char** argv) {
   for (int i = -2; i < options.frames; ++i) {  // two rounds to warm up (pages, shaders)
     for (std::size_t r = 0; r < renderers.size(); ++r) {
       const auto t0 = std::chrono::steady_clock::now();
-      renderers[r]->render(camera, options.width, options.height);
+      if (auto s = renderers[r]->render(camera, options.width, options.height); !s) {
+        std::fprintf(stderr, "terrain_frames: %s\n", s.error().message.c_str());
+        return 1;
+      }
       glFinish();
       const auto t1 = std::chrono::steady_clock::now();
       if (i >= 0) ms[r].push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());

@@ -60,9 +60,12 @@ void BM_CharacterPose(benchmark::State& state) {
   auto start = std::chrono::steady_clock::now();
   for (auto _ : state) {
     t = std::fmod(t + 1.0 / 60.0, clip.duration());
-    engine::SamplingJob{&clip, t, skeleton.restPose(), locals}.run();
-    engine::LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run();
-    engine::SkinningPaletteJob{models, joints, inverseBinds, palette}.run();
+    if (!engine::SamplingJob{&clip, t, skeleton.restPose(), locals}.run() ||
+        !engine::LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run() ||
+        !engine::SkinningPaletteJob{models, joints, inverseBinds, palette}.run()) {
+      state.SkipWithError("a job rejected its inputs");
+      break;
+    }
     benchmark::DoNotOptimize(palette.data());
     benchmark::ClobberMemory();
   }
@@ -84,7 +87,10 @@ void BM_Skinning(benchmark::State& state) {
     palette.push_back(engine::toMatrix(
         engine::Srt{glm::vec3(1), glm::angleAxis(j * 0.05f, glm::vec3(0, 1, 0)), glm::vec3(0, j * 0.1f, 0)}));
   std::vector<engine::DualQuat> dqs(palette.size());
-  engine::DualQuatPaletteJob{palette, dqs}.run();
+  if (!engine::DualQuatPaletteJob{palette, dqs}.run()) {
+    state.SkipWithError("DualQuatPaletteJob rejected its inputs");
+    return;
+  }
   std::vector<glm::vec3> positions(vertices), normals(vertices, glm::vec3(0, 0, 1)), outP(vertices), outN(vertices);
   std::vector<std::uint16_t> joints(vertices * 4);
   std::vector<float> weights(vertices * 4);
@@ -106,7 +112,10 @@ void BM_Skinning(benchmark::State& state) {
   job.outPositions = outP;
   job.outNormals = outN;
   for (auto _ : state) {
-    job.run();
+    if (!job.run()) {
+      state.SkipWithError("SkinningJob rejected its inputs");
+      break;
+    }
     benchmark::DoNotOptimize(outP.data());
     benchmark::ClobberMemory();
   }

@@ -8,17 +8,20 @@
 //   -> SkinningPaletteJob -> palette[] -> SkinningJob (CPU) or upload (GPU).
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include <glm/glm.hpp>
 
 #include "anim/clip.h"
 #include "core/math.h"
+#include "core/result.h"
 
 namespace engine {
 
 // Writes the clip's pose at clip-local `time` (already wrapped, see Player).
 // Joints without a track keep their rest transform.
 struct SamplingJob {
+  static constexpr const char* kName = "SamplingJob";
   const Clip* clip = nullptr;
   double time = 0.0;
   std::span<const Srt> restPose;
@@ -27,13 +30,14 @@ struct SamplingJob {
   QuatInterpolation rotations = QuatInterpolation::Slerp;
 
   bool validate() const;
-  bool run() const;
+  [[nodiscard]] bool run() const;
 };
 
 // Weighted blend of whole poses: lerp for translation and scale, nlerp for
 // rotation (order independent, which slerp is not). Weights need not sum to 1;
 // they are normalised. When all weights are ~0 the rest pose is written.
 struct BlendingJob {
+  static constexpr const char* kName = "BlendingJob";
   struct Layer {
     std::span<const Srt> pose;
     float weight = 0.0f;
@@ -43,39 +47,42 @@ struct BlendingJob {
   std::span<Srt> output;
 
   bool validate() const;
-  bool run() const;
+  [[nodiscard]] bool run() const;
 };
 
 // model[i] = root * ... * local[parent] * local[i]; needs parents[i] < i.
 struct LocalToModelJob {
+  static constexpr const char* kName = "LocalToModelJob";
   std::span<const int> parents;
   std::span<const Srt> locals;
   glm::mat4 root{1.0f};
   std::span<glm::mat4> models;
 
   bool validate() const;
-  bool run() const;
+  [[nodiscard]] bool run() const;
 };
 
 // palette[k] = models[joints[k]] * inverseBinds[k]: takes a vertex from bind
 // space to where its joint has moved it.
 struct SkinningPaletteJob {
+  static constexpr const char* kName = "SkinningPaletteJob";
   std::span<const glm::mat4> models;
   std::span<const int> joints;
   std::span<const glm::mat4> inverseBinds;
   std::span<glm::mat4> palette;
 
   bool validate() const;
-  bool run() const;
+  [[nodiscard]] bool run() const;
 };
 
 // Converts a palette to dual quaternions for DQS. Scale in the palette is lost.
 struct DualQuatPaletteJob {
+  static constexpr const char* kName = "DualQuatPaletteJob";
   std::span<const glm::mat4> palette;
   std::span<DualQuat> output;
 
   bool validate() const;
-  bool run() const;
+  [[nodiscard]] bool run() const;
 };
 
 enum class SkinningMethod { Linear, DualQuat };
@@ -86,6 +93,7 @@ enum class SkinningMethod { Linear, DualQuat };
 // zero weight or a joint past the palette are skipped, so padding entries of
 // JOINTS_n never read outside the palette.
 struct SkinningJob {
+  static constexpr const char* kName = "SkinningJob";
   SkinningMethod method = SkinningMethod::Linear;
   int influences = 4;
   std::span<const glm::vec3> positions;
@@ -98,7 +106,15 @@ struct SkinningJob {
   std::span<glm::vec3> outNormals;  // needed when normals are given
 
   bool validate() const;
-  bool run() const;
+  [[nodiscard]] bool run() const;
 };
+
+// Runs `job`; a job that rejects its inputs (spans of the wrong size, a missing
+// clip) is a bug in the caller, reported as an error naming `where` and the job.
+template <typename Job>
+Status runJob(const Job& job, const std::string& where) {
+  if (job.run()) return Ok{};
+  return makeError(where + ": " + Job::kName + " rejected its inputs");
+}
 
 }  // namespace engine

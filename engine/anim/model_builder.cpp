@@ -64,7 +64,7 @@ bool skinPrimitive(const PrimitiveData& prim, const Skin& skin, std::span<const 
   std::vector<DualQuat> dualQuats;
   if (method == SkinningMethod::DualQuat) {
     dualQuats.resize(palette.size());
-    DualQuatPaletteJob{palette, dualQuats}.run();
+    if (!DualQuatPaletteJob{palette, dualQuats}.run()) return false;
   }
   SkinningJob job;
   job.method = method;

@@ -26,7 +26,7 @@ Result<AnimatedModel> buildAnimatedModel(const ModelData& model);
 // SkinningJob): the one path that the pose dump, the ray tracer, bounds and
 // benchmarks share with what the GPU computes. `outNormals` may be empty. False
 // when the spans do not fit.
-bool skinPrimitive(const PrimitiveData& prim, const Skin& skin, std::span<const glm::mat4> models,
+[[nodiscard]] bool skinPrimitive(const PrimitiveData& prim, const Skin& skin, std::span<const glm::mat4> models,
                    SkinningMethod method, std::span<glm::vec3> outPositions,
                    std::span<glm::vec3> outNormals = {});
 

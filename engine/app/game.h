@@ -25,8 +25,9 @@ class Game {
   virtual Status init() = 0;
   // Advances the simulation to `time` by one fixed step `dt`.
   virtual void update(double time, double dt) = 0;
-  // Draws the frame into the bound render target.
-  virtual void render(const FrameInfo& frame) = 0;
+  // Draws the frame into the bound render target. An error ends the run: the
+  // runner reports it and exits, never showing or writing a frame it lacks.
+  virtual Status render(const FrameInfo& frame) = 0;
   // The camera the interactive controls move.
   virtual Camera& camera() = 0;
   // Releases GL objects while the context is still current; the runners call it

@@ -24,7 +24,7 @@ Status runHeadless(Backend backend, Game& game, const RunOptions& options, Image
     const auto start = std::chrono::steady_clock::now();
     game.update(time, options.dt);
     target.bind();
-    game.render({time, target.width(), target.height()});
+    if (auto s = game.render({time, target.width(), target.height()}); !s) return s;
     target.resolve();
     // The frame is finished when the GL is: count the rasterizer's work too.
     glFinish();

@@ -97,7 +97,7 @@ Status runWindow(Game& game, const RunOptions& options) {
       setup->target = std::move(resized).value();
     }
     setup->target.bind();
-    game.render({time, width, height});
+    if (auto s = game.render({time, width, height}); !s) return s;
     setup->target.resolve();
     setup->target.blitToDefault(width, height);
     if (ui) {

@@ -80,7 +80,8 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
     auto image = loadMaterialTexture(desc, desc.materials[i]);
     if (!image) return image.error();
     // The rasterizer uploads the scene's textures flipped: uv (0, 0) is the bottom-left.
-    if (!image->empty()) (void)scene.setMaterialTexture(int(i), RtTexture(*image, TextureOrigin::BottomLeft));
+    if (image->empty()) continue;
+    if (auto s = scene.setMaterialTexture(int(i), RtTexture(*image, TextureOrigin::BottomLeft)); !s) return s.error();
   }
   scene.camera_ = desc.camera;
   scene.lights_ = desc.lights;

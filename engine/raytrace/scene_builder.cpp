@@ -28,7 +28,7 @@ namespace {
 
 // glTF base colour: the factor times the texture (uploaded as is by the rasterizer,
 // so uv (0, 0) is the image's top-left).
-void addMaterials(LoadedModel& loaded, RtScene& scene) {
+Status addMaterials(LoadedModel& loaded, RtScene& scene) {
   for (const MaterialData& m : loaded.model.materials) {
     MaterialDesc desc;
     desc.name = m.name;
@@ -38,11 +38,12 @@ void addMaterials(LoadedModel& loaded, RtScene& scene) {
     desc.specular = 0.5f * (1.0f - m.roughnessFactor);
     const int material = scene.addMaterial(desc);
     if (m.baseColorImage >= 0) {
-      (void)scene.setMaterialTexture(
-          material, RtTexture(loaded.model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft));
+      const RtTexture texture(loaded.model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft);
+      if (auto s = scene.setMaterialTexture(material, texture); !s) return s;
     }
     loaded.materials.push_back(material);
   }
+  return Ok{};
 }
 
 // Poses one model instance at `time` into `meshes`, one per triangle primitive:
@@ -54,12 +55,13 @@ Status poseInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, 
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
   if (clip >= 0) {
     const Clip& c = loaded.animated.clips[size_t(clip)];
-    SamplingJob{&c, wrapTime(desc.start + time * desc.speed, c.duration(), LoopMode::Repeat), skeleton.restPose(),
-                locals}
-        .run();
+    const SamplingJob sample{&c, wrapTime(desc.start + time * desc.speed, c.duration(), LoopMode::Repeat),
+                             skeleton.restPose(), locals};
+    if (auto s = runJob(sample, loaded.model.path); !s) return s;
   }
   std::vector<glm::mat4> models(locals.size());
-  LocalToModelJob{skeleton.parents(), locals, glm::mat4(modelTransform(desc, ground)), models}.run();
+  const LocalToModelJob toModel{skeleton.parents(), locals, glm::mat4(modelTransform(desc, ground)), models};
+  if (auto s = runJob(toModel, loaded.model.path); !s) return s;
   const SkinningMethod method = desc.dualQuat ? SkinningMethod::DualQuat : SkinningMethod::Linear;
   const bool first = meshes.empty();
   std::size_t next = 0;
@@ -178,7 +180,7 @@ Result<AnimatedRtScene> AnimatedRtScene::create(const SceneDesc& desc, double ti
       auto animated = buildAnimatedModel(*model);
       if (!animated) return makeError(where + ": " + animated.error().message);
       auto loaded = std::make_unique<LoadedModel>(LoadedModel{std::move(model).value(), std::move(animated).value(), {}});
-      addMaterials(*loaded, rt);
+      if (auto s = addMaterials(*loaded, rt); !s) return makeError(where + ": " + s.error().message);
       it = out.models_.emplace(m.path, std::move(loaded)).first;
     }
     auto clip = findClip(it->second->animated, m.clip, m.path);

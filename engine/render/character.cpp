@@ -16,14 +16,14 @@ Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(ModelData m
   return std::shared_ptr<const CharacterAsset>(std::move(asset));
 }
 
-CharacterAsset::Bounds CharacterAsset::boundsOfAllPoses(int samples) const {
+Result<CharacterAsset::Bounds> CharacterAsset::boundsOfAllPoses(int samples) const {
   Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
   const Skeleton& skeleton = animated.skeleton;
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
   std::vector<glm::mat4> models(locals.size());
   std::vector<glm::vec3> skinned;
-  auto addPose = [&] {
-    LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run();
+  auto addPose = [&]() -> Status {
+    if (auto s = runJob(LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}, model.path); !s) return s;
     for (size_t n = 0; n < model.nodes.size(); ++n) {
       const NodeData& node = model.nodes[n];
       if (node.mesh < 0) continue;
@@ -32,7 +32,9 @@ CharacterAsset::Bounds CharacterAsset::boundsOfAllPoses(int samples) const {
         const bool isSkinned = node.skin >= 0 && prim.influences > 0;
         if (isSkinned) {
           skinned.resize(prim.positions.size());
-          skinPrimitive(prim, animated.skins[size_t(node.skin)], models, SkinningMethod::Linear, skinned);
+          if (!skinPrimitive(prim, animated.skins[size_t(node.skin)], models, SkinningMethod::Linear, skinned)) {
+            return makeError(model.path + ": node " + std::to_string(n) + ": skinning rejected its inputs");
+          }
         }
         for (size_t v = 0; v < prim.positions.size(); ++v) {
           const glm::vec3 p = isSkinned ? skinned[v] : glm::vec3(world * glm::vec4(prim.positions[v], 1.0f));
@@ -41,12 +43,14 @@ CharacterAsset::Bounds CharacterAsset::boundsOfAllPoses(int samples) const {
         }
       }
     }
+    return Ok{};
   };
-  addPose();
+  if (auto s = addPose(); !s) return s.error();
   for (const Clip& clip : animated.clips) {
     for (int i = 0; i <= samples; ++i) {
-      SamplingJob{&clip, clip.duration() * double(i) / double(samples), skeleton.restPose(), locals}.run();
-      addPose();
+      const SamplingJob sample{&clip, clip.duration() * double(i) / double(samples), skeleton.restPose(), locals};
+      if (auto s = runJob(sample, model.path + ": clip " + clip.name()); !s) return s.error();
+      if (auto s = addPose(); !s) return s.error();
     }
   }
   if (b.min.x > b.max.x) b = Bounds{};
@@ -86,36 +90,44 @@ void CharacterInstance::evaluate(bool bindPose) {
   if (bindPose || clip_ < 0 || !player_.evaluate(locals_)) std::copy(rest.begin(), rest.end(), locals_.begin());
 }
 
-void CharacterInstance::computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition) {
+Status CharacterInstance::computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition) {
   glm::dmat4 root = transform;
   root[3] -= glm::dvec4(cameraPosition, 0.0);
   const Skeleton& skeleton = asset_->animated.skeleton;
-  LocalToModelJob job{skeleton.parents(), locals_, glm::mat4(root), models_};
-  job.run();
-  for (size_t n = 0; n < nodeWorlds_.size(); ++n) nodeWorlds_[n] = models_[size_t(skeleton.jointOfRaw(int(n)))];
   palettesCurrent_ = false;
+  if (auto s = runJob(LocalToModelJob{skeleton.parents(), locals_, glm::mat4(root), models_}, asset_->model.path);
+      !s) {
+    return s;
+  }
+  for (size_t n = 0; n < nodeWorlds_.size(); ++n) nodeWorlds_[n] = models_[size_t(skeleton.jointOfRaw(int(n)))];
+  return Ok{};
 }
 
-void CharacterInstance::uploadPalettes(SkinMode mode) {
+Status CharacterInstance::uploadPalettes(SkinMode mode) {
   const auto& skins = asset_->animated.skins;
   for (size_t s = 0; s < skins.size(); ++s) {
+    const std::string where = asset_->model.path + ": skin " + std::to_string(s);
     palette_.resize(skins[s].joints.size());
-    if (!SkinningPaletteJob{models_, skins[s].joints, skins[s].inverseBinds, palette_}.run()) continue;
+    if (auto status = runJob(SkinningPaletteJob{models_, skins[s].joints, skins[s].inverseBinds, palette_}, where);
+        !status) {
+      return status;
+    }
     if (mode == SkinMode::DualQuat) {
       dualQuats_.resize(palette_.size());
-      DualQuatPaletteJob{palette_, dualQuats_}.run();
+      if (auto status = runJob(DualQuatPaletteJob{palette_, dualQuats_}, where); !status) return status;
       skinBuffers_[s].upload(0, dualQuats_.size() * sizeof(DualQuat), dualQuats_.data());
     } else {
       skinBuffers_[s].upload(0, palette_.size() * sizeof(glm::mat4), palette_.data());
     }
   }
+  return Ok{};
 }
 
-ModelFrame CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mode,
-                                   const std::function<void(const gl::Program&)>& setUniforms) {
+Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mode,
+                                           const std::function<void(const gl::Program&)>& setUniforms) {
   // Shadow passes draw the same pose: upload the palettes once per pose.
   if (!palettesCurrent_ || uploadedMode_ != mode) {
-    uploadPalettes(mode);
+    if (auto s = uploadPalettes(mode); !s) return s.error();
     palettesCurrent_ = true;
     uploadedMode_ = mode;
   }
@@ -132,10 +144,11 @@ ModelFrame CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mo
 Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                                const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly,
                                bool includeBlend) {
-  ModelFrame f = frame(viewProjection, mode, setUniforms);
-  f.depthOnly = depthOnly;
-  f.includeBlend = includeBlend;
-  return drawModel(variants, asset_->model, asset_->gpu, f);
+  auto f = frame(viewProjection, mode, setUniforms);
+  if (!f) return f.error();
+  f->depthOnly = depthOnly;
+  f->includeBlend = includeBlend;
+  return drawModel(variants, asset_->model, asset_->gpu, *f);
 }
 
 std::vector<BlendPrimitive> CharacterInstance::blendPrimitives() const {
@@ -145,7 +158,9 @@ std::vector<BlendPrimitive> CharacterInstance::blendPrimitives() const {
 Status CharacterInstance::drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                                     const std::function<void(const gl::Program&)>& setUniforms,
                                     const BlendPrimitive& primitive) {
-  return drawBlendPrimitive(variants, asset_->model, asset_->gpu, frame(viewProjection, mode, setUniforms), primitive);
+  auto f = frame(viewProjection, mode, setUniforms);
+  if (!f) return f.error();
+  return drawBlendPrimitive(variants, asset_->model, asset_->gpu, *f, primitive);
 }
 
 Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,

@@ -25,7 +25,7 @@ struct CharacterAsset {
   struct Bounds {
     glm::vec3 min{0.0f}, max{0.0f};
   };
-  Bounds boundsOfAllPoses(int samples = 24) const;
+  Result<Bounds> boundsOfAllPoses(int samples = 24) const;
 };
 
 class CharacterInstance {
@@ -42,7 +42,7 @@ class CharacterInstance {
   void evaluate(bool bindPose = false);
   // Joint matrices relative to the camera: root = camera offset * `transform`,
   // composed in double so that characters far from the origin stay precise.
-  void computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition);
+  Status computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition);
   // Uploads the skin palettes (once per computeModels) and draws every primitive;
   // without `includeBlend` the BLEND ones are left for drawBlend.
   // `setUniforms` sets the program's lights and shadows.
@@ -62,8 +62,8 @@ class CharacterInstance {
   const CharacterAsset& asset() const { return *asset_; }
 
  private:
-  void uploadPalettes(SkinMode mode);
-  ModelFrame frame(const glm::mat4& viewProjection, SkinMode mode,
+  Status uploadPalettes(SkinMode mode);
+  Result<ModelFrame> frame(const glm::mat4& viewProjection, SkinMode mode,
                    const std::function<void(const gl::Program&)>& setUniforms);
 
   std::shared_ptr<const CharacterAsset> asset_;

@@ -197,18 +197,20 @@ struct SceneRenderer::Impl {
   Status buildVariants();
   Status makeTarget(int width, int height);
   void setUniforms(const gl::Program& program) const;
-  void drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
-                  int skipShape = -1, bool useProbes = false);
+  Status drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
+                    int skipShape = -1, bool useProbes = false);
   void drawSky(const glm::dmat4& viewProjection);
-  void drawWorld(const View& view, int skipShape, bool useProbes);
+  Status drawWorld(const View& view, int skipShape, bool useProbes);
   Status makeProbes();
-  void renderProbes(const glm::dvec3& cameraPosition);
-  void drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
-                      const glm::mat4& viewProjection);
-  void drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection);
-  void renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
-                       double nearPlane);
-  void renderPointShadow(const glm::dvec3& cameraPosition);
+  Status renderProbes(const glm::dvec3& cameraPosition);
+  Status poseCharacters(const glm::dvec3& cameraPosition);
+  Status drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
+                        const glm::mat4& viewProjection);
+  Status drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection);
+  Status renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
+                         double nearPlane);
+  Status renderPointShadow(const glm::dvec3& cameraPosition);
+  Status renderFrame(const Camera& camera, int width, int height);
   void fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection);
 };
 
@@ -223,6 +225,14 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     render.shadowFilter = options.pcfKernelOverride > 1 ? ShadowFilter::Pcf : ShadowFilter::Hard;
   }
   pcfRadius = render.shadowFilter == ShadowFilter::Hard ? 0 : render.pcfKernel / 2;
+  // Checked before anything is built: a scene may ask for more samples (up to 16)
+  // than this GL offers, and a frame without its target would draw nothing.
+  GLint maxSamples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  if (render.msaa > maxSamples) {
+    return makeError(scene.path + ": /render/msaa: " + std::to_string(render.msaa) +
+                     " samples asked, this GL offers up to " + std::to_string(maxSamples));
+  }
 
   for (int i = 0; i < int(scene.lights.size()); ++i) {
     const LightDesc& l = scene.lights[size_t(i)];
@@ -400,8 +410,9 @@ Status SceneRenderer::Impl::loadModels() {
     const double ground = desc.onTerrain && terrain ? terrain->heightAt(desc.position.x, desc.position.z) : 0.0;
     draw.world = modelTransform(desc, ground);
     const auto bounds = asset->boundsOfAllPoses();
-    draw.localCenter = glm::dvec3(bounds.min + bounds.max) * 0.5;
-    draw.localRadius = 0.5 * double(glm::length(bounds.max - bounds.min)) *
+    if (!bounds) return makeError(where + ": " + bounds.error().message);
+    draw.localCenter = glm::dvec3(bounds->min + bounds->max) * 0.5;
+    draw.localRadius = 0.5 * double(glm::length(bounds->max - bounds->min)) *
                        std::max({desc.scale.x, desc.scale.y, desc.scale.z});
     characters.push_back(std::move(draw));
   }
@@ -462,12 +473,6 @@ Status SceneRenderer::Impl::buildVariants() {
 Status SceneRenderer::Impl::makeTarget(int width, int height) {
   const int w = width * render.supersample, h = height * render.supersample;
   if (w == targetWidth && h == targetHeight) return Ok{};
-  GLint maxSamples = 1;
-  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  if (render.msaa > maxSamples) {
-    return makeError(scene.path + ": /render/msaa: " + std::to_string(render.msaa) +
-                     " samples asked, this GL offers up to " + std::to_string(maxSamples));
-  }
   targetWidth = w;
   targetHeight = h;
   hdr = gl::Texture::create2D(GL_RGBA16F, w, h, 1);
@@ -525,8 +530,8 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
 }
 
-void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
-                                     int skipShape, bool useProbes) {
+Status SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
+                                       int skipShape, bool useProbes) {
   for (int index = 0; index < int(shapes.size()); ++index) {
     const ShapeDraw& s = shapes[size_t(index)];
     if (index == skipShape) continue;
@@ -537,7 +542,7 @@ void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, c
     const MaterialDesc& m = scene.materials[size_t(s.material)];
     const bool textured = !depthOnly && materialTextures[size_t(s.material)].id() != 0;
     auto program = variants->get({0, SkinMode::Linear, textured, depthOnly});
-    if (!program) continue;
+    if (!program) return program.error();
     const gl::Program& p = **program;
     p.use();
     ++stats->programChanges;
@@ -574,10 +579,11 @@ void SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, c
     ++stats->drawCalls;
     ++stats->objectsDrawn;
   }
+  return Ok{};
 }
 
-void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
-                                         const glm::mat4& viewProjection) {
+Status SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnly,
+                                           const glm::mat4& lightViewProjection, const glm::mat4& viewProjection) {
   for (CharacterDraw& c : characters) {
     const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
     if (planes && !sphereVisible(planes, center, c.localRadius)) {
@@ -589,7 +595,7 @@ void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnl
       setUniforms(p);
       if (depthOnly) p.set("u_lightViewProjection", lightViewProjection);
     };
-    (void)c.instance->draw(*variants, viewProjection, mode, set, depthOnly, false);
+    if (auto s = c.instance->draw(*variants, viewProjection, mode, set, depthOnly, false); !s) return s;
     const ModelData& model = c.instance->asset().model;
     for (const NodeData& node : model.nodes) {
       if (node.mesh < 0) continue;
@@ -599,13 +605,14 @@ void SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnl
     }
     ++stats->objectsDrawn;
   }
+  return Ok{};
 }
 
 // BLEND primitives of every model, after everything opaque and the sky: sorted
 // back to front across models (whole primitives by the centre of their bounds,
 // so intersecting panes can still be out of order), depth test on, no depth write.
-void SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection) {
-  if (!blendPass) return;
+Status SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection) {
+  if (!blendPass) return Ok{};
   struct Item {
     CharacterDraw* character;
     BlendPrimitive primitive;
@@ -620,11 +627,15 @@ void SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat4&
                    [](const Item& a, const Item& b) { return a.primitive.distance > b.primitive.distance; });
   auto set = [this](const gl::Program& p) { setUniforms(p); };
   for (const Item& item : items) {
-    (void)item.character->instance->drawBlend(*variants, viewProjection, skinModeOf(item.character->desc), set,
-                                              item.primitive);
+    if (auto s = item.character->instance->drawBlend(*variants, viewProjection, skinModeOf(item.character->desc),
+                                                     set, item.primitive);
+        !s) {
+      return s;
+    }
     ++stats->drawCalls;
     ++stats->programChanges;
   }
+  return Ok{};
 }
 
 // The sun's orthographic box around the view frustum's slice [nearPlane, farPlane]
@@ -667,8 +678,8 @@ SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const glm::dvec3& cam
   return box;
 }
 
-void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
-                                          double aspect, double nearPlane) {
+Status SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
+                                            double aspect, double nearPlane) {
   const SunBox box = fitSunBox(cameraPosition, view, fovy, aspect, nearPlane,
                                std::min(scene.camera.farPlane, kSunShadowDistance));
   sunTexelWorld = box.texelWorld;
@@ -683,8 +694,8 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
   // Slope-scaled offset: surfaces at grazing angles to the sun get more.
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.5f, 2.0f);
-  drawShapes(nullptr, true, lightViewProjection);
-  drawCharacters(nullptr, true, lightViewProjection, lightViewProjection);
+  if (auto s = drawShapes(nullptr, true, lightViewProjection); !s) return s;
+  if (auto s = drawCharacters(nullptr, true, lightViewProjection, lightViewProjection); !s) return s;
   if (terrain) drawTerrainShadow(box, fovy);
 
   if (sunFarShadows) {
@@ -698,9 +709,10 @@ void SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, cons
     drawTerrainShadow(far, fovy);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
+  return Ok{};
 }
 
-void SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) {
+Status SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) {
   const glm::dvec3 light = scene.lights[size_t(pointLights[0])].position - cameraPosition;
   const glm::dmat4 proj = glm::perspectiveRH_ZO(glm::half_pi<double>(), 1.0, pointNear, pointFar);
   glViewport(0, 0, cubeSize, cubeSize);
@@ -716,11 +728,12 @@ void SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) {
     pointShadowFbo.bind();
     glClear(GL_DEPTH_BUFFER_BIT);
     const glm::mat4 faceViewProjection(proj * glm::lookAt(light, light + kCubeFaceDirections[face], kCubeFaceUps[face]));
-    drawShapes(nullptr, true, faceViewProjection);
-    drawCharacters(nullptr, true, faceViewProjection, faceViewProjection);
+    if (auto s = drawShapes(nullptr, true, faceViewProjection); !s) return s;
+    if (auto s = drawCharacters(nullptr, true, faceViewProjection, faceViewProjection); !s) return s;
   }
   glEnable(GL_CULL_FACE);
   glDisable(GL_POLYGON_OFFSET_FILL);
+  return Ok{};
 }
 
 void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection) {
@@ -740,27 +753,34 @@ void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection) {
 }
 
 // Everything a colour pass shows, into the bound HDR framebuffer.
-void SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useProbes) {
+Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useProbes) {
   if (scene.sky.enabled) drawSky(view.viewProjection);
   if (terrain) drawTerrain(view.viewProjection, view.fovy, view.height);
-  drawShapes(view.planes, false, glm::mat4(1.0f), skipShape, useProbes);
-  drawCharacters(view.planes, false, glm::mat4(1.0f), glm::mat4(view.viewProjection));
-  drawBlended(view.planes, glm::mat4(view.viewProjection));
+  if (auto s = drawShapes(view.planes, false, glm::mat4(1.0f), skipShape, useProbes); !s) return s;
+  if (auto s = drawCharacters(view.planes, false, glm::mat4(1.0f), glm::mat4(view.viewProjection)); !s) return s;
+  return drawBlended(view.planes, glm::mat4(view.viewProjection));
+}
+
+Status SceneRenderer::Impl::poseCharacters(const glm::dvec3& cameraPosition) {
+  eye = cameraPosition;
+  for (auto& c : characters) {
+    if (auto s = c.instance->computeModels(c.world, cameraPosition); !s) return s;
+  }
+  return Ok{};
 }
 
 // Each probe's six faces, seen from the mirror's centre without the mirror itself.
 // Positions stay camera-relative, now to the probe's centre; the sun's shadow
 // matrix is moved to match. Probes show no mirrors: one bounce, where the ray
 // tracer follows --max-depth bounces.
-void SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
+Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
   const glm::mat4 cameraShadowMatrix = frame.sunShadowMatrix;
   const glm::dmat4 projection = reverseZProjection(glm::half_pi<double>(), 1.0, kProbeNear, scene.camera.farPlane);
   const glm::vec3 background = scene.sky.background;
   glViewport(0, 0, probeSize, probeSize);
   glFrontFace(GL_CCW);
   for (const Probe& probe : probes) {
-    eye = probe.center;
-    for (auto& c : characters) c.instance->computeModels(c.world, probe.center);
+    if (auto s = poseCharacters(probe.center); !s) return s;
     frame.sunShadowMatrix =
         glm::mat4(glm::dmat4(cameraShadowMatrix) * glm::translate(glm::dmat4(1.0), probe.center - cameraPosition));
     for (int face = 0; face < 6; ++face) {
@@ -776,12 +796,11 @@ void SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
       glClearDepth(0.0);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
       glDepthFunc(GL_GREATER);
-      drawWorld(view, probe.shape, false);
+      if (auto s = drawWorld(view, probe.shape, false); !s) return s;
     }
   }
   frame.sunShadowMatrix = cameraShadowMatrix;
-  eye = cameraPosition;
-  for (auto& c : characters) c.instance->computeModels(c.world, cameraPosition);
+  return poseCharacters(cameraPosition);
 }
 
 SceneRenderer::SceneRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) { impl_->stats = &stats_; }
@@ -823,14 +842,24 @@ Camera SceneRenderer::initialCamera() const {
   return camera;
 }
 
-void SceneRenderer::render(const Camera& camera, int width, int height) {
-  Impl& s = *impl_;
+Status SceneRenderer::render(const Camera& camera, int width, int height) {
   stats_ = SceneStats{};
-  if (auto status = s.makeTarget(width, height); !status) return;
+  Impl& s = *impl_;
+  // The query spans the whole frame, and is ended even when a pass fails.
+  if (!s.primitives) s.primitives = gl::Query::create(GL_PRIMITIVES_GENERATED);
+  s.primitives.begin();
+  Status status = s.renderFrame(camera, width, height);
+  s.primitives.end();
+  s.primitivesValid = true;
+  return status;
+}
+
+Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int height) {
+  if (auto status = makeTarget(width, height); !status) return status;
   const glm::dvec3 cameraPosition = camera.position;
   const double aspect = double(width) / double(height);
   const double fovy = glm::radians(camera.fovyDegrees);
-  const glm::dmat4 view = viewRotation(camera.forward(), s.scene.camera.up, s.scene.camera.leftHanded);
+  const glm::dmat4 view = viewRotation(camera.forward(), scene.camera.up, scene.camera.leftHanded);
   const glm::dmat4 projection = reverseZProjection(fovy, aspect, camera.nearPlane, camera.farPlane);
   const glm::dmat4 viewProjection = projection * view;
   glm::dvec4 planes[6];
@@ -838,50 +867,49 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
 
   GLint callerFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
-  if (!s.primitives) s.primitives = gl::Query::create(GL_PRIMITIVES_GENERATED);
-  s.primitives.begin();
-  s.eye = cameraPosition;
-  for (auto& c : s.characters) c.instance->computeModels(c.world, cameraPosition);
+  if (auto status = poseCharacters(cameraPosition); !status) return status;
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
   glFrontFace(GL_CCW);
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, s.frameUbo.id());
-  if (s.sunShadows) s.renderSunShadow(cameraPosition, view, fovy, aspect, camera.nearPlane);
-  if (s.pointShadows && !(s.pointShadowValid && s.characters.empty())) {
-    s.renderPointShadow(cameraPosition);
-    s.pointShadowValid = true;
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
+  if (sunShadows) {
+    if (auto status = renderSunShadow(cameraPosition, view, fovy, aspect, camera.nearPlane); !status) return status;
+  }
+  if (pointShadows && !(pointShadowValid && characters.empty())) {
+    if (auto status = renderPointShadow(cameraPosition); !status) return status;
+    pointShadowValid = true;
   }
   // Probes depend on the scene, not on the camera: a scene where nothing moves
   // draws them once.
-  if (!s.probes.empty() && !(s.probesValid && s.characters.empty())) {
-    s.renderProbes(cameraPosition);
-    s.probesValid = true;
+  if (!probes.empty() && !(probesValid && characters.empty())) {
+    if (auto status = renderProbes(cameraPosition); !status) return status;
+    probesValid = true;
   }
-  s.fillFrame(cameraPosition, glm::mat4(viewProjection));
+  fillFrame(cameraPosition, glm::mat4(viewProjection));
 
-  s.drawFbo.bind();
-  glViewport(0, 0, s.targetWidth, s.targetHeight);
+  drawFbo.bind();
+  glViewport(0, 0, targetWidth, targetHeight);
   glDisable(GL_FRAMEBUFFER_SRGB);
-  const glm::vec3 background = s.scene.sky.background;
+  const glm::vec3 background = scene.sky.background;
   glClearColor(background.r, background.g, background.b, 1.0f);
   glClearDepth(0.0);  // reverse-Z: far is 0
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glDepthFunc(GL_GREATER);
   // A left-handed view is a mirror: it turns counter-clockwise faces clockwise.
-  glFrontFace(s.scene.camera.leftHanded ? GL_CW : GL_CCW);
+  glFrontFace(scene.camera.leftHanded ? GL_CW : GL_CCW);
   View mainView;
   mainView.viewProjection = viewProjection;
   std::copy(std::begin(planes), std::end(planes), std::begin(mainView.planes));
   mainView.fovy = fovy;
-  mainView.height = s.targetHeight;
-  s.drawWorld(mainView, -1, true);
+  mainView.height = targetHeight;
+  if (auto status = drawWorld(mainView, -1, true); !status) return status;
 
-  if (s.render.msaa > 1) {
-    glBlitNamedFramebuffer(s.drawFbo.id(), s.resolveFbo.id(), 0, 0, s.targetWidth, s.targetHeight, 0, 0,
-                           s.targetWidth, s.targetHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  if (render.msaa > 1) {
+    glBlitNamedFramebuffer(drawFbo.id(), resolveFbo.id(), 0, 0, targetWidth, targetHeight, 0, 0,
+                           targetWidth, targetHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   }
   // Post: into the framebuffer the caller bound. It receives display values, so
   // sRGB encoding on write is off (the shader applies the output curve itself).
@@ -893,18 +921,17 @@ void SceneRenderer::render(const Camera& camera, int width, int height) {
   glViewport(0, 0, width, height);
   glDisable(GL_FRAMEBUFFER_SRGB);
   glDisable(GL_DEPTH_TEST);
-  s.post.use();
-  s.post.set("u_exposure", s.render.exposure);
-  s.post.set("u_toneMap", int(s.render.toneMap));
-  s.post.set("u_outputCurve", s.render.output == OutputCurve::Gamma22 ? 1 : 0);
-  s.post.set("u_supersample", s.render.supersample);
-  s.hdr.bind(0);
-  s.emptyVao.bind();
+  post.use();
+  post.set("u_exposure", render.exposure);
+  post.set("u_toneMap", int(render.toneMap));
+  post.set("u_outputCurve", render.output == OutputCurve::Gamma22 ? 1 : 0);
+  post.set("u_supersample", render.supersample);
+  hdr.bind(0);
+  emptyVao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glEnable(GL_DEPTH_TEST);
-  stats_.drawCalls += 1;
-  s.primitives.end();
-  s.primitivesValid = true;
+  stats->drawCalls += 1;
+  return Ok{};
 }
 
 long long SceneRenderer::lastFrameTriangles() const {

@@ -43,7 +43,7 @@ class SceneRenderer {
   // Poses the characters at scene time `time` (seconds).
   void update(double time);
   // Draws the frame into the framebuffer bound now, of `width` x `height` pixels.
-  void render(const Camera& camera, int width, int height);
+  Status render(const Camera& camera, int width, int height);
 
   // The camera the scene file describes, for the window's controls.
   Camera initialCamera() const;

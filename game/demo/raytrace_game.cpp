@@ -79,7 +79,7 @@ void RaytraceGame::uploadFinishedTiles() {
   }
 }
 
-void RaytraceGame::render(const engine::FrameInfo& frame) {
+engine::Status RaytraceGame::render(const engine::FrameInfo& frame) {
   uploadFinishedTiles();
   GLint target = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
@@ -90,6 +90,7 @@ void RaytraceGame::render(const engine::FrameInfo& frame) {
   glClear(GL_COLOR_BUFFER_BIT);
   glBlitNamedFramebuffer(source_.id(), GLuint(target), 0, 0, settings_.width, settings_.height, 0, frame.height,
                          frame.width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  return engine::Ok{};
 }
 
 void RaytraceGame::shutdown() {

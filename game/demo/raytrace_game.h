@@ -23,7 +23,7 @@ class RaytraceGame final : public engine::Game {
 
   engine::Status init() override;
   void update(double, double) override {}
-  void render(const engine::FrameInfo& frame) override;
+  engine::Status render(const engine::FrameInfo& frame) override;
   engine::Camera& camera() override { return camera_; }
   void shutdown() override;
 

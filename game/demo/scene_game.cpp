@@ -17,7 +17,9 @@ engine::Status SceneGame::init() {
 
 void SceneGame::update(double time, double) { renderer_->update(time); }
 
-void SceneGame::render(const engine::FrameInfo& frame) { renderer_->render(camera_, frame.width, frame.height); }
+engine::Status SceneGame::render(const engine::FrameInfo& frame) {
+  return renderer_->render(camera_, frame.width, frame.height);
+}
 
 engine::Game::Counters SceneGame::frameCounters() {
   const engine::SceneStats& s = renderer_->stats();

@@ -145,7 +145,7 @@ void ViewerScene::drawSkeleton(const glm::mat4& viewProjection) {
   glEnable(GL_DEPTH_TEST);
 }
 
-void ViewerScene::render(const FrameInfo& frame) {
+Status ViewerScene::render(const FrameInfo& frame) {
   const double aspect = double(frame.width) / double(frame.height);
   const glm::mat4 viewProjection = camera_.projection(aspect) * camera_.rotationView();
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
@@ -164,9 +164,10 @@ void ViewerScene::render(const FrameInfo& frame) {
   glEnable(GL_DEPTH_TEST);
 
   drawGround(viewProjection);
-  character_->computeModels(glm::dmat4(1.0), camera_.position);
-  (void)character_->draw(gpu_->variants, viewProjection, settings_.skinMode, lighting_);
+  if (auto s = character_->computeModels(glm::dmat4(1.0), camera_.position); !s) return s;
+  if (auto s = character_->draw(gpu_->variants, viewProjection, settings_.skinMode, lighting_); !s) return s;
   if (settings_.skeleton) drawSkeleton(viewProjection);
+  return Ok{};
 }
 
 std::vector<std::string> ViewerScene::builtVariants() const {

@@ -29,7 +29,7 @@ class ViewerScene final : public engine::Game {
 
   engine::Status init() override;
   void update(double time, double dt) override;
-  void render(const engine::FrameInfo& frame) override;
+  engine::Status render(const engine::FrameInfo& frame) override;
   engine::Camera& camera() override { return camera_; }
   void shutdown() override;
   bool wantsUi() const override { return true; }

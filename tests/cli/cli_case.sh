@@ -89,6 +89,14 @@ SH
     for want in "crash-0123" "Log tail" "fuzz summary" "fake .*FAILED"; do
       grep -Eq -- "$want" "$OUT" || { echo "FAIL: scripts/fuzz output lacks '$want'"; cat "$OUT" "$ERR"; exit 1; }
     done ;;
+  msaa_above_max)
+    # A scene may ask for up to 16 samples; llvmpipe offers 4. The error names the
+    # value and the maximum, and no image is written (it used to be a blank one, exit 0).
+    echo '{"render": {"msaa": 16}}' > msaa16.json
+    rm -f msaa16.png
+    expect 2 "msaa16\.json: /render/msaa: 16 samples asked, this GL offers up to [0-9]+" -- \
+      "$BIN/demo" msaa16.json --offscreen --size 64x64 --screenshot msaa16.png
+    [ ! -e msaa16.png ] || { echo "FAIL: wrote an image"; exit 1; } ;;
   msaa_identical)
     rm -f egl4.png osmesa4.png
     expect 0 "egl4" -- "$BIN/demo" --offscreen=egl --msaa 4 --time 0.5 --size 320x180 --screenshot egl4.png
