@@ -143,6 +143,10 @@ int main(int argc, char** argv) {
   gl::Texture color = gl::Texture::create2D(GL_RGBA8, options.width, options.height, 1);
   gl::Framebuffer target = gl::Framebuffer::create();
   target.attach(GL_COLOR_ATTACHMENT0, color);
+  if (auto s = target.check("terrain_frames target"); !s) {
+    std::fprintf(stderr, "terrain_frames: %s\n", s.error().message.c_str());
+    return 1;
+  }
 
   std::printf("| target (px) | patches | triangles | max geometric error (m) | max screen error (px) | frame median (ms) | frame p90 (ms) |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");

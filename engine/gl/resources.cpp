@@ -1,5 +1,8 @@
 #include "gl/resources.h"
 
+#include <cstdio>
+#include <string>
+
 #include "core/image.h"
 
 namespace engine::gl {
@@ -124,6 +127,33 @@ void Framebuffer::attach(GLenum attachment, const Texture& texture, int level) c
 
 void Framebuffer::attach(GLenum attachment, const Renderbuffer& renderbuffer) const {
   glNamedFramebufferRenderbuffer(id(), attachment, GL_RENDERBUFFER, renderbuffer.id());
+}
+
+namespace {
+
+const char* framebufferStatusName(GLenum status) {
+  switch (status) {
+    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
+    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
+    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS: return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
+    default: return "unknown status";
+  }
+}
+
+}  // namespace
+
+Status Framebuffer::check(std::string_view name) const {
+  GLenum status = 0;
+  if (complete(&status)) return Ok{};
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04X", unsigned(status));
+  return makeError("framebuffer \"" + std::string(name) + "\" is incomplete: " + framebufferStatusName(status) +
+                   " (" + code + ")");
 }
 
 bool Framebuffer::complete(GLenum* status) const {

@@ -2,7 +2,9 @@
 // Buffers, vertex arrays, textures, renderbuffers and framebuffers.
 #include <cstddef>
 #include <span>
+#include <string_view>
 
+#include "core/result.h"
 #include "gl/object.h"
 
 namespace engine {
@@ -94,6 +96,9 @@ class Framebuffer : public Object<FramebufferDeleter> {
   void attach(GLenum attachment, const Renderbuffer& renderbuffer) const;
   // True when complete; otherwise fills `status` with the GL status code.
   bool complete(GLenum* status = nullptr) const;
+  // Ok when complete; otherwise an error naming the framebuffer (`name`: what it is
+  // for, "shadow-sun", "probe") and the GL status.
+  Status check(std::string_view name) const;
   void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }
 
  private:

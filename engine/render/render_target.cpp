@@ -29,10 +29,10 @@ Result<RenderTarget> RenderTarget::create(int width, int height, int samples) {
     t.draw_.attach(GL_COLOR_ATTACHMENT0, t.color_);
   }
   t.draw_.attach(GL_DEPTH_ATTACHMENT, t.depth_);
-  GLenum status = 0;
-  if (!t.draw_.complete(&status) || (samples > 1 && !t.resolved_.complete(&status))) {
-    return makeError("render target " + std::to_string(width) + "x" + std::to_string(height) +
-                     ": framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (auto s = t.draw_.check("target " + size); !s) return s.error();
+  if (samples > 1) {
+    if (auto s = t.resolved_.check("target-resolve " + size); !s) return s.error();
   }
   return t;
 }

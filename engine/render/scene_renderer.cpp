@@ -279,11 +279,13 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     sunShadowMap = makeSunShadowMap(sunShadowSize);
     sunShadowFbo = gl::Framebuffer::create();
     sunShadowFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMap);
+    if (auto s = sunShadowFbo.check("shadow-sun"); !s) return s;
   }
   if (sunFarShadows) {
     sunShadowMapFar = makeSunShadowMap(sunShadowSize);
     sunShadowFarFbo = gl::Framebuffer::create();
     sunShadowFarFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMapFar);
+    if (auto s = sunShadowFarFbo.check("shadow-sun-far"); !s) return s;
   }
   if (pointShadows) {
     cubeSize = std::min(render.shadowMapSize, kMaxCubeShadowSize);
@@ -296,6 +298,10 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     pointShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     pointShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     pointShadowFbo = gl::Framebuffer::create();
+    // Each face is attached in turn when drawn; all six are alike, so face 0 stands
+    // for them here.
+    glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, 0);
+    if (auto s = pointShadowFbo.check("shadow-point"); !s) return s;
     pointFar = std::max(1.0, scene.camera.farPlane);
   }
   return buildVariants();
@@ -324,7 +330,8 @@ Status SceneRenderer::Impl::makeProbes() {
   probeDepth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, probeSize, probeSize);
   probeFbo = gl::Framebuffer::create();
   probeFbo.attach(GL_DEPTH_ATTACHMENT, probeDepth);
-  return Ok{};
+  glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probes[0].cube.id(), 0, 0);
+  return probeFbo.check("reflection-probe");
 }
 
 Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
@@ -490,8 +497,8 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
     drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
   }
   drawFbo.attach(GL_DEPTH_ATTACHMENT, depth);
-  if (!drawFbo.complete()) return makeError("scene HDR framebuffer is incomplete");
-  return Ok{};
+  if (auto s = drawFbo.check("scene-hdr"); !s) return s;
+  return samples > 0 ? resolveFbo.check("scene-hdr-resolve") : Status(Ok{});
 }
 
 void SceneRenderer::Impl::setUniforms(const gl::Program& program) const {

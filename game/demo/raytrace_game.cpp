@@ -30,6 +30,7 @@ engine::Status RaytraceGame::init() {
   texture_.uploadRgba8(pixels_.data());
   source_ = engine::gl::Framebuffer::create();
   source_.attach(GL_COLOR_ATTACHMENT0, texture_);
+  if (auto s = source_.check("ray-traced image"); !s) return s;
   worker_ = std::thread([this] { traceTiles(); });
   return engine::Ok{};
 }

@@ -170,3 +170,26 @@ TEST_P(GlObjects, CaptureProgramsKeepTheCachedVariant) {
   EXPECT_EQ(*captureAgain, *capture);
   EXPECT_EQ(variants.built().size(), 1u);  // --describe lists what frames draw with
 }
+
+// Every framebuffer the renderers make is checked by name: an incomplete one is
+// an error naming it and the GL status, not a frame drawn into nothing.
+TEST_P(GlObjects, IncompleteFramebufferIsNamed) {
+  gl::Framebuffer empty = gl::Framebuffer::create();
+  auto status = empty.check("shadow-sun");
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.error().message,
+            "framebuffer \"shadow-sun\" is incomplete: GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT (0x8CD7)");
+  // Attachments of different sizes are complete in GL 4.5 (the common area is
+  // drawn); a colour texture with a depth renderbuffer is the usual pair.
+  gl::Texture color = gl::Texture::create2D(GL_RGBA8, 8, 8, 1);
+  gl::Framebuffer fbo = gl::Framebuffer::create();
+  fbo.attach(GL_COLOR_ATTACHMENT0, color);
+  EXPECT_TRUE(fbo.check("probe").ok());
+  // A multisampled depth with a single-sampled colour: incomplete multisample.
+  gl::Renderbuffer depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, 8, 8, 4);
+  fbo.attach(GL_DEPTH_ATTACHMENT, depth);
+  auto mixed = fbo.check("probe");
+  ASSERT_FALSE(mixed.ok());
+  EXPECT_NE(mixed.error().message.find("\"probe\""), std::string::npos);
+  EXPECT_NE(mixed.error().message.find("INCOMPLETE_MULTISAMPLE"), std::string::npos) << mixed.error().message;
+}
