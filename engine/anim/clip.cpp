@@ -51,15 +51,29 @@ KeyPair findKeys(const std::vector<float>& times, double time) {
 }
 
 // glTF cubic Hermite: tangents are per second, so they scale with the key interval.
-glm::vec4 hermite(const Track& track, const KeyPair& keys) {
+// sign1 multiplies the second key's value and in-tangent (see hermiteQuat).
+glm::vec4 hermite(const Track& track, const KeyPair& keys, float sign1 = 1.0f) {
   float s = keys.u, s2 = s * s, s3 = s2 * s;
   float dt = static_cast<float>(keys.interval);
   const glm::vec4& v0 = track.values[keys.first * 3 + 1];
   const glm::vec4& b0 = track.values[keys.first * 3 + 2];
-  const glm::vec4& a1 = track.values[keys.second * 3];
-  const glm::vec4& v1 = track.values[keys.second * 3 + 1];
+  const glm::vec4 a1 = track.values[keys.second * 3] * sign1;
+  const glm::vec4 v1 = track.values[keys.second * 3 + 1] * sign1;
   return (2 * s3 - 3 * s2 + 1) * v0 + (s3 - 2 * s2 + s) * dt * b0 + (-2 * s3 + 3 * s2) * v1 +
          (s3 - s2) * dt * a1;
+}
+
+// A CUBICSPLINE rotation. Keys in opposite hemispheres (q and -q are one rotation)
+// would send the curve through zero, where it has no direction and its rounding
+// noise becomes the rotation; so the second key, value and in-tangent, is negated
+// into the first's hemisphere, as LINEAR's shortest arc does (glTF leaves the sign
+// open; for keys already in one hemisphere nothing changes). Tangents can still
+// carry the curve through zero: the keys' nlerp is then the nearest rotation,
+// where safeNormalize would snap the joint to identity.
+glm::quat hermiteQuat(const Track& track, const KeyPair& keys) {
+  glm::quat q0 = toQuat(track.values[keys.first * 3 + 1]), q1 = toQuat(track.values[keys.second * 3 + 1]);
+  glm::quat q = toQuat(hermite(track, keys, glm::dot(q0, q1) < 0.0f ? -1.0f : 1.0f));
+  return hasDirection(q) ? safeNormalize(q) : nlerp(q0, q1, keys.u);
 }
 
 std::size_t valueIndex(const Track& track, std::size_t key) {
@@ -101,7 +115,7 @@ glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) 
   KeyPair keys = findKeys(track.times, time);
   if (keys.first == keys.second || track.interpolation == Interpolation::Step)
     return safeNormalize(toQuat(track.values[valueIndex(track, keys.first)]));
-  if (track.interpolation == Interpolation::CubicSpline) return safeNormalize(toQuat(hermite(track, keys)));
+  if (track.interpolation == Interpolation::CubicSpline) return hermiteQuat(track, keys);
   const glm::quat a = toQuat(track.values[keys.first]), b = toQuat(track.values[keys.second]);
   return method == QuatInterpolation::Nlerp ? nlerp(a, b, keys.u) : slerp(a, b, keys.u);
 }

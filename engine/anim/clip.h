@@ -56,6 +56,8 @@ class Clip {
 enum class QuatInterpolation { Slerp, Nlerp };
 
 glm::vec3 sampleVec3(const Track& track, double time);
+// Rotations take the shortest arc between two keys, CUBICSPLINE ones included (the
+// second key's value and in-tangent are negated into the first's hemisphere).
 glm::quat sampleQuat(const Track& track, double time,
                      QuatInterpolation method = QuatInterpolation::Slerp);  // unit length
 

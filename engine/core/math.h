@@ -7,6 +7,7 @@
 // local matrix is T * R * S. The course writes the same matrix in row-vector
 // order as Scale * Rotation * Translation.
 #include <cmath>
+#include <limits>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -47,39 +48,54 @@ inline Srt decompose(const glm::mat4& m) {
   return srt;
 }
 
-// Normalises, falling back to identity for a zero quaternion so that bad data
-// yields a valid rotation instead of NaNs.
-inline glm::quat safeNormalize(const glm::quat& q) {
+// Whether q has a direction to normalise to. Below FLT_MIN the squared length is
+// subnormal and has lost the bits that would make q / |q| unit length.
+inline bool hasDirection(const glm::quat& q) {
   float len2 = glm::dot(q, q);
-  if (!(len2 > 0.0f) || !std::isfinite(len2)) return glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
-  return q * (1.0f / std::sqrt(len2));
+  return len2 >= std::numeric_limits<float>::min() && std::isfinite(len2);
+}
+
+// Normalises, falling back to identity for a zero (or NaN) quaternion so that bad
+// data yields a valid rotation instead of NaNs.
+inline glm::quat safeNormalize(const glm::quat& q) {
+  if (!hasDirection(q)) return glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+  return q * (1.0f / std::sqrt(glm::dot(q, q)));
 }
 
 // Normalised lerp along the shortest arc: cheap, and the right tool for blending
-// several poses, where the exact angular speed does not matter.
+// several poses, where the exact angular speed does not matter. After the flip the
+// dot is >= 0, so for unit keys |(1-t)a + tb|^2 >= 1/2 on [0, 1]: never zero.
 inline glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
   if (glm::dot(a, b) < 0.0f) b = -b;
   return safeNormalize(a * (1.0f - t) + b * t);
 }
 
+// Below this |a - b| (about the 4D angle theta between unit a and b, as |a - b| =
+// 2 sin(theta/2)) slerp hands over to nlerp. nlerp strays from slerp by
+// t(1-t)|1-2t| theta^3 / 6 <= theta^3 / (36 sqrt 3) in the 4D angle, twice that in
+// rotation angle: under 4e-11 rad here, far below the 6e-8 spacing of floats near
+// 1, so the two agree to float precision. Above it sin(theta) >= 1e-3 and the
+// weights' division is well conditioned. The test is on |a - b|, computed from the
+// differences, and not on the dot: 1 - 1e-7f rounds to 1 - 2^-23, which is also
+// what a unit key's dot with itself can round to, and such identical keys once
+// skipped the nlerp branch for sin(0) / sin(0), a NaN that became identity.
+inline constexpr float kSlerpNlerpBelow = 1e-3f;
+
 // Spherical lerp along the shortest arc (b is negated when the dot is negative, as
-// q and -q are the same rotation). When the two are within 1e-7 of each other in
-// dot product, sin(theta) is too small to divide by and nlerp is exact to float
-// precision. The angle comes from atan2 of |a-b| and |a+b|, which stays accurate
-// for tiny angles where acos(dot) does not. The result is renormalised so that
-// keys a little off unit length still give a rotation.
+// q and -q are the same rotation). theta = 2 atan2(|a-b|, |a+b|) is accurate on all
+// of 0..pi/2, the flip's range, where acos(dot) loses half the digits near 1.
+// sin(theta) comes from the same two lengths, 2|a-b||a+b| / (|a-b|^2 + |a+b|^2),
+// which saves a sin. The result is renormalised so that keys a little off unit
+// length still give a rotation; a NaN key fails the threshold test and becomes
+// identity through nlerp's safeNormalize.
 inline glm::quat slerp(const glm::quat& a, glm::quat b, float t) {
-  float d = glm::dot(a, b);
-  if (d < 0.0f) {
-    b = -b;
-    d = -d;
-  }
-  if (d > 1.0f - 1e-7f) return safeNormalize(a * (1.0f - t) + b * t);
-  float halfAngle = 2.0f * std::atan2(glm::length(a - b), glm::length(a + b));
-  float s = std::sin(halfAngle);
-  float wa = std::sin((1.0f - t) * halfAngle) / s;
-  float wb = std::sin(t * halfAngle) / s;
-  return safeNormalize(a * wa + b * wb);
+  if (glm::dot(a, b) < 0.0f) b = -b;
+  float minus2 = glm::dot(a - b, a - b), plus2 = glm::dot(a + b, a + b);
+  if (!(minus2 >= kSlerpNlerpBelow * kSlerpNlerpBelow)) return safeNormalize(a * (1.0f - t) + b * t);
+  float minus = std::sqrt(minus2), plus = std::sqrt(plus2);
+  float theta = 2.0f * std::atan2(minus, plus);
+  float invSin = (minus2 + plus2) / (2.0f * minus * plus);
+  return safeNormalize(a * (std::sin((1.0f - t) * theta) * invSin) + b * (std::sin(t * theta) * invSin));
 }
 
 // Dual quaternion: real part = rotation, dual part = 0.5 * translation * rotation.

@@ -29,9 +29,9 @@ TEST(Slerp, IdenticalQuaternionsGiveTheSameRotation) {
 
 TEST(Slerp, NearlyIdenticalStaysUnitAndContinuous) {
   glm::quat a = glm::angleAxis(0.5f, glm::vec3(0, 1, 0));
-  // About 1e-4 rad apart: dot > 1 - 1e-7, the nlerp fallback.
+  // 2e-4 rad of rotation apart, |a - b| = 1e-4: the nlerp fallback.
   glm::quat b = glm::angleAxis(0.5f + 2e-4f, glm::vec3(0, 1, 0));
-  ASSERT_GT(glm::dot(a, b), 1.0f - 1e-7f);
+  ASSERT_LT(glm::length(a - b), kSlerpNlerpBelow);
   glm::quat prev = a;
   for (int i = 0; i <= 100; ++i) {
     glm::quat r = slerp(a, b, i / 100.0f);
@@ -43,12 +43,13 @@ TEST(Slerp, NearlyIdenticalStaysUnitAndContinuous) {
 }
 
 TEST(Slerp, JustOutsideTheFallbackMatchesTheAngle) {
-  // dot just below the threshold: the slerp branch with a tiny sin(theta).
+  // |a - b| just above the threshold: the slerp branch with a tiny sin(theta).
   glm::quat a(1, 0, 0, 0);
-  glm::quat b = glm::angleAxis(1e-3f, glm::vec3(1, 0, 0));
+  glm::quat b = glm::angleAxis(2.2e-3f, glm::vec3(1, 0, 0));
+  ASSERT_GT(glm::length(a - b), kSlerpNlerpBelow);
   glm::quat r = slerp(a, b, 0.5f);
   EXPECT_NEAR(glm::length(r), 1.0f, 1e-6f);
-  EXPECT_NEAR(glm::angle(r), 5e-4f, 2e-5f);
+  EXPECT_NEAR(glm::angle(r), 1.1e-3f, 2e-5f);
 }
 
 TEST(Slerp, OppositeQuaternionsTakeTheShortArc) {
