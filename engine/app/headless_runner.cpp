@@ -34,7 +34,6 @@ Status runHeadless(Backend backend, Game& game, const RunOptions& options, Image
   Image last = target.readPixels();
   if (afterFrames) afterFrames();
   auto status = finishRun(*setup->context, options, game, std::move(frameMs), &last);
-  game.shutdown();
   if (captured) *captured = std::move(last);
   return status;
 }

@@ -22,11 +22,13 @@ Result<RunSetup> startRun(Backend backend, Game& game, const RunOptions& options
   auto context = createContext(backend, contextOptions);
   if (!context) return context.error();
   if (options.debugGl) gl::enableDebugOutput();
+  RunSetup setup{std::move(context).value(), GameSession(game), RenderTarget{}};
   if (auto status = game.init(); !status) return status.error();
   auto target = RenderTarget::create(options.width, options.height,
                                      options.targetSamples > 0 ? options.targetSamples : options.msaa);
   if (!target) return target.error();
-  return RunSetup{std::move(context).value(), std::move(target).value()};
+  setup.target = std::move(target).value();
+  return setup;
 }
 
 Status finishRun(const GlContext& context, const RunOptions& options, Game& game,

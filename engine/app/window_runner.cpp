@@ -117,11 +117,7 @@ Status runWindow(Game& game, const RunOptions& options) {
   if (!options.screenshot.empty()) lastFrame = setup->target.readPixels();
   // The first interval includes start-up; leave it out of the statistics.
   if (!frameMs.empty()) frameMs.erase(frameMs.begin());
-  auto status = finishRun(*setup->context, options, game, std::move(frameMs),
-                          lastFrame.empty() ? nullptr : &lastFrame);
-  ui.reset();
-  game.shutdown();
-  return status;
+  return finishRun(*setup->context, options, game, std::move(frameMs), lastFrame.empty() ? nullptr : &lastFrame);
 }
 
 }  // namespace engine

@@ -5,16 +5,38 @@
 // is complete without being bound.
 #include <glad/gl.h>
 
+#include <cstdio>
 #include <utility>
 
 namespace engine::gl {
+
+// Bookkeeping of every owner, for the soak test and for a bug that would otherwise
+// pass unseen: a name deleted once its context is gone (GL then has no current
+// context to delete it in). Each GlContext counts itself in contextsAlive.
+namespace detail {
+inline int contextsAlive = 0;
+inline long long objectsAlive = 0;
+inline long long objectsOrphaned = 0;
+
+inline void orphaned(GLuint id) {
+  if (objectsOrphaned++ == 0) {
+    std::fprintf(stderr, "gl: GL object %u outlived its context (a bug: it is left undeleted)\n", id);
+  }
+}
+}  // namespace detail
+
+// GL objects owned now, and those whose owner died after every context had gone.
+inline long long liveObjects() { return detail::objectsAlive; }
+inline long long orphanedObjects() { return detail::objectsOrphaned; }
 
 // Deleter is a function object taking the name to delete.
 template <typename Deleter>
 class Object {
  public:
   Object() = default;
-  explicit Object(GLuint id) : id_(id) {}
+  explicit Object(GLuint id) : id_(id) {
+    if (id_) ++detail::objectsAlive;
+  }
   ~Object() { reset(); }
   Object(const Object&) = delete;
   Object& operator=(const Object&) = delete;
@@ -30,7 +52,13 @@ class Object {
   GLuint id() const { return id_; }
   explicit operator bool() const { return id_ != 0; }
   void reset() {
-    if (id_) Deleter{}(id_);
+    if (!id_) return;
+    --detail::objectsAlive;
+    if (detail::contextsAlive > 0) {
+      Deleter{}(id_);
+    } else {
+      detail::orphaned(id_);
+    }
     id_ = 0;
   }
 

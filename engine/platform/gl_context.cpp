@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include "gl/object.h"
 #include "platform/backends.h"
 
 namespace engine {
@@ -21,6 +22,11 @@ std::optional<Backend> parseBackend(std::string_view name) {
   if (name == "window" || name == "glfw") return Backend::Window;
   return std::nullopt;
 }
+
+// Counted for the GL objects' tripwire (gl/object.h). The backend's destructor,
+// which runs first, has destroyed the context by the time the count drops.
+GlContext::GlContext() { ++gl::detail::contextsAlive; }
+GlContext::~GlContext() { --gl::detail::contextsAlive; }
 
 namespace {
 // glad wants a function of the GL type; the backends hand out void*.

@@ -31,7 +31,7 @@ struct ContextOptions {
 
 class GlContext {
  public:
-  virtual ~GlContext() = default;
+  virtual ~GlContext();
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
 
@@ -47,7 +47,7 @@ class GlContext {
   const std::string& version() const { return version_; }
 
  protected:
-  GlContext() = default;
+  GlContext();
   // Loads every GL entry point through `getProc` and checks the version; each
   // backend calls it once its context is current.
   Status loadGl(void* (*getProc)(const char*), std::string_view backendLabel);

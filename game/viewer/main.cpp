@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
   }
   const auto status = backend == engine::Backend::Window ? engine::runWindow(scene, options.run)
                                                          : engine::runHeadless(backend, scene, options.run);
-  if (!status) return fail(engine::kExitFailure, status.error().message);
+  if (!status) return fail(engine::kExitBadInput, status.error().message);
   if (!options.run.screenshot.empty()) std::printf("%s\n", options.run.screenshot.c_str());
   return 0;
 }

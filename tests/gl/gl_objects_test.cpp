@@ -8,6 +8,7 @@
 #include "../support/gl_test.h"
 #include "gl/resources.h"
 #include "gl/shader.h"
+#include "app/runner.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
 
@@ -192,4 +193,64 @@ TEST_P(GlObjects, IncompleteFramebufferIsNamed) {
   ASSERT_FALSE(mixed.ok());
   EXPECT_NE(mixed.error().message.find("\"probe\""), std::string::npos);
   EXPECT_NE(mixed.error().message.find("INCOMPLETE_MULTISAMPLE"), std::string::npos) << mixed.error().message;
+}
+
+namespace {
+
+// A game that owns a GL object and fails where it is told to: in init (after
+// making its object), in the first frame, or not at all.
+class FailingGame final : public Game {
+ public:
+  enum class FailAt { Nothing, Init, Render };
+  explicit FailingGame(FailAt at) : at_(at) {}
+  Status init() override {
+    buffer_ = gl::Buffer::create(64);
+    if (at_ == FailAt::Init) return makeError("init failed half-way");
+    return Ok{};
+  }
+  void update(double, double) override {}
+  Status render(const FrameInfo&) override {
+    if (at_ == FailAt::Render) return makeError("the frame failed");
+    return Ok{};
+  }
+  Camera& camera() override { return camera_; }
+  void shutdown() override {
+    ++shutdowns;
+    buffer_.reset();
+  }
+  int shutdowns = 0;
+
+ private:
+  FailAt at_;
+  Camera camera_;
+  gl::Buffer buffer_;
+};
+
+}  // namespace
+
+// However a run ends, the game is shut down once, before its context goes: none of
+// its GL objects outlives the context (gl::orphanedObjects counts those that do).
+TEST(RunLifetime, EveryEndShutsTheGameDownBeforeTheContext) {
+  for (Backend backend : {Backend::Egl, Backend::OsMesa}) {
+    for (auto at : {FailingGame::FailAt::Nothing, FailingGame::FailAt::Init, FailingGame::FailAt::Render}) {
+      FailingGame game(at);
+      RunOptions options;
+      options.width = options.height = 16;
+      options.frames = 2;
+      const long long orphansBefore = gl::orphanedObjects(), liveBefore = gl::liveObjects();
+      const Status status = runHeadless(backend, game, options);
+      EXPECT_EQ(status.ok(), at == FailingGame::FailAt::Nothing);
+      EXPECT_EQ(game.shutdowns, 1);
+      EXPECT_EQ(gl::orphanedObjects(), orphansBefore);
+      EXPECT_EQ(gl::liveObjects(), liveBefore);
+    }
+  }
+  // msaa 64 is beyond every GL: the target fails after a successful init.
+  FailingGame game(FailingGame::FailAt::Nothing);
+  RunOptions options;
+  options.msaa = 64;
+  const long long orphansBefore = gl::orphanedObjects();
+  EXPECT_FALSE(runHeadless(Backend::Egl, game, options).ok());
+  EXPECT_EQ(game.shutdowns, 1);
+  EXPECT_EQ(gl::orphanedObjects(), orphansBefore);
 }
