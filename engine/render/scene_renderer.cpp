@@ -188,9 +188,15 @@ struct SceneRenderer::Impl {
     glm::mat4 shadowMatrix{1.0f};           // camera-relative world -> map [0,1]^3
     double radius = 0.0, texelWorld = 0.0;
   };
-  SunBox fitSunBox(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
-                   double nearPlane, double farPlane) const;
-  void drawTerrainShadow(const SunBox& box, double fovy);
+  // What a sun map must cover: a sphere, relative to `eye`.
+  struct ShadowSphere {
+    glm::dvec3 center{0.0};
+    double radius = 0.0;
+  };
+  static ShadowSphere frustumSlice(const glm::dmat4& view, double fovy, double aspect, double nearPlane,
+                                   double farPlane);
+  SunBox fitSunBox(const ShadowSphere& sphere) const;
+  void drawTerrainShadow(const SunBox& box, double fovy, int viewportHeight);
   Status loadMaterials();
   Status loadModels();
   void addShapes();
@@ -207,8 +213,8 @@ struct SceneRenderer::Impl {
   Status drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
                         const glm::mat4& viewProjection);
   Status drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection);
-  Status renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy, double aspect,
-                         double nearPlane);
+  Status renderSunShadow(const ShadowSphere& nearSphere, const ShadowSphere& farSphere, double fovy,
+                         int viewportHeight);
   Status renderPointShadow(const glm::dvec3& cameraPosition);
   Status renderFrame(const Camera& camera, int width, int height);
   void fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection);
@@ -372,13 +378,13 @@ void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double f
 // view (a coarser mesh would poke through the drawn one and shadow it), culled
 // against the light's box stretched toward the sun over the whole field: with depth
 // clamping, a mountain in front of the light's near plane still casts, at depth 0.
-void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy) {
+void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy, int viewportHeight) {
   const terrain::HeightRange h = terrain->heightRange();
   const double reach = std::hypot(double(terrain->cellsX()), double(terrain->cellsZ())) * terrain->spacing() +
                        double(h.max - h.min);
   const double r = box.radius;
   const glm::dmat4 cullProjection = glm::orthoRH_ZO(-r, r, -r, r, -reach, 2.0 * r + reach);
-  const auto selection = selectTerrain(glm::mat4(cullProjection * box.view), fovy, targetHeight);
+  const auto selection = selectTerrain(glm::mat4(cullProjection * box.view), fovy, viewportHeight);
   glEnable(GL_DEPTH_CLAMP);
   terrainRenderer->drawDepth(selection, glm::mat4(box.projection * box.view));
   glDisable(GL_DEPTH_CLAMP);
@@ -645,11 +651,11 @@ Status SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat
   return Ok{};
 }
 
-// The sun's orthographic box around the view frustum's slice [nearPlane, farPlane]
-// (its bounding sphere, camera-relative), texel-snapped.
-SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const glm::dvec3& cameraPosition, const glm::dmat4& view,
-                                                           double fovy, double aspect, double nearPlane,
-                                                           double farPlane) const {
+// The bounding sphere of the view frustum's slice [nearPlane, farPlane],
+// camera-relative, its radius rounded up to whole metres: a stable size, so that
+// texels do not change every frame.
+SceneRenderer::Impl::ShadowSphere SceneRenderer::Impl::frustumSlice(const glm::dmat4& view, double fovy, double aspect,
+                                                                    double nearPlane, double farPlane) {
   const glm::dmat4 invView = glm::inverse(view);
   const double ty = std::tan(fovy * 0.5), tx = ty * aspect;
   glm::dvec3 corners[8];
@@ -657,12 +663,17 @@ SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const glm::dvec3& cam
   for (double d : {nearPlane, farPlane})
     for (double sy : {-1.0, 1.0})
       for (double sx : {-1.0, 1.0}) corners[k++] = glm::dvec3(invView * glm::dvec4(sx * tx * d, sy * ty * d, -d, 1.0));
-  glm::dvec3 center(0.0);
-  for (const auto& c : corners) center += c / 8.0;
-  double radius = 0.0;
-  for (const auto& c : corners) radius = std::max(radius, glm::length(c - center));
-  radius = std::ceil(radius);  // a stable size, so texels do not change every frame
+  ShadowSphere slice;
+  for (const auto& c : corners) slice.center += c / 8.0;
+  for (const auto& c : corners) slice.radius = std::max(slice.radius, glm::length(c - slice.center));
+  slice.radius = std::ceil(slice.radius);
+  return slice;
+}
 
+// The sun's orthographic box around `around` (relative to `eye`), texel-snapped.
+SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const ShadowSphere& around) const {
+  const double radius = around.radius;
+  glm::dvec3 center = around.center;
   const glm::dvec3 l = scene.lights[size_t(sunLight)].direction;
   const glm::dvec3 up = std::abs(l.y) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   const glm::dvec3 lx = glm::normalize(glm::cross(up, l)), ly = glm::cross(l, lx);
@@ -672,7 +683,7 @@ SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const glm::dvec3& cam
   box.radius = radius;
   box.texelWorld = 2.0 * radius / double(sunShadowSize);
   const double texel = box.texelWorld;
-  const glm::dvec3 world = center + cameraPosition;
+  const glm::dvec3 world = center + eye;
   const double u = glm::dot(world, lx), v = glm::dot(world, ly);
   center += lx * (std::floor(u / texel) * texel - u) + ly * (std::floor(v / texel) * texel - v);
 
@@ -685,10 +696,12 @@ SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const glm::dvec3& cam
   return box;
 }
 
-Status SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, const glm::dmat4& view, double fovy,
-                                            double aspect, double nearPlane) {
-  const SunBox box = fitSunBox(cameraPosition, view, fovy, aspect, nearPlane,
-                               std::min(scene.camera.farPlane, kSunShadowDistance));
+// The sun's maps around two spheres relative to `eye` (characters posed for it):
+// the near one of everything, the far one of the terrain alone. The frame block's
+// shadow matrices then belong to this eye.
+Status SceneRenderer::Impl::renderSunShadow(const ShadowSphere& nearSphere, const ShadowSphere& farSphere,
+                                            double fovy, int viewportHeight) {
+  const SunBox box = fitSunBox(nearSphere);
   sunTexelWorld = box.texelWorld;
   frame.sunShadowMatrix = box.shadowMatrix;
   const glm::mat4 lightViewProjection(box.projection * box.view);
@@ -703,17 +716,16 @@ Status SceneRenderer::Impl::renderSunShadow(const glm::dvec3& cameraPosition, co
   glPolygonOffset(1.5f, 2.0f);
   if (auto s = drawShapes(nullptr, true, lightViewProjection); !s) return s;
   if (auto s = drawCharacters(nullptr, true, lightViewProjection, lightViewProjection); !s) return s;
-  if (terrain) drawTerrainShadow(box, fovy);
+  if (terrain) drawTerrainShadow(box, fovy, viewportHeight);
 
   if (sunFarShadows) {
     // The far map: the terrain alone (mountains over valleys), out to a few km.
-    const SunBox far = fitSunBox(cameraPosition, view, fovy, aspect, nearPlane,
-                                 std::min(scene.camera.farPlane, kSunFarShadowDistance));
+    const SunBox far = fitSunBox(farSphere);
     frame.sunShadowMatrixFar = far.shadowMatrix;
     frame.sunFarParams = glm::vec4(1.0f / float(sunShadowSize), float(far.texelWorld), 0.0f, 0.0f);
     sunShadowFarFbo.bind();
     glClear(GL_DEPTH_BUFFER_BIT);
-    drawTerrainShadow(far, fovy);
+    drawTerrainShadow(far, fovy, viewportHeight);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
   return Ok{};
@@ -777,19 +789,24 @@ Status SceneRenderer::Impl::poseCharacters(const glm::dvec3& cameraPosition) {
 }
 
 // Each probe's six faces, seen from the mirror's centre without the mirror itself.
-// Positions stay camera-relative, now to the probe's centre; the sun's shadow
-// matrix is moved to match. Probes show no mirrors: one bounce, where the ray
-// tracer follows --max-depth bounces.
+// Positions stay camera-relative, now to the probe's centre. The sun's maps are
+// drawn again around the probe: the camera's maps cover what the camera sees, and
+// a static scene keeps its probes however far the camera then goes. Probes show no
+// mirrors: one bounce, where the ray tracer follows --max-depth bounces. Before the
+// camera's own sun maps, which this overwrites.
 Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
-  const glm::mat4 cameraShadowMatrix = frame.sunShadowMatrix;
   const glm::dmat4 projection = reverseZProjection(glm::half_pi<double>(), 1.0, kProbeNear, scene.camera.farPlane);
   const glm::vec3 background = scene.sky.background;
-  glViewport(0, 0, probeSize, probeSize);
   glFrontFace(GL_CCW);
   for (const Probe& probe : probes) {
     if (auto s = poseCharacters(probe.center); !s) return s;
-    frame.sunShadowMatrix =
-        glm::mat4(glm::dmat4(cameraShadowMatrix) * glm::translate(glm::dmat4(1.0), probe.center - cameraPosition));
+    if (sunShadows) {
+      // All around the probe, as far as the camera's maps reach ahead of it.
+      const ShadowSphere nearSphere{glm::dvec3(0.0), std::min(scene.camera.farPlane, kSunShadowDistance)};
+      const ShadowSphere farSphere{glm::dvec3(0.0), std::min(scene.camera.farPlane, kSunFarShadowDistance)};
+      if (auto s = renderSunShadow(nearSphere, farSphere, glm::half_pi<double>(), probeSize); !s) return s;
+    }
+    glViewport(0, 0, probeSize, probeSize);
     for (int face = 0; face < 6; ++face) {
       View view;
       view.viewProjection = projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]);
@@ -806,7 +823,6 @@ Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
       if (auto s = drawWorld(view, probe.shape, false); !s) return s;
     }
   }
-  frame.sunShadowMatrix = cameraShadowMatrix;
   return poseCharacters(cameraPosition);
 }
 
@@ -882,9 +898,6 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
-  if (sunShadows) {
-    if (auto status = renderSunShadow(cameraPosition, view, fovy, aspect, camera.nearPlane); !status) return status;
-  }
   if (pointShadows && !(pointShadowValid && characters.empty())) {
     if (auto status = renderPointShadow(cameraPosition); !status) return status;
     pointShadowValid = true;
@@ -894,6 +907,14 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   if (!probes.empty() && !(probesValid && characters.empty())) {
     if (auto status = renderProbes(cameraPosition); !status) return status;
     probesValid = true;
+  }
+  if (sunShadows) {
+    const double farPlane = scene.camera.farPlane, nearPlane = camera.nearPlane;
+    const ShadowSphere nearSphere =
+        frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunShadowDistance));
+    const ShadowSphere farSphere =
+        frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunFarShadowDistance));
+    if (auto status = renderSunShadow(nearSphere, farSphere, fovy, targetHeight); !status) return status;
   }
   fillFrame(cameraPosition, glm::mat4(viewProjection));
 
