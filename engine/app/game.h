@@ -28,6 +28,9 @@ class Game {
   // Draws the frame into the bound render target. An error ends the run: the
   // runner reports it and exits, never showing or writing a frame it lacks.
   virtual Status render(const FrameInfo& frame) = 0;
+  // True once the game has done what it runs for (a soak of fixed length): the
+  // runners then stop as if the window were closed or the frames were done.
+  virtual bool finished() const { return false; }
   // The camera the interactive controls move.
   virtual Camera& camera() = 0;
   // Releases GL objects while the context is still current; the runners call it

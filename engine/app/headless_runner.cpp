@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 
 #include "app/runner_common.h"
@@ -18,8 +19,9 @@ Status runHeadless(Backend backend, Game& game, const RunOptions& options, Image
   const RenderTarget& target = setup->target;
 
   std::vector<double> frameMs;
-  frameMs.reserve(static_cast<size_t>(options.frames));
-  for (int i = 0; i < options.frames; ++i) {
+  // A soak asks for every frame there is (INT_MAX) and stops when the game is done.
+  frameMs.reserve(static_cast<size_t>(std::min(options.frames, 1 << 16)));
+  for (int i = 0; i < options.frames && !game.finished(); ++i) {
     const double time = headlessFrameTime(options, i);
     const auto start = std::chrono::steady_clock::now();
     game.update(time, options.dt);

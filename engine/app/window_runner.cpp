@@ -63,7 +63,7 @@ Status runWindow(Game& game, const RunOptions& options) {
   double titleTimer = 0.0;
   std::vector<double> frameMs;
   Image lastFrame;
-  for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
+  for (int frame = 0; !glfwWindowShouldClose(window) && !game.finished(); ++frame) {
     if (options.frames > 0 && frame >= options.frames) break;
     glfwPollEvents();
     const auto now = Clock::now();

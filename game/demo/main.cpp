@@ -3,6 +3,7 @@
 // through EGL or OSMesa and writes the last one to a PNG.
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include "raytrace/scene_builder.h"
 #include "raytrace_game.h"
 #include "scene_game.h"
+#include "soak_game.h"
 
 namespace {
 
@@ -53,6 +55,20 @@ int runRaytraceOffscreen(const engine::SceneDesc& scene, const engine::CommonOpt
   return 0;
 }
 
+// The soak: frames until the time is up (however many that is), then the samples'
+// summary; RSS and live GL objects are for the caller to judge.
+int runSoak(const std::string& scenePath, const engine::SceneRenderOptions& render, double seconds, double reload,
+            engine::Backend backend, engine::RunOptions run) {
+  demo::SoakGame game(scenePath, render, seconds, reload);
+  run.frames = backend == engine::Backend::Window ? 0 : std::numeric_limits<int>::max();
+  run.time.reset();
+  const auto status = backend == engine::Backend::Window ? engine::runWindow(game, run)
+                                                         : engine::runHeadless(backend, game, run);
+  if (!status) return fail(engine::kExitBadInput, status.error().message);
+  std::fputs(game.report().c_str(), stderr);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,6 +88,12 @@ int main(int argc, char** argv) {
                  "Cube map size of the mirrors' reflection probes (0: no reflections)")
       ->check(CLI::Range(0, 2048));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
+  double soakSeconds = 0.0, soakReload = 10.0;
+  app.add_option("--soak", soakSeconds,
+                 "Soak: draw for SECONDS of wall time, the camera circling, the scene reloaded every --soak-reload")
+      ->check(CLI::Range(1.0, 1e6));
+  app.add_option("--soak-reload", soakReload, "Soak: seconds between reloads of the scene")
+      ->check(CLI::Range(0.1, 1e6))->capture_default_str();
   std::string mode = "raster";
   RaytraceOptions rt;
   app.add_option("--mode", mode, "raster (OpenGL) or raytrace (the CPU reference)")
@@ -116,12 +138,12 @@ int main(int argc, char** argv) {
     if (auto status = engine::runWindow(game, options.run); !status) return fail(engine::kExitBadInput, status.error().message);
     return 0;
   }
-  demo::SceneGame game(std::move(scene).value(), render);
-
   const engine::Backend backend = engine::chosenBackend(options);
   if (backend == engine::Backend::Window && !engine::displayAvailable()) {
     return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
   }
+  if (soakSeconds > 0.0) return runSoak(scenePath, render, soakSeconds, soakReload, backend, options.run);
+  demo::SceneGame game(std::move(scene).value(), render);
   if (describe) {
     // Builds the renderer for the scene (one frame) and prints what it made.
     options.run.frames = 1;

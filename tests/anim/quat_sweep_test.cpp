@@ -168,30 +168,27 @@ void report(const char* what, Kind kind, const Worst& w) {
   EXPECT_EQ(w.failures, 0) << what << ", " << name(kind) << ": first failure " << w.example;
 }
 
-TEST(QuatSweep, SlerpIsUnitAndMatchesTheDoubleSlerp) {
-  std::mt19937_64 rng(20240611);
+// Every kind of pair through `interpolate`, against the double-precision `reference`.
+template <typename Interpolate, typename Reference>
+void sweep(const char* what, std::uint64_t seed, Interpolate interpolate, Reference reference) {
+  std::mt19937_64 rng(seed);
   for (Kind kind : kKinds) {
     Worst w;
     for (int i = 0; i < kPairsPerKind; ++i) {
       auto [a, b] = makePair(kind, rng);
       float t = randomT(rng, i);
-      check(w, slerp(a, b, t), a, b, t, refSlerp);
+      check(w, interpolate(a, b, t), a, b, t, reference);
     }
-    report("slerp", kind, w);
+    report(what, kind, w);
   }
 }
 
+TEST(QuatSweep, SlerpIsUnitAndMatchesTheDoubleSlerp) {
+  sweep("slerp", 20240611, [](const glm::quat& a, const glm::quat& b, float t) { return slerp(a, b, t); }, refSlerp);
+}
+
 TEST(QuatSweep, NlerpIsUnitAndMatchesTheDoubleNlerp) {
-  std::mt19937_64 rng(7);
-  for (Kind kind : kKinds) {
-    Worst w;
-    for (int i = 0; i < kPairsPerKind; ++i) {
-      auto [a, b] = makePair(kind, rng);
-      float t = randomT(rng, i);
-      check(w, nlerp(a, b, t), a, b, t, refNlerp);
-    }
-    report("nlerp", kind, w);
-  }
+  sweep("nlerp", 7, [](const glm::quat& a, const glm::quat& b, float t) { return nlerp(a, b, t); }, refNlerp);
 }
 
 // Two CUBICSPLINE rotation keys at times 0 and 1 with zero tangents; values are set
