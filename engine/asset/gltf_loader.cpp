@@ -10,6 +10,7 @@
 #include <utility>
 
 #include <nlohmann/json.hpp>
+#include <set>
 #include <tiny_gltf.h>
 
 #include "asset/gltf_accessor.h"
@@ -110,11 +111,52 @@ bool uriStaysInFolder(const std::string& uri) {
   return true;
 }
 
-// Looks at the raw JSON before tinygltf follows any URI.
-Status checkUris(const std::string& jsonText, const std::string& path) {
+// The glTF extensions this loader implements. KHR_mesh_quantization needs nothing
+// of its own: every accessor is read with its component type and normalisation.
+const std::set<std::string>& supportedExtensions() {
+  static const std::set<std::string> supported{"KHR_mesh_quantization"};
+  return supported;
+}
+
+// The names in `doc[key]` (a list of strings) that this loader does not implement.
+std::vector<std::string> unsupportedExtensions(const nlohmann::json& doc, const char* key) {
+  std::vector<std::string> names;
+  auto list = doc.find(key);
+  if (list == doc.end() || !list->is_array()) return names;
+  for (const auto& name : *list) {
+    if (name.is_string() && !supportedExtensions().count(name.get<std::string>())) names.push_back(name.get<std::string>());
+  }
+  return names;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// Checked on the raw JSON, before tinygltf: a required extension changes what the
+// data means (Draco's accessors have no bufferView, which tinygltf would report
+// instead). Required and unsupported: an error listing them all. Used but
+// optional: a warning each, and the model is read without them.
+Status checkExtensions(const nlohmann::json& doc, const std::string& path, std::vector<std::string>& warnings) {
+  const auto required = unsupportedExtensions(doc, "extensionsRequired");
+  if (!required.empty()) {
+    return makeError(path + ": requires " + joined(required) + ", which this engine does not support");
+  }
+  for (const std::string& name : unsupportedExtensions(doc, "extensionsUsed")) {
+    warnings.push_back(path + ": uses " + name + ", which this engine does not support; drawn without it");
+  }
+  return Ok{};
+}
+
+// Looks at the raw JSON before tinygltf parses it or follows any URI: extensions,
+// URIs, image views and the count limits.
+Status checkRawJson(const std::string& jsonText, const std::string& path, std::vector<std::string>& warnings) {
   nlohmann::json doc = nlohmann::json::parse(jsonText, nullptr, false);
   if (doc.is_discarded()) return makeError(path + ": invalid JSON");
   if (!doc.is_object()) return makeError(path + ": the top-level JSON value is not an object");
+  if (auto s = checkExtensions(doc, path, warnings); !s) return s;
   // The count limits are checked here as well as after parsing: tinygltf spends
   // about 1 KiB per node, so a 3 MiB list of empty nodes would cost a gigabyte
   // before Converter::checkLimits could refuse it.
@@ -173,7 +215,7 @@ Status checkUris(const std::string& jsonText, const std::string& path) {
 }
 
 // tinygltf's file reader, restricted to the model's folder: the second line of
-// defence after checkUris (tinygltf also searches the working directory).
+// defence after checkRawJson (tinygltf also searches the working directory).
 bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err,
                           const std::string& filepath, void* userData) {
   const fs::path& folder = *static_cast<const fs::path*>(userData);
@@ -300,8 +342,8 @@ Result<tinygltf::Model> parseWithTinygltf(const std::vector<unsigned char>& byte
   } else {
     jsonText.assign(bytes.begin(), bytes.end());
   }
-  Status uris = checkUris(jsonText, path);
-  if (!uris) return uris.error();
+  Status raw = checkRawJson(jsonText, path, out.warnings);
+  if (!raw) return raw.error();
 
   tinygltf::TinyGLTF loader;
   tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,

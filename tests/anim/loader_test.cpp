@@ -485,5 +485,30 @@ TEST_F(LoaderTest, MaterialTextureIndexOutOfRangeIsIgnoredWithAWarning) {
   EXPECT_TRUE(hasWarning(*model, {"emissiveTexture 0", "TEXCOORD_1"})) << allWarnings(*model);
 }
 
+
+// A required extension this engine lacks is an error listing them all, checked
+// before tinygltf (which would report Draco's missing bufferViews instead); an
+// optional one is a warning naming it, and the model loads without it.
+TEST_F(LoaderTest, UnsupportedExtensionsRequiredAreErrorsUsedAreWarnings) {
+  TestModel required;
+  required.doc["extensionsUsed"] = {"KHR_draco_mesh_compression", "KHR_mesh_quantization", "EXT_unheard_of"};
+  required.doc["extensionsRequired"] = {"KHR_draco_mesh_compression", "KHR_mesh_quantization", "EXT_unheard_of"};
+  required.doc["accessors"][0].erase("bufferView");  // as Draco leaves them
+  const std::string path = write(required);
+  auto refused = loadGltf(path);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message,
+            path + ": requires KHR_draco_mesh_compression, EXT_unheard_of, which this engine does not support");
+
+  TestModel optional;
+  optional.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_mesh_quantization"};
+  optional.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+  auto model = loadGltf(write(optional));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(hasWarning(*model, {"uses KHR_materials_clearcoat, which this engine does not support; drawn without it"}))
+      << allWarnings(*model);
+  EXPECT_FALSE(hasWarning(*model, {"KHR_mesh_quantization"})) << allWarnings(*model);
+}
+
 }  // namespace
 }  // namespace engine
