@@ -61,17 +61,22 @@ void SoakGame::update(double time, double dt) {
     nextReload_ = reloadEvery_;
   }
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (elapsed >= nextReload_ || elapsed >= seconds_) {
+  // Sampled only after a frame of the current build: some objects are made by its
+  // first frame (queries, pages), and a slow build (under ASan it outlasts the
+  // interval) would otherwise be sampled, and rebuilt, before it drew anything.
+  const bool drawn = framesSinceReload_ > 0;
+  if (drawn && (elapsed >= nextReload_ || elapsed >= seconds_)) {
     samples_.push_back({elapsed, frames_, residentMiB(), engine::gl::liveObjects()});
     const SoakSample& s = samples_.back();
     std::fprintf(stderr, "soak: %7.1f s, %8lld frames, RSS %8.1f MiB, %6lld GL objects\n", s.seconds, s.frames,
                  s.rssMiB, s.glObjects);
-    nextReload_ += reloadEvery_;
     if (elapsed >= seconds_) {
       finished_ = true;
       return;
     }
     if (auto status = reload(); !status) error_ = status;
+    framesSinceReload_ = 0;
+    nextReload_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() + reloadEvery_;
   }
   if (!error_) return;
   orbit(elapsed);
@@ -81,6 +86,7 @@ void SoakGame::update(double time, double dt) {
 engine::Status SoakGame::render(const engine::FrameInfo& frame) {
   if (!error_) return error_;
   ++frames_;
+  ++framesSinceReload_;
   return scene_->render(frame);
 }
 

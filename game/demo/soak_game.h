@@ -1,7 +1,8 @@
 #pragma once
 // The demo's soak run (demo --soak SECONDS): the scene drawn as the demo draws it
 // while the camera circles what it looks at and the scene is reloaded from its file
-// every few seconds. Before each reload it samples the process's resident memory
+// every few seconds (counted from the end of the last rebuild, after at least one
+// frame of it). Before each reload it samples the process's resident memory
 // and the live GL objects; a renderer that leaks shows as a rise from one sample to
 // the next, as every reload builds the same scene again.
 #include <chrono>
@@ -52,7 +53,7 @@ class SoakGame final : public engine::Game {
   std::chrono::steady_clock::time_point start_;
   bool started_ = false, finished_ = false;
   double nextReload_ = 0.0;
-  long long frames_ = 0;
+  long long frames_ = 0, framesSinceReload_ = 0;
   std::vector<SoakSample> samples_;
 };
 

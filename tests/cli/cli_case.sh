@@ -63,21 +63,26 @@ case "$CASE" in
     # A bare X server (no other client) resets when its last client disconnects. The
     # display probe and the window share one connection, so the window never meets
     # the reset: 20 runs in a row with both cores busy (before the fix 10 of 20
-    # failed here with "Failed to open display").
+    # failed here with "Failed to open display"). An empty scene: the race is
+    # between the probe and the window, before any scene is built, and each run
+    # then costs a fifth of a second (the whole test 7 s here, more under ASan).
     command -v Xvfb >/dev/null || { echo "Xvfb missing: skipped"; exit 77; }
+    rm -f xvfb.fd  # Xvfb writes its display number there once it is ready
     Xvfb -displayfd 3 -nolisten tcp 3>xvfb.fd 2>xvfb.log &
     xvfb=$!
     for _ in $(seq 50); do [ -s xvfb.fd ] && break; sleep 0.1; done
     [ -s xvfb.fd ] || { echo "FAIL: Xvfb did not start"; cat xvfb.log; kill $xvfb; exit 1; }
+    display=":$(cat xvfb.fd)"
     busy=()
     for _ in 1 2; do (while :; do :; done) & busy+=($!); done
     trap 'kill ${busy[*]} $xvfb 2>/dev/null' EXIT
+    echo '{}' > bare.json
     for i in $(seq 20); do
       rm -f bare.png
-      expect 0 "bare\.png" -- env DISPLAY=":$(cat xvfb.fd)" "$BIN/demo" --frames 3 --size 160x90 --screenshot bare.png
+      expect 0 "bare\.png" -- env DISPLAY="$display" "$BIN/demo" bare.json --frames 3 --size 64x64 --screenshot bare.png
       [ -s bare.png ] || { echo "FAIL: run $i wrote no image"; exit 1; }
     done
-    echo "ok: 20 windows in a row" ;;
+    echo "ok: 20 windows in a row on $display" ;;
   fuzz_reports_crash)
     # scripts/fuzz runs under set -e: a crashing fuzzer must still get its log tail
     # and the summary printed, and fail the script. A stand-in fuzzer crashes as
@@ -143,7 +148,7 @@ SH
 import re, sys
 samples = [(float(m[0]), float(m[1]), int(m[2])) for m in
            re.findall(r"soak: +([0-9.]+) s, +\d+ frames, RSS +([0-9.]+) MiB, +(\d+) GL objects", open(sys.argv[1]).read())]
-assert len(samples) >= 5, f"FAIL: {len(samples)} samples"
+assert len(samples) >= 3, f"FAIL: {len(samples)} samples"  # ASan: rebuilds of 3 s leave about 3
 objects = {s[2] for s in samples}
 assert len(objects) == 1, f"FAIL: live GL objects changed across reloads: {[s[2] for s in samples]}"
 if sys.argv[2] != "asan":
