@@ -72,7 +72,9 @@ Result<CharacterAsset::Bounds> CharacterAsset::boundsOfAllPoses(int samples) con
 }
 
 CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset)
-    : asset_(std::move(asset)), player_(asset_->animated.skeleton) {
+    : asset_(std::move(asset)),
+      player_(asset_->animated.skeleton, asset_->animated.morphs.restWeights),
+      morphWeights_(asset_->animated.morphs.restWeights) {
   const size_t joints = size_t(asset_->animated.skeleton.jointCount());
   locals_.resize(joints);
   models_.resize(joints);
@@ -81,6 +83,7 @@ CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset
     // Room for either layout: one mat4 (LBS) or two vec4 (DQS) per joint.
     skinBuffers_.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * sizeof(glm::mat4)));
   }
+  if (!morphWeights_.empty()) morphBuffer_ = gl::Buffer::create(morphWeights_.size() * sizeof(float));
 }
 
 void CharacterInstance::play(int clip, LoopMode mode, double start) {
@@ -101,7 +104,12 @@ void CharacterInstance::crossFade(int clip, double seconds) {
 
 void CharacterInstance::evaluate(bool bindPose) {
   const auto rest = asset_->animated.skeleton.restPose();
-  if (bindPose || clip_ < 0 || !player_.evaluate(locals_)) std::copy(rest.begin(), rest.end(), locals_.begin());
+  const auto restWeights = std::span<const float>(asset_->animated.morphs.restWeights);
+  if (bindPose || clip_ < 0 || !player_.evaluate(locals_, morphWeights_)) {
+    std::copy(rest.begin(), rest.end(), locals_.begin());
+    std::copy(restWeights.begin(), restWeights.end(), morphWeights_.begin());
+  }
+  palettesCurrent_ = false;
 }
 
 Status CharacterInstance::computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition) {
@@ -137,11 +145,16 @@ Status CharacterInstance::uploadPalettes(SkinMode mode) {
   return Ok{};
 }
 
+void CharacterInstance::uploadMorphWeights() {
+  if (!morphWeights_.empty()) morphBuffer_.upload(0, morphWeights_.size() * sizeof(float), morphWeights_.data());
+}
+
 Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mode,
                                            const std::function<void(const gl::Program&)>& setUniforms) {
   // Shadow passes draw the same pose: upload the palettes once per pose.
   if (!palettesCurrent_ || uploadedMode_ != mode) {
     if (auto s = uploadPalettes(mode); !s) return s.error();
+    uploadMorphWeights();
     palettesCurrent_ = true;
     uploadedMode_ = mode;
   }
@@ -151,6 +164,8 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   frame.nodeWorlds = nodeWorlds_;
   frame.skinBuffers = skinBuffers_;
   frame.skinMode = mode;
+  frame.morphWeights = morphWeights_.empty() ? nullptr : &morphBuffer_;
+  frame.morphFirst = asset_->animated.morphs.first;
   frame.setUniforms = setUniforms;
   return frame;
 }
