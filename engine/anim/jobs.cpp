@@ -61,6 +61,24 @@ void skinDualQuat(const SkinningJob& job) {
   }
 }
 
+// The layers of either blending job fit when each has one entry per output
+// (`entries` of the layer) and a finite weight >= 0.
+template <typename Layer, typename Entries>
+bool layersFit(std::span<const Layer> layers, std::size_t outputs, Entries entries) {
+  for (const Layer& layer : layers)
+    if (entries(layer).size() != outputs || !(layer.weight >= 0.0f) || !std::isfinite(layer.weight)) return false;
+  return true;
+}
+
+// The layers' weights are normalised by their sum; below this the rest is written.
+template <typename Layer>
+float totalWeight(std::span<const Layer> layers) {
+  float total = 0.0f;
+  for (const Layer& layer : layers) total += layer.weight;
+  return total;
+}
+constexpr float kNoWeight = 1e-6f;
+
 // Morph deltas fit when absent or one per vertex per target.
 bool deltasFit(std::size_t deltas, std::size_t vertices, std::size_t targets) {
   return deltas == 0 || deltas == vertices * targets;
@@ -105,17 +123,14 @@ bool MorphSamplingJob::run() const {
 }
 
 bool MorphBlendingJob::validate() const {
-  if (output.size() != restWeights.size()) return false;
-  for (const Layer& layer : layers)
-    if (layer.weights.size() != output.size() || !(layer.weight >= 0.0f) || !std::isfinite(layer.weight)) return false;
-  return true;
+  return output.size() == restWeights.size() &&
+         layersFit(layers, output.size(), [](const Layer& layer) { return layer.weights; });
 }
 
 bool MorphBlendingJob::run() const {
   if (!validate()) return false;
-  float total = 0.0f;
-  for (const Layer& layer : layers) total += layer.weight;
-  if (total < 1e-6f) {
+  const float total = totalWeight(layers);
+  if (total < kNoWeight) {
     std::copy(restWeights.begin(), restWeights.end(), output.begin());
     return true;
   }
@@ -162,18 +177,14 @@ bool SamplingJob::run() const {
 }
 
 bool BlendingJob::validate() const {
-  if (output.size() != restPose.size()) return false;
-  for (const Layer& layer : layers)
-    if (layer.pose.size() != output.size() || !(layer.weight >= 0.0f) || !std::isfinite(layer.weight))
-      return false;
-  return true;
+  return output.size() == restPose.size() &&
+         layersFit(layers, output.size(), [](const Layer& layer) { return layer.pose; });
 }
 
 bool BlendingJob::run() const {
   if (!validate()) return false;
-  float total = 0.0f;
-  for (const Layer& layer : layers) total += layer.weight;
-  if (total < 1e-6f) {
+  const float total = totalWeight(layers);
+  if (total < kNoWeight) {
     std::copy(restPose.begin(), restPose.end(), output.begin());
     return true;
   }

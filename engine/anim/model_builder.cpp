@@ -102,15 +102,6 @@ bool skinVertices(const PrimitiveData& prim, const Skin& skin, std::span<const g
   return job.run();
 }
 
-}  // namespace
-
-bool skinPrimitive(const PrimitiveData& prim, const Skin& skin, std::span<const glm::mat4> models,
-                   SkinningMethod method, std::span<glm::vec3> outPositions, std::span<glm::vec3> outNormals) {
-  return skinVertices(prim, skin, models, method, prim.positions, prim.normals, outPositions, outNormals);
-}
-
-namespace {
-
 // A zero normal (a degenerate matrix, or targets that cancel it) stays zero
 // instead of becoming NaN.
 glm::vec3 unitOrZero(const glm::vec3& v) { return glm::dot(v, v) > 0.0f ? glm::normalize(v) : glm::vec3(0.0f); }
@@ -125,6 +116,11 @@ void moveRigidly(const glm::mat4& world, std::span<glm::vec3> positions, std::sp
 }
 
 }  // namespace
+
+bool skinPrimitive(const PrimitiveData& prim, const Skin& skin, std::span<const glm::mat4> models,
+                   SkinningMethod method, std::span<glm::vec3> outPositions, std::span<glm::vec3> outNormals) {
+  return skinVertices(prim, skin, models, method, prim.positions, prim.normals, outPositions, outNormals);
+}
 
 bool posePrimitive(const PrimitiveData& prim, const PrimitivePose& pose, std::span<glm::vec3> outPositions,
                    std::span<glm::vec3> outNormals) {

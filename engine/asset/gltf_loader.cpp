@@ -949,23 +949,24 @@ class Converter {
     else if (ch.target_path == "rotation") channel.path = AnimPath::Rotation;
     else if (ch.target_path == "scale") channel.path = AnimPath::Scale;
     else return error(name + ": unknown path \"" + ch.target_path + "\"");
-    auto interpolation = readInterpolation(sampler, samplerName);
-    if (!interpolation) return interpolation.error();
-    channel.interpolation = *interpolation;
-    auto times = readTimes(sampler.input, samplerName + " input");
-    if (!times) return times.error();
-    channel.times = std::move(times).value();
+    if (Status s = readKeys(sampler, samplerName, channel.interpolation, channel.times); !s) return s;
     if (Status s = readValues(sampler.output, channel, samplerName + " output"); !s) return s;
     anim.duration = std::max(anim.duration, channel.times.back());
     anim.channels.push_back(std::move(channel));
     return Ok{};
   }
 
-  Result<Interpolation> readInterpolation(const tinygltf::AnimationSampler& sampler, const std::string& name) const {
-    if (sampler.interpolation == "STEP") return Interpolation::Step;
-    if (sampler.interpolation == "CUBICSPLINE") return Interpolation::CubicSpline;
-    if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") return Interpolation::Linear;
-    return error(name + ": unknown interpolation \"" + sampler.interpolation + "\"");
+  // A sampler's interpolation and key times, the same for node and weights channels.
+  Status readKeys(const tinygltf::AnimationSampler& sampler, const std::string& name, Interpolation& interpolation,
+                  std::vector<float>& times) {
+    if (sampler.interpolation == "STEP") interpolation = Interpolation::Step;
+    else if (sampler.interpolation == "CUBICSPLINE") interpolation = Interpolation::CubicSpline;
+    else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") interpolation = Interpolation::Linear;
+    else return error(name + ": unknown interpolation \"" + sampler.interpolation + "\"");
+    auto keys = readTimes(sampler.input, name + " input");
+    if (!keys) return keys.error();
+    times = std::move(keys).value();
+    return Ok{};
   }
 
   // A `weights` channel drives every target of the node's mesh: the node must
@@ -980,12 +981,7 @@ class Converter {
                    (node.mesh < 0 ? ", which has no mesh" : ", whose mesh " + str(node.mesh) + " has no morph targets"));
     channel.node = ch.target_node;
     channel.targets = targets;
-    auto interpolation = readInterpolation(sampler, samplerName);
-    if (!interpolation) return interpolation.error();
-    channel.interpolation = *interpolation;
-    auto times = readTimes(sampler.input, samplerName + " input");
-    if (!times) return times.error();
-    channel.times = std::move(times).value();
+    if (Status s = readKeys(sampler, samplerName, channel.interpolation, channel.times); !s) return s;
     const std::size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
     const std::size_t expected = channel.times.size() * perKey * static_cast<std::size_t>(targets);
     auto values = readFloats(sampler.output, 1, 0, samplerName + " output");

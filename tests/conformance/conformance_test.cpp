@@ -116,12 +116,18 @@ double nodeError(const json& ours, const json& ref) {
   return worst;
 }
 
+// A pose's mesh instances by (node, mesh, primitive).
+std::map<std::array<int, 3>, const json*> meshesByKey(const json& pose) {
+  std::map<std::array<int, 3>, const json*> byKey;
+  for (const json& m : pose["meshes"])
+    byKey[{m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()}] = &m;
+  return byKey;
+}
+
 // Largest vertex distance over all mesh instances, or infinity when an instance
 // or a vertex count does not match.
 double positionError(const json& ours, const json& ref) {
-  std::map<std::array<int, 3>, const json*> byKey;
-  for (const json& m : ours["meshes"])
-    byKey[{m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()}] = &m;
+  const auto byKey = meshesByKey(ours);
   double worst = 0.0;
   for (const json& m : ref["meshes"]) {
     auto it = byKey.find({m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()});
@@ -141,9 +147,7 @@ double positionError(const json& ours, const json& ref) {
 // Largest |weight - reference| over the instances that have morph targets, or
 // infinity when an instance or a weight count does not match. Zero without targets.
 double morphWeightError(const json& ours, const json& ref) {
-  std::map<std::array<int, 3>, const json*> byKey;
-  for (const json& m : ours["meshes"])
-    byKey[{m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()}] = &m;
+  const auto byKey = meshesByKey(ours);
   double worst = 0.0;
   for (const json& m : ref["meshes"]) {
     const json& b = m.value("morphWeights", json::array());

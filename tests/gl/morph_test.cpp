@@ -5,7 +5,8 @@
 // AnimatedMorphCube and MorphPrimitivesTest (skipped when ../shared is absent), on
 // the repository's MorphInterpolation.gltf (a skinned, morphed strip) and on a
 // built model with 48 targets, rigid and skinned (LBS and DQS), colour and depth
-// variants. A model drawn through CharacterInstance gets the "+morph" variant.
+// variants. A model drawn through CharacterInstance gets the "+morph" variant, and
+// its culling bounds hold every morphed pose.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "../support/gl_test.h"
 #include "anim/jobs.h"
 #include "anim/model_builder.h"
+#include "anim/pose_dump.h"
 #include "asset/gltf_loader.h"
 #include "render/character.h"
 #include "render/model_renderer.h"
@@ -25,48 +27,16 @@ using engine::test::CaptureInputs;
 using engine::test::captureVarying;
 using engine::test::GlTest;
 using engine::test::largestRelativeError;
+using engine::test::ModelPose;
+using engine::test::Palettes;
+using engine::test::palettesOf;
+using engine::test::poseModel;
 
 namespace {
 
 // GPU and CPU add the same products in the same order; FMA contraction and the
 // skinning blend differ by a few ulps of the largest coordinate.
 constexpr double kRelativeTolerance = 1e-5;
-
-// One pose of a model: joint matrices (per runtime joint) and every morphing
-// node's weights (MorphLayout order).
-struct ModelPose {
-  std::vector<glm::mat4> models;
-  std::vector<float> weights;
-};
-
-ModelPose poseModel(const AnimatedModel& animated, int clip, double time) {
-  const Skeleton& skeleton = animated.skeleton;
-  ModelPose pose;
-  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
-  pose.weights = animated.morphs.restWeights;
-  if (clip >= 0) {
-    const Clip& c = animated.clips[size_t(clip)];
-    EXPECT_TRUE((SamplingJob{&c, time, skeleton.restPose(), locals}.run()));
-    EXPECT_TRUE((MorphSamplingJob{&c, time, animated.morphs.restWeights, pose.weights}.run()));
-  }
-  pose.models.resize(locals.size());
-  EXPECT_TRUE((LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), pose.models}.run()));
-  return pose;
-}
-
-struct Palettes {
-  std::vector<glm::mat4> palette;
-  std::vector<DualQuat> dualQuats;
-};
-
-Palettes palettesOf(const Skin& skin, const ModelPose& pose) {
-  Palettes p;
-  p.palette.resize(skin.joints.size());
-  p.dualQuats.resize(skin.joints.size());
-  EXPECT_TRUE((SkinningPaletteJob{pose.models, skin.joints, skin.inverseBinds, p.palette}.run()));
-  EXPECT_TRUE((DualQuatPaletteJob{p.palette, p.dualQuats}.run()));
-  return p;
-}
 
 double largestAngleError(const std::vector<glm::vec3>& gpu, const std::vector<glm::vec3>& cpu) {
   double worst = 0.0;
@@ -334,4 +304,63 @@ TEST_P(GpuMorph, CharacterDrawsTheMorphVariant) {
   EXPECT_EQ(names, (std::vector<std::string>{"static+morph", "lbs4+morph"}));
   // A model without targets draws as before.
   EXPECT_EQ((ShaderVariant{4, SkinMode::DualQuat}.describe()), "dqs4");
+}
+
+// A triangle whose top vertex one target lifts by 1, in a 2 s clip whose weight
+// spikes to 1 at 0.05 s and is back to 0 at 0.1 s: between the bounds' even samples.
+ModelData spikeModel() {
+  ModelData model;
+  model.path = "spike.gltf";
+  PrimitiveData prim;
+  prim.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  prim.morphTargets = 1;
+  prim.morphPositions = {{0, 0, 0}, {0, 0, 0}, {0, 1, 0}};
+  MeshData mesh;
+  mesh.primitives.push_back(prim);
+  mesh.morphWeights = {0.0f};
+  model.meshes.push_back(mesh);
+  NodeData node;
+  node.mesh = 0;
+  node.morphWeights = {0.0f};
+  model.nodes.push_back(node);
+  model.sceneRoots = {0};
+  AnimationData spike;
+  spike.morphChannels.push_back({0, Interpolation::Linear, {0.0f, 0.05f, 0.1f, 2.0f}, 1, {0, 1, 0, 0}});
+  spike.duration = 2.0f;
+  model.animations.push_back(spike);
+  return model;
+}
+
+// The culling bounds hold every morphed vertex of every pose: sampled densely here,
+// at 1 ms, for STEP and LINEAR weights, whose extremes lie on keys. (Clips that
+// also turn joints are left out: a vertex swinging on an arc bulges past the
+// poses the bounds sample, morph targets or not.)
+TEST_P(GpuMorph, BoundsHoldEveryMorphedPose) {
+  std::vector<std::pair<std::string, std::vector<int>>> models{
+      {"", {0}}, {std::string(ENGINE_SOURCE_DIR) + "/tests/conformance/morph_poses/MorphInterpolation.gltf", {0}}};
+  const std::string cube = samplesDir() + "/AnimatedMorphCube/glTF-Binary/AnimatedMorphCube.glb";
+  if (std::filesystem::exists(cube)) models.push_back({cube, {0}});
+  for (const auto& [path, clips] : models) {
+    auto model = path.empty() ? Result<ModelData>(spikeModel()) : loadGltf(path);
+    ASSERT_TRUE(model.ok()) << model.error().message;
+    auto asset = CharacterAsset::create(*model);
+    ASSERT_TRUE(asset.ok()) << asset.error().message;
+    auto bounds = (*asset)->boundsOfAllPoses();
+    ASSERT_TRUE(bounds.ok()) << bounds.error().message;
+    const float slack = 1e-6f * glm::length(bounds->max - bounds->min);
+    for (int clip : clips) {
+      const double duration = (*asset)->animated.clips[size_t(clip)].duration();
+      for (double t = 0.0; t <= duration; t += 1e-3) {
+        auto pose = dumpPose(*model, clip, t, LoopMode::Clamp);
+        ASSERT_TRUE(pose.ok()) << pose.error().message;
+        for (const auto& mesh : (*pose)["meshes"])
+          for (size_t i = 0; i + 2 < mesh["positions"].size(); i += 3)
+            for (int c = 0; c < 3; ++c) {
+              const float x = mesh["positions"][i + size_t(c)].get<float>();
+              ASSERT_GE(x, bounds->min[c] - slack) << path << " clip " << clip << " t " << t;
+              ASSERT_LE(x, bounds->max[c] + slack) << path << " clip " << clip << " t " << t;
+            }
+      }
+    }
+  }
 }

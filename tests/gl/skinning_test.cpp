@@ -29,27 +29,11 @@ namespace {
 // largest coordinate, far below 1e-5 of the size.
 constexpr double kRelativeTolerance = 1e-5;
 
-struct Posed {
-  std::vector<glm::mat4> palette;
-  std::vector<DualQuat> dualQuats;
-};
+// The palettes of one skin in one pose (tests/support/capture.h).
+using Posed = test::Palettes;
 
 Posed poseSkin(const AnimatedModel& animated, int clip, double time, int skin) {
-  const Skeleton& skeleton = animated.skeleton;
-  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
-  if (clip >= 0) {
-    SamplingJob sample{&animated.clips[size_t(clip)], time, skeleton.restPose(), locals};
-    EXPECT_TRUE(sample.run());
-  }
-  std::vector<glm::mat4> models(locals.size());
-  EXPECT_TRUE((LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run()));
-  const Skin& s = animated.skins[size_t(skin)];
-  Posed posed;
-  posed.palette.resize(s.joints.size());
-  posed.dualQuats.resize(s.joints.size());
-  EXPECT_TRUE((SkinningPaletteJob{models, s.joints, s.inverseBinds, posed.palette}.run()));
-  EXPECT_TRUE((DualQuatPaletteJob{posed.palette, posed.dualQuats}.run()));
-  return posed;
+  return test::palettesOf(animated.skins[size_t(skin)], test::poseModel(animated, clip, time));
 }
 
 std::vector<glm::vec3> cpuSkin(const PrimitiveData& prim, const Posed& posed, SkinMode mode) {

@@ -1,7 +1,8 @@
 #pragma once
 // Runs a model shader variant over every vertex of a primitive with transform
 // feedback (rasterisation discarded) and reads back one varying per vertex: how
-// the GL tests compare GPU skinning and morphing with the CPU jobs.
+// the GL tests compare GPU skinning and morphing with the CPU jobs. Also the CPU
+// pose (joints, weights, palettes) both sides are given.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,12 +10,50 @@
 #include <string>
 #include <vector>
 
+#include "anim/jobs.h"
+#include "anim/model_builder.h"
 #include "core/math.h"
 #include "gl/resources.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
 
 namespace engine::test {
+
+// One pose of a model: joint matrices (per runtime joint) and every morphing
+// node's weights (MorphLayout order).
+struct ModelPose {
+  std::vector<glm::mat4> models;
+  std::vector<float> weights;
+};
+
+inline ModelPose poseModel(const AnimatedModel& animated, int clip, double time) {
+  const Skeleton& skeleton = animated.skeleton;
+  ModelPose pose;
+  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
+  pose.weights = animated.morphs.restWeights;
+  if (clip >= 0) {
+    const Clip& c = animated.clips[size_t(clip)];
+    EXPECT_TRUE((SamplingJob{&c, time, skeleton.restPose(), locals}.run()));
+    EXPECT_TRUE((MorphSamplingJob{&c, time, animated.morphs.restWeights, pose.weights}.run()));
+  }
+  pose.models.resize(locals.size());
+  EXPECT_TRUE((LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), pose.models}.run()));
+  return pose;
+}
+
+struct Palettes {
+  std::vector<glm::mat4> palette;
+  std::vector<DualQuat> dualQuats;
+};
+
+inline Palettes palettesOf(const Skin& skin, const ModelPose& pose) {
+  Palettes p;
+  p.palette.resize(skin.joints.size());
+  p.dualQuats.resize(skin.joints.size());
+  EXPECT_TRUE((SkinningPaletteJob{pose.models, skin.joints, skin.inverseBinds, p.palette}.run()));
+  EXPECT_TRUE((DualQuatPaletteJob{p.palette, p.dualQuats}.run()));
+  return p;
+}
 
 // What a capture draws with besides the primitive.
 struct CaptureInputs {
