@@ -1,15 +1,12 @@
 #version 450 core
-// Every mesh of a scene: analytic primitives, glTF meshes (static or skinned on
-// the GPU), drawn camera-relative.
+// Every mesh of a scene: analytic primitives, glTF meshes (static, or morphed
+// and/or skinned on the GPU), drawn camera-relative.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
 
 #include "common/frame.glsl"
-#ifdef SKINNED
-#include "common/skinning.glsl"
-#endif
-#include "common/mesh_tangent.glsl"
+#include "common/deform.glsl"
 
 uniform mat4 u_model;        // camera offset included
 uniform mat3 u_normalMatrix;
@@ -25,15 +22,7 @@ out vec2 v_uv;
 void main() {
   vec3 position = a_position;
   vec3 normal = a_normal;
-#if defined(SKINNED) && defined(NORMAL_MAP)
-  vec3 tangent = a_tangent.xyz;
-  skin(position, normal, tangent);
-  setTangent(tangent, u_model);
-#elif defined(SKINNED)
-  skin(position, normal);
-#elif defined(NORMAL_MAP)
-  setTangent(a_tangent.xyz, u_model);
-#endif
+  deform(position, normal, u_model);
   vec4 world = u_model * vec4(position, 1.0);
   v_position = world.xyz;
   v_normal = u_normalMatrix * normal;

@@ -1,5 +1,6 @@
 // Animation cost per frame: sampling + local-to-model + palette for a 50-joint
-// character, CPU skinning throughput (LBS vs DQS), and slerp vs nlerp.
+// character, CPU skinning throughput (LBS vs DQS), CPU morph targets, and slerp
+// vs nlerp.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -124,6 +125,29 @@ void BM_Skinning(benchmark::State& state) {
 }
 BENCHMARK(BM_Skinning)->Arg(static_cast<int>(engine::SkinningMethod::Linear))
     ->Arg(static_cast<int>(engine::SkinningMethod::DualQuat));
+
+// CPU morph targets (MorphJob) on 10k vertices, positions and normals, with
+// range(0) targets all of non-zero weight: the cost grows with targets x vertices.
+void BM_Morph(benchmark::State& state) {
+  const std::size_t vertices = 10000, targets = static_cast<std::size_t>(state.range(0));
+  std::vector<glm::vec3> positions(vertices), normals(vertices, glm::vec3(0, 0, 1)), outP(vertices), outN(vertices);
+  std::vector<glm::vec3> deltas(vertices * targets);
+  for (std::size_t i = 0; i < deltas.size(); ++i) deltas[i] = 0.01f * glm::vec3(std::sin(i * 0.3f), std::cos(i * 0.7f), 0.0f);
+  std::vector<float> weights(targets);
+  for (std::size_t t = 0; t < targets; ++t) weights[t] = 0.1f + 0.8f * std::sin(t * 1.3f) * std::sin(t * 1.3f);
+  const engine::MorphJob job{weights, positions, deltas, outP, normals, deltas, outN, {}, {}, {}};
+  for (auto _ : state) {
+    if (!job.run()) {
+      state.SkipWithError("MorphJob rejected its inputs");
+      break;
+    }
+    benchmark::DoNotOptimize(outP.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(vertices * targets));
+  state.SetLabel("vertex-targets/s");
+}
+BENCHMARK(BM_Morph)->Arg(1)->Arg(8)->Arg(64);
 
 std::vector<glm::quat> randomQuats(std::size_t n, float seed) {
   std::vector<glm::quat> out;

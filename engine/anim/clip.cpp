@@ -8,25 +8,52 @@ namespace {
 
 glm::quat toQuat(const glm::vec4& v) { return glm::quat(v.w, v.x, v.y, v.z); }
 
+// Key times, for joint and morph tracks alike: at least one, finite, >= 0, sorted.
+Status validateTimes(const std::vector<float>& times, const std::string& name) {
+  if (times.empty()) return makeError(name + ": has no keys");
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    float t = times[k];
+    if (!std::isfinite(t) || t < 0.0f || (k > 0 && t < times[k - 1]))
+      return makeError(name + ": key " + std::to_string(k) + " time is NaN, negative or unsorted");
+  }
+  return Ok{};
+}
+
+std::size_t valuesPerKey(Interpolation interpolation) { return interpolation == Interpolation::CubicSpline ? 3 : 1; }
+
 Status validateTrack(const Track& track, std::size_t index, int rawJointCount) {
   std::string name = "track " + std::to_string(index);
   if (track.joint < 0 || track.joint >= rawJointCount)
     return makeError(name + ": joint " + std::to_string(track.joint) + " does not exist");
   if (track.times.empty()) return makeError(name + ": has no keys");
-  std::size_t perKey = track.interpolation == Interpolation::CubicSpline ? 3 : 1;
-  if (track.values.size() != track.times.size() * perKey)
+  if (track.values.size() != track.times.size() * valuesPerKey(track.interpolation))
     return makeError(name + ": " + std::to_string(track.values.size()) + " values for " +
                      std::to_string(track.times.size()) + " keys");
-  for (std::size_t k = 0; k < track.times.size(); ++k) {
-    float t = track.times[k];
-    if (!std::isfinite(t) || t < 0.0f || (k > 0 && t < track.times[k - 1]))
-      return makeError(name + ": key " + std::to_string(k) + " time is NaN, negative or unsorted");
-  }
+  if (Status s = validateTimes(track.times, name); !s) return s;
   for (std::size_t v = 0; v < track.values.size(); ++v) {
     const glm::vec4& x = track.values[v];
     if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z) || !std::isfinite(x.w))
       return makeError(name + ": value " + std::to_string(v) + " is NaN or infinite");
   }
+  return Ok{};
+}
+
+// A morph track must drive exactly the targets its node has in `morphs`.
+Status validateMorphTrack(const MorphTrack& track, std::size_t index, const MorphLayout& morphs) {
+  std::string name = "morph track " + std::to_string(index);
+  const bool known = track.node >= 0 && static_cast<std::size_t>(track.node) < morphs.targets.size();
+  const int targets = known ? morphs.targets[static_cast<std::size_t>(track.node)] : 0;
+  if (targets == 0) return makeError(name + ": node " + std::to_string(track.node) + " has no morph targets");
+  if (track.targets != targets)
+    return makeError(name + ": " + std::to_string(track.targets) + " weights per key, node " +
+                     std::to_string(track.node) + " has " + std::to_string(targets) + " morph targets");
+  if (Status s = validateTimes(track.times, name); !s) return s;
+  const std::size_t expected = track.times.size() * valuesPerKey(track.interpolation) * std::size_t(targets);
+  if (track.values.size() != expected)
+    return makeError(name + ": " + std::to_string(track.values.size()) + " weights for " +
+                     std::to_string(track.times.size()) + " keys of " + std::to_string(targets) + " targets");
+  for (std::size_t v = 0; v < track.values.size(); ++v)
+    if (!std::isfinite(track.values[v])) return makeError(name + ": weight " + std::to_string(v) + " is NaN or infinite");
   return Ok{};
 }
 
@@ -50,17 +77,29 @@ KeyPair findKeys(const std::vector<float>& times, double time) {
   return {i - 1, i, static_cast<float>((time - t0) / (t1 - t0)), t1 - t0};
 }
 
-// glTF cubic Hermite: tangents are per second, so they scale with the key interval.
+// glTF cubic Hermite: p(s) = h00 v0 + h10 dt b0 + h01 v1 + h11 dt a1, tangents
+// per second, so they scale with the key interval. One basis for vectors and
+// morph weights alike.
+struct HermiteBasis {
+  float value0, outTangent0, value1, inTangent1;
+  explicit HermiteBasis(const KeyPair& keys) {
+    float s = keys.u, s2 = s * s, s3 = s2 * s;
+    float dt = static_cast<float>(keys.interval);
+    value0 = 2 * s3 - 3 * s2 + 1;
+    outTangent0 = (s3 - 2 * s2 + s) * dt;
+    value1 = -2 * s3 + 3 * s2;
+    inTangent1 = (s3 - s2) * dt;
+  }
+};
+
 // sign1 multiplies the second key's value and in-tangent (see hermiteQuat).
 glm::vec4 hermite(const Track& track, const KeyPair& keys, float sign1 = 1.0f) {
-  float s = keys.u, s2 = s * s, s3 = s2 * s;
-  float dt = static_cast<float>(keys.interval);
+  const HermiteBasis h(keys);
   const glm::vec4& v0 = track.values[keys.first * 3 + 1];
   const glm::vec4& b0 = track.values[keys.first * 3 + 2];
   const glm::vec4 a1 = track.values[keys.second * 3] * sign1;
   const glm::vec4 v1 = track.values[keys.second * 3 + 1] * sign1;
-  return (2 * s3 - 3 * s2 + 1) * v0 + (s3 - 2 * s2 + s) * dt * b0 + (-2 * s3 + 3 * s2) * v1 +
-         (s3 - s2) * dt * a1;
+  return h.value0 * v0 + h.outTangent0 * b0 + h.value1 * v1 + h.inTangent1 * a1;
 }
 
 // A CUBICSPLINE rotation. Keys in opposite hemispheres (q and -q are one rotation)
@@ -82,7 +121,13 @@ std::size_t valueIndex(const Track& track, std::size_t key) {
 
 }  // namespace
 
-Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton) {
+std::span<const float> MorphLayout::of(std::span<const float> weights, int node) const {
+  if (node < 0 || static_cast<std::size_t>(node) >= first.size() || first[static_cast<std::size_t>(node)] < 0) return {};
+  return weights.subspan(static_cast<std::size_t>(first[static_cast<std::size_t>(node)]),
+                         static_cast<std::size_t>(targets[static_cast<std::size_t>(node)]));
+}
+
+Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const MorphLayout& morphs) {
   Clip clip;
   clip.name_ = raw.name;
   std::string prefix = "clip \"" + raw.name + "\": ";
@@ -98,6 +143,13 @@ Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton) {
       }
     clip.duration_ = std::max(clip.duration_, static_cast<double>(track.times.back()));
     clip.tracks_.push_back(std::move(track));
+  }
+  for (std::size_t i = 0; i < raw.morphTracks.size(); ++i) {
+    if (Status s = validateMorphTrack(raw.morphTracks[i], i, morphs); !s) return makeError(prefix + s.error().message);
+    MorphTrack track = raw.morphTracks[i];
+    track.first = morphs.first[static_cast<std::size_t>(track.node)];
+    clip.duration_ = std::max(clip.duration_, static_cast<double>(track.times.back()));
+    clip.morphTracks_.push_back(std::move(track));
   }
   return clip;
 }
@@ -118,6 +170,30 @@ glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) 
   if (track.interpolation == Interpolation::CubicSpline) return hermiteQuat(track, keys);
   const glm::quat a = toQuat(track.values[keys.first]), b = toQuat(track.values[keys.second]);
   return method == QuatInterpolation::Nlerp ? nlerp(a, b, keys.u) : slerp(a, b, keys.u);
+}
+
+void sampleWeights(const MorphTrack& track, double time, std::span<float> out) {
+  const KeyPair keys = findKeys(track.times, time);
+  const std::size_t n = static_cast<std::size_t>(track.targets);
+  // The block of key k's values: after its in-tangents for CubicSpline.
+  auto values = [&](std::size_t key) {
+    return track.values.data() + (track.interpolation == Interpolation::CubicSpline ? (key * 3 + 1) * n : key * n);
+  };
+  const float* v0 = values(keys.first);
+  if (keys.first == keys.second || track.interpolation == Interpolation::Step) {
+    std::copy(v0, v0 + n, out.begin());
+    return;
+  }
+  const float* v1 = values(keys.second);
+  if (track.interpolation == Interpolation::Linear) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = v0[i] + (v1[i] - v0[i]) * keys.u;
+    return;
+  }
+  const HermiteBasis h(keys);
+  const float* b0 = v0 + n;  // the first key's out-tangents follow its values
+  const float* a1 = v1 - n;  // the second key's in-tangents precede its values
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = h.value0 * v0[i] + h.outTangent0 * b0[i] + h.value1 * v1[i] + h.inTangent1 * a1[i];
 }
 
 void applyTrack(const Track& track, double time, Srt& srt, QuatInterpolation method) {

@@ -61,7 +61,105 @@ void skinDualQuat(const SkinningJob& job) {
   }
 }
 
+// The layers of either blending job fit when each has one entry per output
+// (`entries` of the layer) and a finite weight >= 0.
+template <typename Layer, typename Entries>
+bool layersFit(std::span<const Layer> layers, std::size_t outputs, Entries entries) {
+  for (const Layer& layer : layers)
+    if (entries(layer).size() != outputs || !(layer.weight >= 0.0f) || !std::isfinite(layer.weight)) return false;
+  return true;
+}
+
+// The layers' weights are normalised by their sum; below this the rest is written.
+template <typename Layer>
+float totalWeight(std::span<const Layer> layers) {
+  float total = 0.0f;
+  for (const Layer& layer : layers) total += layer.weight;
+  return total;
+}
+constexpr float kNoWeight = 1e-6f;
+
+// Morph deltas fit when absent or one per vertex per target.
+bool deltasFit(std::size_t deltas, std::size_t vertices, std::size_t targets) {
+  return deltas == 0 || deltas == vertices * targets;
+}
+
+// One attribute of MorphJob: out = base + sum_t w_t * delta_t, target by target.
+template <typename Vec>
+void morphAttribute(std::span<const Vec> base, std::span<const glm::vec3> deltas, std::span<const float> weights,
+                    std::span<Vec> out) {
+  if (out.data() != base.data()) std::copy(base.begin(), base.end(), out.begin());
+  if (deltas.empty()) return;
+  const std::size_t n = base.size();
+  for (std::size_t t = 0; t < weights.size(); ++t) {
+    const float w = weights[t];
+    if (w == 0.0f) continue;
+    const glm::vec3* d = deltas.data() + t * n;
+    for (std::size_t v = 0; v < n; ++v) {
+      glm::vec3 moved = glm::vec3(out[v]) + w * d[v];
+      out[v].x = moved.x;
+      out[v].y = moved.y;
+      out[v].z = moved.z;
+    }
+  }
+}
+
 }  // namespace
+
+bool MorphSamplingJob::validate() const {
+  if (clip == nullptr || !std::isfinite(time) || output.size() != restWeights.size()) return false;
+  for (const MorphTrack& track : clip->morphTracks())
+    if (track.first < 0 || static_cast<std::size_t>(track.first) + static_cast<std::size_t>(track.targets) > output.size())
+      return false;
+  return true;
+}
+
+bool MorphSamplingJob::run() const {
+  if (!validate()) return false;
+  std::copy(restWeights.begin(), restWeights.end(), output.begin());
+  for (const MorphTrack& track : clip->morphTracks())
+    sampleWeights(track, time, output.subspan(static_cast<std::size_t>(track.first), static_cast<std::size_t>(track.targets)));
+  return true;
+}
+
+bool MorphBlendingJob::validate() const {
+  return output.size() == restWeights.size() &&
+         layersFit(layers, output.size(), [](const Layer& layer) { return layer.weights; });
+}
+
+bool MorphBlendingJob::run() const {
+  if (!validate()) return false;
+  const float total = totalWeight(layers);
+  if (total < kNoWeight) {
+    std::copy(restWeights.begin(), restWeights.end(), output.begin());
+    return true;
+  }
+  std::fill(output.begin(), output.end(), 0.0f);
+  for (const Layer& layer : layers) {
+    const float w = layer.weight / total;
+    for (std::size_t i = 0; i < output.size(); ++i) output[i] += layer.weights[i] * w;
+  }
+  return true;
+}
+
+bool MorphJob::validate() const {
+  const std::size_t n = positions.size(), targets = weights.size();
+  if (outPositions.size() != n || !deltasFit(positionDeltas.size(), n, targets)) return false;
+  if (!normals.empty() && (normals.size() != n || outNormals.size() != n || !deltasFit(normalDeltas.size(), n, targets)))
+    return false;
+  if (!tangents.empty() &&
+      (tangents.size() != n || outTangents.size() != n || !deltasFit(tangentDeltas.size(), n, targets)))
+    return false;
+  return true;
+}
+
+bool MorphJob::run() const {
+  if (!validate()) return false;
+  morphAttribute<glm::vec3>(positions, positionDeltas, weights, outPositions);
+  if (!normals.empty()) morphAttribute<glm::vec3>(normals, normalDeltas, weights, outNormals);
+  if (!tangents.empty()) morphAttribute<glm::vec4>(tangents, tangentDeltas, weights, outTangents);
+  return true;
+}
 
 bool SamplingJob::validate() const {
   if (clip == nullptr || !std::isfinite(time) || output.size() != restPose.size()) return false;
@@ -79,18 +177,14 @@ bool SamplingJob::run() const {
 }
 
 bool BlendingJob::validate() const {
-  if (output.size() != restPose.size()) return false;
-  for (const Layer& layer : layers)
-    if (layer.pose.size() != output.size() || !(layer.weight >= 0.0f) || !std::isfinite(layer.weight))
-      return false;
-  return true;
+  return output.size() == restPose.size() &&
+         layersFit(layers, output.size(), [](const Layer& layer) { return layer.pose; });
 }
 
 bool BlendingJob::run() const {
   if (!validate()) return false;
-  float total = 0.0f;
-  for (const Layer& layer : layers) total += layer.weight;
-  if (total < 1e-6f) {
+  const float total = totalWeight(layers);
+  if (total < kNoWeight) {
     std::copy(restPose.begin(), restPose.end(), output.begin());
     return true;
   }

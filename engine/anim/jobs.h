@@ -6,6 +6,9 @@
 // The chain for one character:
 //   SamplingJob (clip, t) -> local Srt[] -> [BlendingJob] -> LocalToModelJob -> model[]
 //   -> SkinningPaletteJob -> palette[] -> SkinningJob (CPU) or upload (GPU).
+// Morph targets beside it (glTF: morphed first, then skinned):
+//   MorphSamplingJob (clip, t) -> weights[] -> [MorphBlendingJob] -> MorphJob (CPU)
+//   -> SkinningJob, or upload (GPU).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -50,6 +53,36 @@ struct BlendingJob {
   [[nodiscard]] bool run() const;
 };
 
+// Writes the clip's morph weights at clip-local `time` into `output`, a flat
+// array laid out by the model's MorphLayout. Nodes without a track keep their
+// rest weights.
+struct MorphSamplingJob {
+  static constexpr const char* kName = "MorphSamplingJob";
+  const Clip* clip = nullptr;
+  double time = 0.0;
+  std::span<const float> restWeights;
+  std::span<float> output;
+
+  bool validate() const;
+  [[nodiscard]] bool run() const;
+};
+
+// Weighted blend of whole morph weight arrays (a cross-fade), normalised as
+// BlendingJob's layers; all layer weights ~0 writes the rest weights.
+struct MorphBlendingJob {
+  static constexpr const char* kName = "MorphBlendingJob";
+  struct Layer {
+    std::span<const float> weights;
+    float weight = 0.0f;
+  };
+  std::span<const Layer> layers;
+  std::span<const float> restWeights;
+  std::span<float> output;
+
+  bool validate() const;
+  [[nodiscard]] bool run() const;
+};
+
 // model[i] = root * ... * local[parent] * local[i]; needs parents[i] < i.
 struct LocalToModelJob {
   static constexpr const char* kName = "LocalToModelJob";
@@ -88,7 +121,8 @@ struct DualQuatPaletteJob {
 enum class SkinningMethod { Linear, DualQuat };
 
 // CPU skinning of positions (and optionally normals) with `influences` joints per
-// vertex (1..8; glTF gives 4 or 8). Linear blends matrices (LBS); DualQuat blends
+// vertex (1..8; glTF gives 4 or 8). The outputs may be the inputs (in place: each
+// vertex is read before it is written). Linear blends matrices (LBS); DualQuat blends
 // dual quaternions (DQS), which keeps volume at twisting joints. Influences with
 // zero weight or a joint past the palette are skipped, so padding entries of
 // JOINTS_n never read outside the palette.
@@ -104,6 +138,29 @@ struct SkinningJob {
   std::span<const DualQuat> dualQuats;    // for DualQuat
   std::span<glm::vec3> outPositions;
   std::span<glm::vec3> outNormals;  // needed when normals are given
+
+  bool validate() const;
+  [[nodiscard]] bool run() const;
+};
+
+// Morph targets on the CPU: out = base + sum_t weights[t] * delta_t for positions,
+// normals and tangents (xyz; the handedness w is kept), in target order as the
+// shader adds them. Deltas are target-major (PrimitiveData): target t moves vertex
+// v by deltas[t * vertices + v]; an empty delta span copies that attribute. Zero
+// weights are skipped. Each output may be its input (in place). Normals are not
+// renormalised: skinning and shading do that.
+struct MorphJob {
+  static constexpr const char* kName = "MorphJob";
+  std::span<const float> weights;  // one per target
+  std::span<const glm::vec3> positions;
+  std::span<const glm::vec3> positionDeltas;
+  std::span<glm::vec3> outPositions;
+  std::span<const glm::vec3> normals;  // optional, as the two below
+  std::span<const glm::vec3> normalDeltas;
+  std::span<glm::vec3> outNormals;
+  std::span<const glm::vec4> tangents;  // optional, as the two below
+  std::span<const glm::vec3> tangentDeltas;
+  std::span<glm::vec4> outTangents;
 
   bool validate() const;
   [[nodiscard]] bool run() const;

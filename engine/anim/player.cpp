@@ -30,10 +30,13 @@ double wrapTime(double time, double duration, LoopMode mode) {
   return t >= duration ? 0.0 : t;
 }
 
-Player::Player(const Skeleton& skeleton)
+Player::Player(const Skeleton& skeleton, std::span<const float> restMorphWeights)
     : skeleton_(&skeleton),
       currentPose_(static_cast<std::size_t>(skeleton.jointCount())),
-      previousPose_(static_cast<std::size_t>(skeleton.jointCount())) {}
+      previousPose_(static_cast<std::size_t>(skeleton.jointCount())),
+      restWeights_(restMorphWeights.begin(), restMorphWeights.end()),
+      currentWeights_(restMorphWeights.size()),
+      previousWeights_(restMorphWeights.size()) {}
 
 void Player::play(const Clip& clip, LoopMode mode) {
   current_ = {&clip, mode, 0.0};
@@ -71,8 +74,9 @@ float Player::fadeWeight() const {
   return static_cast<float>(std::clamp(fadeElapsed_ / fadeSeconds_, 0.0, 1.0));
 }
 
-bool Player::evaluate(std::span<Srt> locals) {
+bool Player::evaluate(std::span<Srt> locals, std::span<float> morphWeights) {
   if (current_.clip == nullptr || locals.size() != currentPose_.size()) return false;
+  if (!morphWeights.empty() && !evaluateMorphs(morphWeights)) return false;
   SamplingJob sample{current_.clip, localTime(), skeleton_->restPose(), locals};
   if (previous_.clip == nullptr) return sample.run();
   sample.output = currentPose_;
@@ -83,6 +87,20 @@ bool Player::evaluate(std::span<Srt> locals) {
   std::array<BlendingJob::Layer, 2> layers{{{previousPose_, 1.0f - w}, {currentPose_, w}}};
   BlendingJob blend{layers, skeleton_->restPose(), locals};
   return blend.run();
+}
+
+// The same cross-fade as the pose, on the morph weights.
+bool Player::evaluateMorphs(std::span<float> weights) {
+  if (weights.size() != restWeights_.size()) return false;
+  MorphSamplingJob sample{current_.clip, localTime(), restWeights_, weights};
+  if (previous_.clip == nullptr) return sample.run();
+  sample.output = currentWeights_;
+  MorphSamplingJob before{previous_.clip, wrapTime(previous_.time, previous_.clip->duration(), previous_.mode),
+                          restWeights_, previousWeights_};
+  if (!sample.run() || !before.run()) return false;
+  const float w = fadeWeight();
+  std::array<MorphBlendingJob::Layer, 2> layers{{{previousWeights_, 1.0f - w}, {currentWeights_, w}}};
+  return MorphBlendingJob{layers, restWeights_, weights}.run();
 }
 
 }  // namespace engine

@@ -27,8 +27,9 @@ double wrapTime(double time, double duration, LoopMode mode);
 
 class Player {
  public:
-  // Allocates the scratch poses once; evaluate() never allocates.
-  explicit Player(const Skeleton& skeleton);
+  // Allocates the scratch poses (and morph weights, laid out like
+  // `restMorphWeights`) once; evaluate() never allocates.
+  explicit Player(const Skeleton& skeleton, std::span<const float> restMorphWeights = {});
 
   // Starts `clip` at time 0 at once, cancelling any fade.
   void play(const Clip& clip, LoopMode mode = LoopMode::Repeat);
@@ -47,9 +48,10 @@ class Player {
   float fadeWeight() const;
   const Clip* clip() const { return current_.clip; }
 
-  // Writes the blended local pose (one Srt per joint). False without a clip or
-  // with a span of the wrong size.
-  bool evaluate(std::span<Srt> locals);
+  // Writes the blended local pose (one Srt per joint) and, when `morphWeights` is
+  // not empty, the blended morph weights (MorphLayout order). False without a
+  // clip or with a span of the wrong size.
+  bool evaluate(std::span<Srt> locals, std::span<float> morphWeights = {});
 
  private:
   struct Layer {
@@ -64,8 +66,13 @@ class Player {
   double fadeSeconds_ = 0.0;
   double fadeElapsed_ = 0.0;
   double speed_ = 1.0;
+  bool evaluateMorphs(std::span<float> weights);
+
   std::vector<Srt> currentPose_;
   std::vector<Srt> previousPose_;
+  std::vector<float> restWeights_;
+  std::vector<float> currentWeights_;
+  std::vector<float> previousWeights_;
 };
 
 }  // namespace engine

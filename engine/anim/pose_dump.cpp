@@ -25,18 +25,9 @@ nlohmann::json positionsJson(const std::vector<glm::vec3>& positions) {
   return out;
 }
 
-// Skinned primitives go through the same palette and job the renderer uses.
-std::vector<glm::vec3> skinnedPositions(const PrimitiveData& prim, const Skin& skin,
-                                        std::span<const glm::mat4> models) {
-  std::vector<glm::vec3> out(prim.positions.size());
-  if (!skinPrimitive(prim, skin, models, SkinningMethod::Linear, out)) return {};
-  return out;
-}
-
-std::vector<glm::vec3> rigidPositions(const PrimitiveData& prim, const glm::mat4& world) {
-  std::vector<glm::vec3> out;
-  out.reserve(prim.positions.size());
-  for (const glm::vec3& p : prim.positions) out.push_back(glm::vec3(world * glm::vec4(p, 1.0f)));
+nlohmann::json weightsJson(std::span<const float> weights) {
+  nlohmann::json out = nlohmann::json::array();
+  for (float w : weights) out.push_back(w);
   return out;
 }
 
@@ -52,6 +43,8 @@ Result<nlohmann::json> dumpPose(const ModelData& model, int animation, double ti
 
   std::size_t count = static_cast<std::size_t>(skeleton.jointCount());
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
+  const MorphLayout& morphs = built->morphs;
+  std::vector<float> weights = morphs.restWeights;
   nlohmann::json out;
   out["time"] = time;
   out["anim"] = animation;
@@ -60,6 +53,8 @@ Result<nlohmann::json> dumpPose(const ModelData& model, int animation, double ti
     double local = wrapTime(time, clip.duration(), loop);
     SamplingJob sample{&clip, local, skeleton.restPose(), locals};
     if (!sample.run()) return makeError(model.path + ": sampling failed");
+    if (!MorphSamplingJob{&clip, local, morphs.restWeights, weights}.run())
+      return makeError(model.path + ": morph weight sampling failed");
     out["animation"] = {{"duration", clip.duration()},
                         {"localTime", local},
                         {"loop", loop == LoopMode::Clamp ? "clamp" : loop == LoopMode::PingPong ? "pingpong" : "repeat"}};
@@ -80,18 +75,24 @@ Result<nlohmann::json> dumpPose(const ModelData& model, int animation, double ti
     const NodeData& node = model.nodes[n];
     if (node.mesh < 0) continue;
     const MeshData& mesh = model.meshes[static_cast<std::size_t>(node.mesh)];
+    const std::span<const float> nodeWeights = morphs.of(weights, static_cast<int>(n));
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const PrimitiveData& prim = mesh.primitives[p];
       bool skinned = node.skin >= 0 && prim.influences > 0;
-      auto positions = skinned ? skinnedPositions(prim, built->skins[static_cast<std::size_t>(node.skin)], models)
-                               : rigidPositions(prim, world(n));
-      if (positions.size() != prim.positions.size())
+      PrimitivePose pose{nodeWeights, skinned ? &built->skins[static_cast<std::size_t>(node.skin)] : nullptr, models,
+                         world(n)};
+      std::vector<glm::vec3> positions(prim.positions.size());
+      if (!posePrimitive(prim, pose, positions))
         return makeError(model.path + ": node " + std::to_string(n) + " primitive " + std::to_string(p) +
-                         ": skinning failed");
+                         ": morphing or skinning failed");
+      // As three.js's pose.mjs writes them: the mesh's target count and the
+      // weights this instance was drawn with.
       out["meshes"].push_back({{"node", n},
                                {"mesh", node.mesh},
                                {"primitive", p},
                                {"skinned", skinned},
+                               {"morphTargets", prim.morphTargets},
+                               {"morphWeights", weightsJson(nodeWeights)},
                                {"count", positions.size()},
                                {"positions", positionsJson(positions)}});
     }

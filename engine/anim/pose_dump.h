@@ -3,9 +3,11 @@
 // reference poses (../shared/conformance/README.md), so that the viewer's
 // --dump-pose output can be compared with three.js directly:
 //   {"time", "anim", "nodes": [{"node", "world": [16, column-major]}],
-//    "meshes": [{"node", "mesh", "primitive", "count", "positions": [x, y, z, ...]}]}
-// Positions are world space after linear-blend skinning; a skinned primitive
-// ignores its node's own transform, as glTF requires.
+//    "meshes": [{"node", "mesh", "primitive", "morphTargets", "morphWeights": [...],
+//                "count", "positions": [x, y, z, ...]}]}
+// Positions are world space after morphing, then linear-blend skinning; a
+// skinned primitive ignores its node's own transform, as glTF requires.
+// morphWeights are the instance's weights at `time` (empty without targets).
 #include <nlohmann/json.hpp>
 
 #include "anim/player.h"

@@ -379,6 +379,7 @@ class Converter {
     if (Status s = convertImages(); !s) return s;
     if (Status s = convertMaterials(); !s) return s;
     if (Status s = convertMeshes(); !s) return s;
+    if (Status s = resolveNodeWeights(); !s) return s;
     if (Status s = convertSkins(); !s) return s;
     if (Status s = checkSkinnedMeshes(); !s) return s;
     return convertAnimations();
@@ -651,7 +652,62 @@ class Converter {
         if (Status s = convertPrimitive(gltf_.meshes[m].primitives[p], prim, name); !s) return s;
         mesh.primitives.push_back(std::move(prim));
       }
+      if (Status s = readMeshWeights(gltf_.meshes[m], mesh, "mesh " + str(m)); !s) return s;
       out_.meshes.push_back(std::move(mesh));
+    }
+    return Ok{};
+  }
+
+  static int targetCount(const MeshData& mesh) {
+    return mesh.primitives.empty() ? 0 : mesh.primitives.front().morphTargets;
+  }
+
+  // glTF requires the same number of targets in every primitive of a mesh, since
+  // one list of weights drives them all; `weights`, when given, has one per target.
+  Status readMeshWeights(const tinygltf::Mesh& src, MeshData& mesh, const std::string& name) {
+    const int targets = targetCount(mesh);
+    for (std::size_t p = 1; p < mesh.primitives.size(); ++p)
+      if (mesh.primitives[p].morphTargets != targets)
+        return error(name + ": primitive " + str(p) + " has " + str(mesh.primitives[p].morphTargets) +
+                     " morph targets, primitive 0 has " + str(targets) + " (every primitive needs the same number)");
+    auto weights = readWeightList(src.weights, targets, name);
+    if (!weights) return weights.error();
+    mesh.morphWeights = std::move(weights).value();
+    return Ok{};
+  }
+
+  // A mesh's or node's `weights`: one finite number per morph target; an absent
+  // list is all zeros.
+  Result<std::vector<float>> readWeightList(const std::vector<double>& src, int targets, const std::string& name) const {
+    if (src.empty()) return std::vector<float>(static_cast<std::size_t>(targets), 0.0f);
+    if (src.size() != static_cast<std::size_t>(targets))
+      return error(name + ": weights has " + str(src.size()) + " entries for " + str(targets) + " morph targets");
+    std::vector<float> out;
+    for (std::size_t i = 0; i < src.size(); ++i) {
+      if (!std::isfinite(src[i])) return error(name + ": weights entry " + str(i) + " is NaN or infinite");
+      out.push_back(static_cast<float>(src[i]));
+    }
+    return out;
+  }
+
+  // Each node's default weights: its own (checked against its mesh), else the mesh's.
+  Status resolveNodeWeights() {
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      NodeData& node = out_.nodes[n];
+      const std::vector<double>& own = gltf_.nodes[n].weights;
+      const std::string name = "node " + str(n);
+      if (node.mesh < 0) {
+        if (!own.empty()) return error(name + ": has weights but no mesh");
+        continue;
+      }
+      const MeshData& mesh = out_.meshes[static_cast<std::size_t>(node.mesh)];
+      if (own.empty()) {
+        node.morphWeights = mesh.morphWeights;
+        continue;
+      }
+      auto weights = readWeightList(own, targetCount(mesh), name + " (mesh " + str(node.mesh) + ")");
+      if (!weights) return weights.error();
+      node.morphWeights = std::move(weights).value();
     }
     return Ok{};
   }
@@ -683,7 +739,7 @@ class Converter {
       if (!v) return v.error();
       prim.tangents = toVectors<glm::vec4>(*v);
     }
-    if (!src.targets.empty()) warn(name + ": morph targets are not supported; ignored");
+    if (Status s = readMorphTargets(src, prim, name); !s) return s;
     if (src.material != -1 && !validIndex(src.material, out_.materials.size()))
       return error(name + ": material " + str(src.material) + " does not exist");
     prim.material = src.material;
@@ -691,6 +747,49 @@ class Converter {
     if (Status s = readIndices(src, prim, name); !s) return s;
     addMissingTangents(prim, name);
     return readSkinAttributes(src, prim, name);
+  }
+
+  // The displacements of POSITION, NORMAL and TANGENT (glTF morphs no others;
+  // TEXCOORD_n and COLOR_n targets are warned about and ignored), each VEC3 with
+  // one element per vertex. Read before tangents are generated: a target may only
+  // move an attribute the file itself gives.
+  Status readMorphTargets(const tinygltf::Primitive& src, PrimitiveData& prim, const std::string& name) {
+    if (src.targets.empty()) return Ok{};
+    const std::size_t count = prim.positions.size();
+    const std::size_t targets = src.targets.size();
+    if (targets * count > kMaxMorphDeltas)
+      return error(name + ": " + str(targets) + " morph targets of " + str(count) + " vertices, the limit is " +
+                   str(kMaxMorphDeltas) + " displacements");
+    prim.morphTargets = static_cast<int>(targets);
+    std::set<std::string> ignored;
+    for (std::size_t t = 0; t < targets; ++t) {
+      for (const auto& [attribute, accessor] : src.targets[t]) {
+        std::vector<glm::vec3>* deltas = morphDeltas(prim, attribute);
+        if (deltas == nullptr) {
+          ignored.insert(attribute);
+          continue;
+        }
+        const std::string where = name + " target " + str(t) + " " + attribute;
+        auto values = readFloats(accessor, 3, count, where);
+        if (!values) return values.error();
+        if (deltas->empty()) deltas->assign(targets * count, glm::vec3(0.0f));
+        const auto vectors = toVectors<glm::vec3>(*values);
+        std::copy(vectors.begin(), vectors.end(), deltas->begin() + static_cast<std::ptrdiff_t>(t * count));
+      }
+    }
+    if (!ignored.empty())
+      warn(name + ": morph targets of " + joined(std::vector<std::string>(ignored.begin(), ignored.end())) +
+           " are ignored (POSITION is morphed, and NORMAL and TANGENT where the primitive has them)");
+    return Ok{};
+  }
+
+  // Where a target's displacements of `attribute` go, or nullptr when this engine
+  // does not morph it (or the primitive lacks the attribute they would move).
+  static std::vector<glm::vec3>* morphDeltas(PrimitiveData& prim, const std::string& attribute) {
+    if (attribute == "POSITION") return &prim.morphPositions;
+    if (attribute == "NORMAL" && !prim.normals.empty()) return &prim.morphNormals;
+    if (attribute == "TANGENT" && !prim.tangents.empty()) return &prim.morphTangents;
+    return nullptr;
   }
 
   Status readIndices(const tinygltf::Primitive& src, PrimitiveData& prim, const std::string& name) {
@@ -815,66 +914,100 @@ class Converter {
       AnimationData anim;
       anim.name = gltf_.animations[a].name;
       for (std::size_t c = 0; c < gltf_.animations[a].channels.size(); ++c) {
-        std::string name = "animation " + str(a) + " channel " + str(c);
-        ChannelData channel;
-        bool keep = false;
-        if (Status s = convertChannel(gltf_.animations[a], c, channel, keep, name); !s) return s;
-        if (!keep) continue;
-        anim.duration = std::max(anim.duration, channel.times.back());
-        anim.channels.push_back(std::move(channel));
+        if (Status s = convertChannel(gltf_.animations[a], c, anim, "animation " + str(a) + " channel " + str(c)); !s)
+          return s;
       }
       out_.animations.push_back(std::move(anim));
     }
     return Ok{};
   }
 
-  Status convertChannel(const tinygltf::Animation& src, std::size_t c, ChannelData& channel,
-                        bool& keep, const std::string& name) {
+  // Adds channel `c` to `anim` as a node or a morph weights channel (or skips it
+  // with a warning when it has no target node).
+  Status convertChannel(const tinygltf::Animation& src, std::size_t c, AnimationData& anim, const std::string& name) {
     const tinygltf::AnimationChannel& ch = src.channels[c];
-    if (ch.target_path == "weights") {
-      warn(name + ": morph target weights are not supported; ignored");
-      return Ok{};
-    }
     if (ch.target_node < 0) {
       warn(name + ": has no target node; ignored");
       return Ok{};
     }
     if (!validIndex(ch.target_node, out_.nodes.size()))
       return error(name + ": target node " + str(ch.target_node) + " does not exist");
+    if (!validIndex(ch.sampler, src.samplers.size()))
+      return error(name + ": sampler " + str(ch.sampler) + " does not exist");
+    const tinygltf::AnimationSampler& sampler = src.samplers[static_cast<std::size_t>(ch.sampler)];
+    const std::string samplerName = name + " sampler " + str(ch.sampler);
+    if (ch.target_path == "weights") {
+      MorphChannelData channel;
+      if (Status s = convertMorphChannel(ch, sampler, channel, name, samplerName); !s) return s;
+      anim.duration = std::max(anim.duration, channel.times.back());
+      anim.morphChannels.push_back(std::move(channel));
+      return Ok{};
+    }
+    ChannelData channel;
     channel.node = ch.target_node;
     if (ch.target_path == "translation") channel.path = AnimPath::Translation;
     else if (ch.target_path == "rotation") channel.path = AnimPath::Rotation;
     else if (ch.target_path == "scale") channel.path = AnimPath::Scale;
     else return error(name + ": unknown path \"" + ch.target_path + "\"");
-    if (!validIndex(ch.sampler, src.samplers.size()))
-      return error(name + ": sampler " + str(ch.sampler) + " does not exist");
-    const tinygltf::AnimationSampler& sampler = src.samplers[static_cast<std::size_t>(ch.sampler)];
-    std::string samplerName = name + " sampler " + str(ch.sampler);
-    if (sampler.interpolation == "STEP") channel.interpolation = Interpolation::Step;
-    else if (sampler.interpolation == "CUBICSPLINE") channel.interpolation = Interpolation::CubicSpline;
-    else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") channel.interpolation = Interpolation::Linear;
-    else return error(samplerName + ": unknown interpolation \"" + sampler.interpolation + "\"");
-    if (Status s = readTimes(sampler.input, channel, samplerName + " input"); !s) return s;
+    if (Status s = readKeys(sampler, samplerName, channel.interpolation, channel.times); !s) return s;
     if (Status s = readValues(sampler.output, channel, samplerName + " output"); !s) return s;
-    keep = true;
+    anim.duration = std::max(anim.duration, channel.times.back());
+    anim.channels.push_back(std::move(channel));
     return Ok{};
   }
 
-  Status readTimes(int accessor, ChannelData& channel, const std::string& name) {
+  // A sampler's interpolation and key times, the same for node and weights channels.
+  Status readKeys(const tinygltf::AnimationSampler& sampler, const std::string& name, Interpolation& interpolation,
+                  std::vector<float>& times) {
+    if (sampler.interpolation == "STEP") interpolation = Interpolation::Step;
+    else if (sampler.interpolation == "CUBICSPLINE") interpolation = Interpolation::CubicSpline;
+    else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") interpolation = Interpolation::Linear;
+    else return error(name + ": unknown interpolation \"" + sampler.interpolation + "\"");
+    auto keys = readTimes(sampler.input, name + " input");
+    if (!keys) return keys.error();
+    times = std::move(keys).value();
+    return Ok{};
+  }
+
+  // A `weights` channel drives every target of the node's mesh: the node must
+  // have a mesh with targets, and the output holds one weight per target per key
+  // (three blocks of them per key for CUBICSPLINE).
+  Status convertMorphChannel(const tinygltf::AnimationChannel& ch, const tinygltf::AnimationSampler& sampler,
+                             MorphChannelData& channel, const std::string& name, const std::string& samplerName) {
+    const NodeData& node = out_.nodes[static_cast<std::size_t>(ch.target_node)];
+    const int targets = node.mesh < 0 ? 0 : targetCount(out_.meshes[static_cast<std::size_t>(node.mesh)]);
+    if (targets == 0)
+      return error(name + ": animates the weights of node " + str(ch.target_node) +
+                   (node.mesh < 0 ? ", which has no mesh" : ", whose mesh " + str(node.mesh) + " has no morph targets"));
+    channel.node = ch.target_node;
+    channel.targets = targets;
+    if (Status s = readKeys(sampler, samplerName, channel.interpolation, channel.times); !s) return s;
+    const std::size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    const std::size_t expected = channel.times.size() * perKey * static_cast<std::size_t>(targets);
+    auto values = readFloats(sampler.output, 1, 0, samplerName + " output");
+    if (!values) return values.error();
+    if (values->size() != expected)
+      return error(samplerName + " output: " + str(values->size()) + " weights for " + str(channel.times.size()) +
+                   " keys of " + str(targets) + " morph targets (" + str(expected) + " expected)");
+    channel.values = std::move(values).value();
+    return Ok{};
+  }
+
+  Result<std::vector<float>> readTimes(int accessor, const std::string& name) {
     auto times = readAccessor(gltf_, accessor, file_ + ": " + name);
     if (!times) return times.error();
     if (times->components != 1) return error(name + ": key times must be SCALAR");
-    channel.times.resize(times->count);
+    std::vector<float> out(times->count);
     for (std::size_t k = 0; k < times->count; ++k) {
       float t = static_cast<float>(times->values[k]);
       if (!std::isfinite(t)) return error(name + ": key " + str(k) + " time is NaN or infinite");
       if (t < 0.0f) return error(name + ": key " + str(k) + " time " + std::to_string(t) + " is negative");
-      if (k > 0 && t < channel.times[k - 1])
+      if (k > 0 && t < out[k - 1])
         return error(name + ": key " + str(k) + " time " + std::to_string(t) +
                      " is before the previous key (times must be sorted)");
-      channel.times[k] = t;
+      out[k] = t;
     }
-    return Ok{};
+    return out;
   }
 
   Status readValues(int accessor, ChannelData& channel, const std::string& name) {

@@ -24,6 +24,10 @@ struct NodeData {
   glm::vec3 scale{1.0f};
   int mesh = -1;
   int skin = -1;
+  // Default morph target weights of this instance of `mesh`: the node's own
+  // `weights` when the file gives them (glTF: they override the mesh's), else a
+  // copy of MeshData::morphWeights; one per target, empty without targets.
+  std::vector<float> morphWeights;
 };
 
 struct PrimitiveData {
@@ -39,11 +43,22 @@ struct PrimitiveData {
   std::vector<float> weights;
   int material = -1;
   int mode = 4;  // glTF primitive mode, 4 = triangles
+  // Morph targets: `morphTargets` sets of displacements, target-major (target t
+  // moves vertex v by [t * vertices + v]), so a target's deltas are one span.
+  // Each array is empty when no target moves that attribute, and zero for the
+  // targets that do not. Tangent deltas move xyz; the handedness w is kept.
+  int morphTargets = 0;
+  std::vector<glm::vec3> morphPositions;
+  std::vector<glm::vec3> morphNormals;
+  std::vector<glm::vec3> morphTangents;
 };
 
 struct MeshData {
   std::string name;
   std::vector<PrimitiveData> primitives;
+  // Default morph target weights, one per target (every primitive of a mesh has
+  // the same number); zeros when the file gives none.
+  std::vector<float> morphWeights;
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
@@ -93,9 +108,21 @@ struct ChannelData {
   std::vector<glm::vec4> values;
 };
 
+// A `weights` channel: the morph target weights of one node's mesh.
+struct MorphChannelData {
+  int node = -1;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;  // as ChannelData::times
+  int targets = 0;           // weights per key: the mesh's target count
+  // `targets` weights per key; for CUBICSPLINE three blocks of `targets` per key
+  // (in-tangents, values, out-tangents), as glTF stores them.
+  std::vector<float> values;
+};
+
 struct AnimationData {
   std::string name;
   std::vector<ChannelData> channels;
+  std::vector<MorphChannelData> morphChannels;
   float duration = 0.0f;  // largest last key time of any channel
 };
 

@@ -47,17 +47,19 @@ Status addMaterials(LoadedModel& loaded, RtScene& scene) {
 }
 
 // Poses one model instance at `time` into `meshes`, one per triangle primitive:
-// positions and normals skinned (or moved rigidly) into world space; material and
+// positions and normals morphed, then skinned (or moved rigidly) into world space; material and
 // indices are filled the first time only, as they never change.
 Status poseInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, double time, double ground,
                     std::vector<RtMesh>& meshes) {
   const Skeleton& skeleton = loaded.animated.skeleton;
+  const MorphLayout& morphs = loaded.animated.morphs;
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
+  std::vector<float> weights = morphs.restWeights;
   if (clip >= 0) {
     const Clip& c = loaded.animated.clips[size_t(clip)];
-    const SamplingJob sample{&c, wrapTime(desc.start + time * desc.speed, c.duration(), LoopMode::Repeat),
-                             skeleton.restPose(), locals};
-    if (auto s = runJob(sample, loaded.model.path); !s) return s;
+    const double local = wrapTime(desc.start + time * desc.speed, c.duration(), LoopMode::Repeat);
+    if (auto s = runJob(SamplingJob{&c, local, skeleton.restPose(), locals}, loaded.model.path); !s) return s;
+    if (auto s = runJob(MorphSamplingJob{&c, local, morphs.restWeights, weights}, loaded.model.path); !s) return s;
   }
   std::vector<glm::mat4> models(locals.size());
   const LocalToModelJob toModel{skeleton.parents(), locals, glm::mat4(modelTransform(desc, ground)), models};
@@ -85,17 +87,11 @@ Status poseInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, 
         meshes.push_back(std::move(mesh));
       }
       RtMesh& mesh = meshes[next++];
-      if (node.skin >= 0 && prim.influences > 0) {
-        if (!skinPrimitive(prim, loaded.animated.skins[size_t(node.skin)], models, method, mesh.positions,
-                           mesh.normals)) {
-          return makeError(loaded.model.path + ": skinning failed");
-        }
-      } else {
-        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
-        for (size_t v = 0; v < prim.positions.size(); ++v) {
-          mesh.positions[v] = glm::vec3(world * glm::vec4(prim.positions[v], 1.0f));
-          if (!mesh.normals.empty()) mesh.normals[v] = glm::normalize(normalMatrix * prim.normals[v]);
-        }
+      const bool skinned = node.skin >= 0 && prim.influences > 0;
+      const PrimitivePose pose{morphs.of(weights, int(n)),
+                               skinned ? &loaded.animated.skins[size_t(node.skin)] : nullptr, models, world, method};
+      if (!posePrimitive(prim, pose, mesh.positions, mesh.normals)) {
+        return makeError(loaded.model.path + ": node " + std::to_string(n) + ": morphing or skinning failed");
       }
     }
   }

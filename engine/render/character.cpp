@@ -16,28 +16,41 @@ Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(ModelData m
   return std::shared_ptr<const CharacterAsset>(std::move(asset));
 }
 
+namespace {
+
+// The clip times that the bounds sample: `samples` + 1 evenly spaced, and every
+// key of a morph track, where LINEAR weights (and so the vertices) peak.
+std::vector<double> boundsSampleTimes(const Clip& clip, int samples) {
+  std::vector<double> times;
+  for (int i = 0; i <= samples; ++i) times.push_back(clip.duration() * double(i) / double(samples));
+  for (const MorphTrack& track : clip.morphTracks()) times.insert(times.end(), track.times.begin(), track.times.end());
+  return times;
+}
+
+}  // namespace
+
 Result<CharacterAsset::Bounds> CharacterAsset::boundsOfAllPoses(int samples) const {
   Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
   const Skeleton& skeleton = animated.skeleton;
+  const MorphLayout& morphs = animated.morphs;
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
+  std::vector<float> weights = morphs.restWeights;
   std::vector<glm::mat4> models(locals.size());
-  std::vector<glm::vec3> skinned;
+  std::vector<glm::vec3> posed;
   auto addPose = [&]() -> Status {
     if (auto s = runJob(LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}, model.path); !s) return s;
     for (size_t n = 0; n < model.nodes.size(); ++n) {
       const NodeData& node = model.nodes[n];
       if (node.mesh < 0) continue;
-      const glm::mat4& world = models[size_t(skeleton.jointOfRaw(int(n)))];
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        const bool isSkinned = node.skin >= 0 && prim.influences > 0;
-        if (isSkinned) {
-          skinned.resize(prim.positions.size());
-          if (!skinPrimitive(prim, animated.skins[size_t(node.skin)], models, SkinningMethod::Linear, skinned)) {
-            return makeError(model.path + ": node " + std::to_string(n) + ": skinning rejected its inputs");
-          }
+        const bool skinned = node.skin >= 0 && prim.influences > 0;
+        const PrimitivePose pose{morphs.of(weights, int(n)), skinned ? &animated.skins[size_t(node.skin)] : nullptr,
+                                 models, models[size_t(skeleton.jointOfRaw(int(n)))]};
+        posed.resize(prim.positions.size());
+        if (!posePrimitive(prim, pose, posed)) {
+          return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning rejected its inputs");
         }
-        for (size_t v = 0; v < prim.positions.size(); ++v) {
-          const glm::vec3 p = isSkinned ? skinned[v] : glm::vec3(world * glm::vec4(prim.positions[v], 1.0f));
+        for (const glm::vec3& p : posed) {
           b.min = glm::min(b.min, p);
           b.max = glm::max(b.max, p);
         }
@@ -47,9 +60,10 @@ Result<CharacterAsset::Bounds> CharacterAsset::boundsOfAllPoses(int samples) con
   };
   if (auto s = addPose(); !s) return s.error();
   for (const Clip& clip : animated.clips) {
-    for (int i = 0; i <= samples; ++i) {
-      const SamplingJob sample{&clip, clip.duration() * double(i) / double(samples), skeleton.restPose(), locals};
-      if (auto s = runJob(sample, model.path + ": clip " + clip.name()); !s) return s.error();
+    for (const double time : boundsSampleTimes(clip, samples)) {
+      const std::string where = model.path + ": clip " + clip.name();
+      if (auto s = runJob(SamplingJob{&clip, time, skeleton.restPose(), locals}, where); !s) return s.error();
+      if (auto s = runJob(MorphSamplingJob{&clip, time, morphs.restWeights, weights}, where); !s) return s.error();
       if (auto s = addPose(); !s) return s.error();
     }
   }
@@ -58,7 +72,9 @@ Result<CharacterAsset::Bounds> CharacterAsset::boundsOfAllPoses(int samples) con
 }
 
 CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset)
-    : asset_(std::move(asset)), player_(asset_->animated.skeleton) {
+    : asset_(std::move(asset)),
+      player_(asset_->animated.skeleton, asset_->animated.morphs.restWeights),
+      morphWeights_(asset_->animated.morphs.restWeights) {
   const size_t joints = size_t(asset_->animated.skeleton.jointCount());
   locals_.resize(joints);
   models_.resize(joints);
@@ -67,6 +83,7 @@ CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset
     // Room for either layout: one mat4 (LBS) or two vec4 (DQS) per joint.
     skinBuffers_.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * sizeof(glm::mat4)));
   }
+  if (!morphWeights_.empty()) morphBuffer_ = gl::Buffer::create(morphWeights_.size() * sizeof(float));
 }
 
 void CharacterInstance::play(int clip, LoopMode mode, double start) {
@@ -87,7 +104,12 @@ void CharacterInstance::crossFade(int clip, double seconds) {
 
 void CharacterInstance::evaluate(bool bindPose) {
   const auto rest = asset_->animated.skeleton.restPose();
-  if (bindPose || clip_ < 0 || !player_.evaluate(locals_)) std::copy(rest.begin(), rest.end(), locals_.begin());
+  const auto restWeights = std::span<const float>(asset_->animated.morphs.restWeights);
+  if (bindPose || clip_ < 0 || !player_.evaluate(locals_, morphWeights_)) {
+    std::copy(rest.begin(), rest.end(), locals_.begin());
+    std::copy(restWeights.begin(), restWeights.end(), morphWeights_.begin());
+  }
+  palettesCurrent_ = false;
 }
 
 Status CharacterInstance::computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition) {
@@ -123,11 +145,16 @@ Status CharacterInstance::uploadPalettes(SkinMode mode) {
   return Ok{};
 }
 
+void CharacterInstance::uploadMorphWeights() {
+  if (!morphWeights_.empty()) morphBuffer_.upload(0, morphWeights_.size() * sizeof(float), morphWeights_.data());
+}
+
 Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mode,
                                            const std::function<void(const gl::Program&)>& setUniforms) {
   // Shadow passes draw the same pose: upload the palettes once per pose.
   if (!palettesCurrent_ || uploadedMode_ != mode) {
     if (auto s = uploadPalettes(mode); !s) return s.error();
+    uploadMorphWeights();
     palettesCurrent_ = true;
     uploadedMode_ = mode;
   }
@@ -137,6 +164,8 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   frame.nodeWorlds = nodeWorlds_;
   frame.skinBuffers = skinBuffers_;
   frame.skinMode = mode;
+  frame.morphWeights = morphWeights_.empty() ? nullptr : &morphBuffer_;
+  frame.morphFirst = asset_->animated.morphs.first;
   frame.setUniforms = setUniforms;
   return frame;
 }

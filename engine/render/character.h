@@ -59,10 +59,13 @@ class CharacterInstance {
               const Lighting& lighting);
 
   std::span<const glm::mat4> models() const { return models_; }
+  // The morph weights of the last evaluate(), in the asset's MorphLayout order.
+  std::span<const float> morphWeights() const { return morphWeights_; }
   const CharacterAsset& asset() const { return *asset_; }
 
  private:
   Status uploadPalettes(SkinMode mode);
+  void uploadMorphWeights();
   Result<ModelFrame> frame(const glm::mat4& viewProjection, SkinMode mode,
                    const std::function<void(const gl::Program&)>& setUniforms);
 
@@ -75,7 +78,9 @@ class CharacterInstance {
   std::vector<glm::mat4> palette_;     // scratch, reused every frame
   std::vector<DualQuat> dualQuats_;    // scratch
   std::vector<gl::Buffer> skinBuffers_;
-  bool palettesCurrent_ = false;  // uploaded since the last computeModels
+  std::vector<float> morphWeights_;  // every morphing node's, MorphLayout order
+  gl::Buffer morphBuffer_;           // the same on the GPU
+  bool palettesCurrent_ = false;  // palettes and weights uploaded since the last pose
   SkinMode uploadedMode_ = SkinMode::Linear;
 };
 

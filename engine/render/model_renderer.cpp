@@ -9,6 +9,7 @@ std::string ShaderVariant::describe() const {
   std::string name = influences == 0 ? "static"
                                      : std::string(mode == SkinMode::DualQuat ? "dqs" : "lbs") +
                                            std::to_string(influences);
+  if (morph) name += "+morph";
   if (textured) name += "+textured";
   if (normalMap) name += "+normalmap";
   if (metallicRoughnessTexture) name += "+mr";
@@ -44,6 +45,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.emissiveTexture) defines.push_back("EMISSIVE_TEXTURE 1");
   if (variant.occlusion) defines.push_back("OCCLUSION 1");
   if (variant.alphaMask) defines.push_back("ALPHA_MASK 1");
+  if (variant.morph) defines.push_back("MORPH 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -96,6 +98,31 @@ const gl::Buffer& addBuffer(GpuPrimitive& prim, const std::vector<T>& data) {
   return prim.buffers.back();
 }
 
+// Appends a target-major attribute (PrimitiveData) vertex-major, so that the shader
+// reads one vertex's displacements together; returns where the block starts (in
+// vec3s), or -1 when no target moves the attribute.
+int appendVertexMajor(std::vector<glm::vec3>& out, const std::vector<glm::vec3>& deltas, size_t vertices,
+                      size_t targets) {
+  if (deltas.empty()) return -1;
+  const int start = int(out.size());
+  for (size_t v = 0; v < vertices; ++v)
+    for (size_t t = 0; t < targets; ++t) out.push_back(deltas[t * vertices + v]);
+  return start;
+}
+
+void uploadMorphTargets(const PrimitiveData& data, GpuPrimitive& prim) {
+  if (data.morphTargets == 0) return;
+  const size_t vertices = data.positions.size(), targets = size_t(data.morphTargets);
+  std::vector<glm::vec3> deltas;
+  prim.morphTargets = data.morphTargets;
+  prim.morphPositions = appendVertexMajor(deltas, data.morphPositions, vertices, targets);
+  prim.morphNormals = appendVertexMajor(deltas, data.morphNormals, vertices, targets);
+  prim.morphTangents = appendVertexMajor(deltas, data.morphTangents, vertices, targets);
+  // A buffer of at least one element: targets that move nothing still bind one.
+  if (deltas.empty()) deltas.emplace_back(0.0f);
+  prim.morphDeltas = gl::Buffer::fromSpan(std::span<const glm::vec3>(deltas));
+}
+
 GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
   GpuPrimitive prim;
   prim.vao = gl::VertexArray::create();
@@ -134,6 +161,7 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
     prim.vao.attribute(7, 5, 4, 0);
     prim.hasTangents = true;
   }
+  uploadMorphTargets(data, prim);
   if (!data.indices.empty()) {
     prim.vao.indexBuffer(addBuffer(prim, data.indices));
     prim.indexCount = static_cast<GLsizei>(data.indices.size());
@@ -166,6 +194,14 @@ const MaterialData* materialOf(const ModelData& model, int material) {
 bool isBlend(const ModelData& model, int material) {
   const MaterialData* m = materialOf(model, material);
   return m && m->alphaMode == AlphaMode::Blend;
+}
+
+// The frame's weights for node `node`'s MORPH draw.
+Status bindNodeMorphTargets(const gl::Program& pr, const GpuPrimitive& prim, const ModelFrame& frame, size_t node) {
+  if (frame.morphWeights == nullptr || node >= frame.morphFirst.size() || frame.morphFirst[node] < 0)
+    return makeError("node " + std::to_string(node) + ": has morph targets but the frame has no weights for it");
+  bindMorphTargets(pr, prim, *frame.morphWeights, frame.morphFirst[node]);
+  return Ok{};
 }
 
 // Draws primitive `p` of node `n`, with whatever blend state is set.
@@ -201,6 +237,9 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   if (skinned) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.skinBuffers[size_t(node.skin)].id());
   }
+  if (variant.morph) {
+    if (auto s = bindNodeMorphTargets(pr, prim, frame, n); !s) return makeError(model.path + ": " + s.error().message);
+  }
   if (material) {
     bindMaterialTextures(gpu, *material, variant);
   } else if (!frame.depthOnly) {
@@ -223,12 +262,23 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
 
 }  // namespace
 
+void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, const gl::Buffer& weights, int first) {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, prim.morphDeltas.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, weights.id());
+  program.set("u_morphTargets", prim.morphTargets);
+  program.set("u_morphFirst", first);
+  program.set("u_morphPositions", prim.morphPositions);
+  program.set("u_morphNormals", prim.morphNormals);
+  program.set("u_morphTangents", prim.morphTangents);
+}
+
 ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, const PrimitiveData& prim,
                                SkinMode mode, bool depthOnly) {
   ShaderVariant v;
   const bool skinned = node.skin >= 0 && prim.influences > 0 && mode != SkinMode::None;
   v.influences = skinned ? prim.influences : 0;
   v.mode = mode;
+  v.morph = prim.morphTargets > 0;
   v.depthOnly = depthOnly;
   const MaterialData* m = materialOf(model, prim.material);
   if (!m) return v;

@@ -1,8 +1,9 @@
 #pragma once
 // glTF models on the GPU: vertex buffers per primitive, textures per image, and
 // the shader variants the model needs. A static mesh is drawn without skinning
-// code; a skinned one with 4 or 8 influences, linear blend or dual quaternions,
-// each variant built only when first drawn.
+// code; a skinned one with 4 or 8 influences, linear blend or dual quaternions;
+// a mesh with morph targets with the morph code, before any skinning; each
+// variant built only when first drawn.
 #include <functional>
 #include <map>
 #include <memory>
@@ -33,6 +34,9 @@ struct ShaderVariant {
   bool emissiveTexture = false;
   bool occlusion = false;  // occlusion texture
   bool alphaMask = false;  // alphaMode MASK: discard below the cutoff
+  // Morph targets (common/morph.glsl), before skinning. Last, so that the
+  // positional initialisations above keep their meaning.
+  bool morph = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -73,6 +77,14 @@ struct GpuPrimitive {
   int material = -1;
   bool hasTangents = false;
   glm::vec3 center{0.0f};  // of the bind-pose bounds, mesh space: sorting BLEND draws
+  // Morph targets: every displacement in one storage buffer, vertex-major, one
+  // block per attribute that a target moves; each block's start (in vec3s, -1 for
+  // none) as common/morph.glsl reads them.
+  int morphTargets = 0;
+  gl::Buffer morphDeltas;
+  int morphPositions = -1;
+  int morphNormals = -1;
+  int morphTangents = -1;
 };
 
 class GpuModel {
@@ -98,6 +110,11 @@ class GpuModel {
 ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, const PrimitiveData& prim,
                                SkinMode mode, bool depthOnly);
 
+// Binds `prim`'s morph displacements (storage buffer 1) and `weights` (storage
+// buffer 2, floats; the drawn node's start at `first`) for a MORPH variant of
+// `program`, with the uniforms common/morph.glsl reads.
+void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, const gl::Buffer& weights, int first);
+
 // One frame's inputs for drawing a model.
 struct ModelFrame {
   glm::mat4 viewProjection{1.0f};
@@ -107,6 +124,10 @@ struct ModelFrame {
   // One storage buffer per skin: mat4 palette (Linear) or 2 vec4 per joint (DualQuat).
   std::span<const gl::Buffer> skinBuffers;
   SkinMode skinMode = SkinMode::Linear;
+  // Models with morph targets: every morphing node's weights in one storage buffer
+  // (float, MorphLayout order) and where each node's start (per glTF node, -1 none).
+  const gl::Buffer* morphWeights = nullptr;
+  std::span<const int> morphFirst;
   // Sets what the program needs besides the mesh and material (lights, shadows).
   std::function<void(const gl::Program&)> setUniforms;
   bool depthOnly = false;  // shadow passes: no material, depth-only variant

@@ -125,7 +125,7 @@ TEST(ClipBuild, ZeroLengthClipSamplesItsOnlyPose) {
 TEST(ClipBuild, RejectsBadTracks) {
   Skeleton s = makeSkeleton(1);
   auto fails = [&](Track t, const std::string& needle) {
-    RawClip raw{"walk", {t}};
+    RawClip raw{"walk", {t}, {}};
     auto clip = Clip::build(raw, s);
     ASSERT_FALSE(clip.ok());
     EXPECT_NE(clip.error().message.find(needle), std::string::npos) << clip.error().message;

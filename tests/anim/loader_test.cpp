@@ -375,20 +375,9 @@ TEST_F(LoaderTest, MatrixNodesAreDecomposed) {
   EXPECT_NEAR(glm::angle(n.rotation), 1.5707963f, 1e-5f);
 }
 
-TEST_F(LoaderTest, MorphWeightsChannelIsIgnoredWithAWarning) {
-  TestModel m;
-  m.doc["animations"][0]["channels"].push_back({{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}});
-  auto model = loadGltf(write(m));
-  ASSERT_TRUE(model.ok()) << model.error().message;
-  EXPECT_EQ(model->animations[0].channels.size(), 1u);
-  EXPECT_FALSE(model->warnings.empty());
-  auto built = buildAnimatedModel(*model);
-  ASSERT_TRUE(built.ok());
-  EXPECT_EQ(built->clips.size(), 1u);
-}
-
 }  // namespace
 }  // namespace engine
+
 
 namespace engine {
 namespace {
@@ -508,6 +497,176 @@ TEST_F(LoaderTest, UnsupportedExtensionsRequiredAreErrorsUsedAreWarnings) {
   EXPECT_TRUE(hasWarning(*model, {"uses KHR_materials_clearcoat, which this engine does not support; drawn without it"}))
       << allWarnings(*model);
   EXPECT_FALSE(hasWarning(*model, {"KHR_mesh_quantization"})) << allWarnings(*model);
+}
+
+}  // namespace
+}  // namespace engine
+
+namespace engine {
+namespace {
+
+// The test model with two morph targets on its primitive (both displace by the
+// base positions, accessor 0), mesh weights, and a `weights` channel on node 0
+// whose keys (accessor 7) are the first four rotation-key floats read as SCALAR:
+// (0, 0) at t = 0 and (0, 1) at t = 1.
+TestModel morphModel() {
+  TestModel m;
+  m.doc["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 0}}, {{"POSITION", 0}}};
+  m.doc["meshes"][0]["weights"] = {0.5, 0.25};
+  m.doc["accessors"].push_back({{"bufferView", 6}, {"componentType", 5126}, {"count", 4}, {"type", "SCALAR"}});
+  m.doc["animations"][0]["samplers"].push_back({{"input", 5}, {"output", 7}});
+  m.doc["animations"][0]["channels"].push_back({{"sampler", 1}, {"target", {{"node", 0}, {"path", "weights"}}}});
+  return m;
+}
+
+TEST_F(LoaderTest, LoadsMorphTargetsWeightsAndWeightChannels) {
+  TestModel m = morphModel();
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const PrimitiveData& prim = model->meshes[0].primitives[0];
+  ASSERT_EQ(prim.morphTargets, 2);
+  ASSERT_EQ(prim.morphPositions.size(), 6u);  // target-major: 2 targets x 3 vertices
+  EXPECT_EQ(prim.morphPositions[4], glm::vec3(1, 0, 0));
+  EXPECT_TRUE(prim.morphNormals.empty());
+  EXPECT_EQ(model->meshes[0].morphWeights, (std::vector<float>{0.5f, 0.25f}));
+  EXPECT_EQ(model->nodes[0].morphWeights, (std::vector<float>{0.5f, 0.25f}));  // the mesh's
+  EXPECT_TRUE(model->nodes[1].morphWeights.empty());
+  const AnimationData& anim = model->animations[0];
+  EXPECT_EQ(anim.channels.size(), 1u);
+  ASSERT_EQ(anim.morphChannels.size(), 1u);
+  EXPECT_EQ(anim.morphChannels[0].node, 0);
+  EXPECT_EQ(anim.morphChannels[0].targets, 2);
+  EXPECT_EQ(anim.morphChannels[0].values, (std::vector<float>{0, 0, 0, 1}));
+  auto pose = dumpPose(*model, 0, 1.0, LoopMode::Clamp);  // the last key, (0, 1)
+  ASSERT_TRUE(pose.ok()) << pose.error().message;
+  EXPECT_EQ((*pose)["meshes"][0]["morphWeights"], nlohmann::json({0.0, 1.0}));
+  EXPECT_EQ((*pose)["meshes"][0]["morphTargets"], 2);
+}
+
+TEST_F(LoaderTest, NodeWeightsOverrideTheMeshs) {
+  TestModel m = morphModel();
+  m.doc["nodes"][0]["weights"] = {1, -0.5};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->nodes[0].morphWeights, (std::vector<float>{1.0f, -0.5f}));
+  EXPECT_EQ(model->meshes[0].morphWeights, (std::vector<float>{0.5f, 0.25f}));
+  m.doc["meshes"][0].erase("weights");
+  m.doc["nodes"][0].erase("weights");
+  model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->nodes[0].morphWeights, (std::vector<float>{0.0f, 0.0f}));  // absent: zeros
+}
+
+TEST_F(LoaderTest, SparseMorphTargetWithoutABufferView) {
+  TestModel m = morphModel();
+  // Zeros, with vertex 0 (the u16 at byte 96) moved by (0, 1, 0) (bytes 248..259).
+  m.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 2}});
+  m.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 248}, {"byteLength", 12}});
+  m.doc["accessors"].push_back({{"componentType", 5126},
+                                {"count", 3},
+                                {"type", "VEC3"},
+                                {"sparse",
+                                 {{"count", 1},
+                                  {"indices", {{"bufferView", 7}, {"componentType", 5123}}},
+                                  {"values", {{"bufferView", 8}}}}}});
+  m.doc["meshes"][0]["primitives"][0]["targets"][1]["POSITION"] = 8;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const PrimitiveData& prim = model->meshes[0].primitives[0];
+  EXPECT_EQ(prim.morphPositions[3], glm::vec3(0, 1, 0));
+  EXPECT_EQ(prim.morphPositions[4], glm::vec3(0, 0, 0));
+  EXPECT_EQ(prim.morphPositions[5], glm::vec3(0, 0, 0));
+}
+
+TEST_F(LoaderTest, UnmorphableTargetAttributesWarnAndAreIgnored) {
+  TestModel m = morphModel();
+  m.doc["meshes"][0]["primitives"][0]["targets"][0]["TEXCOORD_0"] = 0;
+  m.doc["meshes"][0]["primitives"][0]["targets"][1]["NORMAL"] = 0;  // the primitive has no NORMAL
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(hasWarning(*model, {"mesh 0 primitive 0", "morph targets of NORMAL, TEXCOORD_0", "ignored"}))
+      << allWarnings(*model);
+  EXPECT_TRUE(model->meshes[0].primitives[0].morphNormals.empty());
+  EXPECT_EQ(model->meshes[0].primitives[0].morphTargets, 2);
+}
+
+TEST_F(LoaderTest, PrimitivesOfOneMeshNeedTheSameTargetCount) {
+  TestModel m = morphModel();
+  json second = m.doc["meshes"][0]["primitives"][0];
+  second["targets"] = {{{"POSITION", 0}}};
+  m.doc["meshes"][0]["primitives"].push_back(second);
+  expectError(write(m), {"mesh 0: primitive 1 has 1 morph targets, primitive 0 has 2"});
+}
+
+TEST_F(LoaderTest, WeightListsMustHaveOneEntryPerTarget) {
+  TestModel m = morphModel();
+  m.doc["meshes"][0]["weights"] = {0.5, 0.25, 1};
+  expectError(write(m), {"mesh 0: weights has 3 entries for 2 morph targets"});
+  m = morphModel();
+  m.doc["nodes"][0]["weights"] = {1};
+  expectError(write(m), {"node 0", "weights has 1 entries for 2 morph targets"});
+  m = morphModel();
+  m.doc["nodes"][1]["weights"] = {1, 0};
+  expectError(write(m), {"node 1: has weights but no mesh"});
+  m = morphModel();
+  m.doc["meshes"][0].erase("primitives");
+  m.doc["meshes"][0]["primitives"] = {{{"attributes", {{"POSITION", 0}}}}};
+  m.doc["animations"][0]["channels"].erase(1);
+  expectError(write(m), {"mesh 0: weights has 2 entries for 0 morph targets"});
+}
+
+TEST_F(LoaderTest, TargetAccessorsMustMatchTheBase) {
+  TestModel m = morphModel();
+  m.doc["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 2}, {"type", "VEC3"}});
+  m.doc["meshes"][0]["primitives"][0]["targets"][1]["POSITION"] = 8;
+  expectError(write(m), {"mesh 0 primitive 0 target 1 POSITION", "has 2 elements, expected 3"});
+  m = morphModel();
+  m.doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = 2;  // WEIGHTS_0: VEC4
+  expectError(write(m), {"mesh 0 primitive 0 target 0 POSITION", "expected 3 components"});
+  m = morphModel();
+  m.doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = 42;
+  expectError(write(m), {"target 0 POSITION", "42"});
+  m = morphModel();
+  m.putFloat(4, std::numeric_limits<float>::quiet_NaN());  // vertex 0's y, read as a delta too
+  expectError(write(m), {"NaN"});
+}
+
+TEST_F(LoaderTest, WeightChannelsAreChecked) {
+  TestModel m = morphModel();
+  m.doc["accessors"][7]["count"] = 3;
+  expectError(write(m), {"animation 0 channel 1 sampler 1 output", "3 weights for 2 keys of 2 morph targets (4 expected)"});
+  m = morphModel();
+  m.doc["animations"][0]["samplers"][1]["interpolation"] = "CUBICSPLINE";  // needs 12
+  expectError(write(m), {"sampler 1 output", "4 weights for 2 keys of 2 morph targets (12 expected)"});
+  m = morphModel();
+  m.doc["animations"][0]["channels"][1]["target"]["node"] = 1;
+  expectError(write(m), {"animation 0 channel 1", "weights of node 1, which has no mesh"});
+  m = morphModel();
+  m.doc["meshes"][0]["primitives"][0].erase("targets");
+  m.doc["meshes"][0].erase("weights");
+  expectError(write(m), {"animation 0 channel 1", "weights of node 0, whose mesh 0 has no morph targets"});
+  m = morphModel();
+  m.doc["animations"][0]["samplers"][1]["interpolation"] = "SMOOTH";
+  expectError(write(m), {"sampler 1", "unknown interpolation \"SMOOTH\""});
+  m = morphModel();
+  m.doc["animations"][0]["channels"].erase(0);  // the rotation channel reads the same floats
+  m.putFloat(240 + 12, std::numeric_limits<float>::infinity());  // the key (0, 1)'s 1
+  expectError(write(m), {"animation 0 channel 0 sampler 1 output", "NaN or infinite"});
+}
+
+// Many targets on one big zero-filled accessor cost a small file and could cost
+// gigabytes: refused before anything is read.
+TEST_F(LoaderTest, TooManyMorphDisplacements) {
+  TestModel m = morphModel();
+  const std::size_t vertices = 1u << 21;
+  m.doc["accessors"].push_back({{"componentType", 5126}, {"count", vertices}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {0, 0, 0}}});
+  json prim = {{"attributes", {{"POSITION", 8}}}, {"targets", json::array()}};
+  for (int t = 0; t < 9; ++t) prim["targets"].push_back({{"POSITION", 8}});
+  m.doc["meshes"][0]["primitives"] = {prim};
+  m.doc["meshes"][0].erase("weights");
+  m.doc["nodes"][0].erase("skin");
+  m.doc["animations"][0]["channels"].erase(1);
+  expectError(write(m), {"mesh 0 primitive 0", "9 morph targets of 2097152 vertices", "limit"});
 }
 
 }  // namespace

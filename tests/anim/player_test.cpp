@@ -56,7 +56,7 @@ class PlayerTest : public ::testing::Test {
   }
   Clip makeClip(glm::vec3 a, glm::vec3 b) {
     Track t{0, AnimPath::Translation, Interpolation::Linear, {0.0f, 2.0f}, {glm::vec4(a, 0), glm::vec4(b, 0)}};
-    return Clip::build(RawClip{"", {t}}, skeleton_).value();
+    return Clip::build(RawClip{"", {t}, {}}, skeleton_).value();
   }
   Skeleton skeleton_;
   Clip walk_, run_;

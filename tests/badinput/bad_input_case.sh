@@ -46,6 +46,8 @@ case "$CASE" in
   accessor_count_limit) model accessor_count_limit.glb 2 "accessor_count_limit\.glb: .*accessor 5: count 67108865 is outside \[1, 67108864\]" ;;
   bufferview_past_buffer) model bufferview_past_buffer.glb 2 "bufferview_past_buffer\.glb: .*bufferView 6: bytes \[240, 304\) run past buffer 0 of 272 bytes" ;;
   joint_past_skin) model joint_past_skin.glb 2 "joint_past_skin\.glb: node 0: mesh 0 primitive 0: vertex 1 uses joint 5 past skin 0 of 2 joints" ;;
+  morph_target_count) model morph_target_count.glb 2 "morph_target_count\.glb: mesh 0 primitive 0 target 0 POSITION: has 2 elements, expected 3" ;;
+  morph_weights_keys) model morph_weights_keys.glb 2 "morph_weights_keys\.glb: animation 0 channel 1 sampler 1 output: 3 weights for 2 keys of 1 morph targets \(2 expected\)" ;;
   negative_key_time) model negative_key_time.glb 2 "negative_key_time\.glb: animation 0 channel 0 sampler 0 input: key 0 time -1\.0+ is negative" ;;
   nan_key_time) model nan_key_time.glb 2 "nan_key_time\.glb: animation 0 channel 0 sampler 0 input: key 1 time is NaN or infinite" ;;
   unsorted_keys) model unsorted_keys.glb 2 "unsorted_keys\.glb: animation 0 channel 0 sampler 0 input: key 1 time 0\.50+ is before the previous key" ;;

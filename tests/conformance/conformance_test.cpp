@@ -2,6 +2,8 @@
 // reference poses of
 // ../shared/conformance/poses (see CONVENTIONS.md there): node world matrices and
 // skinned world-space vertex positions, for every pose whose model is present.
+// The same for the morph target poses of tests/conformance/morph_poses (made by the
+// same oracle, see the README there), which also compare each instance's weights.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -32,6 +34,11 @@ fs::path conformanceDir() {
   return fs::path(ENGINE_SOURCE_DIR) / ".." / "shared" / "conformance";
 }
 
+// Khronos's sample models (gltf-samples/) lie beside the conformance folder.
+fs::path sharedDir() { return conformanceDir().parent_path(); }
+
+fs::path morphPosesDir() { return fs::path(ENGINE_SOURCE_DIR) / "tests" / "conformance" / "morph_poses"; }
+
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
@@ -49,24 +56,34 @@ bool hasNormalisedTwin(const fs::path& pose) {
 struct PoseCase {
   fs::path file;
   std::string name;  // a valid GoogleTest name
+  // Where the pose's "model" path may be relative to, tried in order.
+  std::vector<fs::path> modelRoots;
 };
 
 // Names the file in test output instead of dumping the struct's bytes.
 void PrintTo(const PoseCase& pose, std::ostream* os) { *os << pose.file.filename().string(); }
 
-std::vector<PoseCase> findPoses() {
+std::vector<PoseCase> findPoses(const fs::path& poses, const std::vector<fs::path>& modelRoots) {
   std::vector<PoseCase> cases;
-  fs::path poses = conformanceDir() / "poses";
   std::error_code ec;
   if (!fs::is_directory(poses, ec)) return cases;
   for (const auto& entry : fs::directory_iterator(poses, ec)) {
     if (entry.path().extension() != ".json" || hasNormalisedTwin(entry.path())) continue;
     std::string name = entry.path().stem().string();
     std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-    cases.push_back({entry.path(), name});
+    cases.push_back({entry.path(), name, modelRoots});
   }
   std::sort(cases.begin(), cases.end(), [](const PoseCase& a, const PoseCase& b) { return a.name < b.name; });
   return cases;
+}
+
+std::vector<PoseCase> sharedPoses() { return findPoses(conformanceDir() / "poses", {conformanceDir()}); }
+std::vector<PoseCase> morphPoses() { return findPoses(morphPosesDir(), {morphPosesDir(), sharedDir()}); }
+
+fs::path modelOf(const PoseCase& pose, const std::string& model) {
+  for (const fs::path& root : pose.modelRoots)
+    if (fs::exists(root / model)) return root / model;
+  return pose.modelRoots.back() / model;
 }
 
 json readJson(const fs::path& path) {
@@ -99,12 +116,18 @@ double nodeError(const json& ours, const json& ref) {
   return worst;
 }
 
+// A pose's mesh instances by (node, mesh, primitive).
+std::map<std::array<int, 3>, const json*> meshesByKey(const json& pose) {
+  std::map<std::array<int, 3>, const json*> byKey;
+  for (const json& m : pose["meshes"])
+    byKey[{m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()}] = &m;
+  return byKey;
+}
+
 // Largest vertex distance over all mesh instances, or infinity when an instance
 // or a vertex count does not match.
 double positionError(const json& ours, const json& ref) {
-  std::map<std::array<int, 3>, const json*> byKey;
-  for (const json& m : ours["meshes"])
-    byKey[{m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()}] = &m;
+  const auto byKey = meshesByKey(ours);
   double worst = 0.0;
   for (const json& m : ref["meshes"]) {
     auto it = byKey.find({m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()});
@@ -117,6 +140,23 @@ double positionError(const json& ours, const json& ref) {
       for (std::size_t c = 0; c < 3; ++c) d2 += std::pow(a[v + c].get<double>() - b[v + c].get<double>(), 2);
       worst = std::max(worst, std::sqrt(d2));
     }
+  }
+  return worst;
+}
+
+// Largest |weight - reference| over the instances that have morph targets, or
+// infinity when an instance or a weight count does not match. Zero without targets.
+double morphWeightError(const json& ours, const json& ref) {
+  const auto byKey = meshesByKey(ours);
+  double worst = 0.0;
+  for (const json& m : ref["meshes"]) {
+    const json& b = m.value("morphWeights", json::array());
+    if (b.empty()) continue;
+    auto it = byKey.find({m["node"].get<int>(), m["mesh"].get<int>(), m["primitive"].get<int>()});
+    if (it == byKey.end() || !it->second->contains("morphWeights")) return INFINITY;
+    const json& a = (*it->second)["morphWeights"];
+    if (a.size() != b.size()) return INFINITY;
+    for (std::size_t i = 0; i < b.size(); ++i) worst = std::max(worst, std::abs(a[i].get<double>() - b[i].get<double>()));
   }
   return worst;
 }
@@ -143,7 +183,7 @@ class ConformanceTest : public ::testing::TestWithParam<PoseCase> {};
 TEST_P(ConformanceTest, MatchesThreeJs) {
   const PoseCase& pose = GetParam();
   json ref = readJson(pose.file);
-  fs::path modelPath = conformanceDir() / ref["model"].get<std::string>();
+  fs::path modelPath = modelOf(pose, ref["model"].get<std::string>());
   if (!fs::exists(modelPath)) GTEST_SKIP() << "model not present: " << modelPath;
   int anim = ref["anim"].get<int>();
   double time = ref["time"].get<double>();
@@ -165,9 +205,13 @@ TEST_P(ConformanceTest, MatchesThreeJs) {
               matrixErr);
   EXPECT_LE(relErr, limit) << pose.file;
   EXPECT_LE(matrixErr, limit) << pose.file;
+  // Weights are floats here and doubles in three.js, written to 9 digits.
+  EXPECT_LE(morphWeightError(ours, ref), 1e-6) << pose.file;
 }
 
-INSTANTIATE_TEST_SUITE_P(Poses, ConformanceTest, ::testing::ValuesIn(findPoses()),
+INSTANTIATE_TEST_SUITE_P(Poses, ConformanceTest, ::testing::ValuesIn(sharedPoses()),
+                         [](const ::testing::TestParamInfo<PoseCase>& p) { return p.param.name; });
+INSTANTIATE_TEST_SUITE_P(MorphPoses, ConformanceTest, ::testing::ValuesIn(morphPoses()),
                          [](const ::testing::TestParamInfo<PoseCase>& p) { return p.param.name; });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ConformanceTest);
 
@@ -175,7 +219,20 @@ TEST(Conformance, FolderPresent) {
   if (!fs::is_directory(conformanceDir() / "poses"))
     GTEST_SKIP() << "no conformance material at " << conformanceDir()
                  << " (set CONFORMANCE_DIR); conformance poses not checked";
-  EXPECT_FALSE(findPoses().empty());
+  EXPECT_FALSE(sharedPoses().empty());
+}
+
+// The repository's own poses are always there; only the Khronos models they
+// name may be missing (then those cases skip).
+TEST(Conformance, MorphPosesPresent) {
+  const auto poses = morphPoses();
+  EXPECT_GE(poses.size(), 20u) << morphPosesDir();
+  for (const PoseCase& pose : poses) {
+    const json ref = readJson(pose.file);
+    const bool morphed = std::any_of(ref["meshes"].begin(), ref["meshes"].end(),
+                                     [](const json& m) { return m.value("morphTargets", 0) > 0; });
+    EXPECT_TRUE(morphed) << pose.file << " has no mesh with morph targets";
+  }
 }
 
 }  // namespace

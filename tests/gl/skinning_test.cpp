@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../support/capture.h"
 #include "../support/gl_test.h"
 #include "anim/jobs.h"
 #include "anim/model_builder.h"
@@ -17,7 +18,10 @@
 #include "render/render_target.h"
 
 using namespace engine;
+using engine::test::CaptureInputs;
+using engine::test::captureVarying;
 using engine::test::GlTest;
+using engine::test::largestRelativeError;
 
 namespace {
 
@@ -25,27 +29,11 @@ namespace {
 // largest coordinate, far below 1e-5 of the size.
 constexpr double kRelativeTolerance = 1e-5;
 
-struct Posed {
-  std::vector<glm::mat4> palette;
-  std::vector<DualQuat> dualQuats;
-};
+// The palettes of one skin in one pose (tests/support/capture.h).
+using Posed = test::Palettes;
 
 Posed poseSkin(const AnimatedModel& animated, int clip, double time, int skin) {
-  const Skeleton& skeleton = animated.skeleton;
-  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
-  if (clip >= 0) {
-    SamplingJob sample{&animated.clips[size_t(clip)], time, skeleton.restPose(), locals};
-    EXPECT_TRUE(sample.run());
-  }
-  std::vector<glm::mat4> models(locals.size());
-  EXPECT_TRUE((LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run()));
-  const Skin& s = animated.skins[size_t(skin)];
-  Posed posed;
-  posed.palette.resize(s.joints.size());
-  posed.dualQuats.resize(s.joints.size());
-  EXPECT_TRUE((SkinningPaletteJob{models, s.joints, s.inverseBinds, posed.palette}.run()));
-  EXPECT_TRUE((DualQuatPaletteJob{posed.palette, posed.dualQuats}.run()));
-  return posed;
+  return test::palettesOf(animated.skins[size_t(skin)], test::poseModel(animated, clip, time));
 }
 
 std::vector<glm::vec3> cpuSkin(const PrimitiveData& prim, const Posed& posed, SkinMode mode) {
@@ -63,56 +51,11 @@ std::vector<glm::vec3> cpuSkin(const PrimitiveData& prim, const Posed& posed, Sk
   return out;
 }
 
-// Runs `variant` over every vertex of `prim` with transform feedback and returns
-// the captured `varying` (one T per vertex, in order).
-template <typename T>
-std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim, const Posed& posed,
-                              const ShaderVariant& variant, const std::string& varying) {
-  auto program = variants.get(variant, {varying});
-  EXPECT_TRUE(program.ok()) << program.error().message;
-  if (!program) return {};
-  const gl::Program& p = **program;
-  p.use();
-  p.set("u_model", glm::mat4(1.0f));
-  p.set("u_normalMatrix", glm::mat3(1.0f));
-  p.set("u_viewProjection", glm::mat4(1.0f));
-  const gl::Buffer skin = variant.mode == SkinMode::DualQuat
-                              ? gl::Buffer::fromSpan(std::span<const DualQuat>(posed.dualQuats))
-                              : gl::Buffer::fromSpan(std::span<const glm::mat4>(posed.palette));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, skin.id());
-  const gl::Buffer captured = gl::Buffer::create(size_t(prim.vertexCount) * sizeof(T));
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
-  // EGL surfaceless has no default framebuffer; draws need one bound even when
-  // rasterisation is discarded.
-  auto target = RenderTarget::create(1, 1, 1);
-  EXPECT_TRUE(target.ok());
-  target->bind();
-  glEnable(GL_RASTERIZER_DISCARD);
-  prim.vao.bind();
-  glBeginTransformFeedback(GL_POINTS);
-  glDrawArrays(GL_POINTS, 0, prim.vertexCount);  // one output per vertex, in order
-  glEndTransformFeedback();
-  glDisable(GL_RASTERIZER_DISCARD);
-  std::vector<T> out(size_t(prim.vertexCount));
-  glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(out.size() * sizeof(T)), out.data());
-  return out;
-}
+CaptureInputs inputsOf(const Posed& posed) { return {posed.palette, posed.dualQuats, {}, glm::mat4(1.0f)}; }
 
 std::vector<glm::vec3> gpuSkin(ShaderVariants& variants, const GpuPrimitive& prim, const Posed& posed,
                                SkinMode mode) {
-  return captureVarying<glm::vec3>(variants, prim, posed, {prim.influences, mode}, "v_position");
-}
-
-double sizeOf(const std::vector<glm::vec3>& points) {
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const auto& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  return glm::length(hi - lo);
-}
-
-double largestRelativeError(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
-  double worst = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(glm::length(a[i] - b[i])));
-  return worst / std::max(1e-12, sizeOf(b));
+  return captureVarying<glm::vec3>(variants, prim, inputsOf(posed), {prim.influences, mode}, "v_position");
 }
 
 // Every skinned primitive of every node, at one time, both skinning methods.
@@ -278,7 +221,7 @@ TEST_P(GpuSkinning, TangentsAreSkinnedLikePositions) {
     SCOPED_TRACE(mode == SkinMode::DualQuat ? "DQS" : "LBS");
     ShaderVariant variant{8, mode};
     variant.normalMap = true;
-    const auto tangents = captureVarying<glm::vec4>(variants, gpuPrim, posed, variant, "v_tangent");
+    const auto tangents = captureVarying<glm::vec4>(variants, gpuPrim, inputsOf(posed), variant, "v_tangent");
     ASSERT_EQ(tangents.size(), size_t(gpuPrim.vertexCount));
     const auto base = cpuSkin(prim, posed, mode), moved = cpuSkin(shiftedPrim, posed, mode);
     double worst = 0.0;

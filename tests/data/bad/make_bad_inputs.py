@@ -124,6 +124,20 @@ def main(out):
         m.bin[36 + 4] = 5  # vertex 1 names joint 5 of a 2-joint skin
     case("joint_past_skin.glb", joint_past_skin)
 
+    def morph_target_count(m):
+        # A target of 2 displacements on a 3-vertex primitive.
+        m.doc["accessors"].append({"bufferView": 0, "componentType": 5126, "count": 2, "type": "VEC3"})
+        m.doc["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 7}]
+    case("morph_target_count.glb", morph_target_count)
+
+    def morph_weights_keys(m):
+        # One target, two keys: the weights output needs 2 values, it has 3.
+        m.doc["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 0}]
+        m.doc["accessors"].append({"bufferView": 6, "componentType": 5126, "count": 3, "type": "SCALAR"})
+        m.doc["animations"][0]["samplers"].append({"input": 5, "output": 7})
+        m.doc["animations"][0]["channels"].append({"sampler": 1, "target": {"node": 0, "path": "weights"}})
+    case("morph_weights_keys.glb", morph_weights_keys)
+
     def key_time(value, index=1):
         def edit(m):
             struct.pack_into("<f", m.bin, 232 + 4 * index, value)
