@@ -114,7 +114,7 @@ bool uriStaysInFolder(const std::string& uri) {
 // The glTF extensions this loader implements. KHR_mesh_quantization needs nothing
 // of its own: every accessor is read with its component type and normalisation.
 const std::set<std::string>& supportedExtensions() {
-  static const std::set<std::string> supported{"KHR_mesh_quantization"};
+  static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength"};
   return supported;
 }
 
@@ -369,6 +369,19 @@ Result<tinygltf::Model> parseWithTinygltf(const std::vector<unsigned char>& byte
   return model;
 }
 
+// KHR_materials_emissive_strength: a multiplier of emissiveFactor (1 without it),
+// so that emission can pass 1 in an HDR target.
+Result<float> emissiveStrength(const tinygltf::Material& material, const std::string& name) {
+  auto ext = material.extensions.find("KHR_materials_emissive_strength");
+  if (ext == material.extensions.end() || !ext->second.Has("emissiveStrength")) return 1.0f;
+  const tinygltf::Value& value = ext->second.Get("emissiveStrength");
+  const double strength = value.IsNumber() ? value.GetNumberAsDouble() : -1.0;
+  if (!(strength >= 0.0) || !std::isfinite(strength) || strength > 1e30) {
+    return makeError(name + ": KHR_materials_emissive_strength: emissiveStrength must be a finite number >= 0");
+  }
+  return static_cast<float>(strength);
+}
+
 class Converter {
  public:
   Converter(const tinygltf::Model& gltf, ModelData& out) : gltf_(gltf), out_(out), file_(out.path) {}
@@ -587,6 +600,9 @@ class Converter {
       m.emissiveImage = textureImage(src.emissiveTexture, name, "emissiveTexture");
       if (src.emissiveFactor.size() == 3)
         m.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
+      auto strength = emissiveStrength(src, name);
+      if (!strength) return error(strength.error().message);
+      m.emissiveFactor *= *strength;
       m.doubleSided = src.doubleSided;
       m.alphaMode = src.alphaMode == "BLEND" ? AlphaMode::Blend : src.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Opaque;
       m.alphaCutoff = static_cast<float>(src.alphaCutoff);

@@ -669,5 +669,29 @@ TEST_F(LoaderTest, TooManyMorphDisplacements) {
   expectError(write(m), {"mesh 0 primitive 0", "9 morph targets of 2097152 vertices", "limit"});
 }
 
+// KHR_materials_emissive_strength multiplies emissiveFactor (supported: no warning);
+// a negative or non-numeric strength is an error naming the material.
+TEST_F(LoaderTest, EmissiveStrengthScalesTheEmissiveFactor) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  m.doc["materials"] = {{{"emissiveFactor", {1.0, 0.5, 0.0}},
+                         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}},
+                        {{"emissiveFactor", {0.25, 0.25, 0.25}}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->materials[0].emissiveFactor, glm::vec3(4.0f, 2.0f, 0.0f));
+  EXPECT_EQ(model->materials[1].emissiveFactor, glm::vec3(0.25f));
+  EXPECT_FALSE(hasWarning(*model, {"KHR_materials_emissive_strength"})) << allWarnings(*model);
+
+  for (const nlohmann::json& bad : {nlohmann::json(-1.0), nlohmann::json("bright")}) {
+    m.doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = bad;
+    auto refused = loadGltf(write(m));
+    ASSERT_FALSE(refused.ok()) << bad.dump();
+    EXPECT_NE(refused.error().message.find("material 0: KHR_materials_emissive_strength: emissiveStrength"),
+              std::string::npos)
+        << refused.error().message;
+  }
+}
+
 }  // namespace
 }  // namespace engine
