@@ -21,6 +21,23 @@ expect() {
   echo "ok: '$*' -> $got"
 }
 
+# Processes to stop when the case ends (a private X server, busy loops).
+CLEANUP=()
+trap 'kill "${CLEANUP[@]}" 2>/dev/null' EXIT
+
+# Starts a private Xvfb and exports its DISPLAY. Xvfb picks a free display itself
+# (-displayfd) and writes it once ready: xvfb-run -a races parallel tests for the
+# numbers, and its own clean-up failed a command under load (exit 5).
+start_xvfb() {
+  command -v Xvfb >/dev/null || { echo "Xvfb missing: skipped"; exit 77; }
+  rm -f "$CASE.display"
+  Xvfb -displayfd 3 -nolisten tcp 3>"$CASE.display" 2>"$CASE.xvfb.log" &
+  CLEANUP+=($!)
+  for _ in $(seq 50); do [ -s "$CASE.display" ] && break; sleep 0.1; done
+  [ -s "$CASE.display" ] || { echo "FAIL: Xvfb did not start"; cat "$CASE.xvfb.log"; exit 1; }
+  export DISPLAY=":$(cat "$CASE.display")"
+}
+
 # The last command's output names no GL object deleted after its context.
 no_orphans() {
   if cat "$OUT" "$ERR" | grep -q "outlived its context"; then
@@ -53,10 +70,10 @@ case "$CASE" in
     echo "ok: identical bytes" ;;
   window_identical)
     # A GLFW window under Xvfb draws into the same FBO: the same bytes as EGL.
-    command -v xvfb-run >/dev/null || { echo "xvfb-run missing: skipped"; exit 77; }
     rm -f win.png egl_w.png
     expect 0 "egl_w\.png" -- "$BIN/demo" --offscreen=egl --time 1 --size 640x360 --screenshot egl_w.png
-    expect 0 "win\.png" -- xvfb-run -a "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
+    start_xvfb
+    expect 0 "win\.png" -- "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
     cmp egl_w.png win.png || { echo "FAIL: window and EGL frames differ"; exit 1; }
     echo "ok: identical bytes" ;;
   window_bare_xvfb)
@@ -66,23 +83,15 @@ case "$CASE" in
     # failed here with "Failed to open display"). An empty scene: the race is
     # between the probe and the window, before any scene is built, and each run
     # then costs a fifth of a second (the whole test 7 s here, more under ASan).
-    command -v Xvfb >/dev/null || { echo "Xvfb missing: skipped"; exit 77; }
-    rm -f xvfb.fd  # Xvfb writes its display number there once it is ready
-    Xvfb -displayfd 3 -nolisten tcp 3>xvfb.fd 2>xvfb.log &
-    xvfb=$!
-    for _ in $(seq 50); do [ -s xvfb.fd ] && break; sleep 0.1; done
-    [ -s xvfb.fd ] || { echo "FAIL: Xvfb did not start"; cat xvfb.log; kill $xvfb; exit 1; }
-    display=":$(cat xvfb.fd)"
-    busy=()
-    for _ in 1 2; do (while :; do :; done) & busy+=($!); done
-    trap 'kill ${busy[*]} $xvfb 2>/dev/null' EXIT
+    start_xvfb
+    for _ in 1 2; do (while :; do :; done) & CLEANUP+=($!); done
     echo '{}' > bare.json
     for i in $(seq 20); do
       rm -f bare.png
-      expect 0 "bare\.png" -- env DISPLAY="$display" "$BIN/demo" bare.json --frames 3 --size 64x64 --screenshot bare.png
+      expect 0 "bare\.png" -- "$BIN/demo" bare.json --frames 3 --size 64x64 --screenshot bare.png
       [ -s bare.png ] || { echo "FAIL: run $i wrote no image"; exit 1; }
     done
-    echo "ok: 20 windows in a row on $display" ;;
+    echo "ok: 20 windows in a row on $DISPLAY" ;;
   fuzz_reports_crash)
     # scripts/fuzz runs under set -e: a crashing fuzzer must still get its log tail
     # and the summary printed, and fail the script. A stand-in fuzzer crashes as
@@ -127,10 +136,11 @@ SH
     expect 2 "/nonexistent/v\.png" -- "$BIN/viewer" "$SRC/assets/models/character.gltf" --offscreen --size 64x64 --screenshot /nonexistent/v.png
     no_orphans
     # the same in a window
-    command -v xvfb-run >/dev/null || { echo "xvfb-run missing: window cases skipped"; exit 0; }
-    expect 2 "/nonexistent/w\.png" -- xvfb-run -a "$BIN/demo" mirror.json --frames 2 --size 64x64 --screenshot /nonexistent/w.png
+    command -v Xvfb >/dev/null || { echo "Xvfb missing: window cases skipped"; exit 0; }
+    start_xvfb
+    expect 2 "/nonexistent/w\.png" -- "$BIN/demo" mirror.json --frames 2 --size 64x64 --screenshot /nonexistent/w.png
     no_orphans
-    expect 2 "msaa: 8 samples asked" -- xvfb-run -a "$BIN/viewer" "$SRC/assets/models/character.gltf" --frames 2 --size 64x64 --msaa 8
+    expect 2 "msaa: 8 samples asked" -- "$BIN/viewer" "$SRC/assets/models/character.gltf" --frames 2 --size 64x64 --msaa 8
     no_orphans ;;
   soak_window)
     # A short soak in a window: the camera circles, the scene is rebuilt from its
@@ -142,8 +152,8 @@ SH
     # memory come and go in steps of 16-25 MiB). 64 MiB catches a leak of more
     # than 16 MiB a reload; the 10-minute soak (README) is the fine measure:
     # 439.3 MiB flat from its second minute on.
-    command -v xvfb-run >/dev/null || { echo "xvfb-run missing: skipped"; exit 77; }
-    expect 0 "soak summary" -- xvfb-run -a "$BIN/demo" --soak 12 --soak-reload 2 --size 320x180
+    start_xvfb
+    expect 0 "soak summary" -- "$BIN/demo" --soak 12 --soak-reload 2 --size 320x180
     python3 - "$ERR" "${ASAN_OPTIONS:+asan}" <<'PY' || { cat "$ERR"; exit 1; }
 import re, sys
 samples = [(float(m[0]), float(m[1]), int(m[2])) for m in
