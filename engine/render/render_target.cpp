@@ -4,12 +4,16 @@
 
 namespace engine {
 
+int RenderTarget::maxSamples() {
+  GLint samples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &samples);
+  return samples;
+}
+
 Result<RenderTarget> RenderTarget::create(int width, int height, int samples) {
-  GLint maxSamples = 1;
-  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  if (samples < 1 || samples > maxSamples) {
-    return makeError("msaa: " + std::to_string(samples) + " samples asked, this GL offers 1.." +
-                     std::to_string(maxSamples));
+  const int most = maxSamples();
+  if (samples < 1 || samples > most) {
+    return makeError("msaa: " + std::to_string(samples) + " samples asked, this GL offers 1.." + std::to_string(most));
   }
   RenderTarget t;
   t.width_ = width;

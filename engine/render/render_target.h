@@ -12,6 +12,8 @@ namespace engine {
 class RenderTarget {
  public:
   static Result<RenderTarget> create(int width, int height, int samples);
+  // The most MSAA samples this GL offers (GL_MAX_SAMPLES).
+  static int maxSamples();
 
   // Binds the (multisampled) framebuffer and sets the viewport.
   void bind() const;

@@ -12,6 +12,7 @@
 #include "render/frame_block.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
+#include "render/render_target.h"
 #include "render/textures.h"
 #include "terrain/lod.h"
 #include "terrain/scene_terrain.h"
@@ -233,11 +234,9 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   pcfRadius = render.shadowFilter == ShadowFilter::Hard ? 0 : render.pcfKernel / 2;
   // Checked before anything is built: a scene may ask for more samples (up to 16)
   // than this GL offers, and a frame without its target would draw nothing.
-  GLint maxSamples = 1;
-  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  if (render.msaa > maxSamples) {
+  if (const int most = RenderTarget::maxSamples(); render.msaa > most) {
     return makeError(scene.path + ": /render/msaa: " + std::to_string(render.msaa) +
-                     " samples asked, this GL offers up to " + std::to_string(maxSamples));
+                     " samples asked, this GL offers up to " + std::to_string(most));
   }
 
   for (int i = 0; i < int(scene.lights.size()); ++i) {
