@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "core/brdf.h"
 #include "raytrace/camera.h"
 #include "raytrace/rng.h"
 
@@ -117,61 +118,40 @@ class Tracer {
     return camera_.clippedToFarPlane(camera_.generateRay<T>(px, py));
   }
 
-  // colour * (ambient + diffuse * sum of light * max(N.L, 0) * visibility), plus an
-  // optional Blinn-Phong highlight; the mirror term is added by Li.
+  // The course's model (core/brdf.h's classicReflected, as the rasterizer's shadeLight)
+  // per light, plus colour * ambient; the mirror term is added by Li.
   glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const HitMaterial& m, const Vec3<T>& n, const Vec3<T>& v,
                          Pcg32& rng, RayCounters& counters) const {
-    const glm::vec3& albedo = m.albedo;
-    glm::vec3 diffuse(0.0f), specular(0.0f);
+    glm::vec3 color = m.albedo * m.ambient;
     for (const LightDesc& light : scene_.lights()) {
       const LightSample<T> ls = sampleLight(si, light, rng, counters);
-      const float nDotL = float(std::max(glm::dot(n, ls.wi), T(0)));
-      if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
-      diffuse += ls.radiance * (nDotL * ls.visibility);
-      if (m.specular > 0.0f) {
-        const Vec3<T> h = glm::normalize(ls.wi - v);
-        const float nDotH = float(std::max(glm::dot(n, h), T(0)));
-        specular += ls.radiance * (m.specular * std::pow(nDotH, m.shininess) * ls.visibility);
-      }
+      if (ls.visibility <= 0.0f) continue;
+      color += ls.radiance * ls.visibility *
+               brdf::classicReflected(glm::vec3(n), -glm::vec3(v), glm::vec3(ls.wi), m.albedo, m.diffuse, m.specular,
+                                      m.shininess);
     }
-    return albedo * (m.ambient + m.diffuse * diffuse) + specular;
+    return color;
   }
 
-  // Lambert + GGX (Trowbridge-Reitz D, Smith-Schlick G, Schlick F) per light, and an
-  // ambient term from the sky's hemisphere (or white) scaled by the material's ambient.
+  // glTF's metallic-roughness BRDF (core/brdf.h, the rasterizer's own) per light, and
+  // the rasterizer's hemisphere ambient scaled by the material.
   glm::vec3 shadePbr(const SurfaceInteraction<T>& si, const HitMaterial& m, const Vec3<T>& n, const Vec3<T>& v,
                      Pcg32& rng, RayCounters& counters) const {
-    const glm::vec3& albedo = m.albedo;
     const glm::vec3 nf(n);
     const glm::vec3 toEye = -glm::vec3(v);
-    const float alpha = std::max(m.roughness * m.roughness, 1e-3f);
-    const float a2 = alpha * alpha;
-    const float k = (m.roughness + 1.0f) * (m.roughness + 1.0f) / 8.0f;
-    const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), albedo, m.metallic);
-    const float nDotV = std::max(glm::dot(nf, toEye), 1e-4f);
     glm::vec3 color(0.0f);
     for (const LightDesc& light : scene_.lights()) {
       const LightSample<T> ls = sampleLight(si, light, rng, counters);
       const glm::vec3 l(ls.wi);
       const float nDotL = glm::dot(nf, l);
       if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
-      const glm::vec3 h = glm::normalize(l + toEye);
-      const float nDotH = std::max(glm::dot(nf, h), 0.0f);
-      const float vDotH = std::max(glm::dot(toEye, h), 0.0f);
-      const float dDenom = nDotH * nDotH * (a2 - 1.0f) + 1.0f;
-      const float d = a2 / (std::numbers::pi_v<float> * dDenom * dDenom);
-      const float g = (nDotV / (nDotV * (1.0f - k) + k)) * (nDotL / (nDotL * (1.0f - k) + k));
-      const glm::vec3 f = f0 + (glm::vec3(1.0f) - f0) * std::pow(1.0f - vDotH, 5.0f);
-      const glm::vec3 spec = d * g * f / (4.0f * nDotV * nDotL + 1e-4f);
-      const glm::vec3 kd = (glm::vec3(1.0f) - f) * (1.0f - m.metallic);
-      // Light intensities are what a white Lambert surface facing the light reflects
-      // (the rasterizer's convention, shaders/common/shading.glsl), so pi cancels.
-      color += (kd * albedo / std::numbers::pi_v<float> + spec) * ls.radiance *
-               (nDotL * ls.visibility * std::numbers::pi_v<float>);
+      const glm::vec3 f = brdf::metallicRoughnessBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness);
+      color += ls.radiance * ls.visibility * brdf::brdfLightFactor(f, nDotL);
     }
     // The same hemisphere ambient as the rasterizer's shadeAmbient.
     const glm::vec3 ambientLight = glm::mix(scene_.ambientGround(), scene_.ambientSky(), 0.5f + 0.5f * nf.y);
-    return color + ambientLight * (albedo * (1.0f - m.metallic) + f0 * (1.0f - m.roughness) * 0.5f);
+    const glm::vec3 f0 = brdf::metallicF0(m.albedo, m.metallic);
+    return color + ambientLight * (m.albedo * (1.0f - m.metallic) + f0 * (1.0f - m.roughness) * 0.5f);
   }
 
   LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,

@@ -15,53 +15,31 @@ struct Surface {
   float reflection;
 };
 
-const float PI = 3.14159265358979;
+// The BRDFs themselves live in common/brdf.glsl, which the C++ tracers compile too.
+#include "common/brdf.glsl"
+
+const float PI = BRDF_PI;
 
 #ifdef CLASSIC
 vec3 shadeAmbient(Surface s) { return s.albedo * s.ambient; }
 
 vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
-  float nDotL = max(dot(s.n, l), 0.0);
-  vec3 h = normalize(l + s.toEye);
-  float spec = nDotL > 0.0 ? s.specular * pow(max(dot(s.n, h), 0.0), s.shininess) : 0.0;
-  return radiance * visibility * (s.albedo * s.diffuse * nDotL + vec3(spec));
+  return radiance * visibility *
+         classicReflected(s.n, s.toEye, l, s.albedo, s.diffuse, s.specular, s.shininess);
 }
 #else
-float distributionGgx(float nDotH, float alpha) {
-  float a2 = alpha * alpha;
-  float d = nDotH * nDotH * (a2 - 1.0) + 1.0;
-  return a2 / (PI * d * d);
-}
-
-float visibilitySmith(float nDotL, float nDotV, float alpha) {
-  float a2 = alpha * alpha;
-  float gl = nDotV * sqrt(nDotL * nDotL * (1.0 - a2) + a2);
-  float gv = nDotL * sqrt(nDotV * nDotV * (1.0 - a2) + a2);
-  return 0.5 / max(gl + gv, 1e-6);
-}
-
 vec3 shadeAmbient(Surface s) {
   vec3 sky = mix(u_ambientGround.rgb, u_ambientSky.rgb, 0.5 + 0.5 * s.n.y);
   vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
-  vec3 f0 = mix(vec3(0.04), s.albedo, s.metallic);
+  vec3 f0 = metallicF0(s.albedo, s.metallic);
   return sky * (diffuseColor + f0 * (1.0 - s.roughness) * 0.5);
 }
 
 vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
-  float nDotL = max(dot(s.n, l), 0.0);
+  float nDotL = dot(s.n, l);
   if (nDotL <= 0.0 || visibility <= 0.0) return vec3(0.0);
-  vec3 h = normalize(l + s.toEye);
-  float nDotV = max(dot(s.n, s.toEye), 1e-4);
-  float nDotH = max(dot(s.n, h), 0.0);
-  float vDotH = max(dot(s.toEye, h), 0.0);
-  float alpha = max(s.roughness * s.roughness, 1e-3);
-  vec3 f0 = mix(vec3(0.04), s.albedo, s.metallic);
-  vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - vDotH, 5.0);
-  vec3 specular = fresnel * distributionGgx(nDotH, alpha) * visibilitySmith(nDotL, nDotV, alpha);
-  vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / PI;
-  // Lights are given as the radiance a white Lambert surface facing them reflects,
-  // so PI cancels the Lambert 1/PI: a sun of colour c makes such a surface c.
-  return radiance * visibility * nDotL * PI * (diffuse + specular);
+  vec3 f = metallicRoughnessBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness);
+  return radiance * visibility * brdfLightFactor(f, nDotL);
 }
 #endif
 

@@ -1,0 +1,20 @@
+#pragma once
+// The material models of shaders/common/brdf.glsl, compiled as C++: the rasterizer's
+// shaders and the CPU tracers evaluate one text, so a change to either is a change to
+// both (tests/gl/brdf_test.cpp checks that they agree on the GPU's compiler too).
+#include <glm/glm.hpp>
+
+namespace engine::brdf {
+// GLSL's built-ins (dot, normalize, mix, max, clamp, sqrt, pow) and types, for the
+// included text only.
+using glm::clamp;
+using glm::dot;
+using glm::max;
+using glm::mix;
+using glm::normalize;
+using glm::pow;
+using glm::sqrt;
+using glm::vec3;
+
+#include "common/brdf.glsl"
+}  // namespace engine::brdf

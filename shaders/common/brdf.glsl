@@ -1,0 +1,77 @@
+// The engine's two material models, written once. GLSL includes this file
+// (common/shading.glsl); C++ compiles the very same text with GLM (engine/core/brdf.h),
+// and the ray tracers evaluate it. tests/gl/brdf_test.cpp runs both, the GLSL in a
+// compute shader, over a grid of angles and parameters and demands agreement.
+//
+// So this file is written in what the two languages share: float literals with an f
+// suffix (C++ would make 1.0 a double, and glm's operators take no mixed types), no
+// out or inout parameters, no struct constructors, no swizzles, no overloads that
+// differ only by return type. Vectors are unit length and point away from the surface.
+//
+// CLASSIC is the course's model: what a light of unit radiance reflects is
+// albedo * diffuse * N.L plus a Blinn-Phong highlight specular * (N.H)^shininess.
+// METALLIC-ROUGHNESS is glTF's: a Lambert lobe weighted by (1 - F) (1 - metallic) and
+// a GGX lobe with the height-correlated Smith visibility and Schlick's Fresnel.
+//
+// Light intensities are the radiance a white Lambert surface facing the light
+// reflects (the rasterizer's convention), so a renderer multiplies a BRDF by
+// PI * N.L * radiance; brdfLightFactor says so once.
+
+const float BRDF_PI = 3.14159265358979f;
+
+// The course's highlight and diffuse for one light of unit radiance, N.L included.
+vec3 classicReflected(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float diffuse, float specular, float shininess) {
+  float nDotL = max(dot(n, l), 0.0f);
+  vec3 h = normalize(l + toEye);
+  float highlight = nDotL > 0.0f ? specular * pow(max(dot(n, h), 0.0f), shininess) : 0.0f;
+  return albedo * (diffuse * nDotL) + vec3(highlight);
+}
+
+// Trowbridge-Reitz (GGX) normal distribution, alpha = roughness^2.
+float ggxDistribution(float nDotH, float alpha) {
+  float a2 = alpha * alpha;
+  float d = nDotH * nDotH * (a2 - 1.0f) + 1.0f;
+  return a2 / (BRDF_PI * d * d);
+}
+
+// The height-correlated Smith masking-shadowing over 4 N.L N.V (Heitz 2014, eq. 99;
+// glTF's spec, appendix B): the specular lobe is F * D * V.
+float smithVisibility(float nDotL, float nDotV, float alpha) {
+  float a2 = alpha * alpha;
+  float gl = nDotV * sqrt(nDotL * nDotL * (1.0f - a2) + a2);
+  float gv = nDotL * sqrt(nDotV * nDotV * (1.0f - a2) + a2);
+  return 0.5f / max(gl + gv, 1e-6f);
+}
+
+// Schlick's Fresnel, (1 - cos)^5 by multiplication: pow() is not exact on every GPU.
+vec3 schlickFresnel(vec3 f0, float vDotH) {
+  float m = clamp(1.0f - vDotH, 0.0f, 1.0f);
+  float m2 = m * m;
+  return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
+}
+
+// The roughness a GGX lobe is drawn with: squared, and kept off zero, where the
+// distribution becomes a delta that no light sample can hit.
+float ggxAlpha(float roughness) { return max(roughness * roughness, 1e-3f); }
+
+// A dielectric reflects 4 % at normal incidence; a metal its albedo.
+vec3 metallicF0(vec3 albedo, float metallic) { return mix(vec3(0.04f), albedo, metallic); }
+
+// The metallic-roughness BRDF f(l, v), without the cosine; zero below the surface.
+vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness) {
+  float nDotL = dot(n, l);
+  if (nDotL <= 0.0f) return vec3(0.0f);
+  vec3 h = normalize(l + toEye);
+  float nDotV = max(dot(n, toEye), 1e-4f);
+  float nDotH = max(dot(n, h), 0.0f);
+  float vDotH = max(dot(toEye, h), 0.0f);
+  float alpha = ggxAlpha(roughness);
+  vec3 fresnel = schlickFresnel(metallicF0(albedo, metallic), vDotH);
+  vec3 specular = fresnel * (ggxDistribution(nDotH, alpha) * smithVisibility(nDotL, nDotV, alpha));
+  vec3 diffuse = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) / BRDF_PI);
+  return diffuse + specular;
+}
+
+// What a light of radiance 1 arriving along l reflects through a BRDF value f:
+// f * N.L * PI (see the convention above).
+vec3 brdfLightFactor(vec3 f, float nDotL) { return f * (max(nDotL, 0.0f) * BRDF_PI); }
