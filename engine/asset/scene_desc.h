@@ -36,6 +36,10 @@ struct LightDesc {
   float intensity = 1.0f;
   bool falloff = false;     // Point: 1/d^2 when true, none when false (the course)
   bool shadows = true;
+  // Sun: the disk's angular diameter in degrees. 0 is a delta direction (sharp shadows);
+  // the path tracer samples a wider sun as a cone of that size (soft shadows), which the
+  // rasterizer's shadow map and the Whitted tracer do not.
+  float angleDegrees = 0.0f;
   glm::dvec3 edgeU{1.0, 0.0, 0.0};  // Area: the two edge vectors, full length
   glm::dvec3 edgeV{0.0, 0.0, 1.0};
 };
@@ -51,6 +55,9 @@ struct MaterialDesc {
   float reflection = 0.0f;  // mirror weight of the reflected ray
   float metallic = 0.0f;
   float roughness = 0.6f;
+  // Radiance the surface emits, in the units of a light's colour * intensity. Both
+  // renderers add it; to the path tracer the surface is a light its paths can reach.
+  glm::vec3 emission{0.0f};
   std::string texture;      // "" | "checker" | an image path (relative to the scene)
   float textureScale = 1.0f;
 };

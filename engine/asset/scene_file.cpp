@@ -166,7 +166,7 @@ Status readCamera(const Node& n, CameraDesc& c) {
 }
 
 Status readLight(const Node& n, LightDesc& l) {
-  TRY(n.expectObject({"type", "direction", "position", "color", "intensity", "falloff", "shadows", "u", "v"}));
+  TRY(n.expectObject({"type", "direction", "position", "color", "intensity", "falloff", "shadows", "u", "v", "angle"}));
   if (!n.has("type")) return n.error("missing \"type\" (sun, point or area)");
   TRY(readEnum(n, "type", l.type, std::map<std::string, LightType>{{"sun", LightType::Sun}, {"point", LightType::Point}, {"area", LightType::Area}}));
   TRY(readDirection(n, "direction", l.direction));
@@ -175,6 +175,7 @@ Status readLight(const Node& n, LightDesc& l) {
   TRY(readFloat(n, "intensity", l.intensity, 0.0, 1e9));
   TRY(readBool(n, "falloff", l.falloff));
   TRY(readBool(n, "shadows", l.shadows));
+  TRY(readFloat(n, "angle", l.angleDegrees, 0.0, 20.0));
   TRY(readVec3(n, "u", l.edgeU));
   TRY(readVec3(n, "v", l.edgeV));
   if (l.type == LightType::Area && glm::length(glm::cross(l.edgeU, l.edgeV)) == 0.0) {
@@ -184,7 +185,7 @@ Status readLight(const Node& n, LightDesc& l) {
 }
 
 Status readMaterial(const Node& n, MaterialDesc& m) {
-  TRY(n.expectObject({"color", "ambient", "diffuse", "specular", "shininess", "reflection", "metallic", "roughness", "texture", "texture_scale"}));
+  TRY(n.expectObject({"color", "ambient", "diffuse", "specular", "shininess", "reflection", "metallic", "roughness", "texture", "texture_scale", "emission"}));
   TRY(readVec3(n, "color", m.color));
   TRY(readFloat(n, "ambient", m.ambient, 0.0, 1.0));
   TRY(readFloat(n, "diffuse", m.diffuse, 0.0, 1.0));
@@ -195,6 +196,8 @@ Status readMaterial(const Node& n, MaterialDesc& m) {
   TRY(readFloat(n, "roughness", m.roughness, 0.0, 1.0));
   TRY(readString(n, "texture", m.texture));
   TRY(readFloat(n, "texture_scale", m.textureScale, 1e-6, 1e6));
+  TRY(readVec3(n, "emission", m.emission));
+  if (glm::any(glm::lessThan(m.emission, glm::vec3(0.0f)))) return n.at("emission").error("emission must not be negative");
   return Ok{};
 }
 

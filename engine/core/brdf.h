@@ -16,5 +16,7 @@ using glm::pow;
 using glm::sqrt;
 using glm::vec3;
 
+#define BRDF_INLINE inline
 #include "common/brdf.glsl"
+#undef BRDF_INLINE
 }  // namespace engine::brdf

@@ -8,25 +8,17 @@
 #include <numbers>
 #include <optional>
 
-#include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 
 #include "core/brdf.h"
 #include "raytrace/camera.h"
+#include "raytrace/path_tracer.h"
 #include "raytrace/rng.h"
+#include "raytrace/tile_render.h"
 
 namespace engine::rt {
 namespace {
 
-// Splits N samples into an sx x sy grid with sx the largest divisor of N not above
-// sqrt(N): 4 -> 2 x 2, 8 -> 2 x 4, 7 -> 1 x 7.
-glm::ivec2 strataFor(int n) {
-  int sx = std::max(1, int(std::sqrt(double(n))));
-  while (n % sx != 0) --sx;
-  return {sx, n / sx};
-}
+using detail::strataFor;
 
 template <typename T>
 struct LightSample {
@@ -95,6 +87,7 @@ class Tracer {
     const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
     glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, n, v, rng, counters)
                                                               : shadeClassic(*hit, m, n, v, rng, counters);
+    color += m.emission;
     if (m.reflection > 0.0f && depth < settings_.maxDepth) {
       // The course's mirror: R = V + 2 N c1 with c1 = -N.V.
       const T c1 = -glm::dot(n, v);
@@ -232,86 +225,28 @@ class Tracer {
   std::optional<glm::vec3> sunDirection_;
 };
 
-struct AtomicCounters {
-  std::atomic<std::uint64_t> primary{0}, shadow{0}, reflection{0};
-
-  void add(const RayCounters& c) {
-    primary.fetch_add(c.primary, std::memory_order_relaxed);
-    shadow.fetch_add(c.shadow, std::memory_order_relaxed);
-    reflection.fetch_add(c.reflection, std::memory_order_relaxed);
-  }
-  RayCounters load() const {
-    return RayCounters{primary.load(std::memory_order_relaxed), shadow.load(std::memory_order_relaxed),
-                       reflection.load(std::memory_order_relaxed)};
-  }
-};
-
-// TBB rather than std::thread or OpenMP: its work stealing balances tiles of very
-// different cost (a mirror tile traces six times the rays of a wall tile), it is a
-// Debian package the project already uses, and it needs no compiler flag. The image
-// does not depend on the schedule: each pixel has its own RNG seeded from
-// (seed, x, y), and each pixel is written by exactly one tile.
-template <typename T>
-RenderResult renderTiles(const RtScene& scene, const RenderSettings& settings) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  RenderResult result;
-  result.image = Framebuffer(settings.width, settings.height);
-  const Tracer<T> tracer(scene, settings);
-  const int tile = std::max(1, settings.tileSize);
-  const int tilesX = (settings.width + tile - 1) / tile;
-  const int tilesY = (settings.height + tile - 1) / tile;
-  const int tilesTotal = tilesX * tilesY;
-  AtomicCounters counters;
-  std::atomic<int> tilesDone{0};
-  std::atomic<bool> cancelled{false};
-  std::mutex progressMutex;
-
-  std::optional<tbb::global_control> limit;
-  if (settings.threads > 0) {
-    limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
-  }
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, tilesTotal, 1),
-      [&](const tbb::blocked_range<int>& range) {
-        for (int t = range.begin(); t != range.end(); ++t) {
-          if (cancelled.load(std::memory_order_relaxed)) return;
-          const int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
-          const int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
-          RayCounters local;
-          for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) result.image.at(x, y) = tracer.renderPixel(x, y, local);
-          }
-          counters.add(local);
-          const int done = tilesDone.fetch_add(1) + 1;
-          if (settings.progress) {
-            std::lock_guard<std::mutex> lock(progressMutex);
-            if (!settings.progress(RenderProgress{done, tilesTotal, counters.load(), elapsed()})) {
-              cancelled.store(true);
-            }
-          }
-        }
-      },
-      tbb::simple_partitioner());
-  result.rays = counters.load();
-  result.seconds = elapsed();
-  result.cancelled = cancelled.load();
-  return result;
-}
-
 }  // namespace
 
-Integrator::Integrator(const RtScene& scene, RenderSettings settings) : scene_(&scene), settings_(std::move(settings)) {}
+Integrator::Integrator(const RtScene& scene, RenderSettings settings) : scene_(&scene), settings_(std::move(settings)) {
+  if (settings_.method == Method::Path) pathLights_ = preparePathLights(scene);
+}
 
 RenderResult Integrator::render() const {
-  return settings_.precision == Precision::Double ? renderTiles<double>(*scene_, settings_)
-                                                  : renderTiles<float>(*scene_, settings_);
+  if (pathLights_) return renderPathTraced(*scene_, *pathLights_, settings_);
+  if (settings_.precision == Precision::Double) return detail::renderTiles(Tracer<double>(*scene_, settings_), settings_);
+  return detail::renderTiles(Tracer<float>(*scene_, settings_), settings_);
 }
 
 glm::vec3 Integrator::renderPixel(int x, int y, RayCounters* counters) const {
   RayCounters local;
-  const glm::vec3 c = settings_.precision == Precision::Double ? Tracer<double>(*scene_, settings_).renderPixel(x, y, local)
-                                                               : Tracer<float>(*scene_, settings_).renderPixel(x, y, local);
+  glm::vec3 c;
+  if (pathLights_) {
+    c = pathTracePixel(*scene_, *pathLights_, settings_, x, y, local);
+  } else if (settings_.precision == Precision::Double) {
+    c = Tracer<double>(*scene_, settings_).renderPixel(x, y, local);
+  } else {
+    c = Tracer<float>(*scene_, settings_).renderPixel(x, y, local);
+  }
   if (counters) *counters += local;
   return c;
 }
@@ -320,7 +255,9 @@ glm::vec3 Integrator::traceRay(const Ray<double>& ray, std::uint64_t seed, RayCo
   RayCounters local;
   Pcg32 rng(mixBits(seed), 1);
   glm::vec3 c;
-  if (settings_.precision == Precision::Double) {
+  if (pathLights_) {
+    c = pathTraceRay(*scene_, *pathLights_, settings_, ray, seed, local);
+  } else if (settings_.precision == Precision::Double) {
     c = Tracer<double>(*scene_, settings_).Li(ray, 0, rng, local);
   } else {
     const Ray<float> r{Vec3<float>(ray.o), Vec3<float>(ray.d), float(ray.tMax)};

@@ -6,6 +6,7 @@
 // is a linear float RGB framebuffer; tone_map.h turns it into an 8-bit image.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -18,7 +19,7 @@ namespace engine::rt {
 struct RayCounters {
   std::uint64_t primary = 0;
   std::uint64_t shadow = 0;
-  std::uint64_t reflection = 0;
+  std::uint64_t reflection = 0;  // Whitted: mirror rays; path: every bounce ray
 
   std::uint64_t total() const { return primary + shadow + reflection; }
   RayCounters& operator+=(const RayCounters& o) {
@@ -36,12 +37,18 @@ struct RenderProgress {
   double seconds = 0.0;
 };
 
+// Whitted: the course's tracer (direct light, mirrors, ambient). Path: the physically
+// based path tracer of path_tracer.h, the ground truth.
+enum class Method { Whitted, Path };
+
 struct RenderSettings {
+  Method method = Method::Whitted;
   int width = 640;
   int height = 480;
   int samplesPerPixel = 1;  // 1: the pixel centre; N: N stratified jittered samples
   int shadowSamples = 4;    // an area light gets N x N stratified jittered shadow rays
-  int maxDepth = 5;         // mirror bounces after the primary ray
+  int maxDepth = 5;         // bounces after the primary hit (Whitted: mirror bounces; path: 0 is direct light only)
+  int rouletteDepth = 3;    // path: Russian roulette from this bounce on
   std::uint64_t seed = 1;
   Precision precision = Precision::Float;
   int threads = 0;          // 0: TBB's default (every core); N: at most N workers
@@ -70,6 +77,8 @@ struct RenderResult {
   bool cancelled = false;
 };
 
+struct PathLights;
+
 class Integrator {
  public:
   // The scene must outlive the integrator and stay unchanged while it renders.
@@ -88,6 +97,7 @@ class Integrator {
  private:
   const RtScene* scene_;
   RenderSettings settings_;
+  std::shared_ptr<const PathLights> pathLights_;  // Method::Path only
 };
 
 }  // namespace engine::rt

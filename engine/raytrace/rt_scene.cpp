@@ -152,7 +152,7 @@ Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
 HitMaterial RtScene::materialAt(int material, glm::vec2 uv, float footprint, double y, const glm::vec3& ns) const {
   const MaterialDesc& m = materials_[size_t(material)];
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
-                  m.metallic, m.roughness};
+                  m.metallic, m.roughness, m.emission};
   if (const int terrain = materialTerrain_[size_t(material)]; terrain >= 0) {
     const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv, footprint, y, ns.y);
     out.albedo *= layers.albedo;

@@ -47,6 +47,7 @@ struct HitMaterial {
   glm::vec3 albedo{0.8f};
   float ambient = 0.1f, diffuse = 0.9f, specular = 0.0f, shininess = 32.0f, reflection = 0.0f;
   float metallic = 0.0f, roughness = 0.6f;
+  glm::vec3 emission{0.0f};
 };
 
 class RtScene {

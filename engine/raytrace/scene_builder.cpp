@@ -36,6 +36,9 @@ Status addMaterials(LoadedModel& loaded, RtScene& scene) {
     desc.metallic = m.metallicFactor;
     desc.roughness = m.roughnessFactor;
     desc.specular = 0.5f * (1.0f - m.roughnessFactor);
+    // An emissive texture is not traced yet: without it the factor would light the
+    // whole mesh where the texture is mostly black.
+    if (m.emissiveImage < 0) desc.emission = m.emissiveFactor;
     const int material = scene.addMaterial(desc);
     if (m.baseColorImage >= 0) {
       const RtTexture texture(loaded.model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft);

@@ -577,7 +577,7 @@ Status SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly,
       p.set("u_specular", m.specular);
       p.set("u_shininess", m.shininess);
       p.set("u_reflection", m.reflection);
-      p.set("u_emissive", glm::vec3(0.0f));
+      p.set("u_emissive", m.emission);
       if (textured) materialTextures[size_t(s.material)].bind(0);
       if (!probes.empty()) {
         const bool probed = useProbes && s.probe >= 0;

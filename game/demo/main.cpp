@@ -38,13 +38,16 @@ int runRaytraceOffscreen(const engine::SceneDesc& scene, const engine::CommonOpt
   if (auto s = engine::writePng(options.run.screenshot, run->image); !s) return fail(engine::kExitBadInput, s.error().message);
   const auto& r = run->result.rays;
   const double mrays = run->result.seconds > 0.0 ? double(r.total()) / run->result.seconds / 1e6 : 0.0;
-  std::fprintf(stderr, "ray traced %dx%d, spp %d: %.3f s, %.2f Mrays/s (%llu primary, %llu shadow, %llu reflection); "
+  std::fprintf(stderr, "%s %dx%d, spp %d: %.3f s, %.2f Mrays/s (%llu primary, %llu shadow, %llu %s); "
                "%d meshes, %d triangles, BVH %.1f ms\n",
-               settings.width, settings.height, settings.samplesPerPixel, run->result.seconds, mrays,
-               (unsigned long long)r.primary, (unsigned long long)r.shadow, (unsigned long long)r.reflection,
+               settings.method == engine::rt::Method::Path ? "path traced" : "ray traced", settings.width,
+               settings.height, settings.samplesPerPixel, run->result.seconds, mrays, (unsigned long long)r.primary,
+               (unsigned long long)r.shadow, (unsigned long long)r.reflection,
+               settings.method == engine::rt::Method::Path ? "bounce" : "reflection",
                run->build.meshes, run->build.triangles, run->build.bvhSeconds * 1e3);
   if (!options.run.benchFile.empty()) {
-    nlohmann::json j = {{"mode", "raytrace"}, {"seconds", run->result.seconds}, {"mrays_per_second", mrays},
+    const bool path = settings.method == engine::rt::Method::Path;
+    nlohmann::json j = {{"mode", path ? "pathtrace" : "raytrace"}, {"seconds", run->result.seconds}, {"mrays_per_second", mrays},
                         {"rays", {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection}}},
                         {"width", settings.width}, {"height", settings.height}, {"spp", settings.samplesPerPixel},
                         {"shadow_samples", settings.shadowSamples}, {"threads", settings.threads},
@@ -96,14 +99,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.1, 1e6))->capture_default_str();
   std::string mode = "raster";
   RaytraceOptions rt;
-  app.add_option("--mode", mode, "raster (OpenGL) or raytrace (the CPU reference)")
-      ->check(CLI::IsMember({"raster", "raytrace"}))->capture_default_str();
+  app.add_option("--mode", mode,
+                 "raster (OpenGL), raytrace (the course's Whitted tracer) or pathtrace (the physically based ground truth)")
+      ->check(CLI::IsMember({"raster", "raytrace", "pathtrace"}))->capture_default_str();
   app.add_option("--spp", rt.settings.samplesPerPixel, "Ray tracing: stratified samples per pixel")
       ->check(CLI::Range(1, 4096))->capture_default_str();
   app.add_option("--shadow-samples", rt.settings.shadowSamples, "Ray tracing: N x N shadow rays per area light")
       ->check(CLI::Range(1, 64))->capture_default_str();
-  app.add_option("--max-depth", rt.settings.maxDepth, "Ray tracing: mirror recursion depth")
-      ->check(CLI::Range(0, 64))->capture_default_str();
+  auto* maxDepth = app.add_option("--max-depth", rt.settings.maxDepth,
+                                  "Ray tracing: bounces after the first hit (raytrace: mirror recursion; pathtrace: "
+                                  "0 is direct light only; default 5, pathtrace 16)")
+                       ->check(CLI::Range(0, 64));
   app.add_option("--threads", rt.settings.threads, "Ray tracing: worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024))->capture_default_str();
   app.add_option("--seed", rt.settings.seed, "Ray tracing: random seed")->capture_default_str();
@@ -128,7 +134,12 @@ int main(int argc, char** argv) {
   render.shaderDir = options.shaderDir;
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
   options.run.targetSamples = 1;
-  if (mode == "raytrace") {
+  if (mode == "raytrace" || mode == "pathtrace") {
+    if (mode == "pathtrace") {
+      rt.settings.method = engine::rt::Method::Path;
+      // Blender's Cycles default too; Russian roulette makes the deep bounces cheap.
+      if (maxDepth->count() == 0) rt.settings.maxDepth = 16;
+    }
     rt.settings.width = options.run.width;
     rt.settings.height = options.run.height;
     rt.settings.precision = rt.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;

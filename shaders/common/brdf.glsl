@@ -17,10 +17,16 @@
 // reflects (the rasterizer's convention), so a renderer multiplies a BRDF by
 // PI * N.L * radiance; brdfLightFactor says so once.
 
+// C++ defines BRDF_INLINE as inline (one definition in every translation unit);
+// GLSL has no such keyword and no need of it.
+#ifndef BRDF_INLINE
+#define BRDF_INLINE
+#endif
+
 const float BRDF_PI = 3.14159265358979f;
 
 // The course's highlight and diffuse for one light of unit radiance, N.L included.
-vec3 classicReflected(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float diffuse, float specular, float shininess) {
+BRDF_INLINE vec3 classicReflected(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float diffuse, float specular, float shininess) {
   float nDotL = max(dot(n, l), 0.0f);
   vec3 h = normalize(l + toEye);
   float highlight = nDotL > 0.0f ? specular * pow(max(dot(n, h), 0.0f), shininess) : 0.0f;
@@ -28,7 +34,7 @@ vec3 classicReflected(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float diffuse, fl
 }
 
 // Trowbridge-Reitz (GGX) normal distribution, alpha = roughness^2.
-float ggxDistribution(float nDotH, float alpha) {
+BRDF_INLINE float ggxDistribution(float nDotH, float alpha) {
   float a2 = alpha * alpha;
   float d = nDotH * nDotH * (a2 - 1.0f) + 1.0f;
   return a2 / (BRDF_PI * d * d);
@@ -36,7 +42,7 @@ float ggxDistribution(float nDotH, float alpha) {
 
 // The height-correlated Smith masking-shadowing over 4 N.L N.V (Heitz 2014, eq. 99;
 // glTF's spec, appendix B): the specular lobe is F * D * V.
-float smithVisibility(float nDotL, float nDotV, float alpha) {
+BRDF_INLINE float smithVisibility(float nDotL, float nDotV, float alpha) {
   float a2 = alpha * alpha;
   float gl = nDotV * sqrt(nDotL * nDotL * (1.0f - a2) + a2);
   float gv = nDotL * sqrt(nDotV * nDotV * (1.0f - a2) + a2);
@@ -44,7 +50,7 @@ float smithVisibility(float nDotL, float nDotV, float alpha) {
 }
 
 // Schlick's Fresnel, (1 - cos)^5 by multiplication: pow() is not exact on every GPU.
-vec3 schlickFresnel(vec3 f0, float vDotH) {
+BRDF_INLINE vec3 schlickFresnel(vec3 f0, float vDotH) {
   float m = clamp(1.0f - vDotH, 0.0f, 1.0f);
   float m2 = m * m;
   return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
@@ -52,13 +58,13 @@ vec3 schlickFresnel(vec3 f0, float vDotH) {
 
 // The roughness a GGX lobe is drawn with: squared, and kept off zero, where the
 // distribution becomes a delta that no light sample can hit.
-float ggxAlpha(float roughness) { return max(roughness * roughness, 1e-3f); }
+BRDF_INLINE float ggxAlpha(float roughness) { return max(roughness * roughness, 1e-3f); }
 
 // A dielectric reflects 4 % at normal incidence; a metal its albedo.
-vec3 metallicF0(vec3 albedo, float metallic) { return mix(vec3(0.04f), albedo, metallic); }
+BRDF_INLINE vec3 metallicF0(vec3 albedo, float metallic) { return mix(vec3(0.04f), albedo, metallic); }
 
 // The metallic-roughness BRDF f(l, v), without the cosine; zero below the surface.
-vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness) {
+BRDF_INLINE vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness) {
   float nDotL = dot(n, l);
   if (nDotL <= 0.0f) return vec3(0.0f);
   vec3 h = normalize(l + toEye);
@@ -74,4 +80,4 @@ vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metall
 
 // What a light of radiance 1 arriving along l reflects through a BRDF value f:
 // f * N.L * PI (see the convention above).
-vec3 brdfLightFactor(vec3 f, float nDotL) { return f * (max(nDotL, 0.0f) * BRDF_PI); }
+BRDF_INLINE vec3 brdfLightFactor(vec3 f, float nDotL) { return f * (max(nDotL, 0.0f) * BRDF_PI); }

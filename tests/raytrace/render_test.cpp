@@ -11,56 +11,9 @@
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
 #include "raytrace/tone_map.h"
-
-namespace rt = engine::rt;
-using engine::CameraDesc;
-using engine::LightDesc;
-using engine::LightType;
-using engine::MaterialDesc;
+#include "test_scenes.h"
 
 namespace {
-
-MaterialDesc classic(glm::vec3 color, float ambient, float diffuse, float reflection = 0.0f) {
-  MaterialDesc m;
-  m.color = color;
-  m.ambient = ambient;
-  m.diffuse = diffuse;
-  m.reflection = reflection;
-  return m;
-}
-
-LightDesc pointLight(glm::dvec3 position) {
-  LightDesc l;
-  l.type = LightType::Point;
-  l.position = position;
-  return l;
-}
-
-CameraDesc lookAt(glm::dvec3 eye, glm::dvec3 target, double fovy = 60.0) {
-  CameraDesc c;
-  c.position = eye;
-  c.forward = glm::normalize(target - eye);
-  c.up = glm::dvec3(0, 1, 0);
-  if (std::abs(c.forward.y) > 0.99) c.up = glm::dvec3(0, 0, 1);
-  c.fovyDegrees = fovy;
-  c.leftHanded = true;
-  return c;
-}
-
-// A classic-shaded scene with no sky (escaping rays are black), as the course.
-rt::RtScene emptyScene(const CameraDesc& camera) {
-  rt::RtScene scene;
-  scene.setCamera(camera);
-  engine::SkyDesc sky;
-  sky.enabled = false;
-  scene.setSky(sky);
-  engine::RenderDesc render;
-  render.shading = engine::Shading::Classic;
-  render.toneMap = engine::ToneMap::None;
-  render.output = engine::OutputCurve::Gamma22;
-  scene.setRender(render);
-  return scene;
-}
 
 rt::RenderSettings smallImage(int w, int h, rt::Precision precision = rt::Precision::Float) {
   rt::RenderSettings s;

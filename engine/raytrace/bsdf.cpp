@@ -1,0 +1,81 @@
+#include "raytrace/bsdf.h"
+
+#include <algorithm>
+
+#include "core/brdf.h"
+
+namespace engine::rt {
+namespace {
+
+float mean(const glm::vec3& c) { return (c.x + c.y + c.z) / 3.0f; }
+
+}  // namespace
+
+Bsdf::Bsdf(Model model, const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo)
+    : model_(model), m_(m), frame_(n), wo_(wo), woLocal_(frame_.toLocal(wo)) {}
+
+Bsdf Bsdf::classic(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo) {
+  Bsdf b(Model::Classic, m, n, wo);
+  // Samples follow each part's weight, so a 0.8 mirror gets most of them.
+  const float rest = m.diffuse * std::max({m.albedo.x, m.albedo.y, m.albedo.z}) + m.specular;
+  const float mirror = std::max(m.reflection, 0.0f);
+  b.pMirror_ = mirror > 0.0f ? (rest > 0.0f ? mirror / (mirror + rest) : 1.0f) : 0.0f;
+  return b;
+}
+
+Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo) {
+  Bsdf b(Model::MetallicRoughness, m, n, wo);
+  b.alpha_ = brdf::ggxAlpha(m.roughness);
+  const float cosO = std::clamp(b.woLocal_.z, 0.0f, 1.0f);
+  const float specular = mean(brdf::schlickFresnel(brdf::metallicF0(m.albedo, m.metallic), cosO));
+  const float diffuse = mean(m.albedo) * (1.0f - m.metallic) * (1.0f - specular);
+  // Kept inside [0.1, 0.9] while both lobes exist: a lobe never sampled would leave its
+  // light to the light samples alone, and MIS could not weigh it.
+  b.pSpecular_ = diffuse > 0.0f ? std::clamp(specular / (specular + diffuse), 0.1f, 0.9f) : 1.0f;
+  return b;
+}
+
+glm::vec3 Bsdf::f(const glm::vec3& wi) const {
+  const float cosI = glm::dot(frame_.n, wi);
+  if (cosI <= 0.0f || woLocal_.z <= 0.0f) return glm::vec3(0.0f);
+  if (model_ == Model::Classic) {
+    const glm::vec3 reflected =
+        brdf::classicReflected(frame_.n, wo_, wi, m_.albedo, m_.diffuse, m_.specular, m_.shininess);
+    return reflected / (brdf::BRDF_PI * cosI);
+  }
+  return brdf::metallicRoughnessBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness);
+}
+
+float Bsdf::pdf(const glm::vec3& wi) const {
+  const glm::vec3 wiLocal = frame_.toLocal(wi);
+  if (wiLocal.z <= 0.0f || woLocal_.z <= 0.0f) return 0.0f;
+  if (model_ == Model::Classic) return (1.0f - pMirror_) * cosineHemispherePdf(wiLocal.z);
+  return pSpecular_ * ggxReflectionPdf(woLocal_, wiLocal, alpha_) +
+         (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
+}
+
+std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
+  if (woLocal_.z <= 0.0f) return std::nullopt;
+  if (model_ == Model::Classic && uLobe < pMirror_) {
+    BsdfSample s;
+    s.wi = frame_.toWorld(glm::vec3(-woLocal_.x, -woLocal_.y, woLocal_.z));
+    s.weight = glm::vec3(m_.reflection / pMirror_);
+    s.delta = true;
+    return s;
+  }
+  glm::vec3 wiLocal;
+  if (model_ == Model::MetallicRoughness && uLobe < pSpecular_) {
+    wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alpha_, u));
+  } else {
+    wiLocal = sampleCosineHemisphere(u);
+  }
+  if (wiLocal.z <= 0.0f) return std::nullopt;  // the facet reflected it below the surface
+  BsdfSample s;
+  s.wi = glm::normalize(frame_.toWorld(wiLocal));
+  s.pdf = pdf(s.wi);
+  if (!(s.pdf > 0.0f)) return std::nullopt;
+  s.weight = f(s.wi) * (glm::dot(frame_.n, s.wi) / s.pdf);
+  return s;
+}
+
+}  // namespace engine::rt

@@ -1,0 +1,57 @@
+#pragma once
+// The path tracer's scattering at one hit: the material models of core/brdf.h (the
+// rasterizer's own text) evaluated as BRDFs, with a sampling strategy for each lobe.
+//
+// CLASSIC, made physical: the course's diffuse and highlight divided by pi N.L (what
+// its shadeLight multiplies a light by) are the BRDF, drawn with cosine-weighted
+// directions; `reflection` is a perfect mirror of that weight, untinted, as in the
+// Whitted tracer. Its `ambient` has no place here: indirect light replaces it.
+// METALLIC-ROUGHNESS: brdf.glsl's Lambert + GGX, drawn by a mix of cosine-weighted
+// directions and GGX visible normals, the mix following the lobes' Fresnel weights.
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/rt_scene.h"
+#include "raytrace/sampling.h"
+
+namespace engine::rt {
+
+struct BsdfSample {
+  glm::vec3 wi{0.0f};      // world, unit
+  glm::vec3 weight{0.0f};  // f * |cos| / pdf: what the path's throughput is multiplied by
+  float pdf = 0.0f;        // of the lobe mixture; 0 for the mirror's delta
+  bool delta = false;      // a mirror direction: no light sample can find it
+};
+
+class Bsdf {
+ public:
+  // n: the unit shading normal on the viewer's side; wo: unit, toward the viewer.
+  static Bsdf classic(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo);
+  static Bsdf metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo);
+
+  // The BRDF for the light's direction wi (world, unit), mirror excluded.
+  glm::vec3 f(const glm::vec3& wi) const;
+  // The density sample() draws wi with through its non-delta lobes (solid angle).
+  float pdf(const glm::vec3& wi) const;
+  // u: two uniform numbers for the direction, uLobe one for the choice of lobe.
+  std::optional<BsdfSample> sample(glm::vec2 u, float uLobe) const;
+  // Whether any lobe is not a delta: only those gain from light samples.
+  bool hasDiffuseOrGlossy() const { return pMirror_ < 1.0f; }
+  const glm::vec3& normal() const { return frame_.n; }
+
+ private:
+  enum class Model { Classic, MetallicRoughness };
+  Bsdf(Model model, const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo);
+
+  Model model_;
+  HitMaterial m_;
+  Frame frame_;
+  glm::vec3 wo_;        // world
+  glm::vec3 woLocal_;   // in frame_
+  float alpha_ = 1.0f;  // GGX, metallic-roughness only
+  float pMirror_ = 0.0f;    // classic: the mirror's share of the samples
+  float pSpecular_ = 0.0f;  // metallic-roughness: the GGX lobe's share
+};
+
+}  // namespace engine::rt

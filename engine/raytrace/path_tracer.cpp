@@ -1,0 +1,402 @@
+#include "raytrace/path_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "raytrace/bsdf.h"
+#include "raytrace/camera.h"
+#include "raytrace/rng.h"
+#include "raytrace/tile_render.h"
+
+namespace engine::rt {
+namespace {
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+float maxComponent(const glm::vec3& c) { return std::max({c.x, c.y, c.z}); }
+
+// The sky's gradient as the Whitted tracer's escaped() draws it, with or without the
+// sun's disk (a path tracer that samples the sun as a light must not count it twice).
+glm::vec3 skyRadiance(const SkyDesc& sky, const std::optional<glm::vec3>& sunDirection, const glm::vec3& dir,
+                      bool sunDisk) {
+  if (!sky.enabled) return sky.background;
+  const glm::vec3 d = glm::normalize(dir);
+  glm::vec3 color = d.y >= 0.0f ? glm::mix(sky.horizon, sky.zenith, std::sqrt(d.y))
+                                : glm::mix(sky.horizon, sky.ground, std::sqrt(-d.y));
+  if (sunDisk && sky.sunDisk && sunDirection) {
+    const float c = glm::dot(d, *sunDirection);
+    const float s = std::clamp((c - 0.9995f) / (0.9998f - 0.9995f), 0.0f, 1.0f);
+    color += glm::vec3(4.0f, 3.6f, 3.0f) * (s * s * (3.0f - 2.0f * s));
+  }
+  return color;
+}
+
+std::optional<glm::vec3> sunDirectionOf(const RtScene& scene) {
+  std::optional<glm::vec3> sun;
+  for (const LightDesc& l : scene.lights()) {
+    if (l.type == LightType::Sun) sun = glm::normalize(glm::vec3(l.direction));
+  }
+  return sun;
+}
+
+// One light as the path tracer sees it: what it emits and how it is sampled.
+struct PathLight {
+  LightType type = LightType::Sun;
+  glm::vec3 power{0.0f};  // colour * intensity
+  bool shadows = true;
+  bool falloff = false;
+  // Sun: unit direction toward it; a cone when cosMax < 1, with radiance `radiance`.
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};
+  float cosMax = 1.0f;
+  glm::vec3 radiance{0.0f};
+  // Point and area: the position (area: the centre), edges, unit normal and area.
+  glm::dvec3 position{0.0}, edgeU{0.0}, edgeV{0.0};
+  glm::vec3 normal{0.0f, -1.0f, 0.0f};
+  float area = 0.0f;
+};
+
+PathLight pathLightOf(const LightDesc& l) {
+  PathLight p;
+  p.type = l.type;
+  p.power = l.color * l.intensity;
+  p.shadows = l.shadows;
+  p.falloff = l.falloff;
+  p.direction = glm::normalize(glm::vec3(l.direction));
+  if (l.type == LightType::Sun && l.angleDegrees > 0.0f) {
+    const float half = glm::radians(l.angleDegrees) * 0.5f;
+    p.cosMax = std::cos(half);
+    // Irradiance at normal incidence, radiance * pi sin^2(half), equals a delta sun's pi I.
+    p.radiance = p.power / (std::sin(half) * std::sin(half));
+  }
+  p.position = l.position;
+  p.edgeU = l.edgeU;
+  p.edgeV = l.edgeV;
+  const glm::dvec3 c = glm::cross(l.edgeU, l.edgeV);
+  p.area = float(glm::length(c));
+  if (p.area > 0.0f) p.normal = glm::vec3(c / double(p.area));
+  return p;
+}
+
+// A direction toward a light with what arrives along it: `value` is the radiance
+// divided by the sample's pdf, or for a delta light the radiance-equivalent that
+// f * cos * value is its contribution (pi I, pi I / d^2).
+template <typename T>
+struct LightSample {
+  glm::vec3 wi{0.0f};
+  glm::vec3 value{0.0f};
+  float pdf = 0.0f;  // solid angle; 0 for a delta
+  Ray<T> shadowRay;
+};
+
+// A ray cone (the Whitted tracer's, Ray Tracing Gems ch. 20): texture footprints.
+struct RayCone {
+  float width = 0.0f;
+  float spread = 0.0f;
+};
+
+template <typename T>
+class PathTracer {
+ public:
+  PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
+      : scene_(scene), env_(lights.environment), settings_(settings),
+        camera_(scene.camera(), settings.width, settings.height),
+        strata_(detail::strataFor(std::max(1, settings.samplesPerPixel))) {
+    pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
+                         (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
+    for (const LightDesc& l : scene.lights()) lights_.push_back(pathLightOf(l));
+    sunDirection_ = sunDirectionOf(scene);
+  }
+
+  glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
+    Pcg32 rng = Pcg32::forPixel(settings_.seed, x, y);
+    const int spp = std::max(1, settings_.samplesPerPixel);
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < strata_.y; ++j) {
+      for (int i = 0; i < strata_.x; ++i) {
+        const double px = x + (i + double(rng.uniform())) / strata_.x;
+        const double py = y + (j + double(rng.uniform())) / strata_.y;
+        ++counters.primary;
+        const Ray<T> ray = camera_.clippedToFarPlane(camera_.generateRay<T>(px, py));
+        sum += finite(Li(ray, rng, counters, RayCone{0.0f, pixelSpread_}));
+      }
+    }
+    return sum / float(spp);
+  }
+
+  glm::vec3 Li(Ray<T> ray, Pcg32& rng, RayCounters& counters, RayCone cone = {}) const {
+    glm::vec3 radiance(0.0f), beta(1.0f);
+    bool countEmitters = true;  // a camera ray or a mirror: nothing sampled the light
+    float bsdfPdf = 0.0f;       // of the direction `ray` was drawn with
+    for (int depth = 0;; ++depth) {
+      const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
+      const glm::vec3 d = glm::normalize(glm::vec3(ray.d));
+      const T tHit = hit ? hit->t : ray.tMax;
+      radiance += beta * emittersAlong(ray, d, tHit, !hit, countEmitters, bsdfPdf, depth == 0);
+      if (!hit) break;
+      const Vec3<T> v = glm::normalize(ray.d);
+      cone.width += cone.spread * float(hit->t * glm::length(ray.d));
+      const float cosine = std::max(float(std::abs(glm::dot(hit->n, v))), 1e-2f);
+      const HitMaterial m = scene_.materialAt(hit->material, hit->uv, cone.width / cosine * hit->uvPerMetre,
+                                              double(hit->p.y), glm::vec3(hit->ns));
+      radiance += beta * m.emission;
+      // Past the last bounce a vertex only shows what it emits: the BSDF ray that
+      // found it still had to be traced, for the lights MIS shares with it.
+      if (depth > settings_.maxDepth) break;
+      // Two-sided surfaces: both normals turned to the side the ray came from.
+      const bool back = glm::dot(hit->n, v) > T(0);
+      const glm::vec3 ng = glm::vec3(back ? -hit->n : hit->n);
+      const glm::vec3 ns = glm::vec3(back ? -hit->ns : hit->ns);
+      const glm::vec3 wo = -d;
+      const Bsdf bsdf = scene_.render().shading == Shading::Pbr ? Bsdf::metallicRoughness(m, ns, wo)
+                                                                 : Bsdf::classic(m, ns, wo);
+      if (bsdf.hasDiffuseOrGlossy()) radiance += beta * directLight(*hit, bsdf, ng, rng, counters);
+      const glm::vec2 u(rng.uniform(), rng.uniform());
+      const std::optional<BsdfSample> s = bsdf.sample(u, rng.uniform());
+      // A direction under the geometric surface would leak light through it.
+      if (!s || glm::dot(s->wi, ng) <= 0.0f) break;
+      beta *= s->weight;
+      countEmitters = s->delta;
+      bsdfPdf = s->pdf;
+      if (depth + 1 >= settings_.rouletteDepth) {
+        const float survive = std::min(1.0f, maxComponent(beta));
+        if (!(survive > 0.0f) || rng.uniform() >= survive) break;
+        beta /= survive;
+      }
+      ++counters.reflection;
+      ray = hit->spawnRay(Vec3<T>(s->wi));
+    }
+    return radiance;
+  }
+
+ private:
+  static glm::vec3 finite(const glm::vec3& c) {
+    return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) ? c : glm::vec3(0.0f);
+  }
+
+  // What the ray meets on its way to tHit that no surface is: the area lights it
+  // passes through, and, when it escapes, the environment and a cone sun. Weighed
+  // against the light samples that could have found them, unless nothing sampled
+  // them (countEmitters: camera rays and mirrors).
+  glm::vec3 emittersAlong(const Ray<T>& ray, const glm::vec3& d, T tHit, bool escaped, bool countEmitters,
+                          float bsdfPdf, bool cameraRay) const {
+    glm::vec3 sum(0.0f);
+    for (const PathLight& l : lights_) {
+      if (l.type != LightType::Area) continue;
+      float lightPdf = 0.0f;
+      if (!hitsArea(l, ray, d, tHit, &lightPdf)) continue;
+      sum += l.power * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, lightPdf));
+    }
+    if (!escaped) return sum;
+    for (const PathLight& l : lights_) {
+      if (l.type != LightType::Sun || l.cosMax >= 1.0f || glm::dot(d, l.direction) < l.cosMax) continue;
+      sum += l.radiance * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, uniformConePdf(l.cosMax)));
+    }
+    // The camera sees the sky's sun disk as the rasterizer draws it; light paths find
+    // the sun through its light alone.
+    if (cameraRay) return sum + skyRadiance(scene_.sky(), sunDirection_, d, !hasConeSun());
+    if (env_.black()) return sum;
+    return sum + env_.radiance(d) * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, env_.pdf(d)));
+  }
+
+  bool hasConeSun() const {
+    return std::any_of(lights_.begin(), lights_.end(),
+                       [](const PathLight& l) { return l.type == LightType::Sun && l.cosMax < 1.0f; });
+  }
+
+  // Whether the ray crosses the rectangle's emitting side before tHit; its
+  // solid-angle density as a light sample there.
+  bool hitsArea(const PathLight& l, const Ray<T>& ray, const glm::vec3& d, T tHit, float* pdf) const {
+    if (l.area <= 0.0f) return false;
+    const float cosLight = -glm::dot(d, l.normal);
+    if (cosLight <= 0.0f) return false;
+    const glm::dvec3 o(ray.o), dir(ray.d), n(l.normal);
+    const double t = glm::dot(l.position - o, n) / glm::dot(dir, n);
+    if (!(t > 0.0) || t >= double(tHit)) return false;
+    const glm::dvec3 q = o + t * dir - l.position;
+    const double a = glm::dot(q, l.edgeU) / glm::dot(l.edgeU, l.edgeU);
+    const double b = glm::dot(q, l.edgeV) / glm::dot(l.edgeV, l.edgeV);
+    if (std::abs(a) > 0.5 || std::abs(b) > 0.5) return false;
+    const double distance = t * glm::length(dir);
+    *pdf = float(distance * distance / (double(l.area) * double(cosLight)));
+    return true;
+  }
+
+  // Next-event estimation: one sample of every light and of the environment, each
+  // with its shadow ray, weighed by MIS against the BSDF sample that could find it.
+  glm::vec3 directLight(const SurfaceInteraction<T>& si, const Bsdf& bsdf, const glm::vec3& ng, Pcg32& rng,
+                        RayCounters& counters) const {
+    glm::vec3 sum(0.0f);
+    for (const PathLight& l : lights_) {
+      const glm::vec2 u(rng.uniform(), rng.uniform());
+      if (const auto ls = sampleLight(si, l, u)) sum += shade(*ls, l.shadows, bsdf, ng, counters);
+    }
+    if (!env_.black()) {
+      const glm::vec2 u(rng.uniform(), rng.uniform());
+      LightSample<T> ls;
+      ls.wi = env_.sample(u, &ls.pdf);
+      if (ls.pdf > 0.0f) {
+        ls.value = env_.radiance(ls.wi) / ls.pdf;
+        ls.shadowRay = si.spawnRay(Vec3<T>(ls.wi));
+        sum += shade(ls, true, bsdf, ng, counters);
+      }
+    }
+    return sum;
+  }
+
+  glm::vec3 shade(const LightSample<T>& ls, bool shadows, const Bsdf& bsdf, const glm::vec3& ng,
+                  RayCounters& counters) const {
+    if (glm::dot(ls.wi, ng) <= 0.0f) return glm::vec3(0.0f);
+    const glm::vec3 f = bsdf.f(ls.wi);
+    if (f == glm::vec3(0.0f) || ls.value == glm::vec3(0.0f)) return glm::vec3(0.0f);
+    if (shadows) {
+      ++counters.shadow;
+      if (scene_.intersectAny(ls.shadowRay)) return glm::vec3(0.0f);
+    }
+    const float cosine = std::max(glm::dot(bsdf.normal(), ls.wi), 0.0f);
+    const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, bsdf.pdf(ls.wi)) : 1.0f;
+    return f * ls.value * (cosine * weight);
+  }
+
+  std::optional<LightSample<T>> sampleLight(const SurfaceInteraction<T>& si, const PathLight& l, glm::vec2 u) const {
+    LightSample<T> ls;
+    switch (l.type) {
+      case LightType::Sun:
+        if (l.cosMax < 1.0f) {
+          ls.wi = Frame(l.direction).toWorld(sampleUniformCone(u, l.cosMax));
+          ls.pdf = uniformConePdf(l.cosMax);
+          ls.value = l.radiance / ls.pdf;
+        } else {
+          ls.wi = l.direction;
+          ls.value = l.power * kPi;
+        }
+        ls.shadowRay = si.spawnRay(Vec3<T>(ls.wi));
+        return ls;
+      case LightType::Point: {
+        const Vec3<T> target(l.position);
+        const Vec3<T> toLight = target - si.p;
+        const double d2 = double(glm::dot(toLight, toLight));
+        if (!(d2 > 0.0)) return std::nullopt;
+        ls.wi = glm::vec3(glm::dvec3(toLight) / std::sqrt(d2));
+        ls.value = l.power * (kPi / (l.falloff ? float(d2) : 1.0f));
+        ls.shadowRay = si.spawnRayTo(target, T(1));
+        return ls;
+      }
+      case LightType::Area: {
+        if (l.area <= 0.0f) return std::nullopt;
+        const glm::dvec3 p = l.position + (double(u.x) - 0.5) * l.edgeU + (double(u.y) - 0.5) * l.edgeV;
+        const glm::dvec3 toLight = p - glm::dvec3(si.p);
+        const double d2 = glm::dot(toLight, toLight);
+        if (!(d2 > 0.0)) return std::nullopt;
+        ls.wi = glm::vec3(toLight / std::sqrt(d2));
+        const float cosLight = -glm::dot(ls.wi, l.normal);
+        if (cosLight <= 0.0f) return std::nullopt;
+        ls.pdf = float(d2 / (double(l.area) * double(cosLight)));
+        ls.value = l.power / ls.pdf;
+        ls.shadowRay = si.spawnRayTo(Vec3<T>(p), T(1));
+        return ls;
+      }
+    }
+    return std::nullopt;
+  }
+
+  const RtScene& scene_;
+  const EnvironmentLight& env_;
+  const RenderSettings& settings_;
+  PinholeCamera camera_;
+  glm::ivec2 strata_;
+  float pixelSpread_ = 0.0f;
+  std::vector<PathLight> lights_;
+  std::optional<glm::vec3> sunDirection_;
+};
+
+}  // namespace
+
+EnvironmentLight::EnvironmentLight(RadianceFn radiance, glm::ivec2 resolution) : radiance_(std::move(radiance)) {
+  const int w = std::max(1, resolution.x), h = std::max(1, resolution.y);
+  std::vector<float> weights(std::size_t(w) * std::size_t(h));
+  float total = 0.0f;
+  for (int y = 0; y < h; ++y) {
+    // sin(theta) is each cell's share of the sphere: the density is per uv, not per
+    // solid angle, and pdf() divides it back out.
+    const float sinTheta = std::sin(kPi * (float(y) + 0.5f) / float(h));
+    for (int x = 0; x < w; ++x) {
+      // The brightest of 2 x 2 points in the cell, so that a small bright spot
+      // between cell centres still draws samples.
+      float peak = 0.0f;
+      for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < 2; ++i) {
+          const glm::vec2 uv((float(x) + 0.25f + 0.5f * float(i)) / float(w), (float(y) + 0.25f + 0.5f * float(j)) / float(h));
+          peak = std::max(peak, luminance(radiance_(directionOf(uv))));
+        }
+      }
+      weights[std::size_t(y) * std::size_t(w) + std::size_t(x)] = peak * sinTheta;
+      total += peak;
+    }
+  }
+  black_ = !(total > 0.0f);
+  if (!black_) distribution_ = Distribution2D(weights, w, h);
+}
+
+glm::vec3 EnvironmentLight::directionOf(glm::vec2 uv) {
+  const float theta = kPi * uv.y, phi = 2.0f * kPi * uv.x;
+  const float sinTheta = std::sin(theta);
+  return {sinTheta * std::cos(phi), std::cos(theta), sinTheta * std::sin(phi)};
+}
+
+glm::vec2 EnvironmentLight::uvOf(const glm::vec3& dir) {
+  const float theta = std::acos(std::clamp(dir.y, -1.0f, 1.0f));
+  float phi = std::atan2(dir.z, dir.x);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  return {std::min(phi / (2.0f * kPi), std::nextafter(1.0f, 0.0f)), theta / kPi};
+}
+
+glm::vec3 EnvironmentLight::sample(glm::vec2 u, float* pdf) const {
+  *pdf = 0.0f;
+  if (black_) return glm::vec3(0.0f, 1.0f, 0.0f);
+  float uvPdf = 0.0f;
+  const glm::vec2 uv = distribution_.sample(u, &uvPdf);
+  const float sinTheta = std::sin(kPi * uv.y);
+  if (sinTheta <= 0.0f) return glm::vec3(0.0f, 1.0f, 0.0f);
+  *pdf = uvPdf / (2.0f * kPi * kPi * sinTheta);
+  return directionOf(uv);
+}
+
+float EnvironmentLight::pdf(const glm::vec3& dir) const {
+  if (black_) return 0.0f;
+  const glm::vec2 uv = uvOf(dir);
+  const float sinTheta = std::sin(kPi * uv.y);
+  if (sinTheta <= 0.0f) return 0.0f;
+  return distribution_.pdf(uv) / (2.0f * kPi * kPi * sinTheta);
+}
+
+std::shared_ptr<const PathLights> preparePathLights(const RtScene& scene) {
+  auto lights = std::make_shared<PathLights>();
+  const SkyDesc sky = scene.sky();
+  const std::optional<glm::vec3> sun = sunDirectionOf(scene);
+  // Without its sun disk: the sun is sampled as a light of its own.
+  lights->environment = EnvironmentLight(
+      [sky, sun](const glm::vec3& d) { return skyRadiance(sky, sun, d, false); }, glm::ivec2(512, 256));
+  return lights;
+}
+
+RenderResult renderPathTraced(const RtScene& scene, const PathLights& lights, const RenderSettings& settings) {
+  if (settings.precision == Precision::Double) return detail::renderTiles(PathTracer<double>(scene, lights, settings), settings);
+  return detail::renderTiles(PathTracer<float>(scene, lights, settings), settings);
+}
+
+glm::vec3 pathTracePixel(const RtScene& scene, const PathLights& lights, const RenderSettings& settings, int x, int y,
+                         RayCounters& counters) {
+  if (settings.precision == Precision::Double) return PathTracer<double>(scene, lights, settings).renderPixel(x, y, counters);
+  return PathTracer<float>(scene, lights, settings).renderPixel(x, y, counters);
+}
+
+glm::vec3 pathTraceRay(const RtScene& scene, const PathLights& lights, const RenderSettings& settings,
+                       const Ray<double>& ray, std::uint64_t seed, RayCounters& counters) {
+  Pcg32 rng(mixBits(seed), 1);
+  if (settings.precision == Precision::Double) return PathTracer<double>(scene, lights, settings).Li(ray, rng, counters);
+  const Ray<float> r{Vec3<float>(ray.o), Vec3<float>(ray.d), float(ray.tMax)};
+  return PathTracer<float>(scene, lights, settings).Li(r, rng, counters);
+}
+
+}  // namespace engine::rt

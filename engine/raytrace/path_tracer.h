@@ -1,0 +1,72 @@
+#pragma once
+// The physically based path tracer (demo --mode pathtrace): the ground truth that the
+// rasterizer's shortcuts and the course's Whitted tracer are measured against. It
+// shares the scene (RtScene), the camera, the BVH and the material models
+// (core/brdf.h through bsdf.h) with the Whitted tracer, and nothing of its
+// approximations: no ambient term, all bounces of indirect light.
+//
+// At every hit: the surface's emission, then next-event estimation to every light (a
+// shadow ray each: the sun as a delta or a cone of its angular size, points, area
+// rectangles, the environment by importance), then one BSDF sample to continue the
+// path. Light and BSDF samples of the same light are combined by multiple importance
+// sampling with the power heuristic; deltas (point lights, a sun of angle 0, mirrors)
+// take their one strategy whole. Russian roulette after `rouletteDepth` bounces.
+//
+// Radiometry, in the engine's convention that a light's colour * intensity I is what a
+// white Lambert surface facing it reflects: a sun gives irradiance pi I (a cone sun
+// has radiance I / sin^2 of its half angle), a point light pi I / d^2 with fall-off
+// (pi I without, as the course's lights), an area light emits radiance I from the
+// side its edges u x v face (so a surface under a light that fills its sky reflects
+// albedo * I, as under the course's unattenuated lights). Area lights are emitters,
+// not occluders: a ray passes through them, as shadow rays always have.
+#include <functional>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/integrator.h"
+#include "raytrace/rt_scene.h"
+#include "raytrace/sampling.h"
+
+namespace engine::rt {
+
+// The environment as an infinite light: its radiance tabulated on a lat-long grid
+// (cell luminance times the cell's solid angle) for a piecewise-constant 2D
+// importance distribution, so a sky with a bright region gets the shadow rays there.
+class EnvironmentLight {
+ public:
+  using RadianceFn = std::function<glm::vec3(const glm::vec3&)>;
+  EnvironmentLight() = default;  // black
+  EnvironmentLight(RadianceFn radiance, glm::ivec2 resolution);
+
+  glm::vec3 radiance(const glm::vec3& dir) const { return radiance_ ? radiance_(dir) : glm::vec3(0.0f); }
+  // A unit direction and its solid-angle density.
+  glm::vec3 sample(glm::vec2 u, float* pdf) const;
+  float pdf(const glm::vec3& dir) const;
+  bool black() const { return black_; }
+
+  // The grid's own convention: v = theta / pi from +y, u = phi / 2 pi from +x toward +z.
+  static glm::vec3 directionOf(glm::vec2 uv);
+  static glm::vec2 uvOf(const glm::vec3& dir);
+
+ private:
+  RadianceFn radiance_;
+  Distribution2D distribution_;
+  bool black_ = true;
+};
+
+// What a path-traced render of one scene precomputes (the environment's
+// distribution); shared by every pixel and thread.
+struct PathLights {
+  EnvironmentLight environment;
+};
+std::shared_ptr<const PathLights> preparePathLights(const RtScene& scene);
+
+RenderResult renderPathTraced(const RtScene& scene, const PathLights& lights, const RenderSettings& settings);
+glm::vec3 pathTracePixel(const RtScene& scene, const PathLights& lights, const RenderSettings& settings, int x, int y,
+                         RayCounters& counters);
+// The radiance arriving along `ray` (as seen by a camera ray: emitters count whole).
+glm::vec3 pathTraceRay(const RtScene& scene, const PathLights& lights, const RenderSettings& settings,
+                       const Ray<double>& ray, std::uint64_t seed, RayCounters& counters);
+
+}  // namespace engine::rt

@@ -1,0 +1,144 @@
+#pragma once
+// The path tracer's sampling routines, each with the density it draws from: the
+// estimator divides by exactly that pdf, and tests/raytrace/sampling_test.cpp checks
+// every pair with a chi-square test. Directions are in a local frame with the normal
+// along +z (Frame maps to and from the world); solid-angle densities throughout.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace engine::rt {
+
+inline constexpr float kPi = std::numbers::pi_v<float>;
+
+// An orthonormal basis around a unit normal (Duff et al., "Building an Orthonormal
+// Basis, Revisited", JCGT 2017): no branch on which axis is smallest, no
+// normalisation, and no precision loss near either pole.
+struct Frame {
+  glm::vec3 s, t, n;
+
+  explicit Frame(const glm::vec3& normal) : n(normal) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    s = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    t = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+  }
+  glm::vec3 toLocal(const glm::vec3& w) const { return {glm::dot(w, s), glm::dot(w, t), glm::dot(w, n)}; }
+  glm::vec3 toWorld(const glm::vec3& w) const { return w.x * s + w.y * t + w.z * n; }
+};
+
+// Malley's method: a uniform point on the disk lifted to the hemisphere; pdf cos / pi.
+inline glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
+  // Shirley and Chiu's concentric map keeps strata compact (no squashing at the rim).
+  const glm::vec2 o = 2.0f * u - 1.0f;
+  glm::vec2 d(0.0f);
+  if (o.x != 0.0f || o.y != 0.0f) {
+    const bool xMajor = std::abs(o.x) > std::abs(o.y);
+    const float r = xMajor ? o.x : o.y;
+    const float theta = xMajor ? (kPi / 4.0f) * (o.y / o.x) : kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
+    d = r * glm::vec2(std::cos(theta), std::sin(theta));
+  }
+  const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+  return {d.x, d.y, z};
+}
+inline float cosineHemispherePdf(float cosTheta) { return std::max(cosTheta, 0.0f) / kPi; }
+
+// Uniform over the cone of directions within acos(cosMax) of +z; pdf 1 / (2 pi (1 - cosMax)).
+inline glm::vec3 sampleUniformCone(glm::vec2 u, float cosMax) {
+  const float cosTheta = (1.0f - u.x) + u.x * cosMax;
+  const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+  const float phi = 2.0f * kPi * u.y;
+  return {std::cos(phi) * sinTheta, std::sin(phi) * sinTheta, cosTheta};
+}
+inline float uniformConePdf(float cosMax) { return 1.0f / (2.0f * kPi * (1.0f - cosMax)); }
+
+// GGX's Smith Lambda for a direction at cos theta (the same Lambda as brdf.glsl's
+// height-correlated visibility): G1 = 1 / (1 + Lambda).
+inline float ggxLambda(float cosTheta, float alpha) {
+  const float c2 = std::max(cosTheta * cosTheta, 1e-12f);
+  const float tan2 = std::max(0.0f, 1.0f - c2) / c2;
+  return 0.5f * (std::sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
+}
+inline float ggxSmithG1(float cosTheta, float alpha) { return 1.0f / (1.0f + ggxLambda(cosTheta, alpha)); }
+
+inline float ggxD(float cosThetaH, float alpha) {
+  const float a2 = alpha * alpha;
+  const float d = cosThetaH * cosThetaH * (a2 - 1.0f) + 1.0f;
+  return a2 / (kPi * d * d);
+}
+
+// A microfacet normal drawn from the normals visible from wo (Heitz, "Sampling the
+// GGX Distribution of Visible Normals", JCGT 2018): no sample is wasted on facets
+// that face away, so grazing views stay as cheap as head-on ones. wo.z > 0.
+inline glm::vec3 sampleGgxVisibleNormal(const glm::vec3& wo, float alpha, glm::vec2 u) {
+  const glm::vec3 vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
+  const float lensq = vh.x * vh.x + vh.y * vh.y;
+  const glm::vec3 t1 = lensq > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 t2 = glm::cross(vh, t1);
+  const float r = std::sqrt(u.x);
+  const float phi = 2.0f * kPi * u.y;
+  const float p1 = r * std::cos(phi);
+  const float s = 0.5f * (1.0f + vh.z);
+  const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
+  const glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+  return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(1e-6f, nh.z)));
+}
+
+// The density of wi = reflect(-wo, h) with h from sampleGgxVisibleNormal:
+// D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 wo.z).
+inline float ggxReflectionPdf(const glm::vec3& wo, const glm::vec3& wi, float alpha) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  const glm::vec3 h = glm::normalize(wo + wi);
+  return ggxSmithG1(wo.z, alpha) * ggxD(h.z, alpha) / (4.0f * wo.z);
+}
+
+inline glm::vec3 reflectAbout(const glm::vec3& w, const glm::vec3& h) { return 2.0f * glm::dot(w, h) * h - w; }
+
+// Veach's power heuristic (beta = 2) for a sample of strategy f, with one sample
+// taken from each of the two strategies.
+inline float powerHeuristic(float fPdf, float gPdf) {
+  const float f2 = fPdf * fPdf, g2 = gPdf * gPdf;
+  return f2 + g2 > 0.0f ? f2 / (f2 + g2) : 0.0f;
+}
+
+// A piecewise-constant density on [0, 1) from non-negative weights (pbrt's
+// Distribution1D): sample() inverts its CDF, pdf() is the density at a point.
+class Distribution1D {
+ public:
+  Distribution1D() = default;
+  explicit Distribution1D(std::span<const float> weights);
+  // A point in [0, 1) and the index of its cell; the density there is pdf(index).
+  float sample(float u, int* index) const;
+  float pdf(int index) const { return integral_ > 0.0f ? func_[std::size_t(index)] / integral_ : 0.0f; }
+  float integral() const { return integral_; }  // mean weight: the weights' integral over [0, 1)
+  int size() const { return int(func_.size()); }
+
+ private:
+  std::vector<float> func_;
+  std::vector<float> cdf_;  // size + 1, from 0 to 1
+  float integral_ = 0.0f;
+};
+
+// The same on [0, 1)^2 from a width x height grid of weights, top row first: a
+// marginal density over rows and a conditional one within each.
+class Distribution2D {
+ public:
+  Distribution2D() = default;
+  Distribution2D(std::span<const float> weights, int width, int height);
+  glm::vec2 sample(glm::vec2 u, float* pdf) const;
+  float pdf(glm::vec2 p) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  std::vector<Distribution1D> rows_;
+  Distribution1D marginal_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace engine::rt

@@ -1,0 +1,226 @@
+// Every sampling routine of the path tracer against the pdf it claims, by a
+// chi-square test (pbrt-v4's bsdfs_test.cpp: 80 x 160 cells, a million samples,
+// alpha = 0.01 over the whole suite by Sidak's correction), and the energy the
+// metallic-roughness BSDF reflects at every roughness and angle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "chi_square.h"
+#include "raytrace/bsdf.h"
+#include "raytrace/path_tracer.h"
+#include "raytrace/sampling.h"
+
+namespace rt = engine::rt;
+
+namespace {
+
+// Every chi-square case of this file; the Sidak correction keeps the chance that any
+// of them fails by bad luck at 1 %.
+constexpr int kChiSquareCases = 1 + 3 + 12 + 8 + 3 + 2;
+const double kSignificance = chi2::sidak(0.01, kChiSquareCases);
+
+void expectPasses(const chi2::Result& r) {
+  EXPECT_GT(r.degreesOfFreedom, 0) << r.message;
+  EXPECT_GT(r.pValue, kSignificance) << r.message;
+}
+
+glm::vec3 fromTheta(float thetaDegrees) {
+  const float t = glm::radians(thetaDegrees);
+  return {std::sin(t), 0.0f, std::cos(t)};
+}
+
+TEST(ChiSquare, CosineHemisphere) {
+  expectPasses(chi2::test(
+      [](glm::vec2 u, glm::vec3* w) {
+        *w = rt::sampleCosineHemisphere(u);
+        return true;
+      },
+      [](const glm::vec3& w) { return double(rt::cosineHemispherePdf(w.z)); }));
+}
+
+TEST(ChiSquare, UniformCone) {
+  for (const float cosMax : {0.98f, 0.5f, -0.4f}) {
+    SCOPED_TRACE(cosMax);
+    expectPasses(chi2::test(
+        [cosMax](glm::vec2 u, glm::vec3* w) {
+          *w = rt::sampleUniformCone(u, cosMax);
+          return true;
+        },
+        [cosMax](const glm::vec3& w) { return w.z >= cosMax ? double(rt::uniformConePdf(cosMax)) : 0.0; }));
+  }
+}
+
+TEST(ChiSquare, GgxVisibleNormalReflection) {
+  for (const float alpha : {0.1f, 0.3f, 0.6f, 1.0f}) {
+    for (const float theta : {0.0f, 45.0f, 80.0f}) {
+      SCOPED_TRACE(testing::Message() << "alpha " << alpha << ", theta_o " << theta);
+      const glm::vec3 wo = fromTheta(theta);
+      expectPasses(chi2::test(
+          [&](glm::vec2 u, glm::vec3* w) {
+            *w = rt::reflectAbout(wo, rt::sampleGgxVisibleNormal(wo, alpha, u));
+            return w->z > 0.0f;
+          },
+          [&](const glm::vec3& w) { return double(rt::ggxReflectionPdf(wo, w, alpha)); }));
+    }
+  }
+}
+
+engine::rt::HitMaterial material(glm::vec3 albedo, float metallic, float roughness) {
+  engine::rt::HitMaterial m;
+  m.albedo = albedo;
+  m.metallic = metallic;
+  m.roughness = roughness;
+  return m;
+}
+
+void expectBsdfSamplesItsPdf(const rt::Bsdf& bsdf) {
+  std::mt19937 lobes(7);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  expectPasses(chi2::test(
+      [&](glm::vec2 u, glm::vec3* w) {
+        const auto s = bsdf.sample(u, uniform(lobes));
+        if (!s || s->delta) return false;
+        *w = s->wi;
+        return true;
+      },
+      [&](const glm::vec3& w) { return double(bsdf.pdf(w)); }));
+}
+
+TEST(ChiSquare, MetallicRoughnessBsdf) {
+  const glm::vec3 n(0.0f, 0.0f, 1.0f);
+  for (const float metallic : {0.0f, 1.0f}) {
+    for (const float roughness : {0.35f, 0.8f}) {
+      for (const float theta : {10.0f, 70.0f}) {
+        SCOPED_TRACE(testing::Message() << "metallic " << metallic << ", roughness " << roughness << ", theta_o " << theta);
+        expectBsdfSamplesItsPdf(rt::Bsdf::metallicRoughness(material(glm::vec3(0.9f, 0.6f, 0.3f), metallic, roughness), n,
+                                                            fromTheta(theta)));
+      }
+    }
+  }
+}
+
+TEST(ChiSquare, ClassicBsdfWithoutItsMirror) {
+  const glm::vec3 n(0.0f, 0.0f, 1.0f);
+  for (const float reflection : {0.0f, 0.5f, 0.8f}) {
+    SCOPED_TRACE(reflection);
+    engine::rt::HitMaterial m = material(glm::vec3(0.7f), 0.0f, 0.5f);
+    m.diffuse = 0.9f;
+    m.specular = 0.3f;
+    m.shininess = 20.0f;
+    m.reflection = reflection;
+    expectBsdfSamplesItsPdf(rt::Bsdf::classic(m, n, fromTheta(40.0f)));
+  }
+}
+
+// The environment's importance sampling, on a sky with a small bright sun and a
+// dark ground: the directions it draws follow the pdf it reports. Tested in a frame
+// whose +z is the world's +y (the environment's pole).
+TEST(ChiSquare, EnvironmentLight) {
+  const glm::vec3 sun = glm::normalize(glm::vec3(0.3f, 0.6f, -0.5f));
+  const rt::EnvironmentLight::RadianceFn skies[] = {
+      [sun](const glm::vec3& d) {
+        return glm::vec3(d.y > 0.0f ? 1.0f : 0.1f) + glm::vec3(200.0f) * float(glm::dot(d, sun) > 0.995f);
+      },
+      [](const glm::vec3& d) { return glm::vec3(0.5f + 0.5f * d.x, 0.2f, 1.0f - d.y * d.y); },
+  };
+  for (const auto& sky : skies) {
+    const rt::EnvironmentLight env(sky, glm::ivec2(128, 64));
+    const auto toWorld = [](const glm::vec3& w) { return glm::vec3(w.x, w.z, w.y); };
+    expectPasses(chi2::test(
+        [&](glm::vec2 u, glm::vec3* w) {
+          float pdf = 0.0f;
+          const glm::vec3 d = env.sample(u, &pdf);
+          *w = glm::vec3(d.x, d.z, d.y);
+          return pdf > 0.0f;
+        },
+        [&](const glm::vec3& w) { return double(env.pdf(toWorld(w))); }));
+  }
+}
+
+TEST(EnvironmentLight, UvAndDirectionAreInverse) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (int i = 0; i < 100000; ++i) {
+    const glm::vec3 d = rt::sampleUniformCone(glm::vec2(uniform(rng), uniform(rng)), -1.0f);
+    const glm::vec3 back = rt::EnvironmentLight::directionOf(rt::EnvironmentLight::uvOf(d));
+    ASSERT_LT(glm::length(back - d), 1e-4f) << d.x << " " << d.y << " " << d.z;
+  }
+}
+
+// The share of light from wo that the BSDF reflects, estimated with 16k samples.
+double directionalAlbedo(float metallic, float roughness, float cosTheta, std::mt19937& rng) {
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  const glm::vec3 wo(std::sqrt(1.0f - cosTheta * cosTheta), 0.0f, cosTheta);
+  const rt::Bsdf bsdf =
+      rt::Bsdf::metallicRoughness(material(glm::vec3(1.0f), metallic, roughness), glm::vec3(0.0f, 0.0f, 1.0f), wo);
+  double sum = 0.0;
+  constexpr int kSamples = 16384;
+  for (int i = 0; i < kSamples; ++i) {
+    if (const auto s = bsdf.sample(glm::vec2(uniform(rng), uniform(rng)), uniform(rng))) sum += double(s->weight.x);
+  }
+  return sum / kSamples;
+}
+
+// GGX (a white metal: the specular lobe alone, Fresnel 1) never reflects more than
+// it receives, at any roughness or angle; 1 % for the estimate's noise. Single
+// scattering loses energy at high roughness instead (the floor of 0.2 catches a lobe
+// that lost its samples).
+TEST(Energy, GgxAlbedoNeverExceedsOne) {
+  std::mt19937 rng(11);
+  for (int r = 0; r <= 20; ++r) {
+    for (int a = 0; a <= 20; ++a) {
+      const float roughness = float(r) / 20.0f, cosTheta = std::max(0.02f, float(a) / 20.0f);
+      const double albedo = directionalAlbedo(1.0f, roughness, cosTheta, rng);
+      EXPECT_LE(albedo, 1.01) << "roughness " << roughness << ", cos " << cosTheta;
+      EXPECT_GT(albedo, 0.2) << "roughness " << roughness << ", cos " << cosTheta;
+    }
+  }
+}
+
+// The dielectric of glTF's model (the spec's appendix B, the Khronos Sample Viewer's
+// and the rasterizer's: Lambert weighted by 1 - F(V.H) under GGX) is not energy
+// conserving: seen at grazing angles a smooth white dielectric reflects up to 1.89
+// times the light it receives (measured: roughness 0, cos 0.01), because the
+// diffuse lobe's weight uses the half vector of each light direction, not the
+// specular lobe's actual albedo. Both renderers share that model, so the path tracer
+// inherits it. Averaged over the hemisphere of views it stays within 4.2 % of 1
+// (measured 1.0419 at roughness 0, falling to 0.976 at roughness 1); this pins that
+// figure, so that a change which makes it worse fails.
+TEST(Energy, GltfDielectricGainsAtMostFourPercentOverTheHemisphere) {
+  std::mt19937 rng(13);
+  for (int r = 0; r <= 10; ++r) {
+    const float roughness = float(r) / 10.0f;
+    double hemispherical = 0.0, weights = 0.0;
+    for (int a = 0; a < 50; ++a) {
+      const float cosTheta = (float(a) + 0.5f) / 50.0f;
+      hemispherical += directionalAlbedo(0.0f, roughness, cosTheta, rng) * cosTheta;
+      weights += cosTheta;
+    }
+    EXPECT_LE(hemispherical / weights, 1.045) << "roughness " << roughness;
+    EXPECT_GT(hemispherical / weights, 0.9) << "roughness " << roughness;
+  }
+}
+
+TEST(Distribution2D, PdfIntegratesToOneAndFollowsTheWeights) {
+  const std::vector<float> weights = {0, 1, 2, 3, 0, 0, 0, 10};
+  const rt::Distribution2D d(weights, 4, 2);
+  double integral = 0.0;
+  for (int y = 0; y < 2; ++y) {
+    for (int x = 0; x < 4; ++x) integral += d.pdf(glm::vec2((x + 0.5f) / 4.0f, (y + 0.5f) / 2.0f)) / 8.0;
+  }
+  EXPECT_NEAR(integral, 1.0, 1e-6);
+  EXPECT_FLOAT_EQ(d.pdf(glm::vec2(0.9f, 0.9f)), 10.0f / 16.0f * 8.0f);
+  // Never a zero-weight cell, however u falls.
+  for (int i = 0; i <= 1000; ++i) {
+    for (const float v : {0.0f, 0.37f, 0.375f, 0.999999f}) {
+      float pdf = 0.0f;
+      const glm::vec2 p = d.sample(glm::vec2(float(i) / 1001.0f, v), &pdf);
+      ASSERT_GT(pdf, 0.0f) << p.x << " " << p.y;
+      ASSERT_GT(d.pdf(p), 0.0f);
+    }
+  }
+}
+
+}  // namespace

@@ -1,0 +1,55 @@
+#pragma once
+// Small scenes built in code for the ray tracer's tests (render_test.cpp,
+// path_tracer_test.cpp): a course material, a point light, a camera, an empty room.
+#include <cmath>
+
+#include "raytrace/rt_scene.h"
+
+namespace rt = engine::rt;
+using engine::CameraDesc;
+using engine::LightDesc;
+using engine::LightType;
+using engine::MaterialDesc;
+
+inline MaterialDesc classic(glm::vec3 color, float ambient, float diffuse, float reflection = 0.0f) {
+  MaterialDesc m;
+  m.color = color;
+  m.ambient = ambient;
+  m.diffuse = diffuse;
+  m.reflection = reflection;
+  return m;
+}
+
+inline LightDesc pointLight(glm::dvec3 position) {
+  LightDesc l;
+  l.type = LightType::Point;
+  l.position = position;
+  return l;
+}
+
+inline CameraDesc lookAt(glm::dvec3 eye, glm::dvec3 target, double fovy = 60.0) {
+  CameraDesc c;
+  c.position = eye;
+  c.forward = glm::normalize(target - eye);
+  c.up = glm::dvec3(0, 1, 0);
+  if (std::abs(c.forward.y) > 0.99) c.up = glm::dvec3(0, 0, 1);
+  c.fovyDegrees = fovy;
+  c.leftHanded = true;
+  return c;
+}
+
+// A classic-shaded scene with no sky (escaping rays are black), as the course.
+inline rt::RtScene emptyScene(const CameraDesc& camera) {
+  rt::RtScene scene;
+  scene.setCamera(camera);
+  engine::SkyDesc sky;
+  sky.enabled = false;
+  scene.setSky(sky);
+  engine::RenderDesc render;
+  render.shading = engine::Shading::Classic;
+  render.toneMap = engine::ToneMap::None;
+  render.output = engine::OutputCurve::Gamma22;
+  scene.setRender(render);
+  return scene;
+}
+
