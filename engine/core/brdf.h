@@ -8,6 +8,7 @@ namespace engine::brdf {
 // GLSL's built-ins (dot, normalize, mix, max, clamp, sqrt, pow) and types, for the
 // included text only.
 using glm::clamp;
+using glm::cross;
 using glm::dot;
 using glm::max;
 using glm::mix;

@@ -66,10 +66,11 @@ inline float ggxLambda(float cosTheta, float alpha) {
 }
 inline float ggxSmithG1(float cosTheta, float alpha) { return 1.0f / (1.0f + ggxLambda(cosTheta, alpha)); }
 
-inline float ggxD(float cosThetaH, float alpha) {
-  const float a2 = alpha * alpha;
-  const float d = cosThetaH * cosThetaH * (a2 - 1.0f) + 1.0f;
-  return a2 / (kPi * d * d);
+// D(h) for a local h, in core/brdf.h's stable form (sin^2 from x and y, not 1 - cos^2).
+inline float ggxD(const glm::vec3& h, float alpha) {
+  const float a = h.z * alpha;
+  const float k = alpha / std::max(h.x * h.x + h.y * h.y + a * a, 1e-30f);
+  return k * k / kPi;
 }
 
 // A microfacet normal drawn from the normals visible from wo (Heitz, "Sampling the
@@ -94,7 +95,7 @@ inline glm::vec3 sampleGgxVisibleNormal(const glm::vec3& wo, float alpha, glm::v
 inline float ggxReflectionPdf(const glm::vec3& wo, const glm::vec3& wi, float alpha) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
   const glm::vec3 h = glm::normalize(wo + wi);
-  return ggxSmithG1(wo.z, alpha) * ggxD(h.z, alpha) / (4.0f * wo.z);
+  return ggxSmithG1(wo.z, alpha) * ggxD(h, alpha) / (4.0f * wo.z);
 }
 
 inline glm::vec3 reflectAbout(const glm::vec3& w, const glm::vec3& h) { return 2.0f * glm::dot(w, h) * h - w; }

@@ -33,11 +33,16 @@ BRDF_INLINE vec3 classicReflected(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float
   return albedo * (diffuse * nDotL) + vec3(highlight);
 }
 
-// Trowbridge-Reitz (GGX) normal distribution, alpha = roughness^2.
-BRDF_INLINE float ggxDistribution(float nDotH, float alpha) {
-  float a2 = alpha * alpha;
-  float d = nDotH * nDotH * (a2 - 1.0f) + 1.0f;
-  return a2 / (BRDF_PI * d * d);
+// Trowbridge-Reitz (GGX) normal distribution, alpha = roughness^2, in the form
+// alpha^2 / (pi (sin^2 + alpha^2 cos^2)^2) with sin^2 = |n x h|^2 (Filament's): the
+// textbook 1 + cos^2 (alpha^2 - 1) cancels catastrophically near the peak of a smooth
+// lobe, where cos^2 rounds by 6e-8 and alpha^2 is 1e-6 (a 6 % error in D; the GPU's
+// and the CPU's roundings then disagree by that much).
+BRDF_INLINE float ggxDistribution(vec3 n, vec3 h, float alpha) {
+  vec3 nxh = cross(n, h);
+  float a = dot(n, h) * alpha;
+  float k = alpha / max(dot(nxh, nxh) + a * a, 1e-30f);
+  return k * k / BRDF_PI;
 }
 
 // The height-correlated Smith masking-shadowing over 4 N.L N.V (Heitz 2014, eq. 99;
@@ -69,11 +74,10 @@ BRDF_INLINE vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, 
   if (nDotL <= 0.0f) return vec3(0.0f);
   vec3 h = normalize(l + toEye);
   float nDotV = max(dot(n, toEye), 1e-4f);
-  float nDotH = max(dot(n, h), 0.0f);
   float vDotH = max(dot(toEye, h), 0.0f);
   float alpha = ggxAlpha(roughness);
   vec3 fresnel = schlickFresnel(metallicF0(albedo, metallic), vDotH);
-  vec3 specular = fresnel * (ggxDistribution(nDotH, alpha) * smithVisibility(nDotL, nDotV, alpha));
+  vec3 specular = fresnel * (ggxDistribution(n, h, alpha) * smithVisibility(nDotL, nDotV, alpha));
   vec3 diffuse = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) / BRDF_PI);
   return diffuse + specular;
 }

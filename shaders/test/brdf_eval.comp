@@ -1,0 +1,43 @@
+#version 450 core
+// tests/gl/brdf_test.cpp: evaluates common/brdf.glsl on the GPU's compiler for a grid
+// of cases, so that the C++ build of the same text (core/brdf.h) can be compared.
+#include "common/brdf.glsl"
+
+layout(local_size_x = 64) in;
+
+struct Case {
+  vec4 n;          // xyz
+  vec4 toEye;      // xyz
+  vec4 l;          // xyz
+  vec4 albedo;     // xyz
+  vec4 params;     // metallic, roughness, diffuse, specular
+  vec4 shininess;  // x
+};
+
+struct Result {
+  vec4 metallicRoughness;  // xyz
+  vec4 classic;            // xyz
+  vec4 terms;              // ggxDistribution, smithVisibility, ggxAlpha
+  vec4 fresnel;            // xyz
+};
+
+layout(std430, binding = 0) readonly buffer Cases { Case cases[]; };
+layout(std430, binding = 1) writeonly buffer Results { Result results[]; };
+uniform uint u_count;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= u_count) return;
+  Case c = cases[i];
+  vec3 n = c.n.xyz, v = c.toEye.xyz, l = c.l.xyz;
+  float metallic = c.params.x, roughness = c.params.y;
+  vec3 h = normalize(l + v);
+  float alpha = ggxAlpha(roughness);
+  Result r;
+  r.metallicRoughness = vec4(metallicRoughnessBrdf(n, v, l, c.albedo.xyz, metallic, roughness), 0.0);
+  r.classic = vec4(classicReflected(n, v, l, c.albedo.xyz, c.params.z, c.params.w, c.shininess.x), 0.0);
+  r.terms = vec4(ggxDistribution(n, h, alpha),
+                 smithVisibility(max(dot(n, l), 0.0), max(dot(n, v), 1e-4), alpha), alpha, 0.0);
+  r.fresnel = vec4(schlickFresnel(metallicF0(c.albedo.xyz, metallic), max(dot(v, h), 0.0)), 0.0);
+  results[i] = r;
+}

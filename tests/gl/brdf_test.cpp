@@ -1,0 +1,120 @@
+// One BRDF, two compilers: common/brdf.glsl run by the GPU's GLSL compiler in a
+// compute shader and by the C++ build of the same text (core/brdf.h) agree over a grid
+// of view and light angles, roughness, metallic and base colours (so f0).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "../support/gl_test.h"
+#include "core/brdf.h"
+#include "gl/resources.h"
+#include "gl/shader.h"
+
+using namespace engine;
+using engine::test::GlTest;
+
+namespace {
+
+struct Case {
+  glm::vec4 n, toEye, l, albedo, params, shininess;
+};
+struct Result {
+  glm::vec4 metallicRoughness, classic, terms, fresnel;
+};
+
+glm::vec3 direction(float thetaDegrees, float phiDegrees) {
+  const float t = glm::radians(thetaDegrees), p = glm::radians(phiDegrees);
+  return {std::sin(t) * std::cos(p), std::cos(t), std::sin(t) * std::sin(p)};
+}
+
+// View and light from head-on to 89 degrees (grazing), on the same and opposite
+// sides; roughness 0 to 1; dielectric to metal; dark, saturated and white colours.
+std::vector<Case> grid() {
+  std::vector<Case> cases;
+  const glm::vec3 n = glm::normalize(glm::vec3(0.1f, 1.0f, -0.2f));
+  const glm::vec3 albedos[] = {{0.02f, 0.02f, 0.02f}, {0.9f, 0.3f, 0.05f}, {1.0f, 1.0f, 1.0f}};
+  for (const float thetaV : {0.0f, 30.0f, 60.0f, 80.0f, 89.0f}) {
+    for (const float thetaL : {0.0f, 20.0f, 45.0f, 75.0f, 89.0f}) {
+      for (const float phi : {0.0f, 90.0f, 180.0f}) {
+        for (int r = 0; r <= 10; ++r) {
+          for (const float metallic : {0.0f, 0.5f, 1.0f}) {
+            for (const glm::vec3& albedo : albedos) {
+              // Tilted with the normal, so no component is exactly 0 or 1.
+              const glm::vec3 axisFix = glm::normalize(n);
+              const glm::vec3 v = glm::normalize(direction(thetaV, 10.0f) + (axisFix - glm::vec3(0, 1, 0)));
+              const glm::vec3 l = glm::normalize(direction(thetaL, 10.0f + phi) + (axisFix - glm::vec3(0, 1, 0)));
+              cases.push_back(Case{glm::vec4(n, 0), glm::vec4(v, 0), glm::vec4(l, 0), glm::vec4(albedo, 0),
+                                   glm::vec4(metallic, float(r) / 10.0f, 0.9f, 0.5f), glm::vec4(8.0f + 12.0f * float(r))});
+            }
+          }
+        }
+      }
+    }
+  }
+  return cases;
+}
+
+Result onCpu(const Case& c) {
+  const glm::vec3 n(c.n), v(c.toEye), l(c.l), albedo(c.albedo);
+  const float metallic = c.params.x, roughness = c.params.y;
+  const glm::vec3 h = glm::normalize(l + v);
+  const float alpha = brdf::ggxAlpha(roughness);
+  Result r;
+  r.metallicRoughness = glm::vec4(brdf::metallicRoughnessBrdf(n, v, l, albedo, metallic, roughness), 0.0f);
+  r.classic = glm::vec4(brdf::classicReflected(n, v, l, albedo, c.params.z, c.params.w, c.shininess.x), 0.0f);
+  r.terms = glm::vec4(brdf::ggxDistribution(n, h, alpha),
+                      brdf::smithVisibility(std::max(glm::dot(n, l), 0.0f), std::max(glm::dot(n, v), 1e-4f), alpha),
+                      alpha, 0.0f);
+  r.fresnel = glm::vec4(brdf::schlickFresnel(brdf::metallicF0(albedo, metallic), std::max(glm::dot(v, h), 0.0f)), 0.0f);
+  return r;
+}
+
+class Brdf : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(Brdf);
+
+// Relative agreement 1e-5 (about 80 float ulps: room for the GPU compiler's own
+// rounding of sqrt, pow and division, none for a different formula). Values below
+// 1e-6 are compared absolutely: there a relative error says nothing.
+TEST_P(Brdf, GlslAndCppAgree) {
+  const std::vector<Case> cases = grid();
+  auto program = gl::Program::build(test::shaderDir(), {{GL_COMPUTE_SHADER, "test/brdf_eval.comp"}});
+  ASSERT_TRUE(program) << program.error().message;
+  gl::Buffer in = gl::Buffer::create(cases.size() * sizeof(Case), cases.data());
+  gl::Buffer out = gl::Buffer::create(cases.size() * sizeof(Result));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+  program->use();
+  glUniform1ui(program->location("u_count"), GLuint(cases.size()));
+  glDispatchCompute(GLuint((cases.size() + 63) / 64), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<Result> gpu(cases.size());
+  glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(gpu.size() * sizeof(Result)), gpu.data());
+
+  double worst = 0.0;
+  std::size_t worstCase = 0;
+  int nonZero = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Result cpu = onCpu(cases[i]);
+    const glm::vec4* a = &cpu.metallicRoughness;
+    const glm::vec4* b = &gpu[i].metallicRoughness;
+    for (int k = 0; k < 4; ++k) {
+      for (int c = 0; c < 3; ++c) {
+        const double x = a[k][c], y = b[k][c];
+        ASSERT_TRUE(std::isfinite(y)) << "case " << i << " value " << k;
+        if (std::abs(x) > 1e-6) ++nonZero;
+        const double error = std::abs(x - y) / std::max(std::abs(x), 1e-6);
+        if (error > worst) {
+          worst = error;
+          worstCase = i;
+        }
+      }
+    }
+  }
+  EXPECT_GT(nonZero, int(cases.size()));  // the grid is not all zeros
+  EXPECT_LE(worst, 1e-5) << "case " << worstCase << " of " << cases.size();
+  std::printf("brdf: %zu cases, worst relative difference %.3g (case %zu)\n", cases.size(), worst, worstCase);
+}
+
+}  // namespace
