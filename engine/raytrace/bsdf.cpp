@@ -63,6 +63,7 @@ std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
     s.delta = true;
     return s;
   }
+  if (model_ == Model::Classic && m_.specular <= 0.0f) return lambertSample(u);
   glm::vec3 wiLocal;
   if (model_ == Model::MetallicRoughness && uLobe < pSpecular_) {
     wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alpha_, u));
@@ -75,6 +76,19 @@ std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
   s.pdf = pdf(s.wi);
   if (!(s.pdf > 0.0f)) return std::nullopt;
   s.weight = f(s.wi) * (glm::dot(frame_.n, s.wi) / s.pdf);
+  return s;
+}
+
+// The course's diffuse alone: f cos / pdf is (albedo diffuse / pi) cos over
+// (1 - pMirror) cos / pi, so the weight needs no evaluation (a third of a bounce's
+// shading time in the course room).
+std::optional<BsdfSample> Bsdf::lambertSample(glm::vec2 u) const {
+  const glm::vec3 wiLocal = sampleCosineHemisphere(u);
+  if (wiLocal.z <= 0.0f) return std::nullopt;
+  BsdfSample s;
+  s.wi = frame_.toWorld(wiLocal);
+  s.pdf = (1.0f - pMirror_) * cosineHemispherePdf(wiLocal.z);
+  s.weight = m_.albedo * (m_.diffuse / (1.0f - pMirror_));
   return s;
 }
 

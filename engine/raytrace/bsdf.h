@@ -43,6 +43,7 @@ class Bsdf {
  private:
   enum class Model { Classic, MetallicRoughness };
   Bsdf(Model model, const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo);
+  std::optional<BsdfSample> lambertSample(glm::vec2 u) const;
 
   Model model_;
   HitMaterial m_;

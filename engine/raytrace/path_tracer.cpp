@@ -81,12 +81,19 @@ PathLight pathLightOf(const LightDesc& l) {
 // A direction toward a light with what arrives along it: `value` is the radiance
 // divided by the sample's pdf, or for a delta light the radiance-equivalent that
 // f * cos * value is its contribution (pi I, pi I / d^2).
+// The shadow ray is made only once the BSDF says the sample matters: toward `target`
+// (a point or area light), or along wi to infinity.
 template <typename T>
 struct LightSample {
   glm::vec3 wi{0.0f};
   glm::vec3 value{0.0f};
   float pdf = 0.0f;  // solid angle; 0 for a delta
-  Ray<T> shadowRay;
+  bool toPoint = false;
+  Vec3<T> target{0};
+
+  Ray<T> shadowRay(const SurfaceInteraction<T>& si) const {
+    return toPoint ? si.spawnRayTo(target, T(1)) : si.spawnRay(Vec3<T>(wi));
+  }
 };
 
 // A ray cone (the Whitted tracer's, Ray Tracing Gems ch. 20): texture footprints.
@@ -94,6 +101,10 @@ struct RayCone {
   float width = 0.0f;
   float spread = 0.0f;
 };
+
+// Cut-away and transparent surfaces a ray may pass before it gives up: a forest of
+// alpha-tested leaves is deep, but not this deep.
+constexpr int kMaxPassThrough = 64;
 
 template <typename T>
 class PathTracer {
@@ -128,6 +139,7 @@ class PathTracer {
     glm::vec3 radiance(0.0f), beta(1.0f);
     bool countEmitters = true;  // a camera ray or a mirror: nothing sampled the light
     float bsdfPdf = 0.0f;       // of the direction `ray` was drawn with
+    int passes = 0;             // through cut-away or transparent surfaces
     for (int depth = 0;; ++depth) {
       const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
       const glm::vec3 d = glm::normalize(glm::vec3(ray.d));
@@ -137,8 +149,20 @@ class PathTracer {
       const Vec3<T> v = glm::normalize(ray.d);
       cone.width += cone.spread * float(hit->t * glm::length(ray.d));
       const float cosine = std::max(float(std::abs(glm::dot(hit->n, v))), 1e-2f);
-      const HitMaterial m = scene_.materialAt(hit->material, hit->uv, cone.width / cosine * hit->uvPerMetre,
-                                              double(hit->p.y), glm::vec3(hit->ns));
+      const float footprint = cone.width / cosine * hit->uvPerMetre;
+      // MASK's cut-away parts and single-sided faces seen from behind are not there;
+      // BLEND stops a share alpha of the paths (stochastic transparency). Either way
+      // the ray goes on unbent, no bounce.
+      const bool culled = scene_.singleSided(hit->material) && glm::dot(hit->n, v) > T(0);
+      if (const float opacity = culled ? 0.0f : scene_.opacityAt(hit->material, hit->uv, footprint);
+          opacity < 1.0f && (opacity <= 0.0f || rng.uniform() >= opacity)) {
+        if (++passes > kMaxPassThrough) break;
+        ray = Ray<T>{hit->spawnRay(ray.d).o, ray.d, ray.tMax - hit->t};
+        --depth;
+        continue;
+      }
+      const HitMaterial m =
+          scene_.materialAt(hit->material, hit->uv, footprint, double(hit->p.y), glm::vec3(hit->ns));
       radiance += beta * m.emission;
       // Past the last bounce a vertex only shows what it emits: the BSDF ray that
       // found it still had to be traced, for the lights MIS shares with it.
@@ -229,7 +253,8 @@ class PathTracer {
     glm::vec3 sum(0.0f);
     for (const PathLight& l : lights_) {
       const glm::vec2 u(rng.uniform(), rng.uniform());
-      if (const auto ls = sampleLight(si, l, u)) sum += shade(*ls, l.shadows, bsdf, ng, counters);
+      LightSample<T> ls;
+      if (sampleLight(si, l, u, ls)) sum += shade(si, ls, l.shadows, bsdf, ng, counters);
     }
     if (!env_.black()) {
       const glm::vec2 u(rng.uniform(), rng.uniform());
@@ -237,29 +262,45 @@ class PathTracer {
       ls.wi = env_.sample(u, &ls.pdf);
       if (ls.pdf > 0.0f) {
         ls.value = env_.radiance(ls.wi) / ls.pdf;
-        ls.shadowRay = si.spawnRay(Vec3<T>(ls.wi));
-        sum += shade(ls, true, bsdf, ng, counters);
+        sum += shade(si, ls, true, bsdf, ng, counters);
       }
     }
     return sum;
   }
 
-  glm::vec3 shade(const LightSample<T>& ls, bool shadows, const Bsdf& bsdf, const glm::vec3& ng,
-                  RayCounters& counters) const {
+  glm::vec3 shade(const SurfaceInteraction<T>& si, const LightSample<T>& ls, bool shadows, const Bsdf& bsdf,
+                  const glm::vec3& ng, RayCounters& counters) const {
     if (glm::dot(ls.wi, ng) <= 0.0f) return glm::vec3(0.0f);
     const glm::vec3 f = bsdf.f(ls.wi);
     if (f == glm::vec3(0.0f) || ls.value == glm::vec3(0.0f)) return glm::vec3(0.0f);
-    if (shadows) {
-      ++counters.shadow;
-      if (scene_.intersectAny(ls.shadowRay)) return glm::vec3(0.0f);
-    }
+    const float visible = shadows ? transmittance(si, ls, counters) : 1.0f;
+    if (visible <= 0.0f) return glm::vec3(0.0f);
     const float cosine = std::max(glm::dot(bsdf.normal(), ls.wi), 0.0f);
     const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, bsdf.pdf(ls.wi)) : 1.0f;
-    return f * ls.value * (cosine * weight);
+    return f * ls.value * (cosine * weight * visible);
   }
 
-  std::optional<LightSample<T>> sampleLight(const SurfaceInteraction<T>& si, const PathLight& l, glm::vec2 u) const {
-    LightSample<T> ls;
+  // The share of the light that reaches the point: 0 or 1 past opaque surfaces (an
+  // any-hit ray), the product of 1 - opacity past cut-away and transparent ones
+  // (exact, not stochastic: shadow rays are cheap and noise is not).
+  float transmittance(const SurfaceInteraction<T>& si, const LightSample<T>& ls, RayCounters& counters) const {
+    Ray<T> ray = ls.shadowRay(si);
+    ++counters.shadow;
+    if (!scene_.hasTransparency()) return scene_.intersectAny(ray) ? 0.0f : 1.0f;
+    float share = 1.0f;
+    for (int i = 0; i <= kMaxPassThrough; ++i) {
+      const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
+      if (!hit) return share;
+      share *= 1.0f - scene_.opacityAt(hit->material, hit->uv);
+      if (share <= 0.0f) return 0.0f;
+      ++counters.shadow;
+      ray = ls.toPoint ? hit->spawnRayTo(ls.target, T(1)) : hit->spawnRay(ray.d);
+    }
+    return 0.0f;
+  }
+
+  // False when the light cannot reach the point (behind an area light, at the light).
+  bool sampleLight(const SurfaceInteraction<T>& si, const PathLight& l, glm::vec2 u, LightSample<T>& ls) const {
     switch (l.type) {
       case LightType::Sun:
         if (l.cosMax < 1.0f) {
@@ -270,34 +311,33 @@ class PathTracer {
           ls.wi = l.direction;
           ls.value = l.power * kPi;
         }
-        ls.shadowRay = si.spawnRay(Vec3<T>(ls.wi));
-        return ls;
+        return true;
       case LightType::Point: {
-        const Vec3<T> target(l.position);
-        const Vec3<T> toLight = target - si.p;
-        const double d2 = double(glm::dot(toLight, toLight));
-        if (!(d2 > 0.0)) return std::nullopt;
-        ls.wi = glm::vec3(glm::dvec3(toLight) / std::sqrt(d2));
+        ls.toPoint = true;
+        ls.target = Vec3<T>(l.position);
+        const Vec3<T> toLight = ls.target - si.p;
+        const T d2 = glm::dot(toLight, toLight);
+        if (!(d2 > T(0))) return false;
+        ls.wi = glm::vec3(toLight / std::sqrt(d2));
         ls.value = l.power * (kPi / (l.falloff ? float(d2) : 1.0f));
-        ls.shadowRay = si.spawnRayTo(target, T(1));
-        return ls;
+        return true;
       }
       case LightType::Area: {
-        if (l.area <= 0.0f) return std::nullopt;
-        const glm::dvec3 p = l.position + (double(u.x) - 0.5) * l.edgeU + (double(u.y) - 0.5) * l.edgeV;
-        const glm::dvec3 toLight = p - glm::dvec3(si.p);
-        const double d2 = glm::dot(toLight, toLight);
-        if (!(d2 > 0.0)) return std::nullopt;
+        if (l.area <= 0.0f) return false;
+        ls.toPoint = true;
+        ls.target = Vec3<T>(l.position + (double(u.x) - 0.5) * l.edgeU + (double(u.y) - 0.5) * l.edgeV);
+        const Vec3<T> toLight = ls.target - si.p;
+        const T d2 = glm::dot(toLight, toLight);
+        if (!(d2 > T(0))) return false;
         ls.wi = glm::vec3(toLight / std::sqrt(d2));
         const float cosLight = -glm::dot(ls.wi, l.normal);
-        if (cosLight <= 0.0f) return std::nullopt;
-        ls.pdf = float(d2 / (double(l.area) * double(cosLight)));
+        if (cosLight <= 0.0f) return false;
+        ls.pdf = float(d2) / (l.area * cosLight);
         ls.value = l.power / ls.pdf;
-        ls.shadowRay = si.spawnRayTo(Vec3<T>(p), T(1));
-        return ls;
+        return true;
       }
     }
-    return std::nullopt;
+    return false;
   }
 
   const RtScene& scene_;

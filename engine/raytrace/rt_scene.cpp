@@ -67,15 +67,13 @@ RtScene::RtScene() {
   MaterialDesc fallback;
   fallback.name = "default";
   materials_.push_back(fallback);
-  materialTexture_.push_back(-1);
-  materialTerrain_.push_back(-1);
+  extras_.emplace_back();
 }
 
 Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
   RtScene scene;
   if (!desc.materials.empty()) scene.materials_ = desc.materials;
-  scene.materialTexture_.assign(scene.materials_.size(), -1);
-  scene.materialTerrain_.assign(scene.materials_.size(), -1);
+  scene.extras_.assign(scene.materials_.size(), MaterialExtras{});
   for (size_t i = 0; i < desc.materials.size(); ++i) {
     auto image = loadMaterialTexture(desc, desc.materials[i]);
     if (!image) return image.error();
@@ -117,8 +115,7 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
 
 int RtScene::addMaterial(const MaterialDesc& material) {
   materials_.push_back(material);
-  materialTexture_.push_back(-1);
-  materialTerrain_.push_back(-1);
+  extras_.emplace_back();
   return int(materials_.size() - 1);
 }
 
@@ -131,20 +128,59 @@ Status RtScene::checkMaterial(int material) const {
 
 Status RtScene::setMaterialTexture(int material, RtTexture texture) {
   if (auto s = checkMaterial(material); !s) return s;
-  materialTexture_[size_t(material)] = int(textures_.size());
+  extras_[size_t(material)].texture = int(textures_.size());
   textures_.push_back(std::move(texture));
   return Ok{};
 }
 
 glm::vec3 RtScene::baseColor(int material, glm::vec2 uv, float footprint) const {
   const glm::vec3 color = materials_[size_t(material)].color;
-  const int texture = materialTexture_[size_t(material)];
+  const int texture = extras_[size_t(material)].texture;
   return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv, footprint);
+}
+
+Status RtScene::setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff) {
+  if (auto s = checkMaterial(material); !s) return s;
+  MaterialExtras& e = extras_[size_t(material)];
+  e.alphaMode = mode;
+  e.alpha = factor;
+  e.alphaCutoff = cutoff;
+  if (mode != AlphaMode::Opaque) transparent_ = true;
+  return Ok{};
+}
+
+Status RtScene::setMetallicRoughnessTexture(int material, RtTexture texture) {
+  if (auto s = checkMaterial(material); !s) return s;
+  extras_[size_t(material)].metallicRoughnessTexture = int(textures_.size());
+  textures_.push_back(std::move(texture));
+  return Ok{};
+}
+
+Status RtScene::setSingleSided(int material, bool singleSided) {
+  if (auto s = checkMaterial(material); !s) return s;
+  extras_[size_t(material)].singleSided = singleSided;
+  return Ok{};
+}
+
+Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
+  if (auto s = checkMaterial(material); !s) return s;
+  extras_[size_t(material)].emissiveTexture = int(textures_.size());
+  textures_.push_back(std::move(texture));
+  return Ok{};
+}
+
+float RtScene::opacityAt(int material, glm::vec2 uv, float footprint) const {
+  const MaterialExtras& e = extras_[size_t(material)];
+  if (e.alphaMode == AlphaMode::Opaque) return 1.0f;
+  const float alpha = e.alpha * (e.texture >= 0 ? textures_[size_t(e.texture)].sampleRgba(uv, footprint).a : 1.0f);
+  // MASK as scene.frag's discard: below the cutoff the surface is not there at all.
+  if (e.alphaMode == AlphaMode::Mask) return alpha >= e.alphaCutoff ? 1.0f : 0.0f;
+  return std::clamp(alpha, 0.0f, 1.0f);
 }
 
 Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
   if (auto s = checkMaterial(material); !s) return s;
-  materialTerrain_[size_t(material)] = int(terrains_.size());
+  extras_[size_t(material)].terrain = int(terrains_.size());
   terrains_.push_back(std::move(layers));
   return Ok{};
 }
@@ -153,7 +189,15 @@ HitMaterial RtScene::materialAt(int material, glm::vec2 uv, float footprint, dou
   const MaterialDesc& m = materials_[size_t(material)];
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
                   m.metallic, m.roughness, m.emission};
-  if (const int terrain = materialTerrain_[size_t(material)]; terrain >= 0) {
+  if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
+    const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
+    out.roughness *= t.y;
+    out.metallic *= t.z;
+  }
+  if (const int emissive = extras_[size_t(material)].emissiveTexture; emissive >= 0) {
+    out.emission *= textures_[size_t(emissive)].sample(uv, footprint);
+  }
+  if (const int terrain = extras_[size_t(material)].terrain; terrain >= 0) {
     const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv, footprint, y, ns.y);
     out.albedo *= layers.albedo;
     out.roughness = layers.roughness;

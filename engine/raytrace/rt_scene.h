@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include "asset/model_data.h"
 #include "asset/scene_desc.h"
 #include "core/result.h"
 #include "raytrace/bvh.h"
@@ -64,6 +65,22 @@ class RtScene {
   // The material's colour times its texture at the hit's uv, linear RGB; `footprint`
   // as RtTexture::sample takes it.
   glm::vec3 baseColor(int material, glm::vec2 uv, float footprint = 0.0f) const;
+  // glTF's alpha: `factor` times the base colour texture's alpha. MASK removes the
+  // surface where that is below `cutoff`; BLEND makes it that opaque.
+  Status setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff);
+  // Multiplies the material's emission (glTF's emissiveTexture; sRGB decoded).
+  Status setEmissiveTexture(int material, RtTexture texture);
+  // glTF's metallicRoughnessTexture (linear): roughness times G, metallic times B.
+  Status setMetallicRoughnessTexture(int material, RtTexture texture);
+  // glTF's single-sided materials: the rasterizer culls their back faces, so rays
+  // pass through them from behind (the path tracer; shadows still fall).
+  Status setSingleSided(int material, bool singleSided);
+  bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
+  // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
+  // BLEND's alpha; the path tracer lets the rest through.
+  float opacityAt(int material, glm::vec2 uv, float footprint = 0.0f) const;
+  // Whether any material is not opaque (else shadow rays need no more than any hit).
+  bool hasTransparency() const { return transparent_; }
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
   // and specular come from `layers` at each hit's uv, height and shading normal.
   Status setTerrainMaterial(int material, RtTerrainMaterial layers);
@@ -136,9 +153,21 @@ class RtScene {
   CameraDesc camera_;
   std::vector<LightDesc> lights_;
   std::vector<MaterialDesc> materials_;
-  std::vector<int> materialTexture_;  // per material: index into textures_, -1 none
+  // What a material has beyond its MaterialDesc: textures (indices into textures_,
+  // -1 none), the terrain's layers (into terrains_) and glTF's alpha.
+  struct MaterialExtras {
+    int texture = -1;
+    int emissiveTexture = -1;
+    int metallicRoughnessTexture = -1;
+    bool singleSided = false;
+    int terrain = -1;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alpha = 1.0f;
+    float alphaCutoff = 0.5f;
+  };
+  std::vector<MaterialExtras> extras_;  // one per material
+  bool transparent_ = false;
   std::vector<RtTexture> textures_;
-  std::vector<int> materialTerrain_;  // per material: index into terrains_, -1 none
   std::vector<RtTerrainMaterial> terrains_;
   // Per plane, its square and what its texture coordinates need: the rasterizer
   // draws it as a square of half size `extent` (0: unbounded) rotated from +y to its

@@ -36,14 +36,23 @@ Status addMaterials(LoadedModel& loaded, RtScene& scene) {
     desc.metallic = m.metallicFactor;
     desc.roughness = m.roughnessFactor;
     desc.specular = 0.5f * (1.0f - m.roughnessFactor);
-    // An emissive texture is not traced yet: without it the factor would light the
-    // whole mesh where the texture is mostly black.
-    if (m.emissiveImage < 0) desc.emission = m.emissiveFactor;
+    desc.emission = m.emissiveFactor;
     const int material = scene.addMaterial(desc);
     if (m.baseColorImage >= 0) {
       const RtTexture texture(loaded.model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft);
       if (auto s = scene.setMaterialTexture(material, texture); !s) return s;
     }
+    if (m.emissiveImage >= 0) {
+      const RtTexture emissive(loaded.model.images[size_t(m.emissiveImage)].image, TextureOrigin::TopLeft);
+      if (auto s = scene.setEmissiveTexture(material, emissive); !s) return s;
+    }
+    if (m.metallicRoughnessImage >= 0) {
+      const RtTexture mr(loaded.model.images[size_t(m.metallicRoughnessImage)].image, TextureOrigin::TopLeft,
+                         TextureEncoding::Linear);
+      if (auto s = scene.setMetallicRoughnessTexture(material, mr); !s) return s;
+    }
+    if (auto s = scene.setMaterialAlpha(material, m.alphaMode, m.baseColorFactor.a, m.alphaCutoff); !s) return s;
+    if (auto s = scene.setSingleSided(material, !m.doubleSided); !s) return s;
     loaded.materials.push_back(material);
   }
   return Ok{};

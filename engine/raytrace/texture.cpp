@@ -47,29 +47,34 @@ RtTexture::Level RtTexture::halve(const Level& above) {
   return level;
 }
 
-RtTexture::RtTexture(const Image& srgb, TextureOrigin origin) {
+RtTexture::RtTexture(const Image& srgb, TextureOrigin origin, TextureEncoding encoding) {
   Level base;
   if (srgb.empty()) {
-    base.texels.assign(1, glm::vec3(1.0f));
+    base.texels.assign(1, glm::vec4(1.0f));
     levels_.push_back(std::move(base));
     return;
   }
   base.width = srgb.width;
   base.height = srgb.height;
   base.texels.resize(std::size_t(base.width) * std::size_t(base.height));
-  const auto& table = decodeTable();
+  static const std::array<float, 256> linear = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[std::size_t(i)] = float(i) / 255.0f;
+    return t;
+  }();
+  const auto& table = encoding == TextureEncoding::Srgb ? decodeTable() : linear;
   for (int y = 0; y < base.height; ++y) {
     const int row = origin == TextureOrigin::TopLeft ? y : base.height - 1 - y;
     for (int x = 0; x < base.width; ++x) {
       const std::uint8_t* p = &srgb.pixels[(std::size_t(row) * std::size_t(base.width) + std::size_t(x)) * 4];
-      base.texels[std::size_t(y) * std::size_t(base.width) + std::size_t(x)] = {table[p[0]], table[p[1]], table[p[2]]};
+      base.texels[std::size_t(y) * std::size_t(base.width) + std::size_t(x)] = {table[p[0]], table[p[1]], table[p[2]], float(p[3]) / 255.0f};
     }
   }
   levels_.push_back(std::move(base));
   while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(halve(levels_.back()));
 }
 
-glm::vec3 RtTexture::bilinear(const Level& level, glm::vec2 uv) {
+glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 uv) {
   // Texel centres sit at (i + 0.5) / n; reduce to one period first, so that large uv
   // (a plane's tiling far from the origin) keep their fraction's precision.
   const float u = (uv.x - std::floor(uv.x)) * float(level.width) - 0.5f;
@@ -83,13 +88,15 @@ glm::vec3 RtTexture::bilinear(const Level& level, glm::vec2 uv) {
   return glm::mix(glm::mix(at(x0, y0), at(x1, y0), tu), glm::mix(at(x0, y1), at(x1, y1), tu), tv);
 }
 
-glm::vec3 RtTexture::sample(glm::vec2 uv, float footprint) const {
+glm::vec3 RtTexture::sample(glm::vec2 uv, float footprint) const { return glm::vec3(sampleRgba(uv, footprint)); }
+
+glm::vec4 RtTexture::sampleRgba(glm::vec2 uv, float footprint) const {
   const float texels = footprint * float(std::max(width(), height()));
   const float lod = texels > 1.0f ? std::min(std::log2(texels), float(levels() - 1)) : 0.0f;
   if (!(lod > 0.0f)) return bilinear(levels_[0], uv);
   const int below = int(lod);
   const float t = lod - float(below);
-  const glm::vec3 a = bilinear(levels_[std::size_t(below)], uv);
+  const glm::vec4 a = bilinear(levels_[std::size_t(below)], uv);
   return t > 0.0f ? glm::mix(a, bilinear(levels_[std::size_t(below + 1)], uv), t) : a;
 }
 

@@ -16,15 +16,19 @@ namespace engine::rt {
 // Which image row uv v = 0 reads: glTF textures are uploaded as they are (v = 0 is the
 // top row), the scene file's textures flipped (v = 0 is the bottom row).
 enum class TextureOrigin { TopLeft, BottomLeft };
+// Colour images are sRGB-encoded; data images (glTF's metallic-roughness) are not.
+enum class TextureEncoding { Srgb, Linear };
 
 class RtTexture {
  public:
-  RtTexture(const Image& srgb, TextureOrigin origin);
+  RtTexture(const Image& image, TextureOrigin origin, TextureEncoding encoding = TextureEncoding::Srgb);
 
   // Linear RGB at uv (repeating outside [0, 1)). `footprint`: the width of the
   // pixel's footprint in uv units (0: the full-resolution level, as when magnified);
   // its log2 in texels is GL's level of detail.
   glm::vec3 sample(glm::vec2 uv, float footprint = 0.0f) const;
+  // The same with the alpha channel (linear, as GL reads it; not sRGB-decoded).
+  glm::vec4 sampleRgba(glm::vec2 uv, float footprint = 0.0f) const;
 
   int width() const { return levels_[0].width; }
   int height() const { return levels_[0].height; }
@@ -33,10 +37,10 @@ class RtTexture {
  private:
   struct Level {
     int width = 1, height = 1;
-    std::vector<glm::vec3> texels;  // linear, rows with v = 0 first
+    std::vector<glm::vec4> texels;  // linear RGB and alpha, rows with v = 0 first
   };
   static Level halve(const Level& above);
-  static glm::vec3 bilinear(const Level& level, glm::vec2 uv);
+  static glm::vec4 bilinear(const Level& level, glm::vec2 uv);
 
   std::vector<Level> levels_;
 };

@@ -29,7 +29,8 @@ const float BRDF_PI = 3.14159265358979f;
 BRDF_INLINE vec3 classicReflected(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float diffuse, float specular, float shininess) {
   float nDotL = max(dot(n, l), 0.0f);
   vec3 h = normalize(l + toEye);
-  float highlight = nDotL > 0.0f ? specular * pow(max(dot(n, h), 0.0f), shininess) : 0.0f;
+  // Most course materials have no highlight: pow() is the costliest call here.
+  float highlight = nDotL > 0.0f && specular > 0.0f ? specular * pow(max(dot(n, h), 0.0f), shininess) : 0.0f;
   return albedo * (diffuse * nDotL) + vec3(highlight);
 }
 
