@@ -208,21 +208,9 @@ class Tracer {
     return float(visible) / float(n * n);
   }
 
-  // The sky's gradient (as shaders/sky.frag draws it, before its tone map) or the
-  // background colour (the course: black).
-  glm::vec3 escaped(const Vec3<T>& dir) const {
-    const SkyDesc& sky = scene_.sky();
-    if (!sky.enabled) return sky.background;
-    const glm::vec3 d = glm::normalize(glm::vec3(dir));
-    glm::vec3 color = d.y >= 0.0f ? glm::mix(sky.horizon, sky.zenith, std::sqrt(d.y))
-                                  : glm::mix(sky.horizon, sky.ground, std::sqrt(-d.y));
-    if (sky.sunDisk && sunDirection_) {
-      const float c = glm::dot(d, *sunDirection_);
-      const float s = std::clamp((c - 0.9995f) / (0.9998f - 0.9995f), 0.0f, 1.0f);
-      color += glm::vec3(4.0f, 3.6f, 3.0f) * (s * s * (3.0f - 2.0f * s));
-    }
-    return color;
-  }
+  // What the scene's environment sends along the escaping ray: its sky's gradient,
+  // background colour or image (raytrace/environment.h).
+  glm::vec3 escaped(const Vec3<T>& dir) const { return scene_.environment().radiance(glm::vec3(dir)); }
 
   const RtScene& scene_;
   const RenderSettings& settings_;

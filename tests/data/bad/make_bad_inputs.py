@@ -214,5 +214,18 @@ def main(out):
     write("scene_unknown_key.json", json.dumps({"origin": [0, 0, 0]}))
     write("scene_not_object.json", json.dumps([1, 2, 3]))
 
+    # Sky images: missing, not an image (by content: the name says .hdr), an empty
+    # file, a Radiance header of 0 x 0 pixels, the 0x0 PNG above.
+    def sky_scene(name, image):
+        write(name, json.dumps({"sky": {"image": image}}))
+    sky_scene("scene_sky_image_missing.json", "no_such_sky.hdr")
+    write("not_an_image.hdr", b"this is text, not a Radiance image\n")
+    sky_scene("scene_sky_image_not_image.json", "not_an_image.hdr")
+    write("empty.hdr", b"")
+    sky_scene("scene_sky_image_empty.json", "empty.hdr")
+    write("zero_size.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n")
+    sky_scene("scene_sky_image_zero_size.json", "zero_size.hdr")
+    sky_scene("scene_sky_image_zero_png.json", "zero_size.png")
+
 if __name__ == "__main__":
     main(sys.argv[1])
