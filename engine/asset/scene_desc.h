@@ -96,7 +96,14 @@ struct SkyDesc {
   glm::vec3 horizon{0.6f, 0.7f, 0.85f};
   glm::vec3 ground{0.3f, 0.28f, 0.25f};
   glm::vec3 background{0.0f};
-  bool sunDisk = true;
+  bool sunDisk = true;  // the gradient's; an image's sun is in its pixels
+  // A lat-long image (Radiance .hdr or PNG, resolved against the scene file's folder)
+  // in place of the gradient: its radiance times `intensity`, turned about +y by
+  // `rotationDegrees` (counter-clockwise seen from above: the image's centre, at +z
+  // unturned, goes toward +x). Both renderers sample it (raytrace/environment.h).
+  std::string image;
+  float intensity = 1.0f;
+  float rotationDegrees = 0.0f;
 };
 
 struct FogDesc {

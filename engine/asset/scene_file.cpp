@@ -1,5 +1,7 @@
 #include "asset/scene_file.h"
 
+#include "core/linear_image.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -255,12 +257,28 @@ Status readModel(const Node& n, ModelDesc& m, const std::filesystem::path& folde
   return Ok{};
 }
 
-Status readSky(const Node& n, SkyDesc& s) {
+// The sky's image, checked here from its header (it must exist, be a Radiance .hdr
+// or a PNG by its content, and have pixels) so that a bad one stops the scene before
+// any renderer starts; the renderers decode it.
+Status readSkyImage(const Node& n, SkyDesc& s, const std::filesystem::path& folder) {
+  TRY(readString(n, "image", s.image));
+  if (!n.has("image")) return Ok{};
+  if (s.image.empty()) return n.at("image").error("expected the path of a .hdr or PNG image");
+  s.image = (folder / s.image).lexically_normal().string();
+  auto info = readHdrOrPngInfo(s.image);
+  if (!info) return n.at("image").error(info.error().message);
+  return Ok{};
+}
+
+Status readSky(const Node& n, SkyDesc& s, const std::filesystem::path& folder) {
   if (n.value().is_null() || (n.value().is_boolean() && !n.value().get<bool>())) {
     s.enabled = false;
     return Ok{};
   }
-  TRY(n.expectObject({"zenith", "horizon", "ground", "sun_disk", "background", "enabled"}));
+  TRY(n.expectObject({"zenith", "horizon", "ground", "sun_disk", "background", "enabled", "image", "intensity", "rotation"}));
+  TRY(readSkyImage(n, s, folder));
+  TRY(readFloat(n, "intensity", s.intensity, 0.0, 1e9));
+  TRY(readFloat(n, "rotation", s.rotationDegrees, -360.0, 360.0));
   TRY(readBool(n, "enabled", s.enabled));
   TRY(readVec3(n, "zenith", s.zenith));
   TRY(readVec3(n, "horizon", s.horizon));
@@ -360,7 +378,7 @@ Result<SceneDesc> parseScene(const std::string& text, const std::string& name) {
                 [&](const Node& n, PrimitiveDesc& p) { return readPrimitive(n, p, materialIndex); }));
   TRY(readArray(root, "models", scene.models,
                 [&](const Node& n, ModelDesc& m) { return readModel(n, m, folder); }));
-  if (root.has("sky")) TRY(readSky(root.at("sky"), scene.sky));
+  if (root.has("sky")) TRY(readSky(root.at("sky"), scene.sky, folder));
   if (root.has("fog")) {
     const Node fog = root.at("fog");
     TRY(fog.expectObject({"density", "color"}));

@@ -80,12 +80,16 @@ Texture Texture::fromImage(const Image& image, bool srgb) {
   Image flipped = image;
   flipVertically(flipped);
   texture.uploadRgba8(flipped.pixels.data());
-  texture.generateMipmaps();
-  texture.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  texture.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  texture.parameter(GL_TEXTURE_WRAP_S, GL_REPEAT);
-  texture.parameter(GL_TEXTURE_WRAP_T, GL_REPEAT);
+  texture.mipmapTrilinear(GL_REPEAT, GL_REPEAT);
   return texture;
+}
+
+void Texture::mipmapTrilinear(GLint wrapS, GLint wrapT) const {
+  generateMipmaps();
+  parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  parameter(GL_TEXTURE_WRAP_S, wrapS);
+  parameter(GL_TEXTURE_WRAP_T, wrapT);
 }
 
 void Texture::uploadRgba8(const void* pixels) const {

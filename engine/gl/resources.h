@@ -68,6 +68,9 @@ class Texture : public Object<TextureDeleter> {
   // Uploads RGBA8 pixels, bottom row first (GL's order), into level 0.
   void uploadRgba8(const void* pixels) const;
   void generateMipmaps() const { glGenerateTextureMipmap(id()); }
+  // Fills the mip chain from level 0 and samples it trilinearly, wrapping in s and t
+  // as asked (GL_REPEAT, GL_CLAMP_TO_EDGE, ...).
+  void mipmapTrilinear(GLint wrapS, GLint wrapT) const;
   void parameter(GLenum name, GLint value) const { glTextureParameteri(id(), name, value); }
   void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
   int width() const { return width_; }

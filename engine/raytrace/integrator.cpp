@@ -44,9 +44,6 @@ class Tracer {
     // high), shared among the pixel's samples, which each cover 1 / spp of it.
     pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
                          (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
-    for (const LightDesc& l : scene.lights()) {
-      if (l.type == LightType::Sun) sunDirection_ = glm::normalize(glm::vec3(l.direction));
-    }
   }
 
   glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
@@ -201,28 +198,15 @@ class Tracer {
     return float(visible) / float(n * n);
   }
 
-  // The sky's gradient (as shaders/sky.frag draws it, before its tone map) or the
-  // background colour (the course: black).
-  glm::vec3 escaped(const Vec3<T>& dir) const {
-    const SkyDesc& sky = scene_.sky();
-    if (!sky.enabled) return sky.background;
-    const glm::vec3 d = glm::normalize(glm::vec3(dir));
-    glm::vec3 color = d.y >= 0.0f ? glm::mix(sky.horizon, sky.zenith, std::sqrt(d.y))
-                                  : glm::mix(sky.horizon, sky.ground, std::sqrt(-d.y));
-    if (sky.sunDisk && sunDirection_) {
-      const float c = glm::dot(d, *sunDirection_);
-      const float s = std::clamp((c - 0.9995f) / (0.9998f - 0.9995f), 0.0f, 1.0f);
-      color += glm::vec3(4.0f, 3.6f, 3.0f) * (s * s * (3.0f - 2.0f * s));
-    }
-    return color;
-  }
+  // What the scene's environment sends along the escaping ray: its sky's gradient,
+  // background colour or image (raytrace/environment.h).
+  glm::vec3 escaped(const Vec3<T>& dir) const { return scene_.environment().radiance(glm::vec3(dir)); }
 
   const RtScene& scene_;
   const RenderSettings& settings_;
   PinholeCamera camera_;
   glm::ivec2 strata_;
   float pixelSpread_ = 0.0f;
-  std::optional<glm::vec3> sunDirection_;
 };
 
 }  // namespace

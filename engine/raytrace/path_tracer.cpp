@@ -16,30 +16,6 @@ namespace {
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 float maxComponent(const glm::vec3& c) { return std::max({c.x, c.y, c.z}); }
 
-// The sky's gradient as the Whitted tracer's escaped() draws it, with or without the
-// sun's disk (a path tracer that samples the sun as a light must not count it twice).
-glm::vec3 skyRadiance(const SkyDesc& sky, const std::optional<glm::vec3>& sunDirection, const glm::vec3& dir,
-                      bool sunDisk) {
-  if (!sky.enabled) return sky.background;
-  const glm::vec3 d = glm::normalize(dir);
-  glm::vec3 color = d.y >= 0.0f ? glm::mix(sky.horizon, sky.zenith, std::sqrt(d.y))
-                                : glm::mix(sky.horizon, sky.ground, std::sqrt(-d.y));
-  if (sunDisk && sky.sunDisk && sunDirection) {
-    const float c = glm::dot(d, *sunDirection);
-    const float s = std::clamp((c - 0.9995f) / (0.9998f - 0.9995f), 0.0f, 1.0f);
-    color += glm::vec3(4.0f, 3.6f, 3.0f) * (s * s * (3.0f - 2.0f * s));
-  }
-  return color;
-}
-
-std::optional<glm::vec3> sunDirectionOf(const RtScene& scene) {
-  std::optional<glm::vec3> sun;
-  for (const LightDesc& l : scene.lights()) {
-    if (l.type == LightType::Sun) sun = glm::normalize(glm::vec3(l.direction));
-  }
-  return sun;
-}
-
 // One light as the path tracer sees it: what it emits and how it is sampled.
 struct PathLight {
   LightType type = LightType::Sun;
@@ -116,7 +92,6 @@ class PathTracer {
     pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
                          (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
     for (const LightDesc& l : scene.lights()) lights_.push_back(pathLightOf(l));
-    sunDirection_ = sunDirectionOf(scene);
   }
 
   glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
@@ -218,7 +193,7 @@ class PathTracer {
     }
     // The camera sees the sky's sun disk as the rasterizer draws it; light paths find
     // the sun through its light alone.
-    if (cameraRay) return sum + skyRadiance(scene_.sky(), sunDirection_, d, !hasConeSun());
+    if (cameraRay) return sum + scene_.environment().radiance(d, !hasConeSun());
     if (env_.black()) return sum;
     return sum + env_.radiance(d) * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, env_.pdf(d)));
   }
@@ -347,7 +322,6 @@ class PathTracer {
   glm::ivec2 strata_;
   float pixelSpread_ = 0.0f;
   std::vector<PathLight> lights_;
-  std::optional<glm::vec3> sunDirection_;
 };
 
 }  // namespace
@@ -367,7 +341,7 @@ EnvironmentLight::EnvironmentLight(RadianceFn radiance, glm::ivec2 resolution) :
       for (int j = 0; j < 2; ++j) {
         for (int i = 0; i < 2; ++i) {
           const glm::vec2 uv((float(x) + 0.25f + 0.5f * float(i)) / float(w), (float(y) + 0.25f + 0.5f * float(j)) / float(h));
-          peak = std::max(peak, luminance(radiance_(directionOf(uv))));
+          peak = std::max(peak, luminance(radiance_(Environment::directionOf(uv))));
         }
       }
       weights[std::size_t(y) * std::size_t(w) + std::size_t(x)] = peak * sinTheta;
@@ -378,19 +352,6 @@ EnvironmentLight::EnvironmentLight(RadianceFn radiance, glm::ivec2 resolution) :
   if (!black_) distribution_ = Distribution2D(weights, w, h);
 }
 
-glm::vec3 EnvironmentLight::directionOf(glm::vec2 uv) {
-  const float theta = kPi * uv.y, phi = 2.0f * kPi * uv.x;
-  const float sinTheta = std::sin(theta);
-  return {sinTheta * std::cos(phi), std::cos(theta), sinTheta * std::sin(phi)};
-}
-
-glm::vec2 EnvironmentLight::uvOf(const glm::vec3& dir) {
-  const float theta = std::acos(std::clamp(dir.y, -1.0f, 1.0f));
-  float phi = std::atan2(dir.z, dir.x);
-  if (phi < 0.0f) phi += 2.0f * kPi;
-  return {std::min(phi / (2.0f * kPi), std::nextafter(1.0f, 0.0f)), theta / kPi};
-}
-
 glm::vec3 EnvironmentLight::sample(glm::vec2 u, float* pdf) const {
   *pdf = 0.0f;
   if (black_) return glm::vec3(0.0f, 1.0f, 0.0f);
@@ -399,12 +360,12 @@ glm::vec3 EnvironmentLight::sample(glm::vec2 u, float* pdf) const {
   const float sinTheta = std::sin(kPi * uv.y);
   if (sinTheta <= 0.0f) return glm::vec3(0.0f, 1.0f, 0.0f);
   *pdf = uvPdf / (2.0f * kPi * kPi * sinTheta);
-  return directionOf(uv);
+  return Environment::directionOf(uv);
 }
 
 float EnvironmentLight::pdf(const glm::vec3& dir) const {
   if (black_) return 0.0f;
-  const glm::vec2 uv = uvOf(dir);
+  const glm::vec2 uv = Environment::uvOf(dir);
   const float sinTheta = std::sin(kPi * uv.y);
   if (sinTheta <= 0.0f) return 0.0f;
   return distribution_.pdf(uv) / (2.0f * kPi * kPi * sinTheta);
@@ -412,11 +373,11 @@ float EnvironmentLight::pdf(const glm::vec3& dir) const {
 
 std::shared_ptr<const PathLights> preparePathLights(const RtScene& scene) {
   auto lights = std::make_shared<PathLights>();
-  const SkyDesc sky = scene.sky();
-  const std::optional<glm::vec3> sun = sunDirectionOf(scene);
-  // Without its sun disk: the sun is sampled as a light of its own.
-  lights->environment = EnvironmentLight(
-      [sky, sun](const glm::vec3& d) { return skyRadiance(sky, sun, d, false); }, glm::ivec2(512, 256));
+  // Without its sun disk: the sun is sampled as a light of its own. The scene outlives
+  // the integrator that holds these.
+  const Environment* environment = &scene.environment();
+  lights->environment = EnvironmentLight([environment](const glm::vec3& d) { return environment->radiance(d, false); },
+                                         environment->resolution());
   return lights;
 }
 

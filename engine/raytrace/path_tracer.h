@@ -31,6 +31,7 @@
 namespace engine::rt {
 
 // The environment as an infinite light: its radiance tabulated on a lat-long grid
+// (Environment's convention, at Environment::resolution() for the scene's sky)
 // (cell luminance times the cell's solid angle) for a piecewise-constant 2D
 // importance distribution, so a sky with a bright region gets the shadow rays there.
 class EnvironmentLight {
@@ -44,10 +45,6 @@ class EnvironmentLight {
   glm::vec3 sample(glm::vec2 u, float* pdf) const;
   float pdf(const glm::vec3& dir) const;
   bool black() const { return black_; }
-
-  // The grid's own convention: v = theta / pi from +y, u = phi / 2 pi from +x toward +z.
-  static glm::vec3 directionOf(glm::vec2 uv);
-  static glm::vec2 uvOf(const glm::vec3& dir);
 
  private:
   RadianceFn radiance_;

@@ -3,6 +3,7 @@
 #include "asset/material_texture.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <string>
 
@@ -68,6 +69,39 @@ RtScene::RtScene() {
   fallback.name = "default";
   materials_.push_back(fallback);
   extras_.emplace_back();
+  rebuildGradientSky();
+}
+
+std::optional<glm::vec3> RtScene::sunDirection() const {
+  std::optional<glm::vec3> sun;
+  for (const LightDesc& l : lights_) {
+    if (l.type == LightType::Sun) sun = glm::normalize(glm::vec3(l.direction));
+  }
+  return sun;
+}
+
+void RtScene::rebuildGradientSky() {
+  SkyDesc gradient = sky_;
+  gradient.image.clear();
+  // Without an image nothing is loaded, so this cannot fail.
+  environment_ = std::move(Environment::create(gradient, sunDirection())).value();
+}
+
+void RtScene::addLight(const LightDesc& light) {
+  lights_.push_back(light);
+  if (light.type == LightType::Sun && environmentFromSky_ && sky_.image.empty()) rebuildGradientSky();
+}
+
+void RtScene::setSky(const SkyDesc& sky) {
+  assert(sky.image.empty() && "an image sky is loaded by Environment::create, then setEnvironment");
+  sky_ = sky;
+  environmentFromSky_ = true;
+  rebuildGradientSky();
+}
+
+void RtScene::setEnvironment(Environment environment) {
+  environment_ = std::move(environment);
+  environmentFromSky_ = false;
 }
 
 Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
@@ -84,6 +118,9 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
   scene.camera_ = desc.camera;
   scene.lights_ = desc.lights;
   scene.sky_ = desc.sky;
+  auto environment = Environment::create(desc.sky, scene.sunDirection());
+  if (!environment) return makeError(desc.path + ": /sky/image: " + environment.error().message);
+  scene.environment_ = std::move(environment).value();
   scene.ambientSky_ = ambientSkyColor(desc);
   scene.ambientGround_ = ambientGroundColor(desc);
   scene.render_ = desc.render;

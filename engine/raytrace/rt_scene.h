@@ -21,6 +21,7 @@
 #include "asset/scene_desc.h"
 #include "core/result.h"
 #include "raytrace/bvh.h"
+#include "raytrace/environment.h"
 #include "raytrace/ray.h"
 #include "raytrace/shapes.h"
 #include "raytrace/terrain_material.h"
@@ -87,13 +88,19 @@ class RtScene {
   // The material at a hit with uv `uv` (and `footprint`, as RtTexture::sample takes
   // it), world height `y` and unit shading normal `ns`.
   HitMaterial materialAt(int material, glm::vec2 uv, float footprint, double y, const glm::vec3& ns) const;
-  void addLight(const LightDesc& light) { lights_.push_back(light); }
+  // A sun also draws the gradient sky's disk, as the last sun did before.
+  void addLight(const LightDesc& light);
   void addSphere(const glm::dvec3& center, double radius, int material);
   // `extent`: the half size of the square the rasterizer draws; hits beyond it miss,
   // and it sets the plane's texture coordinates. 0: an unbounded plane.
   void addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent = 0.0);
   void setCamera(const CameraDesc& camera) { camera_ = camera; }
-  void setSky(const SkyDesc& sky) { sky_ = sky; }
+  // The sky's gradient (with the last sun light's disk) or background colour. An
+  // image sky is not loaded here, as loading can fail: build it with
+  // Environment::create and give it to setEnvironment.
+  void setSky(const SkyDesc& sky);
+  // What escaping rays see from now on, whatever the sky and the lights say.
+  void setEnvironment(Environment environment);
   void setRender(const RenderDesc& render) { render_ = render; }
   void setFog(const FogDesc& fog) { fog_ = fog; }
 
@@ -125,6 +132,7 @@ class RtScene {
   const std::vector<LightDesc>& lights() const { return lights_; }
   const std::vector<MaterialDesc>& materials() const { return materials_; }
   const SkyDesc& sky() const { return sky_; }
+  const Environment& environment() const { return environment_; }
   // PBR's hemisphere ambient (see ambientSkyColor in asset/scene_desc.h).
   glm::vec3 ambientSky() const { return ambientSky_; }
   glm::vec3 ambientGround() const { return ambientGround_; }
@@ -177,7 +185,15 @@ class RtScene {
     double extent = 0.0;
   };
   std::vector<PlaneUv> planeUvs_;
+  // The sun whose disk the gradient sky draws: the last sun light, as the
+  // integrator chose it before the environment existed.
+  std::optional<glm::vec3> sunDirection() const;
+  void rebuildGradientSky();
+
   SkyDesc sky_;
+  Environment environment_;
+  // Whether environment_ follows sky_ and the lights (false after setEnvironment).
+  bool environmentFromSky_ = true;
   glm::vec3 ambientSky_{0.1f};
   glm::vec3 ambientGround_{0.1f};
   RenderDesc render_;

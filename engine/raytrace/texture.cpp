@@ -1,14 +1,13 @@
 #include "raytrace/texture.h"
 
+#include "core/linear_image.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 namespace engine::rt {
 namespace {
-
-// The sRGB transfer function (IEC 61966-2-1), as GL decodes SRGB8 texels.
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 const std::array<float, 256>& decodeTable() {
   static const std::array<float, 256> table = [] {

@@ -16,6 +16,7 @@ void setSkyUniforms(const gl::Program& program, const Lighting& l) {
   program.set("u_skyColor", l.skyZenith);
   program.set("u_horizonColor", l.skyHorizon);
   program.set("u_groundColor", l.skyGround);
+  program.set("u_sunDisk", l.sunDisk ? 1.0f : 0.0f);
 }
 
 }  // namespace engine

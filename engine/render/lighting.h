@@ -16,6 +16,7 @@ struct Lighting {
   glm::vec3 skyHorizon{0.6f, 0.7f, 0.85f};  // also the fog colour
   glm::vec3 skyGround{0.3f, 0.28f, 0.25f};
   float fogDensity = 0.02f;
+  bool sunDisk = true;  // sky.frag draws the sun's disk
 };
 
 // Sets the lighting uniforms of lit.frag.

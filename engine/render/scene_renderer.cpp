@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <sstream>
 
 #include "asset/gltf_loader.h"
 #include "asset/material_texture.h"
+#include "core/linear_image.h"
 #include "render/character.h"
 #include "render/frame_block.h"
 #include "render/mesh.h"
@@ -106,6 +108,23 @@ gl::Texture makeSunShadowMap(int size) {
   return map;
 }
 
+// The sky's lat-long image as half floats, mipmapped, repeating in u and clamped in
+// v. Rows go up as the image stores them (top first), so texture t = v: t = 0 is the
+// zenith, as common/latlong.glsl has it. Radiance past half's largest value (65504)
+// is clamped rather than left to the driver's conversion. RGBA16F, not RGB16F: it is
+// colour-renderable everywhere, which glGenerateMipmap may demand, and drivers
+// store RGB16F as four channels anyway; the upload's RGB leaves alpha 1. A row of
+// 12-byte texels meets any unpack alignment up to 4.
+gl::Texture uploadSkyImage(const FloatImage& image) {
+  gl::Texture texture = gl::Texture::create2D(GL_RGBA16F, image.width, image.height, 0);
+  std::vector<float> clamped(image.rgb.size());
+  std::transform(image.rgb.begin(), image.rgb.end(), clamped.begin(),
+                 [](float v) { return std::clamp(v, 0.0f, 65504.0f); });
+  glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, clamped.data());
+  texture.mipmapTrilinear(GL_REPEAT, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
 bool sphereVisible(const glm::dvec4 planes[6], const glm::dvec3& center, double radius) {
   if (radius < 0.0) return true;
   for (int i = 0; i < 6; ++i) {
@@ -137,6 +156,7 @@ struct SceneRenderer::Impl {
   std::string shaderDir;
   std::unique_ptr<ShaderVariants> variants;
   gl::Program sky, post;
+  gl::Texture skyImage;  // the sky's lat-long image, when the scene has one
   gl::VertexArray emptyVao;
   gl::Buffer frameUbo;
   std::unique_ptr<GpuMesh> sphere, cube, quad;
@@ -181,6 +201,7 @@ struct SceneRenderer::Impl {
   bool primitivesValid = false;
 
   Status init(const SceneRenderOptions& options);
+  Status makeSky();
   Status loadTerrain(const std::vector<std::string>& defines);
   terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
@@ -261,12 +282,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
-  if (scene.sky.enabled) {
-    auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}},
-                                      {"HDR_OUTPUT 1"});
-    if (!program) return program.error();
-    sky = std::move(program).value();
-  }
+  if (auto s = makeSky(); !s) return s;
   auto postProgram = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}});
   if (!postProgram) return postProgram.error();
   post = std::move(postProgram).value();
@@ -310,6 +326,23 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     pointFar = std::max(1.0, scene.camera.farPlane);
   }
   return buildVariants();
+}
+
+// The sky pass's program: the gradient, or the SKY_IMAGE variant with its texture,
+// uploaded once.
+Status SceneRenderer::Impl::makeSky() {
+  if (!scene.sky.enabled) return Ok{};
+  std::vector<std::string> defines{"HDR_OUTPUT 1"};
+  if (!scene.sky.image.empty()) {
+    auto image = readLinearImage(scene.sky.image);
+    if (!image) return makeError(scene.path + ": /sky/image: " + image.error().message);
+    skyImage = uploadSkyImage(*image);
+    defines.push_back("SKY_IMAGE 1");
+  }
+  auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
+  if (!program) return program.error();
+  sky = std::move(program).value();
+  return Ok{};
 }
 
 // One probe per mirror sphere or box (material reflection > 0), up to four. Planes
@@ -756,12 +789,20 @@ Status SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) 
 
 void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection) {
   sky.use();
-  Lighting lighting;
-  lighting.sunDirection = sunLight >= 0 ? glm::vec3(scene.lights[size_t(sunLight)].direction) : glm::vec3(0, -1, 0);
-  lighting.skyZenith = scene.sky.zenith;
-  lighting.skyHorizon = scene.sky.horizon;
-  lighting.skyGround = scene.sky.ground;
-  setSkyUniforms(sky, lighting);
+  if (skyImage) {
+    const float radians = glm::radians(scene.sky.rotationDegrees);
+    sky.set("u_skyIntensity", scene.sky.intensity);
+    sky.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
+    skyImage.bind(9);
+  } else {
+    Lighting lighting;
+    lighting.sunDirection = sunLight >= 0 ? glm::vec3(scene.lights[size_t(sunLight)].direction) : glm::vec3(0, -1, 0);
+    lighting.sunDisk = sunLight >= 0 && scene.sky.sunDisk;
+    lighting.skyZenith = scene.sky.zenith;
+    lighting.skyHorizon = scene.sky.horizon;
+    lighting.skyGround = scene.sky.ground;
+    setSkyUniforms(sky, lighting);
+  }
   sky.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
   emptyVao.bind();
   glDisable(GL_DEPTH_TEST);
@@ -974,6 +1015,10 @@ std::string SceneRenderer::describe() const {
   if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
   if (!s.probes.empty()) out << " reflection-probes(" << s.probes.size() << " x cube " << s.probeSize << ")";
   if (s.scene.sky.enabled) out << " sky";
+  if (s.skyImage) {
+    out << "(image " << std::filesystem::path(s.scene.sky.image).filename().string() << " " << s.skyImage.width() << "x"
+        << s.skyImage.height() << ")";
+  }
   if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";

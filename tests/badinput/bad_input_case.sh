@@ -82,6 +82,18 @@ case "$CASE" in
   scene_msaa_string) scene scene_msaa_string.json "scene_msaa_string\.json: /render/msaa: expected an integer" ;;
   scene_unknown_key) scene scene_unknown_key.json "scene_unknown_key\.json: /origin: unknown key" ;;
   scene_not_object) scene scene_not_object.json "scene_not_object\.json: /: expected an object" ;;
+  # A sky image is checked from its header when the scene loads, and decoded by each
+  # renderer: the truncated one passes the first and fails the second, in both modes.
+  scene_sky_image_missing) scene scene_sky_image_missing.json "scene_sky_image_missing\.json: /sky/image: no_such_sky\.hdr: no such file" ;;
+  scene_sky_image_not_image) scene scene_sky_image_not_image.json "scene_sky_image_not_image\.json: /sky/image: not_an_image\.hdr: neither a Radiance \.hdr nor a PNG image" ;;
+  scene_sky_image_empty) scene scene_sky_image_empty.json "scene_sky_image_empty\.json: /sky/image: empty\.hdr: the file is empty \(0 bytes\)" ;;
+  scene_sky_image_zero_size) scene scene_sky_image_zero_size.json "scene_sky_image_zero_size\.json: /sky/image: zero_size\.hdr: image is 0x0 pixels; each side must be in \[1, 16384\]" ;;
+  scene_sky_image_zero_png) scene scene_sky_image_zero_png.json "scene_sky_image_zero_png\.json: /sky/image: zero_size\.png: image is 0x0 pixels; each side must be in \[1, 16384\]" ;;
+  scene_sky_image_truncated)
+    pattern="scene_sky_image_truncated\.json: /sky/image: truncated_sky\.hdr: cannot read image: the Radiance data ends early"
+    scene scene_sky_image_truncated.json "$pattern"
+    expect 2 "$pattern" -- timeout 60 "$BIN/demo" scene_sky_image_truncated.json --offscreen --mode raytrace --size 64x64 --screenshot "$WORK/$CASE/traced.png"
+    [ ! -e "$WORK/$CASE/traced.png" ] || { echo "FAIL: a bad scene was traced"; exit 1; } ;;
   good_model)
     # The unbroken base of every model case loads and dumps a pose.
     model good.glb 0 "good\.glb\.pose\.json"

@@ -139,16 +139,6 @@ TEST(ChiSquare, EnvironmentLight) {
   }
 }
 
-TEST(EnvironmentLight, UvAndDirectionAreInverse) {
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-  for (int i = 0; i < 100000; ++i) {
-    const glm::vec3 d = rt::sampleUniformCone(glm::vec2(uniform(rng), uniform(rng)), -1.0f);
-    const glm::vec3 back = rt::EnvironmentLight::directionOf(rt::EnvironmentLight::uvOf(d));
-    ASSERT_LT(glm::length(back - d), 1e-4f) << d.x << " " << d.y << " " << d.z;
-  }
-}
-
 // The share of light from wo that the BSDF reflects, estimated with 16k samples.
 double directionalAlbedo(float metallic, float roughness, float cosTheta, std::mt19937& rng) {
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);

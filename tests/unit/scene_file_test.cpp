@@ -2,6 +2,7 @@
 // the JSON path and what was expected.
 #include <gtest/gtest.h>
 
+#include "../support/radiance_file.h"
 #include "asset/scene_file.h"
 
 using namespace engine;
@@ -87,4 +88,44 @@ TEST(SceneFile, MissingFileNamesIt) {
   auto scene = loadSceneFile("/nonexistent/x.json");
   ASSERT_FALSE(scene.ok());
   EXPECT_EQ(scene.error().message, "/nonexistent/x.json: cannot open scene file");
+}
+
+// The sky's image is a path relative to the scene file, checked when the scene loads:
+// each bad image is an error naming the scene file, the key and the image.
+TEST(SceneFile, SkyImageIsResolvedAndChecked) {
+  test::ScratchFolder folder;
+  std::filesystem::create_directories(folder / "skies");
+  test::writeHdr(folder / "skies/day.hdr", 2, 1, {glm::vec3(1.0f), glm::vec3(0.5f)});
+  const std::string scenePath = (folder / "s.json").string();
+  auto parse = [&](const std::string& sky) { return parseScene(R"({"sky": )" + sky + "}", scenePath); };
+  auto errorIn = [&](const std::string& sky) {
+    auto scene = parse(sky);
+    return scene ? std::string("no error") : scene.error().message;
+  };
+
+  auto scene = parse(R"({"image": "skies/../skies/day.hdr", "intensity": 2.5, "rotation": -90})");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_EQ(scene->sky.image, (folder / "skies/day.hdr").string());
+  EXPECT_EQ(scene->sky.intensity, 2.5f);
+  EXPECT_EQ(scene->sky.rotationDegrees, -90.0f);
+  auto plain = parse("{}");
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ(plain->sky.image, "");
+  EXPECT_EQ(plain->sky.intensity, 1.0f);
+  EXPECT_EQ(plain->sky.rotationDegrees, 0.0f);
+
+  const std::string at = scenePath + ": /sky/image: " + folder.path().string() + "/";
+  EXPECT_EQ(errorIn(R"({"image": "night.hdr"})"), at + "night.hdr: no such file");
+  test::writeBytes(folder / "empty.hdr", {});
+  EXPECT_EQ(errorIn(R"({"image": "empty.hdr"})"), at + "empty.hdr: the file is empty (0 bytes)");
+  test::writeBytes(folder / "text.png", {'h', 'e', 'l', 'l', 'o'});
+  EXPECT_EQ(errorIn(R"({"image": "text.png"})"), at + "text.png: neither a Radiance .hdr nor a PNG image");
+  const std::string zero = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n";
+  test::writeBytes(folder / "zero.hdr", std::vector<std::uint8_t>(zero.begin(), zero.end()));
+  EXPECT_EQ(errorIn(R"({"image": "zero.hdr"})"), at + "zero.hdr: image is 0x0 pixels; each side must be in [1, 16384]");
+  EXPECT_EQ(errorIn(R"({"image": ""})"), scenePath + ": /sky/image: expected the path of a .hdr or PNG image");
+  EXPECT_EQ(errorIn(R"({"image": 3})"), scenePath + ": /sky/image: expected a string");
+  EXPECT_EQ(errorIn(R"({"intensity": -1})"), scenePath + ": /sky/intensity: expected a number in [0, 1e+09], got -1");
+  EXPECT_EQ(errorIn(R"({"rotation": 400})"), scenePath + ": /sky/rotation: expected a number in [-360, 360], got 400");
+  EXPECT_EQ(errorIn(R"({"rotation": "east"})"), scenePath + ": /sky/rotation: expected a number");
 }

@@ -214,5 +214,25 @@ def main(out):
     write("scene_unknown_key.json", json.dumps({"origin": [0, 0, 0]}))
     write("scene_not_object.json", json.dumps([1, 2, 3]))
 
+    # Sky images: missing, not an image (by content: the name says .hdr), an empty
+    # file, a Radiance header of 0 x 0 pixels, the 0x0 PNG above, and a run-length
+    # .hdr cut short (its header is fine; the decoder must refuse it, not hang).
+    def sky_scene(name, image):
+        write(name, json.dumps({"sky": {"image": image}}))
+    sky_scene("scene_sky_image_missing.json", "no_such_sky.hdr")
+    write("not_an_image.hdr", b"this is text, not a Radiance image\n")
+    sky_scene("scene_sky_image_not_image.json", "not_an_image.hdr")
+    write("empty.hdr", b"")
+    sky_scene("scene_sky_image_empty.json", "empty.hdr")
+    write("zero_size.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n")
+    sky_scene("scene_sky_image_zero_size.json", "zero_size.hdr")
+    sky_scene("scene_sky_image_zero_png.json", "zero_size.png")
+    # 16 x 4 pixels, each scanline a mark and per channel one literal run of 16 bytes;
+    # cut after a scanline and a half.
+    scanline = bytes([2, 2, 0, 16]) + (bytes([16]) + bytes([100] * 16)) * 3 + bytes([16]) + bytes([129] * 16)
+    whole = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n" + scanline * 4
+    write("truncated_sky.hdr", whole[:-len(scanline) * 2 - len(scanline) // 2])
+    sky_scene("scene_sky_image_truncated.json", "truncated_sky.hdr")
+
 if __name__ == "__main__":
     main(sys.argv[1])

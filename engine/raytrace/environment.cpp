@@ -1,0 +1,104 @@
+#include "raytrace/environment.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+
+namespace engine::rt {
+namespace latlong {
+// GLSL's built-ins and types, for the included text only (as core/brdf.h does).
+using glm::atan;
+using glm::cos;
+using glm::sin;
+using glm::sqrt;
+using glm::vec2;
+using glm::vec3;
+
+#include "common/latlong.glsl"
+}  // namespace latlong
+
+namespace {
+
+// The gradient sky and the background are smooth (the sun disk aside, which a
+// sampler takes from the sun light): a 512 x 256 table resolves them.
+constexpr glm::ivec2 kAnalyticResolution{512, 256};
+
+int wrap(int i, int n) {
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+}  // namespace
+
+Result<Environment> Environment::create(const SkyDesc& sky, std::optional<glm::vec3> sunDirection) {
+  Environment env;
+  env.sky_ = sky;
+  if (!sky.enabled) return env;  // Constant: the background
+  if (sky.image.empty()) {
+    env.kind_ = Kind::Gradient;
+    env.sun_ = sunDirection;
+    return env;
+  }
+  auto image = readLinearImage(sky.image);
+  if (!image) return image.error();
+  env.kind_ = Kind::Image;
+  env.image_ = std::make_shared<const FloatImage>(std::move(image).value());
+  env.intensity_ = sky.intensity;
+  const double radians = glm::radians(double(sky.rotationDegrees));
+  env.cosRotation_ = float(std::cos(radians));
+  env.sinRotation_ = float(std::sin(radians));
+  return env;
+}
+
+glm::vec3 Environment::radiance(const glm::vec3& dir, bool sunDisk) const {
+  switch (kind_) {
+    case Kind::Constant:
+      return sky_.background;
+    case Kind::Gradient:
+      return gradient(glm::normalize(dir), sunDisk);
+    case Kind::Image:
+      break;
+  }
+  // The image turned by the rotation shows at `dir` what it holds at `dir` turned back.
+  const glm::vec3 local = latlong::rotateAboutY(dir, cosRotation_, -sinRotation_);
+  return bilinear(uvOf(local)) * intensity_;
+}
+
+// shaders/sky.frag's gradient, as escaped() of the Whitted integrator drew it: from
+// the horizon to the zenith or the ground by the square root of the elevation's sine,
+// and the sun disk, a smoothstep over the cosine.
+glm::vec3 Environment::gradient(const glm::vec3& d, bool sunDisk) const {
+  glm::vec3 color = d.y >= 0.0f ? glm::mix(sky_.horizon, sky_.zenith, std::sqrt(d.y))
+                                : glm::mix(sky_.horizon, sky_.ground, std::sqrt(-d.y));
+  if (sunDisk && sky_.sunDisk && sun_) {
+    const float c = glm::dot(d, *sun_);
+    const float s = std::clamp((c - 0.9995f) / (0.9998f - 0.9995f), 0.0f, 1.0f);
+    color += glm::vec3(4.0f, 3.6f, 3.0f) * (s * s * (3.0f - 2.0f * s));
+  }
+  return color;
+}
+
+// GL's GL_LINEAR between texel centres, repeating in u and clamped in v (the sky
+// texture's wrap modes in the rasterizer).
+glm::vec3 Environment::bilinear(glm::vec2 uv) const {
+  const FloatImage& image = *image_;
+  const float x = uv.x * float(image.width) - 0.5f, y = uv.y * float(image.height) - 0.5f;
+  const float x0f = std::floor(x), y0f = std::floor(y);
+  const float fx = x - x0f, fy = y - y0f;
+  const int x0 = wrap(int(x0f), image.width), x1 = wrap(int(x0f) + 1, image.width);
+  const int y0 = std::clamp(int(y0f), 0, image.height - 1), y1 = std::clamp(int(y0f) + 1, 0, image.height - 1);
+  const glm::vec3 top = glm::mix(image.at(x0, y0), image.at(x1, y0), fx);
+  const glm::vec3 bottom = glm::mix(image.at(x0, y1), image.at(x1, y1), fx);
+  return glm::mix(top, bottom, fy);
+}
+
+glm::ivec2 Environment::resolution() const {
+  return hasImage() ? glm::ivec2(image_->width, image_->height) : kAnalyticResolution;
+}
+
+glm::vec3 Environment::directionOf(glm::vec2 uv) { return latlong::latLongDirection(uv); }
+
+glm::vec2 Environment::uvOf(const glm::vec3& dir) { return latlong::latLongUv(dir); }
+
+}  // namespace engine::rt
