@@ -235,6 +235,17 @@ glm::vec3 Integrator::renderPixel(int x, int y, RayCounters* counters) const {
   return c;
 }
 
+glm::vec3 Integrator::renderPixelSamples(int x, int y, int first, int count, RayCounters* counters) const {
+  if (!pathLights_) return renderPixel(x, y, counters);
+  RenderSettings pass = settings_;
+  pass.firstSample = first;
+  pass.samplesPerPixel = count;
+  RayCounters local;
+  const glm::vec3 c = pathTracePixel(*scene_, *pathLights_, pass, x, y, local);
+  if (counters) *counters += local;
+  return c;
+}
+
 glm::vec3 Integrator::traceRay(const Ray<double>& ray, std::uint64_t seed, RayCounters* counters) const {
   RayCounters local;
   Pcg32 rng(mixBits(seed), 1);

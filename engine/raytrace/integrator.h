@@ -45,7 +45,8 @@ struct RenderSettings {
   Method method = Method::Whitted;
   int width = 640;
   int height = 480;
-  int samplesPerPixel = 1;  // 1: the pixel centre; N: N stratified jittered samples
+  int samplesPerPixel = 1;  // Whitted: 1 the pixel centre, N stratified jittered samples
+  int firstSample = 0;      // path: the samples rendered are [firstSample, firstSample + spp)
   int shadowSamples = 4;    // an area light gets N x N stratified jittered shadow rays
   int maxDepth = 5;         // bounces after the primary hit (Whitted: mirror bounces; path: 0 is direct light only)
   int rouletteDepth = 3;    // path: Russian roulette from this bounce on
@@ -88,6 +89,9 @@ class Integrator {
   RenderResult render() const;
   // One pixel's linear colour, exactly as render() computes it (same RNG stream).
   glm::vec3 renderPixel(int x, int y, RayCounters* counters = nullptr) const;
+  // The path tracer's mean of samples [first, first + count) of a pixel (a pass of a
+  // progressive render); the Whitted tracer's renderPixel, whatever first and count.
+  glm::vec3 renderPixelSamples(int x, int y, int first, int count, RayCounters* counters = nullptr) const;
   // The radiance along one ray (as a reflected ray at depth 0 would see it), in the
   // chosen precision; the RNG for area-light samples is seeded from `seed`.
   glm::vec3 traceRay(const Ray<double>& ray, std::uint64_t seed = 0, RayCounters* counters = nullptr) const;

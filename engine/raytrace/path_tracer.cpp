@@ -87,25 +87,29 @@ class PathTracer {
  public:
   PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
       : scene_(scene), env_(lights.environment), settings_(settings),
-        camera_(scene.camera(), settings.width, settings.height),
-        strata_(detail::strataFor(std::max(1, settings.samplesPerPixel))) {
+        camera_(scene.camera(), settings.width, settings.height) {
     pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
                          (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
     for (const LightDesc& l : scene.lights()) lights_.push_back(pathLightOf(l));
   }
 
+  // The mean of samples [firstSample, firstSample + spp) of the pixel. Their image
+  // positions follow the R2 sequence (Roberts 2018: the plastic number's powers, a
+  // low-discrepancy sequence whose every prefix is well spread, so no strata need
+  // the total in advance), turned by a random offset per pixel; each sample has a
+  // random stream of its own.
   glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
-    Pcg32 rng = Pcg32::forPixel(settings_.seed, x, y);
-    const int spp = std::max(1, settings_.samplesPerPixel);
+    Pcg32 pixelRng = Pcg32::forPixel(settings_.seed, x, y);
+    const double offsetX = double(pixelRng.uniform()), offsetY = double(pixelRng.uniform());
+    const int first = std::max(0, settings_.firstSample), spp = std::max(1, settings_.samplesPerPixel);
     glm::vec3 sum(0.0f);
-    for (int j = 0; j < strata_.y; ++j) {
-      for (int i = 0; i < strata_.x; ++i) {
-        const double px = x + (i + double(rng.uniform())) / strata_.x;
-        const double py = y + (j + double(rng.uniform())) / strata_.y;
-        ++counters.primary;
-        const Ray<T> ray = camera_.clippedToFarPlane(camera_.generateRay<T>(px, py));
-        sum += finite(Li(ray, rng, counters, RayCone{0.0f, pixelSpread_}));
-      }
+    for (int s = first; s < first + spp; ++s) {
+      constexpr double kR2x = 0.75487766624669276, kR2y = 0.56984029099805327;  // 1/g, 1/g^2, g^3 = g + 1
+      const double jx = offsetX + kR2x * double(s), jy = offsetY + kR2y * double(s);
+      Pcg32 rng = Pcg32::forSample(settings_.seed, x, y, s);
+      ++counters.primary;
+      const Ray<T> ray = camera_.clippedToFarPlane(camera_.generateRay<T>(x + (jx - std::floor(jx)), y + (jy - std::floor(jy))));
+      sum += finite(Li(ray, rng, counters, RayCone{0.0f, pixelSpread_}));
     }
     return sum / float(spp);
   }
@@ -319,7 +323,6 @@ class PathTracer {
   const EnvironmentLight& env_;
   const RenderSettings& settings_;
   PinholeCamera camera_;
-  glm::ivec2 strata_;
   float pixelSpread_ = 0.0f;
   std::vector<PathLight> lights_;
 };

@@ -28,6 +28,15 @@ class Pcg32 {
     return Pcg32(mixBits(seed ^ mixBits(key)), mixBits(key + 0x9e3779b97f4a7c15ull));
   }
 
+  // A generator for sample `sample` of pixel (x, y): every sample has a stream of its
+  // own, so a pixel's first N samples are the same whether it is rendered with N spp
+  // at once or in passes (the progressive window, the convergence benchmark).
+  static Pcg32 forSample(std::uint64_t seed, int x, int y, int sample) {
+    const std::uint64_t key = (std::uint64_t(std::uint32_t(x)) << 32) | std::uint32_t(y);
+    return Pcg32(mixBits(seed ^ mixBits(key) ^ mixBits(std::uint64_t(std::uint32_t(sample)) + 0x632be59bd9b4e019ull)),
+                 mixBits(key + 0x9e3779b97f4a7c15ull));
+  }
+
   std::uint32_t nextU32() {
     const std::uint64_t old = state_;
     state_ = old * kMultiplier + inc_;

@@ -23,9 +23,12 @@ engine::Status RaytraceGame::init() {
   integrator_ = std::make_unique<engine::rt::Integrator>(*scene_, settings_);
   tilesX_ = (settings_.width + kTile - 1) / kTile;
   tilesY_ = (settings_.height + kTile - 1) / kTile;
-  tileDone_ = std::make_unique<std::atomic<bool>[]>(size_t(tilesX_ * tilesY_));
-  tileUploaded_.assign(size_t(tilesX_ * tilesY_), false);
+  tilePasses_ = std::make_unique<std::atomic<int>[]>(size_t(tilesX_ * tilesY_));
+  tileUploaded_.assign(size_t(tilesX_ * tilesY_), 0);
+  tileLocks_ = std::make_unique<std::mutex[]>(size_t(tilesX_ * tilesY_));
   pixels_.assign(size_t(settings_.width) * size_t(settings_.height) * 4, 0);
+  sum_.assign(size_t(settings_.width) * size_t(settings_.height), glm::vec3(0.0f));
+  passes_ = settings_.method == engine::rt::Method::Path ? std::max(1, settings_.samplesPerPixel) : 1;
   texture_ = engine::gl::Texture::create2D(GL_RGBA8, settings_.width, settings_.height, 1);
   texture_.uploadRgba8(pixels_.data());
   source_ = engine::gl::Framebuffer::create();
@@ -35,48 +38,70 @@ engine::Status RaytraceGame::init() {
   return engine::Ok{};
 }
 
-void RaytraceGame::traceTiles() {
-  // renderPixel gives each pixel exactly what render() would (same RNG stream), so
-  // the window shows the same image the offscreen mode writes.
+// One bar over every pass's tiles.
+struct RaytraceGame::Progress {
   engine::rt::ProgressBar bar;
   std::atomic<int> done{0};
-  const auto start = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   std::atomic<std::uint64_t> rays{0};
+  std::mutex mutex;
+};
+
+void RaytraceGame::traceTiles() {
+  Progress progress;
+  for (int pass = 0; pass < passes_ && !cancel_; ++pass) tracePass(pass, progress);
+}
+
+// One pass over the image: the Whitted tracer's whole image, or the path tracer's
+// sample `pass` of every pixel. renderPixelSamples gives each pixel exactly what
+// render() would (the same RNG streams), so the window converges to the image the
+// offscreen mode writes.
+void RaytraceGame::tracePass(int pass, Progress& state) {
+  const int perPass = passes_ > 1 ? 1 : std::max(1, settings_.samplesPerPixel);
   tbb::parallel_for(0, tilesX_ * tilesY_, [&](int tile) {
     if (cancel_) return;
     const int x0 = (tile % tilesX_) * kTile, y0 = (tile / tilesX_) * kTile;
     engine::rt::RayCounters counters;
-    for (int y = y0; y < std::min(y0 + kTile, settings_.height); ++y) {
-      for (int x = x0; x < std::min(x0 + kTile, settings_.width); ++x) {
-        const glm::vec3 c = engine::rt::toneMap(integrator_->renderPixel(x, y, &counters), scene_->render());
-        std::uint8_t* p = &pixels_[(size_t(y) * size_t(settings_.width) + size_t(x)) * 4];
+    const int x1 = std::min(x0 + kTile, settings_.width), y1 = std::min(y0 + kTile, settings_.height);
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        sum_[size_t(y) * size_t(settings_.width) + size_t(x)] += integrator_->renderPixelSamples(x, y, pass, perPass, &counters);
+      }
+    }
+    std::lock_guard<std::mutex> tileLock(tileLocks_[size_t(tile)]);
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        const std::size_t i = size_t(y) * size_t(settings_.width) + size_t(x);
+        const glm::vec3 c = engine::rt::toneMap(sum_[i] / float(pass + 1), scene_->render());
+        std::uint8_t* p = &pixels_[i * 4];
         for (int k = 0; k < 3; ++k) p[k] = engine::rt::encodeChannel(c[k], scene_->render().output);
         p[3] = 255;
       }
     }
-    tileDone_[size_t(tile)].store(true, std::memory_order_release);
-    rays += counters.total();
+    tilePasses_[size_t(tile)].store(pass + 1, std::memory_order_release);
+    state.rays += counters.total();
     engine::rt::RenderProgress progress;
-    progress.tilesDone = ++done;
-    progress.tilesTotal = tilesX_ * tilesY_;
-    progress.rays.primary = rays;
-    progress.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    static std::mutex barMutex;
-    std::lock_guard<std::mutex> lock(barMutex);
-    bar.update(progress);
+    progress.tilesDone = ++state.done;
+    progress.tilesTotal = tilesX_ * tilesY_ * passes_;
+    progress.rays.primary = state.rays;
+    progress.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - state.start).count();
+    std::lock_guard<std::mutex> lock(state.mutex);
+    state.bar.update(progress);
   });
 }
 
 void RaytraceGame::uploadFinishedTiles() {
   for (int tile = 0; tile < tilesX_ * tilesY_; ++tile) {
-    if (tileUploaded_[size_t(tile)] || !tileDone_[size_t(tile)].load(std::memory_order_acquire)) continue;
+    const int passes = tilePasses_[size_t(tile)].load(std::memory_order_acquire);
+    if (tileUploaded_[size_t(tile)] == passes) continue;
+    std::lock_guard<std::mutex> lock(tileLocks_[size_t(tile)]);
     const int x0 = (tile % tilesX_) * kTile, y0 = (tile / tilesX_) * kTile;
     const int w = std::min(kTile, settings_.width - x0), h = std::min(kTile, settings_.height - y0);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, settings_.width);
     glTextureSubImage2D(texture_.id(), 0, x0, y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
                         &pixels_[(size_t(y0) * size_t(settings_.width) + size_t(x0)) * 4]);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    tileUploaded_[size_t(tile)] = true;
+    tileUploaded_[size_t(tile)] = passes;
   }
 }
 

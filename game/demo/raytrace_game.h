@@ -1,10 +1,13 @@
 #pragma once
-// demo --mode raytrace in a window: the scene is traced on the CPU in the
-// background, tile by tile, and each frame shows the tiles finished so far (the
-// image fills in progressively). Offscreen, the demo calls rt::raytraceScene
-// directly and needs no GL at all.
+// demo --mode raytrace or pathtrace in a window: the scene is traced on the CPU in
+// the background, tile by tile, and each frame shows the tiles finished so far (the
+// image fills in progressively). The path tracer goes over the image once per
+// sample, up to --spp, so the window shows the mean of the samples so far: a noisy
+// image at once that clears as it converges. Offscreen, the demo calls
+// rt::raytraceScene directly and needs no GL at all.
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -29,6 +32,8 @@ class RaytraceGame final : public engine::Game {
 
  private:
   void traceTiles();
+  struct Progress;
+  void tracePass(int pass, Progress& progress);
   void uploadFinishedTiles();
 
   engine::SceneDesc desc_;
@@ -38,8 +43,13 @@ class RaytraceGame final : public engine::Game {
   std::unique_ptr<engine::rt::RtScene> scene_;
   std::unique_ptr<engine::rt::Integrator> integrator_;
   std::vector<std::uint8_t> pixels_;  // RGBA8, top row first, written by the tracer
-  std::unique_ptr<std::atomic<bool>[]> tileDone_;
-  std::vector<bool> tileUploaded_;
+  std::vector<glm::vec3> sum_;        // linear, the sum of each pixel's samples so far
+  std::unique_ptr<std::atomic<int>[]> tilePasses_;  // passes each tile has finished
+  std::vector<int> tileUploaded_;                   // the passes each tile showed
+  // A tile's bytes are rewritten each pass: the tracer encodes and the window uploads
+  // them under the tile's lock, never at once.
+  std::unique_ptr<std::mutex[]> tileLocks_;
+  int passes_ = 1;
   int tilesX_ = 0, tilesY_ = 0;
   std::atomic<bool> cancel_{false};
   std::thread worker_;

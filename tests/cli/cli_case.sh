@@ -243,5 +243,19 @@ PY
     rm -f rt.png
     expect 0 "Mrays/s" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --offscreen --size 64x48 --screenshot rt.png
     [ -s rt.png ] || { echo "FAIL: no image"; exit 1; } ;;
+  pathtrace_offscreen)
+    rm -f pt.png pt.json
+    expect 0 "path traced 64x48, spp 4" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode pathtrace --offscreen \
+      --size 64x48 --spp 4 --screenshot pt.png --bench pt.json
+    [ -s pt.png ] || { echo "FAIL: no image"; exit 1; }
+    grep -q '"mode": "pathtrace"' pt.json || { echo "FAIL: the bench file does not say pathtrace"; cat pt.json; exit 1; } ;;
+  pathtrace_window)
+    # The window shows the passes as they come; after 30 frames of a 4-pass render
+    # some image is on screen and the program ends cleanly.
+    start_xvfb
+    rm -f ptw.png
+    expect 0 "" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode pathtrace --size 64x48 --spp 4 --frames 30 \
+      --screenshot ptw.png
+    [ -s ptw.png ] || { echo "FAIL: no screenshot"; exit 1; } ;;
   *) echo "unknown case $CASE"; exit 1 ;;
 esac

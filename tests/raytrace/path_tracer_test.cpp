@@ -193,3 +193,30 @@ TEST(PathTracer, DeterministicWhateverTheThreadCount) {
 }
 
 }  // namespace
+
+namespace {
+
+// Passes compose: samples [0, 4) and [4, 8) averaged are samples [0, 8), up to the
+// rounding of the two means (the window's progressive image is the offline one).
+TEST(PathTracer, PassesOfSamplesComposeToTheWholeRender) {
+  auto rtScene = rt::buildRtScene(courseRoom(), 0.0);
+  ASSERT_TRUE(rtScene);
+  rt::RenderSettings settings = pathSettings(24, 16, 8, 16);
+  const rt::Framebuffer whole = rt::Integrator(*rtScene, settings).render().image;
+  settings.samplesPerPixel = 4;
+  const rt::Framebuffer first = rt::Integrator(*rtScene, settings).render().image;
+  settings.firstSample = 4;
+  const rt::Framebuffer second = rt::Integrator(*rtScene, settings).render().image;
+  double worst = 0.0, differs = 0.0;
+  for (std::size_t i = 0; i < whole.pixels.size(); ++i) {
+    const glm::vec3 mean = 0.5f * (first.pixels[i] + second.pixels[i]);
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, double(std::abs(mean[c] - whole.pixels[i][c])) / std::max(1e-3, double(whole.pixels[i][c])));
+      differs = std::max(differs, double(std::abs(first.pixels[i][c] - second.pixels[i][c])));
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_GT(differs, 0.01);  // the two passes are different samples
+}
+
+}  // namespace
