@@ -1,7 +1,8 @@
-// Golden images of the course room ray traced: assets/scenes/cornell.json (hard
-// shadows) and cornell_soft.json (the 1 x 1 area light, 4 x 4 shadow rays), at
-// 320 x 240 with 4 stratified samples per pixel, seed 1, against
-// tests/golden/raytrace_cornell*.png.
+// Golden images of the tracers. Whitted: the course room, assets/scenes/cornell.json
+// (hard shadows) and cornell_soft.json (the 1 x 1 area light, 4 x 4 shadow rays), at
+// 320 x 240 with 4 stratified samples per pixel, seed 1. Path: cornell.json and
+// materials.json (the glTF material model: textures, MASK, BLEND, emission) at 16
+// samples per pixel, seed 1. Against tests/golden/{raytrace,pathtrace}_*.png.
 //
 // On a failure the actual image and a diff (x4 gain) are written under
 // build/golden-failures/. To accept new goldens after looking at them:
@@ -15,6 +16,7 @@
 #include "core/image.h"
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
+#include "raytrace/scene_builder.h"
 #include "raytrace/tone_map.h"
 
 namespace rt = engine::rt;
@@ -36,6 +38,8 @@ constexpr double kMaxShareOver8 = 0.002;
 struct GoldenCase {
   const char* name;
   const char* scene;
+  rt::Method method = rt::Method::Whitted;
+  int width = 320, height = 240, spp = 4;
 };
 
 class RaytraceGolden : public ::testing::TestWithParam<GoldenCase> {};
@@ -45,14 +49,15 @@ TEST_P(RaytraceGolden, MatchesTheGoldenImage) {
   const std::string source = ENGINE_SOURCE_DIR;
   auto desc = engine::loadSceneFile(source + "/assets/scenes/" + c.scene);
   ASSERT_TRUE(desc) << desc.error().message;
-  auto scene = rt::RtScene::fromSceneDesc(*desc);
+  auto scene = rt::buildRtScene(*desc, 0.0, c.height);
   ASSERT_TRUE(scene) << scene.error().message;
   rt::RenderSettings settings;
-  settings.width = 320;
-  settings.height = 240;
-  settings.samplesPerPixel = 4;
+  settings.method = c.method;
+  settings.width = c.width;
+  settings.height = c.height;
+  settings.samplesPerPixel = c.spp;
   settings.shadowSamples = 4;
-  settings.maxDepth = 5;
+  settings.maxDepth = c.method == rt::Method::Path ? 16 : 5;
   settings.seed = 1;
   const rt::RenderResult result = rt::Integrator(*scene, settings).render();
   const engine::Image actual = rt::toImage(result.image, scene->render());
@@ -79,7 +84,9 @@ TEST_P(RaytraceGolden, MatchesTheGoldenImage) {
 
 INSTANTIATE_TEST_SUITE_P(Cornell, RaytraceGolden,
                          ::testing::Values(GoldenCase{"raytrace_cornell", "cornell.json"},
-                                           GoldenCase{"raytrace_cornell_soft", "cornell_soft.json"}),
+                                           GoldenCase{"raytrace_cornell_soft", "cornell_soft.json"},
+                                           GoldenCase{"pathtrace_cornell", "cornell.json", rt::Method::Path, 320, 240, 16},
+                                           GoldenCase{"pathtrace_materials", "materials.json", rt::Method::Path, 320, 180, 16}),
                          [](const auto& param) { return std::string(param.param.name); });
 
 // The course room's lit floor in front of the blue sphere, against the course's formula
