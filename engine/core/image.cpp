@@ -4,6 +4,7 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -139,6 +140,68 @@ Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold) {
   d.psnr = mse == 0.0 ? std::numeric_limits<double>::infinity()
                       : 10.0 * std::log10(255.0 * 255.0 / mse);
   return d;
+}
+
+namespace {
+
+// The separable 11-tap Gaussian of SSIM, edges clamped.
+std::vector<double> gaussianBlur(const std::vector<double>& in, int w, int h) {
+  static const std::array<double, 11> kernel = [] {
+    std::array<double, 11> k{};
+    double sum = 0.0;
+    for (int i = 0; i < 11; ++i) sum += k[size_t(i)] = std::exp(-double((i - 5) * (i - 5)) / (2.0 * 1.5 * 1.5));
+    for (double& v : k) v /= sum;
+    return k;
+  }();
+  std::vector<double> tmp(in.size()), out(in.size());
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      double s = 0.0;
+      for (int i = -5; i <= 5; ++i) s += kernel[size_t(i + 5)] * in[size_t(y) * size_t(w) + size_t(std::clamp(x + i, 0, w - 1))];
+      tmp[size_t(y) * size_t(w) + size_t(x)] = s;
+    }
+  }
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      double s = 0.0;
+      for (int i = -5; i <= 5; ++i) s += kernel[size_t(i + 5)] * tmp[size_t(std::clamp(y + i, 0, h - 1)) * size_t(w) + size_t(x)];
+      out[size_t(y) * size_t(w) + size_t(x)] = s;
+    }
+  }
+  return out;
+}
+
+std::vector<double> luma(const Image& image) {
+  std::vector<double> y(size_t(image.width) * size_t(image.height));
+  for (size_t i = 0; i < y.size(); ++i) {
+    const std::uint8_t* p = &image.pixels[i * 4];
+    y[i] = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+  }
+  return y;
+}
+
+}  // namespace
+
+Result<double> structuralSimilarity(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) return makeError("images differ in size");
+  if (a.empty()) return makeError("empty images");
+  const int w = a.width, h = a.height;
+  const std::vector<double> x = luma(a), y = luma(b);
+  std::vector<double> xx(x.size()), yy(x.size()), xy(x.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    xx[i] = x[i] * x[i];
+    yy[i] = y[i] * y[i];
+    xy[i] = x[i] * y[i];
+  }
+  const auto mx = gaussianBlur(x, w, h), my = gaussianBlur(y, w, h);
+  const auto sxx = gaussianBlur(xx, w, h), syy = gaussianBlur(yy, w, h), sxy = gaussianBlur(xy, w, h);
+  constexpr double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
+  double sum = 0.0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double vx = sxx[i] - mx[i] * mx[i], vy = syy[i] - my[i] * my[i], cov = sxy[i] - mx[i] * my[i];
+    sum += ((2 * mx[i] * my[i] + c1) * (2 * cov + c2)) / ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
+  }
+  return sum / double(x.size());
 }
 
 Image diffImage(const Image& a, const Image& b) {

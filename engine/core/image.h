@@ -59,6 +59,11 @@ struct ImageDiff {
 };
 
 Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold = 8);
+// The structural similarity of the two images' luma (Wang et al. 2004: an 11 x 11
+// Gaussian window of sigma 1.5, K1 = 0.01, K2 = 0.03, L = 255), the mean over the
+// image: 1 for equal images, lower as structure differs. The trade table's
+// perceptual column: PSNR weighs a bright noisy pixel like a lost edge, SSIM does not.
+Result<double> structuralSimilarity(const Image& a, const Image& b);
 // A visual diff: black where equal, brighter where different (x4 gain).
 Image diffImage(const Image& a, const Image& b);
 

@@ -35,8 +35,10 @@ int main(int argc, char** argv) {
   if (!imageB) return std::fprintf(stderr, "imgdiff: %s\n", imageB.error().message.c_str()), 2;
   auto d = engine::compareImages(*imageA, *imageB, threshold);
   if (!d) return std::fprintf(stderr, "imgdiff: %s\n", d.error().message.c_str()), 2;
-  std::printf("max_abs %d mean_abs %.4f psnr %.2f over_%d %.4f%%\n", d->maxAbs, d->meanAbs, d->psnr,
-              threshold, d->shareOver * 100.0);
+  auto ssim = engine::structuralSimilarity(*imageA, *imageB);
+  if (!ssim) return std::fprintf(stderr, "imgdiff: %s\n", ssim.error().message.c_str()), 2;
+  std::printf("max_abs %d mean_abs %.4f psnr %.2f over_%d %.4f%% ssim %.4f\n", d->maxAbs, d->meanAbs, d->psnr,
+              threshold, d->shareOver * 100.0, *ssim);
   if (!diffPath.empty()) {
     if (auto s = engine::writePng(diffPath, engine::diffImage(*imageA, *imageB)); !s) {
       return std::fprintf(stderr, "imgdiff: %s\n", s.error().message.c_str()), 2;

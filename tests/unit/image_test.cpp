@@ -92,3 +92,36 @@ TEST(Image, FlipVerticallySwapsRows) {
   EXPECT_EQ(a.at(0, 1)[0], 1);
   EXPECT_EQ(a.at(0, 2)[0], 0);
 }
+
+// SSIM: 1 for equal images; a uniform brightness shift costs little (structure kept),
+// noise of the same mean square error costs much more, and a shift of the whole image
+// by a constant leaves the contrast term exactly 1.
+TEST(Image, StructuralSimilarityWeighsStructureNotBrightness) {
+  Image base(64, 64);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      auto* p = base.at(x, y);
+      p[0] = p[1] = p[2] = std::uint8_t(((x / 8 + y / 8) % 2) ? 130 : 100);  // low contrast
+      p[3] = 255;
+    }
+  }
+  EXPECT_DOUBLE_EQ(structuralSimilarity(base, base).value(), 1.0);
+  Image brighter = base, noisy = base;
+  std::uint32_t state = 1;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      state = state * 1664525u + 1013904223u;
+      const int sign = (state >> 31) ? 10 : -10;  // +-10: the same MSE as the shift of 10
+      for (int c = 0; c < 3; ++c) {
+        brighter.at(x, y)[c] = std::uint8_t(base.at(x, y)[c] + 10);
+        noisy.at(x, y)[c] = std::uint8_t(base.at(x, y)[c] + sign);
+      }
+    }
+  }
+  EXPECT_NEAR(compareImages(base, brighter)->psnr, compareImages(base, noisy)->psnr, 1e-9);
+  const double shifted = structuralSimilarity(base, brighter).value();
+  const double speckled = structuralSimilarity(base, noisy).value();
+  EXPECT_GT(shifted, 0.98);
+  EXPECT_LT(speckled, shifted - 0.05);
+  EXPECT_FALSE(structuralSimilarity(Image(2, 2), Image(2, 3)).ok());
+}
