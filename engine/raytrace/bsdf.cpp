@@ -39,6 +39,8 @@ glm::vec3 Bsdf::f(const glm::vec3& wi) const {
   const float cosI = glm::dot(frame_.n, wi);
   if (cosI <= 0.0f || woLocal_.z <= 0.0f) return glm::vec3(0.0f);
   if (model_ == Model::Classic) {
+    // Without a highlight classicReflected / (pi N.L) is the Lambert term exactly.
+    if (m_.specular <= 0.0f) return m_.albedo * (m_.diffuse / brdf::BRDF_PI);
     const glm::vec3 reflected =
         brdf::classicReflected(frame_.n, wo_, wi, m_.albedo, m_.diffuse, m_.specular, m_.shininess);
     return reflected / (brdf::BRDF_PI * cosI);

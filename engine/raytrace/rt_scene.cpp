@@ -1,6 +1,7 @@
 #include "raytrace/rt_scene.h"
 
 #include "asset/material_texture.h"
+#include "scene/shapes.h"
 
 #include <algorithm>
 #include <cassert>
@@ -17,40 +18,21 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A box as 12 triangles, flat shaded, laid out as the rasterizer's makeCube
-// (render/mesh.cpp) scaled to the box: per face the normal and the two axes u, v
-// (u x v = normal, so counter-clockwise from outside), corners at uv (0,0) (1,0)
-// (1,1) (0,1) times the material's texture scale.
-RtMesh boxMesh(const glm::dvec3& lo, const glm::dvec3& hi, int material, float uvScale) {
+// A box as the rasterizer draws it: scene/shapes.h's unit cube (12 triangles, per
+// face the normal and two axes, counter-clockwise from outside, corners at uv (0,0)
+// (1,0) (1,1) (0,1)) placed by the same transform, flat shaded, uv times the
+// material's texture scale.
+RtMesh boxMesh(const PrimitiveDesc& box, int material, float uvScale) {
+  const ShapeData cube = shapeForPrimitive(box);
+  const glm::dmat4 transform = primitiveTransform(box, 0.0);
   RtMesh mesh;
   mesh.material = material;
-  const glm::dvec3 center = (lo + hi) * 0.5, half = (hi - lo) * 0.5;
-  const glm::dvec3 faces[6][3] = {{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-                                  {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-                                  {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}}};
-  const glm::dvec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (const auto& f : faces) {
-    const auto base = std::uint32_t(mesh.positions.size());
-    for (const glm::dvec2& c : corners) {
-      const glm::dvec3 local = f[0] + f[1] * (c.x * 2 - 1) + f[2] * (c.y * 2 - 1);
-      mesh.positions.emplace_back(glm::vec3(center + local * half));
-      mesh.uvs.emplace_back(glm::vec2(c) * uvScale);
-    }
-    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  for (const Vertex& v : cube.vertices) {
+    mesh.positions.emplace_back(glm::vec3(transform * glm::dvec4(glm::dvec3(v.position), 1.0)));
+    mesh.uvs.emplace_back(v.uv * uvScale);
   }
+  mesh.indices = cube.indices;
   return mesh;
-}
-
-// The rasterizer's rotationFromTo (render/scene_renderer.cpp): the rotation taking
-// +y to a plane's normal, which fixes the plane's texture axes.
-glm::dmat3 rotationFromYTo(const glm::dvec3& to) {
-  const glm::dvec3 from(0, 1, 0);
-  const glm::dvec3 axis = glm::cross(from, to);
-  const double c = glm::dot(from, to);
-  if (glm::length(axis) < 1e-12) {
-    return c > 0.0 ? glm::dmat3(1.0) : glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::pi<double>(), glm::dvec3(1, 0, 0)));
-  }
-  return glm::dmat3(glm::rotate(glm::dmat4(1.0), std::atan2(glm::length(axis), c), glm::normalize(axis)));
 }
 
 // The rasterizer's sphere (render/mesh.cpp makeSphere): n = (sin t sin p, cos t,
@@ -140,7 +122,7 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
         scene.addPlane(p.point, p.normal, p.material, p.extent > 0.0 ? p.extent : desc.camera.farPlane);
         break;
       case PrimitiveType::Box: {
-        auto id = scene.addMesh(boxMesh(p.min, p.max, p.material, scene.materials_[size_t(p.material)].textureScale));
+        auto id = scene.addMesh(boxMesh(p, p.material, scene.materials_[size_t(p.material)].textureScale));
         if (!id) return id.error();
         break;
       }
@@ -250,7 +232,7 @@ void RtScene::addSphere(const glm::dvec3& center, double radius, int material) {
 
 void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent) {
   const glm::dvec3 n = glm::normalize(normal);
-  const glm::dmat3 r = rotationFromYTo(n);
+  const glm::dmat3 r(rotationFromTo(glm::dvec3(0, 1, 0), n));
   planeUvs_.push_back(PlaneUv{point, r * glm::dvec3(1, 0, 0), r * glm::dvec3(0, 0, 1), extent});
   const double d = glm::dot(n, point);
   planesD_.push_back(Plane<double>{n, d, material});
