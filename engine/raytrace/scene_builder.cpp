@@ -11,6 +11,7 @@
 #include "anim/player.h"
 #include "asset/gltf_loader.h"
 #include "raytrace/tone_map.h"
+#include "scene/instances.h"
 #include "terrain/lod.h"
 #include "terrain/materials.h"
 #include "terrain/scene_terrain.h"
@@ -69,7 +70,7 @@ Status poseInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, 
   std::vector<float> weights = morphs.restWeights;
   if (clip >= 0) {
     const Clip& c = loaded.animated.clips[size_t(clip)];
-    const double local = wrapTime(desc.start + time * desc.speed, c.duration(), LoopMode::Repeat);
+    const double local = wrapTime(clipTimeAt(desc, time), c.duration(), LoopMode::Repeat);
     if (auto s = runJob(SamplingJob{&c, local, skeleton.restPose(), locals}, loaded.model.path); !s) return s;
     if (auto s = runJob(MorphSamplingJob{&c, local, morphs.restWeights, weights}, loaded.model.path); !s) return s;
   }

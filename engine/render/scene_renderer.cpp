@@ -15,6 +15,7 @@
 #include "render/mesh.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
+#include "scene/instances.h"
 #include "render/textures.h"
 #include "terrain/lod.h"
 #include "terrain/scene_terrain.h"
@@ -889,7 +890,7 @@ void SceneRenderer::update(double time) {
   // Clip time is a function of the scene time alone (start + time * speed), so a
   // frame never depends on the frames before it.
   for (auto& c : impl_->characters) {
-    c.instance->player().seek(c.desc.start + time * c.desc.speed);
+    c.instance->player().seek(clipTimeAt(c.desc, time));
     c.instance->evaluate();
   }
 }
