@@ -145,11 +145,16 @@ Status RtScene::checkMaterial(int material) const {
   return Ok{};
 }
 
-Status RtScene::setMaterialTexture(int material, RtTexture texture) {
+// Stores the texture and points the material's `slot` at it.
+Status RtScene::attachTexture(int material, int MaterialExtras::*slot, RtTexture texture) {
   if (auto s = checkMaterial(material); !s) return s;
-  extras_[size_t(material)].texture = int(textures_.size());
+  extras_[size_t(material)].*slot = int(textures_.size());
   textures_.push_back(std::move(texture));
   return Ok{};
+}
+
+Status RtScene::setMaterialTexture(int material, RtTexture texture) {
+  return attachTexture(material, &MaterialExtras::texture, std::move(texture));
 }
 
 glm::vec3 RtScene::baseColor(int material, glm::vec2 uv, float footprint) const {
@@ -169,10 +174,7 @@ Status RtScene::setMaterialAlpha(int material, AlphaMode mode, float factor, flo
 }
 
 Status RtScene::setMetallicRoughnessTexture(int material, RtTexture texture) {
-  if (auto s = checkMaterial(material); !s) return s;
-  extras_[size_t(material)].metallicRoughnessTexture = int(textures_.size());
-  textures_.push_back(std::move(texture));
-  return Ok{};
+  return attachTexture(material, &MaterialExtras::metallicRoughnessTexture, std::move(texture));
 }
 
 Status RtScene::setSingleSided(int material, bool singleSided) {
@@ -182,10 +184,7 @@ Status RtScene::setSingleSided(int material, bool singleSided) {
 }
 
 Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
-  if (auto s = checkMaterial(material); !s) return s;
-  extras_[size_t(material)].emissiveTexture = int(textures_.size());
-  textures_.push_back(std::move(texture));
-  return Ok{};
+  return attachTexture(material, &MaterialExtras::emissiveTexture, std::move(texture));
 }
 
 float RtScene::opacityAt(int material, glm::vec2 uv, float footprint) const {

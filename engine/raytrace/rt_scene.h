@@ -156,6 +156,8 @@ class RtScene {
   template <typename T>
   bool onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const;
   Status checkMaterial(int material) const;  // an error naming it when out of range
+  struct MaterialExtras;
+  Status attachTexture(int material, int MaterialExtras::*slot, RtTexture texture);
   void gatherTriangles(int group);
 
   CameraDesc camera_;

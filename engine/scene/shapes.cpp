@@ -7,6 +7,23 @@
 
 namespace engine {
 
+namespace {
+
+// Two triangles per cell of a grid of (rows + 1) x (columns + 1) vertices laid out
+// row by row: counter-clockwise seen from the side the plane's +y and the sphere's
+// outside face.
+void appendGridIndices(ShapeData& mesh, int rows, int columns) {
+  const auto row = static_cast<std::uint32_t>(columns + 1);
+  for (std::uint32_t j = 0; j < std::uint32_t(rows); ++j) {
+    for (std::uint32_t i = 0; i < std::uint32_t(columns); ++i) {
+      const std::uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
+    }
+  }
+}
+
+}  // namespace
+
 glm::dmat4 rotationFromTo(const glm::dvec3& from, const glm::dvec3& to) {
   const glm::dvec3 axis = glm::cross(from, to);
   const double c = glm::dot(from, to);
@@ -53,14 +70,7 @@ ShapeData makePlane(float size, int cells, float uvRepeat) {
           {{-half + u * size, 0.0f, -half + v * size}, {0, 1, 0}, {u * uvRepeat, v * uvRepeat}});
     }
   }
-  const auto row = static_cast<std::uint32_t>(cells + 1);
-  for (std::uint32_t j = 0; j < std::uint32_t(cells); ++j) {
-    for (std::uint32_t i = 0; i < std::uint32_t(cells); ++i) {
-      const std::uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
-      // Counter-clockwise seen from +y.
-      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
-    }
-  }
+  appendGridIndices(mesh, cells, cells);
   return mesh;
 }
 
@@ -97,13 +107,7 @@ ShapeData makeSphere(float radius, int rings, int segments) {
       mesh.vertices.push_back({n * radius, n, {u, v}});
     }
   }
-  const auto row = static_cast<std::uint32_t>(segments + 1);
-  for (std::uint32_t r = 0; r < std::uint32_t(rings); ++r) {
-    for (std::uint32_t s = 0; s < std::uint32_t(segments); ++s) {
-      const std::uint32_t a = r * row + s, b = a + 1, c = a + row, d = c + 1;
-      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
-    }
-  }
+  appendGridIndices(mesh, rings, segments);
   return mesh;
 }
 
