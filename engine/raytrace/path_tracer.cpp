@@ -87,7 +87,7 @@ class PathTracer {
  public:
   PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
       : scene_(scene), env_(lights.environment), settings_(settings),
-        camera_(scene.camera(), settings.width, settings.height) {
+        camera_(scene.camera(), settings.width, settings.height), cameraPosition_(scene.camera().position) {
     pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
                          (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
     for (const LightDesc& l : scene.lights()) lights_.push_back(pathLightOf(l));
@@ -109,12 +109,16 @@ class PathTracer {
       Pcg32 rng = Pcg32::forSample(settings_.seed, x, y, s);
       ++counters.primary;
       const Ray<T> ray = camera_.clippedToFarPlane(camera_.generateRay<T>(x + (jx - std::floor(jx)), y + (jy - std::floor(jy))));
-      sum += finite(Li(ray, rng, counters, RayCone{0.0f, pixelSpread_}));
+      float distance = -1.0f;
+      glm::vec3 c = Li(ray, rng, counters, RayCone{0.0f, pixelSpread_}, &distance);
+      sum += finite(withFog(c, distance));
     }
     return sum / float(spp);
   }
 
-  glm::vec3 Li(Ray<T> ray, Pcg32& rng, RayCounters& counters, RayCone cone = {}) const {
+  // `firstHit`, when given, receives the distance to the first surface the path
+  // scatters at (-1 when the ray escapes).
+  glm::vec3 Li(Ray<T> ray, Pcg32& rng, RayCounters& counters, RayCone cone = {}, float* firstHit = nullptr) const {
     glm::vec3 radiance(0.0f), beta(1.0f);
     bool countEmitters = true;  // a camera ray or a mirror: nothing sampled the light
     float bsdfPdf = 0.0f;       // of the direction `ray` was drawn with
@@ -142,6 +146,7 @@ class PathTracer {
       }
       const HitMaterial m =
           scene_.materialAt(hit->material, hit->uv, footprint, double(hit->p.y), glm::vec3(hit->ns));
+      if (firstHit && *firstHit < 0.0f) *firstHit = float(glm::length(glm::dvec3(hit->p) - cameraPosition_));
       radiance += beta * m.emission;
       // Past the last bounce a vertex only shows what it emits: the BSDF ray that
       // found it still had to be traced, for the lights MIS shares with it.
@@ -173,6 +178,15 @@ class PathTracer {
   }
 
  private:
+  // The scene's distance fog on what the camera sees, as the rasterizer and the
+  // Whitted tracer define it: mix(fog colour, colour, exp(-density * distance)). It is
+  // the scene's own look, not a medium: no light scatters in it.
+  glm::vec3 withFog(const glm::vec3& color, float distance) const {
+    const FogDesc& fog = scene_.fog();
+    if (!fog.enabled || distance < 0.0f) return color;
+    return glm::mix(fog.color, color, std::clamp(std::exp(-fog.density * distance), 0.0f, 1.0f));
+  }
+
   static glm::vec3 finite(const glm::vec3& c) {
     return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) ? c : glm::vec3(0.0f);
   }
@@ -323,6 +337,7 @@ class PathTracer {
   const EnvironmentLight& env_;
   const RenderSettings& settings_;
   PinholeCamera camera_;
+  glm::dvec3 cameraPosition_;
   float pixelSpread_ = 0.0f;
   std::vector<PathLight> lights_;
 };
