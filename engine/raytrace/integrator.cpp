@@ -69,7 +69,7 @@ class Tracer {
   // ch. 20), which picks the textures' mipmap level as the rasterizer's screen-space
   // derivatives do; {0, 0}: the full-resolution level.
   glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {}) const {
-    const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
+    const std::optional<SurfaceInteraction<T>> hit = firstSolidHit(ray);
     if (!hit) return escaped(ray.d);
     const Vec3<T> v = glm::normalize(ray.d);
     const float distance = float(hit->t * glm::length(ray.d));
@@ -102,6 +102,28 @@ class Tracer {
   }
 
  private:
+  // The nearest hit that is there at all: MASK's cut-away parts and single-sided faces
+  // seen from behind are passed, as the rasterizer discards and culls them (at the
+  // full-resolution texture level; BLEND is drawn opaque by this tracer). t is along
+  // `ray` from its origin.
+  std::optional<SurfaceInteraction<T>> firstSolidHit(const Ray<T>& ray) const {
+    std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
+    if (!scene_.hasTransparency() && !scene_.hasSingleSided()) return hit;
+    Ray<T> rest = ray;
+    T travelled = T(0);
+    for (int pass = 0; hit && pass < 64; ++pass) {
+      const bool back = glm::dot(hit->n, rest.d) > T(0);
+      if (scene_.surfaceOpacity(hit->material, hit->uv, 0.0f, back) > 0.0f) {
+        hit->t += travelled;
+        return hit;
+      }
+      travelled += hit->t;
+      rest = Ray<T>{hit->spawnRay(rest.d).o, rest.d, rest.tMax - hit->t};
+      hit = scene_.intersect(rest);
+    }
+    return std::nullopt;
+  }
+
   // The camera's ray through the image point, ending at the far plane as the
   // rasterizer's view does: past it both show the sky.
   Ray<T> primaryRay(double px, double py) const {
@@ -151,10 +173,7 @@ class Tracer {
     switch (light.type) {
       case LightType::Sun: {
         ls.wi = glm::normalize(Vec3<T>(light.direction));
-        if (light.shadows) {
-          ++counters.shadow;
-          ls.visibility = scene_.intersectAny(si.spawnRay(ls.wi)) ? 0.0f : 1.0f;
-        }
+        if (light.shadows) ls.visibility = scene_.transmittance<T>(si.spawnRay(ls.wi), nullptr, counters.shadow);
         break;
       }
       case LightType::Point: {
@@ -163,11 +182,8 @@ class Tracer {
         const T dist2 = glm::dot(toLight, toLight);
         ls.wi = toLight / std::sqrt(dist2);
         if (light.falloff) ls.radiance /= float(dist2);
-        if (light.shadows) {
-          ++counters.shadow;
-          // The light is a point, not geometry: stop at it (tMax 1 on d = target - o).
-          ls.visibility = scene_.intersectAny(si.spawnRayTo(target, T(1))) ? 0.0f : 1.0f;
-        }
+        // The light is a point, not geometry: stop at it (tMax 1 on d = target - o).
+        if (light.shadows) ls.visibility = scene_.transmittance(si.spawnRayTo(target, T(1)), &target, counters.shadow);
         break;
       }
       case LightType::Area: {
@@ -185,17 +201,16 @@ class Tracer {
                        RayCounters& counters) const {
     const int n = std::max(1, settings_.shadowSamples);
     const Vec3<T> center(light.position), edgeU(light.edgeU), edgeV(light.edgeV);
-    int visible = 0;
+    float visible = 0.0f;
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
         const T u = (T(i) + T(rng.uniform())) / T(n) - T(0.5);
         const T w = (T(j) + T(rng.uniform())) / T(n) - T(0.5);
         const Vec3<T> target = center + u * edgeU + w * edgeV;
-        ++counters.shadow;
-        if (!scene_.intersectAny(si.spawnRayTo(target, T(1)))) ++visible;
+        visible += scene_.transmittance(si.spawnRayTo(target, T(1)), &target, counters.shadow);
       }
     }
-    return float(visible) / float(n * n);
+    return visible / float(n * n);
   }
 
   // What the scene's environment sends along the escaping ray: its sky's gradient,

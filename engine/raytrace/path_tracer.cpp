@@ -136,8 +136,8 @@ class PathTracer {
       // MASK's cut-away parts and single-sided faces seen from behind are not there;
       // BLEND stops a share alpha of the paths (stochastic transparency). Either way
       // the ray goes on unbent, no bounce.
-      const bool culled = scene_.singleSided(hit->material) && glm::dot(hit->n, v) > T(0);
-      if (const float opacity = culled ? 0.0f : scene_.opacityAt(hit->material, hit->uv, footprint);
+      if (const float opacity =
+              scene_.surfaceOpacity(hit->material, hit->uv, footprint, glm::dot(hit->n, v) > T(0));
           opacity < 1.0f && (opacity <= 0.0f || rng.uniform() >= opacity)) {
         if (++passes > kMaxPassThrough) break;
         ray = Ray<T>{hit->spawnRay(ray.d).o, ray.d, ray.tMax - hit->t};
@@ -273,23 +273,8 @@ class PathTracer {
     return f * ls.value * (cosine * weight * visible);
   }
 
-  // The share of the light that reaches the point: 0 or 1 past opaque surfaces (an
-  // any-hit ray), the product of 1 - opacity past cut-away and transparent ones
-  // (exact, not stochastic: shadow rays are cheap and noise is not).
   float transmittance(const SurfaceInteraction<T>& si, const LightSample<T>& ls, RayCounters& counters) const {
-    Ray<T> ray = ls.shadowRay(si);
-    ++counters.shadow;
-    if (!scene_.hasTransparency()) return scene_.intersectAny(ray) ? 0.0f : 1.0f;
-    float share = 1.0f;
-    for (int i = 0; i <= kMaxPassThrough; ++i) {
-      const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
-      if (!hit) return share;
-      share *= 1.0f - scene_.opacityAt(hit->material, hit->uv);
-      if (share <= 0.0f) return 0.0f;
-      ++counters.shadow;
-      ray = ls.toPoint ? hit->spawnRayTo(ls.target, T(1)) : hit->spawnRay(ray.d);
-    }
-    return 0.0f;
+    return scene_.transmittance(ls.shadowRay(si), ls.toPoint ? &ls.target : nullptr, counters.shadow);
   }
 
   // False when the light cannot reach the point (behind an area light, at the light).

@@ -180,6 +180,7 @@ Status RtScene::setMetallicRoughnessTexture(int material, RtTexture texture) {
 Status RtScene::setSingleSided(int material, bool singleSided) {
   if (auto s = checkMaterial(material); !s) return s;
   extras_[size_t(material)].singleSided = singleSided;
+  if (singleSided) singleSided_ = true;
   return Ok{};
 }
 
@@ -473,6 +474,27 @@ bool RtScene::intersectAny(const Ray<T>& ray) const {
   return false;
 }
 
+template <typename T>
+float RtScene::transmittance(const Ray<T>& shadowRay, const Vec3<T>* target, std::uint64_t& rays) const {
+  ++rays;
+  if (!transparent_) return intersectAny(shadowRay) ? 0.0f : 1.0f;
+  Ray<T> ray = shadowRay;
+  float share = 1.0f;
+  // As many surfaces as a ray may pass elsewhere: a forest of alpha-tested leaves is
+  // deep, but not this deep.
+  for (int i = 0; i <= 64; ++i) {
+    const std::optional<SurfaceInteraction<T>> hit = intersect(ray);
+    if (!hit) return share;
+    share *= 1.0f - opacityAt(hit->material, hit->uv);
+    if (share <= 0.0f) return 0.0f;
+    ++rays;
+    ray = target ? hit->spawnRayTo(*target, T(1)) : Ray<T>{hit->spawnRay(ray.d).o, ray.d, ray.tMax - hit->t};
+  }
+  return 0.0f;
+}
+
+template float RtScene::transmittance(const Ray<float>&, const Vec3<float>*, std::uint64_t&) const;
+template float RtScene::transmittance(const Ray<double>&, const Vec3<double>*, std::uint64_t&) const;
 template std::optional<SurfaceInteraction<float>> RtScene::intersect(const Ray<float>&) const;
 template std::optional<SurfaceInteraction<double>> RtScene::intersect(const Ray<double>&) const;
 template bool RtScene::intersectAny(const Ray<float>&) const;

@@ -80,8 +80,15 @@ class RtScene {
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
   // BLEND's alpha; the path tracer lets the rest through.
   float opacityAt(int material, glm::vec2 uv, float footprint = 0.0f) const;
+  // opacityAt for a hit seen from the back (`backFacing`) or the front: 0 for a
+  // single-sided material seen from behind, which the rasterizer culls.
+  float surfaceOpacity(int material, glm::vec2 uv, float footprint, bool backFacing) const {
+    return backFacing && singleSided(material) ? 0.0f : opacityAt(material, uv, footprint);
+  }
   // Whether any material is not opaque (else shadow rays need no more than any hit).
   bool hasTransparency() const { return transparent_; }
+  // Whether any material is single-sided (rays may pass its back faces).
+  bool hasSingleSided() const { return singleSided_; }
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
   // and specular come from `layers` at each hit's uv, height and shading normal.
   Status setTerrainMaterial(int material, RtTerrainMaterial layers);
@@ -127,6 +134,12 @@ class RtScene {
   std::optional<SurfaceInteraction<T>> intersect(const Ray<T>& ray) const;
   template <typename T>
   bool intersectAny(const Ray<T>& ray) const;
+  // The share of light that passes along a shadow ray: 0 or 1 past opaque surfaces
+  // (an any-hit ray), the product of 1 - opacity past cut-away and transparent ones
+  // (exact, not stochastic). `target`: the ray ends there (d = target - o, tMax 1);
+  // null: it goes to tMax along d. `rays` counts the rays traced.
+  template <typename T>
+  float transmittance(const Ray<T>& ray, const Vec3<T>* target, std::uint64_t& rays) const;
 
   const CameraDesc& camera() const { return camera_; }
   const std::vector<LightDesc>& lights() const { return lights_; }
@@ -177,6 +190,7 @@ class RtScene {
   };
   std::vector<MaterialExtras> extras_;  // one per material
   bool transparent_ = false;
+  bool singleSided_ = false;
   std::vector<RtTexture> textures_;
   std::vector<RtTerrainMaterial> terrains_;
   // Per plane, its square and what its texture coordinates need: the rasterizer
