@@ -158,6 +158,10 @@ DemoImages renderDemo(int width, int height) {
   auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/demo.json");
   EXPECT_TRUE(scene.ok()) << scene.error().message;
   if (!scene) return out;
+  // The Whitted tracer lights PBR surfaces with the hemisphere ambient (rt_scene.cpp),
+  // so the rasterizer is compared in that setting; its IBL is compared with the path
+  // tracer (ibl_vs_pathtrace_test.cpp).
+  scene->render.ambient = Ambient::Hemisphere;
   out.traced = rayTraced(*scene, width, height, 1.0);
 
   SceneDesc plain = *scene;
@@ -227,6 +231,7 @@ TEST(RasterVsRaytrace, DemoTerrainAgreesAtLowResolution) {
   scene->primitives.clear();
   scene->models.clear();
   scene->camera.farPlane = 4000.0;
+  scene->render.ambient = Ambient::Hemisphere;  // the Whitted tracer's, as above
   const Image traced = rayTraced(*scene, kW, kH, 1.0);
   ASSERT_FALSE(traced.empty());
   const Image raster = rasterized(*scene, -1, kW, kH, 1.0);
