@@ -32,7 +32,8 @@ class EnvironmentLighting {
   // The prefiltered chain's last level (roughness 1); 0 without one.
   int maxLevel() const { return levels_ - 1; }
   const gl::Texture& prefiltered() const { return prefiltered_; }
-  // "brdf-lut(32x32) sh9 prefiltered(cube 128, 5 levels)".
+  // "brdf-lut(32x32) sh9(from cube 128) prefiltered(cube 128, 5 levels 128..8, 128
+  // ggx samples)", for demo --describe.
   std::string describe() const;
 
  private:

@@ -10,11 +10,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "app/runner.h"
 #include "asset/scene_file.h"
 #include "core/image.h"
+#include "rasterized.h"
 #include "raytrace/scene_builder.h"
-#include "scene_game.h"
 
 using namespace engine;
 
@@ -34,15 +33,8 @@ constexpr const char* kScene = R"({
 
 Image rasterized(const SceneDesc& scene, Ambient ambient) {
   SceneRenderOptions options;
-  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
   options.ambientOverride = ambient;
-  demo::SceneGame game(scene, options);
-  RunOptions run;
-  run.width = kWidth;
-  run.height = kHeight;
-  Image image;
-  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &image).ok());
-  return image;
+  return test::rasterizedWith(scene, options, kWidth, kHeight);
 }
 
 Image pathTraced(const SceneDesc& scene) {

@@ -14,6 +14,7 @@
 #include "core/image.h"
 #include "raytrace/scene_builder.h"
 #include "raytrace/tone_map.h"
+#include "rasterized.h"
 #include "scene_game.h"
 
 using namespace engine;
@@ -69,16 +70,8 @@ Image rayTraced(const SceneDesc& scene, int width = kWidth, int height = kHeight
 Image rasterized(const SceneDesc& scene, int probeSize = -1, int width = kWidth, int height = kHeight,
                  std::optional<double> time = std::nullopt) {
   SceneRenderOptions options;
-  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
   options.reflectionProbeOverride = probeSize;
-  demo::SceneGame game(scene, options);
-  RunOptions run;
-  run.width = width;
-  run.height = height;
-  run.time = time;
-  Image image;
-  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &image).ok());
-  return image;
+  return test::rasterizedWith(scene, options, width, height, time);
 }
 
 // Mean absolute difference over the RGB channels of the pixels where `mask` is set.
