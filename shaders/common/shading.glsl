@@ -41,9 +41,14 @@ layout(binding = 10) uniform sampler2D u_splitSum;
 layout(binding = 11) uniform samplerCube u_prefiltered;
 #endif
 
+// Written out with constant indices, so that each shBasis folds to its polynomial
+// when compiled, whether or not a compiler unrolls a loop and folds its branches.
 vec3 shIrradiance(vec3 n) {
-  vec3 e = vec3(0.0);
-  for (int i = 0; i < 9; ++i) e += u_shIrradiance[i].rgb * shBasis(i, n);
+  vec3 e = u_shIrradiance[0].rgb * shBasis(0, n) + u_shIrradiance[1].rgb * shBasis(1, n) +
+           u_shIrradiance[2].rgb * shBasis(2, n) + u_shIrradiance[3].rgb * shBasis(3, n) +
+           u_shIrradiance[4].rgb * shBasis(4, n) + u_shIrradiance[5].rgb * shBasis(5, n) +
+           u_shIrradiance[6].rgb * shBasis(6, n) + u_shIrradiance[7].rgb * shBasis(7, n) +
+           u_shIrradiance[8].rgb * shBasis(8, n);
   return max(e, vec3(0.0));  // order 2 rings below zero behind a bright sun
 }
 
