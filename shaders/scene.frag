@@ -1,7 +1,8 @@
 #version 450 core
 // Shading of scene meshes into the HDR target. Variants (#defines) are chosen per
 // scene and per material: CLASSIC (the course's ambient + diffuse model) or PBR
-// (glTF metallic-roughness, GGX), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
+// (glTF metallic-roughness, GGX) with its ambient (AMBIENT_SH or AMBIENT_IBL, else
+// the hemisphere; common/shading.glsl), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
 // material inputs of common/material.glsl (TEXTURED, NORMAL_MAP, MR_TEXTURE,
 // EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK). Alpha goes out with the colour: BLEND
 // materials are drawn with blending on, in linear HDR.

@@ -2,7 +2,8 @@
 // Terrain materials: grass, rock and snow blended by height and slope, shaded into
 // the HDR target with the same frame block, lighting model (common/shading.glsl),
 // sun and point shadows and fog as scene.frag, so a rock and the ground beside it
-// agree. Variants as scene.frag: CLASSIC, SUN_SHADOWS, POINT_SHADOWS, FOG.
+// agree. Variants as scene.frag: CLASSIC, AMBIENT_SH, AMBIENT_IBL, SUN_SHADOWS,
+// POINT_SHADOWS, FOG.
 #include "common/frame.glsl"
 #include "common/shading.glsl"
 #include "common/shadows.glsl"

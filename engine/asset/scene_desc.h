@@ -116,6 +116,12 @@ enum class Shading { Classic, Pbr };
 enum class ShadowFilter { Hard, Pcf };
 enum class ToneMap { None, Reinhard, Aces };
 enum class OutputCurve { Srgb, Gamma22 };
+// The rasterizer's PBR ambient (classic shading keeps its own): HEMISPHERE mixes two
+// colours of the sky by the normal; SH takes the diffuse from the environment's
+// order-2 SH irradiance and the specular from the same irradiance in the mirror
+// direction (a lobe as blurry as the diffuse); IBL the split-sum's prefiltered
+// environment for the specular. The path tracer needs none of them.
+enum class Ambient { Hemisphere, Sh, Ibl };
 
 struct RenderDesc {
   int msaa = 1;
@@ -130,6 +136,9 @@ struct RenderDesc {
   // Cube map size of the rasterizer's reflection probes (one per mirror sphere or
   // box); 0: mirrors show only their own shading.
   int reflectionProbe = 256;
+  // PBR ambient; unset: IBL under a sky, the hemisphere without one (render.ambient).
+  std::optional<Ambient> ambient;
+  int iblSize = 128;  // texels a side of the environment's cube map (render.ibl_size)
 };
 
 struct TerrainDesc {
@@ -171,6 +180,11 @@ inline glm::dmat4 modelTransform(const ModelDesc& desc, double groundHeight = 0.
 // sky's colours (dimmed), or the scene's ambient grey without a sky.
 inline glm::vec3 ambientSkyColor(const SceneDesc& scene) {
   return scene.sky.enabled ? scene.sky.zenith * 0.35f + scene.sky.horizon * 0.15f : glm::vec3(scene.ambient);
+}
+// The PBR ambient the rasterizer draws `scene` with: the scene's choice, else IBL
+// where there is a sky to light with.
+inline Ambient ambientOf(const SceneDesc& scene) {
+  return scene.render.ambient.value_or(scene.sky.enabled ? Ambient::Ibl : Ambient::Hemisphere);
 }
 inline glm::vec3 ambientGroundColor(const SceneDesc& scene) {
   return scene.sky.enabled ? scene.sky.ground * 0.3f : glm::vec3(scene.ambient);

@@ -288,9 +288,19 @@ Status readSky(const Node& n, SkyDesc& s, const std::filesystem::path& folder) {
   return Ok{};
 }
 
+}  // namespace
+
+const std::map<std::string, Ambient>& ambientNames() {
+  static const std::map<std::string, Ambient> names{
+      {"hemisphere", Ambient::Hemisphere}, {"sh", Ambient::Sh}, {"ibl", Ambient::Ibl}};
+  return names;
+}
+
+namespace {
+
 Status readRender(const Node& n, RenderDesc& r) {
   TRY(n.expectObject({"msaa", "supersample", "shading", "shadow_map", "shadow_filter", "pcf_kernel", "exposure", "tonemap", "output",
-                          "reflection_probe"}));
+                          "reflection_probe", "ambient", "ibl_size"}));
   TRY(readInt(n, "msaa", r.msaa, 1, 16));
   if (r.msaa & (r.msaa - 1)) return n.at("msaa").error("expected 1, 2, 4, 8 or 16");
   TRY(readInt(n, "supersample", r.supersample, 1, 4));
@@ -300,6 +310,12 @@ Status readRender(const Node& n, RenderDesc& r) {
   TRY(readInt(n, "pcf_kernel", r.pcfKernel, 1, 15));
   if (r.pcfKernel % 2 == 0) return n.at("pcf_kernel").error("expected an odd kernel width");
   TRY(readInt(n, "reflection_probe", r.reflectionProbe, 0, 2048));
+  if (n.has("ambient")) {
+    Ambient ambient = Ambient::Ibl;
+    TRY(readEnum(n, "ambient", ambient, ambientNames()));
+    r.ambient = ambient;
+  }
+  TRY(readInt(n, "ibl_size", r.iblSize, 16, 1024));
   TRY(readFloat(n, "exposure", r.exposure, 1e-6, 1e6));
   TRY(readEnum(n, "tonemap", r.toneMap, std::map<std::string, ToneMap>{{"none", ToneMap::None}, {"reinhard", ToneMap::Reinhard}, {"aces", ToneMap::Aces}}));
   TRY(readEnum(n, "output", r.output, std::map<std::string, OutputCurve>{{"srgb", OutputCurve::Srgb}, {"gamma2.2", OutputCurve::Gamma22}}));

@@ -3,6 +3,7 @@
 // Every error names the file, the JSON path and what was expected:
 //   "demo.json: /models/2/speed: expected a number".
 // Unknown keys are errors too, so a typo does not silently fall back to a default.
+#include <map>
 #include <string>
 
 #include "asset/scene_desc.h"
@@ -13,5 +14,7 @@ namespace engine {
 Result<SceneDesc> loadSceneFile(const std::string& path);
 // Parses scene JSON text; `name` is used in messages and to resolve relative paths.
 Result<SceneDesc> parseScene(const std::string& text, const std::string& name);
+// render.ambient's names ("hemisphere", "sh", "ibl"), which demo --ambient takes too.
+const std::map<std::string, Ambient>& ambientNames();
 
 }  // namespace engine

@@ -22,6 +22,8 @@ struct FrameBlock {
   glm::ivec4 counts{0};
   glm::mat4 sunShadowMatrixFar{1.0f};
   glm::vec4 sunFarParams{0.0f};
+  glm::vec4 shIrradiance[9]{};  // rgb: the environment's SH irradiance (render/ibl.h)
+  glm::vec4 iblParams{0.0f};    // x: the prefiltered chain's last level (roughness 1)
 };
 
 }  // namespace engine

@@ -1,10 +1,13 @@
 #include "render/scene_renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
+#include <iomanip>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "asset/gltf_loader.h"
@@ -12,6 +15,7 @@
 #include "core/linear_image.h"
 #include "render/character.h"
 #include "render/frame_block.h"
+#include "render/ibl.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
@@ -158,6 +162,11 @@ struct SceneRenderer::Impl {
   std::unique_ptr<ShaderVariants> variants;
   gl::Program sky, post;
   gl::Texture skyImage;  // the sky's lat-long image, when the scene has one
+  // The PBR ambient (render/ibl.h); built at load for Ambient::Sh and ::Ibl only.
+  Ambient ambient = Ambient::Hemisphere;
+  int iblSize = 0;
+  std::optional<EnvironmentLighting> environmentLighting;
+  double iblMilliseconds = 0.0;  // its one-time cost, GL work finished
   gl::VertexArray emptyVao;
   gl::Buffer frameUbo;
   std::unique_ptr<GpuMesh> sphere, cube, quad;
@@ -203,6 +212,7 @@ struct SceneRenderer::Impl {
 
   Status init(const SceneRenderOptions& options);
   Status makeSky();
+  Status makeEnvironmentLighting();
   Status loadTerrain(const std::vector<std::string>& defines);
   terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
@@ -228,7 +238,7 @@ struct SceneRenderer::Impl {
   void setUniforms(const gl::Program& program) const;
   Status drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
                     int skipShape = -1, bool useProbes = false);
-  void drawSky(const glm::dmat4& viewProjection);
+  void drawSky(const glm::dmat4& viewProjection, bool sunDisk = true);
   Status drawWorld(const View& view, int skipShape, bool useProbes);
   Status makeProbes();
   Status renderProbes(const glm::dvec3& cameraPosition);
@@ -278,6 +288,12 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
   if (scene.fog.enabled) defines.push_back("FOG 1");
+  if (scene.render.shading == Shading::Pbr) {
+    ambient = options.ambientOverride.value_or(ambientOf(scene));
+    iblSize = options.iblSizeOverride > 0 ? options.iblSizeOverride : render.iblSize;
+    if (ambient == Ambient::Sh) defines.push_back("AMBIENT_SH 1");
+    if (ambient == Ambient::Ibl) defines.push_back("AMBIENT_IBL 1");
+  }
   probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
   if (auto s = makeProbes(); !s) return s;
   if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
@@ -289,6 +305,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   post = std::move(postProgram).value();
   emptyVao = gl::VertexArray::create();
   frameUbo = gl::Buffer::create(sizeof(FrameBlock));
+  if (auto s = makeEnvironmentLighting(); !s) return s;
 
   if (auto s = loadTerrain(defines); !s) return s;
   if (auto s = loadMaterials(); !s) return s;
@@ -343,6 +360,42 @@ Status SceneRenderer::Impl::makeSky() {
   auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
   if (!program) return program.error();
   sky = std::move(program).value();
+  return Ok{};
+}
+
+// The environment as the path tracer sees it (the sky without its sun disk, or the
+// background), drawn into a cube map once: the scene's sky never changes while it
+// is loaded. From it the SH irradiance, the BRDF table and, for IBL, the
+// prefiltered chain; the cube itself is dropped.
+Status SceneRenderer::Impl::makeEnvironmentLighting() {
+  if (scene.render.shading == Shading::Classic || ambient == Ambient::Hemisphere) return Ok{};
+  const auto start = std::chrono::steady_clock::now();
+  GLint callerFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  const gl::Texture environment = makeCubeMap(iblSize, 0);
+  const gl::Framebuffer fbo = gl::Framebuffer::create();
+  // Any 90-degree projection will do: sky.vert takes only directions from it.
+  const glm::dmat4 projection = glm::perspective(glm::half_pi<double>(), 1.0, 0.1, 10.0);
+  const glm::vec3 background = scene.sky.background;
+  glViewport(0, 0, iblSize, iblSize);
+  glDisable(GL_CULL_FACE);
+  for (int face = 0; face < 6; ++face) {
+    glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, environment.id(), 0, face);
+    if (auto s = fbo.check("ibl-environment"); !s) return s;
+    fbo.bind();
+    glClearColor(background.r, background.g, background.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (scene.sky.enabled) {
+      drawSky(projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]), false);
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
+  environment.generateMipmaps();
+  auto lighting = EnvironmentLighting::create(shaderDir, environment, iblSize, ambient);
+  if (!lighting) return makeError(scene.path + ": /render/ambient: " + lighting.error().message);
+  environmentLighting = std::move(lighting).value();
+  glFinish();
+  iblMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return Ok{};
 }
 
@@ -572,6 +625,11 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
   frame.fog = scene.fog.enabled ? glm::vec4(scene.fog.color, scene.fog.density) : glm::vec4(0.0f);
   frame.shadowParams = glm::vec4(sunShadowSize ? 1.0f / float(sunShadowSize) : 0.0f, float(pcfRadius),
                                  float(pointFar), cubeSize ? 2.0f / float(cubeSize) : 0.0f);
+  if (environmentLighting) {
+    for (int i = 0; i < 9; ++i) frame.shIrradiance[i] = glm::vec4(environmentLighting->sh().coefficients[size_t(i)], 0.0f);
+    frame.iblParams = glm::vec4(float(environmentLighting->maxLevel()), 0.0f, 0.0f, 0.0f);
+    environmentLighting->bind();
+  }
   frameUbo.upload(0, sizeof(FrameBlock), &frame);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
 }
@@ -788,7 +846,7 @@ Status SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) 
   return Ok{};
 }
 
-void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection) {
+void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk) {
   sky.use();
   if (skyImage) {
     const float radians = glm::radians(scene.sky.rotationDegrees);
@@ -798,7 +856,7 @@ void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection) {
   } else {
     Lighting lighting;
     lighting.sunDirection = sunLight >= 0 ? glm::vec3(scene.lights[size_t(sunLight)].direction) : glm::vec3(0, -1, 0);
-    lighting.sunDisk = sunLight >= 0 && scene.sky.sunDisk;
+    lighting.sunDisk = sunDisk && sunLight >= 0 && scene.sky.sunDisk;
     lighting.skyZenith = scene.sky.zenith;
     lighting.skyHorizon = scene.sky.horizon;
     lighting.skyGround = scene.sky.ground;
@@ -879,6 +937,10 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const SceneDesc& sc
 }
 
 const SceneDesc& SceneRenderer::scene() const { return impl_->scene; }
+
+const EnvironmentLighting* SceneRenderer::environmentLighting() const {
+  return impl_->environmentLighting ? &*impl_->environmentLighting : nullptr;
+}
 
 std::vector<CharacterInstance*> SceneRenderer::characters() {
   std::vector<CharacterInstance*> out;
@@ -1020,12 +1082,17 @@ std::string SceneRenderer::describe() const {
     out << "(image " << std::filesystem::path(s.scene.sky.image).filename().string() << " " << s.skyImage.width() << "x"
         << s.skyImage.height() << ")";
   }
+  if (s.environmentLighting) out << (s.ambient == Ambient::Ibl ? " ibl(" : " sh(") << s.environmentLighting->describe() << ")";
   if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
   if (s.blendPass) out << " blend(sorted)";
   out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   out << "\nshading: " << (s.scene.render.shading == Shading::Classic ? "classic" : "pbr");
+  if (s.scene.render.shading == Shading::Pbr) {
+    out << ", ambient " << (s.ambient == Ambient::Ibl ? "ibl" : s.ambient == Ambient::Sh ? "sh" : "hemisphere");
+    if (s.environmentLighting) out << " (built once in " << std::fixed << std::setprecision(1) << s.iblMilliseconds << " ms)";
+  }
   out << "\nvariants:";
   for (const auto& v : s.variants->built()) out << " " << v.describe();
   out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes, "

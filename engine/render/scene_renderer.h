@@ -5,6 +5,7 @@
 // maps into whatever framebuffer is bound. Reverse-Z depth and camera-relative
 // positions keep scenes far from the origin free of depth fighting and jitter.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 namespace engine {
 
 class CharacterInstance;
+class EnvironmentLighting;
 
 struct SceneRenderOptions {
   std::string shaderDir;
@@ -23,6 +25,8 @@ struct SceneRenderOptions {
   int shadowMapOverride = 0;
   int pcfKernelOverride = 0;   // odd width; 1 = hard
   int reflectionProbeOverride = -1;  // >= 0 replaces render.reflection_probe (0 = off)
+  std::optional<Ambient> ambientOverride;  // replaces render.ambient (PBR scenes)
+  int iblSizeOverride = 0;                 // > 0 replaces render.ibl_size
 };
 
 struct SceneStats {
@@ -54,6 +58,9 @@ class SceneRenderer {
   // GL_PRIMITIVES_GENERATED query). Waits for the frame: for benchmarks and tools.
   long long lastFrameTriangles() const;
   const SceneDesc& scene() const;
+  // The PBR ambient's image-based lighting (render/ibl.h): null for the hemisphere
+  // ambient and classic shading. For tests and tools.
+  const EnvironmentLighting* environmentLighting() const;
   std::vector<CharacterInstance*> characters();
 
  private:

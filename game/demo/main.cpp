@@ -90,6 +90,13 @@ int main(int argc, char** argv) {
   app.add_option("--reflection-probe", render.reflectionProbeOverride,
                  "Cube map size of the mirrors' reflection probes (0: no reflections)")
       ->check(CLI::Range(0, 2048));
+  std::string ambient;
+  app.add_option("--ambient", ambient,
+                 "PBR ambient: hemisphere (two sky colours), sh (SH irradiance of the sky) or ibl (split-sum "
+                 "image-based lighting); default: the scene's render.ambient, ibl under a sky")
+      ->check(CLI::IsMember({"hemisphere", "sh", "ibl"}));
+  app.add_option("--ibl-size", render.iblSizeOverride, "Cube map size of the environment for sh and ibl")
+      ->check(CLI::Range(16, 1024));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
   double soakSeconds = 0.0, soakReload = 10.0;
   app.add_option("--soak", soakSeconds,
@@ -132,6 +139,7 @@ int main(int argc, char** argv) {
   // The scene renderer multisamples its own HDR target; the runner's target then
   // only receives the tone-mapped result.
   render.shaderDir = options.shaderDir;
+  if (!ambient.empty()) render.ambientOverride = engine::ambientNames().at(ambient);
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
   options.run.targetSamples = 1;
   if (mode == "raytrace" || mode == "pathtrace") {

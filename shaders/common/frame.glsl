@@ -4,7 +4,8 @@
 // Texture units of the scene programs (one owner each; a shared unit with two
 // sampler types is a draw-time GL error): 0 base colour, 1 normal map, 2
 // metallic-roughness, 3 emissive (terrain: 1-3 its layers, 0 its height pages),
-// 4 sun shadow, 5 point shadow cube, 6 occlusion, 7 far sun shadow, 8 reflection probe.
+// 4 sun shadow, 5 point shadow cube, 6 occlusion, 7 far sun shadow, 8 reflection probe,
+// 10 the split-sum BRDF table, 11 the prefiltered environment (9: the sky's image).
 #define MAX_POINT_LIGHTS 4
 layout(std140, binding = 0) uniform Frame {
   mat4 u_viewProjection;
@@ -20,4 +21,6 @@ layout(std140, binding = 0) uniform Frame {
   ivec4 u_counts;           // x: point lights
   mat4 u_sunShadowMatrixFar;  // the far sun map (terrain scenes): as u_sunShadowMatrix
   vec4 u_sunFarParams;      // x: far map texel size (uv), y: its texel's world size
+  vec4 u_shIrradiance[9];   // rgb: SH irradiance of the environment (AMBIENT_SH, AMBIENT_IBL)
+  vec4 u_iblParams;         // x: the prefiltered chain's last level (AMBIENT_IBL)
 };

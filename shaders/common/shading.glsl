@@ -27,14 +27,56 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
   return radiance * visibility *
          classicReflected(s.n, s.toEye, l, s.albedo, s.diffuse, s.specular, s.shininess);
 }
+#elif defined(AMBIENT_SH) || defined(AMBIENT_IBL)
+// The environment's light, as the path tracer integrates it, by the split sum (Karis
+// 2013): the diffuse lobe sees the SH irradiance E(n), weighted by its mean 1 - F;
+// the specular the environment's radiance around the mirror direction times the
+// lobe's directional albedo f0 A + B (the BRDF table, render/ibl.h). Under
+// AMBIENT_IBL that radiance is the GGX-prefiltered cube at the surface's roughness;
+// under AMBIENT_SH it is E(r) / pi, the environment as blurred as a Lambert lobe
+// sees it: right for rough surfaces, too dull a highlight on smooth ones.
+#include "common/ibl_sampling.glsl"
+layout(binding = 10) uniform sampler2D u_splitSum;
+#ifdef AMBIENT_IBL
+layout(binding = 11) uniform samplerCube u_prefiltered;
+#endif
+
+// Written out with constant indices, so that each shBasis folds to its polynomial
+// when compiled, whether or not a compiler unrolls a loop and folds its branches.
+vec3 shIrradiance(vec3 n) {
+  vec3 e = u_shIrradiance[0].rgb * shBasis(0, n) + u_shIrradiance[1].rgb * shBasis(1, n) +
+           u_shIrradiance[2].rgb * shBasis(2, n) + u_shIrradiance[3].rgb * shBasis(3, n) +
+           u_shIrradiance[4].rgb * shBasis(4, n) + u_shIrradiance[5].rgb * shBasis(5, n) +
+           u_shIrradiance[6].rgb * shBasis(6, n) + u_shIrradiance[7].rgb * shBasis(7, n) +
+           u_shIrradiance[8].rgb * shBasis(8, n);
+  return max(e, vec3(0.0));  // order 2 rings below zero behind a bright sun
+}
+
+vec3 shadeAmbient(Surface s) {
+  float nDotV = max(dot(s.n, s.toEye), 1e-4);
+  vec3 table = texture(u_splitSum, vec2(nDotV, s.roughness)).rgb;
+  vec3 f0 = metallicF0(s.albedo, s.metallic);
+  vec3 diffuse = (vec3(1.0) - f0) * (table.z * (1.0 - s.metallic)) * s.albedo * shIrradiance(s.n) / PI;
+  vec3 r = reflect(-s.toEye, s.n);
+#ifdef AMBIENT_IBL
+  vec3 radiance = textureLod(u_prefiltered, r, s.roughness * u_iblParams.x).rgb;
 #else
+  vec3 radiance = shIrradiance(r) / PI;
+#endif
+  return diffuse + radiance * (f0 * table.x + vec3(table.y));
+}
+#else
+// The cheapest ambient (render.ambient "hemisphere"): two colours of the sky mixed by
+// the normal, and a guess at the specular's share.
 vec3 shadeAmbient(Surface s) {
   vec3 sky = mix(u_ambientGround.rgb, u_ambientSky.rgb, 0.5 + 0.5 * s.n.y);
   vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
   vec3 f0 = metallicF0(s.albedo, s.metallic);
   return sky * (diffuseColor + f0 * (1.0 - s.roughness) * 0.5);
 }
+#endif
 
+#ifndef CLASSIC
 vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
   float nDotL = dot(s.n, l);
   if (nDotL <= 0.0 || visibility <= 0.0) return vec3(0.0);

@@ -204,7 +204,8 @@ PY
   describe_demo)
     # The default scene needs every pass: sun shadows, sky, terrain, fog, skinning.
     expect 0 "shadow-sun" -- "$BIN/demo" --describe
-    for want in "sky" "terrain(cdlod" "opaque+fog" "lbs4+textured" "dqs4+depth" "shading: pbr"; do
+    for want in "sky" "terrain(cdlod" "opaque+fog" "lbs4+textured" "dqs4+depth" "shading: pbr" \
+                "ibl(brdf-lut(32x32) sh9(from cube 128) prefiltered(cube 128, 5 levels 128..8" "ambient ibl (built once in"; do
       grep -qF "$want" "$OUT" || { echo "FAIL: --describe lacks $want"; cat "$OUT"; exit 1; }
     done
     # Its robots have a base colour texture and nothing else: no material variant
@@ -219,13 +220,19 @@ PY
     for want in "static+textured+normalmap+mr+occlusion" "static+normalmap+mr" "static+emissive" \
                 "static+textured+mask " "static+textured+mask+depth"; do
       grep -qF -- "$want" "$OUT" || { echo "FAIL: --describe lacks $want"; cat "$OUT"; exit 1; }
-    done ;;
+    done
+    # The ambient's knobs: SH builds no prefiltered chain, the hemisphere nothing.
+    expect 0 "sh\\(brdf-lut\\(32x32\\) sh9\\(from cube 64\\)\\)" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" \
+      --describe --ambient sh --ibl-size 64
+    if grep -qF "prefiltered" "$OUT"; then echo "FAIL: sh built a prefiltered chain"; cat "$OUT"; exit 1; fi
+    expect 0 "ambient hemisphere" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --describe --ambient hemisphere
+    if grep -qF "brdf-lut" "$OUT"; then echo "FAIL: the hemisphere ambient built IBL"; cat "$OUT"; exit 1; fi ;;
   describe_cornell)
     # The course room: one point light with a cube shadow, classic shading, and
     # nothing it does not contain (no sun map, sky, terrain, fog or skinning).
     expect 0 "shadow-point" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --describe
     grep -qF "shading: classic" "$OUT" || { echo "FAIL: not classic"; cat "$OUT"; exit 1; }
-    for unwanted in "shadow-sun" "sky" "terrain" "fog" "lbs" "dqs" "textured"; do
+    for unwanted in "shadow-sun" "sky" "terrain" "fog" "lbs" "dqs" "textured" "brdf-lut" "ambient"; do
       if grep -qF "$unwanted" "$OUT"; then echo "FAIL: cornell built $unwanted"; cat "$OUT"; exit 1; fi
     done ;;
   scene_unknown_clip)

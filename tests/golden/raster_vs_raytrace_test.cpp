@@ -14,6 +14,7 @@
 #include "core/image.h"
 #include "raytrace/scene_builder.h"
 #include "raytrace/tone_map.h"
+#include "rasterized.h"
 #include "scene_game.h"
 
 using namespace engine;
@@ -69,16 +70,8 @@ Image rayTraced(const SceneDesc& scene, int width = kWidth, int height = kHeight
 Image rasterized(const SceneDesc& scene, int probeSize = -1, int width = kWidth, int height = kHeight,
                  std::optional<double> time = std::nullopt) {
   SceneRenderOptions options;
-  options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
   options.reflectionProbeOverride = probeSize;
-  demo::SceneGame game(scene, options);
-  RunOptions run;
-  run.width = width;
-  run.height = height;
-  run.time = time;
-  Image image;
-  EXPECT_TRUE(runHeadless(Backend::Egl, game, run, &image).ok());
-  return image;
+  return test::rasterizedWith(scene, options, width, height, time);
 }
 
 // Mean absolute difference over the RGB channels of the pixels where `mask` is set.
@@ -158,6 +151,10 @@ DemoImages renderDemo(int width, int height) {
   auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/demo.json");
   EXPECT_TRUE(scene.ok()) << scene.error().message;
   if (!scene) return out;
+  // The Whitted tracer lights PBR surfaces with the hemisphere ambient (rt_scene.cpp),
+  // so the rasterizer is compared in that setting; its IBL is compared with the path
+  // tracer (ibl_vs_pathtrace_test.cpp).
+  scene->render.ambient = Ambient::Hemisphere;
   out.traced = rayTraced(*scene, width, height, 1.0);
 
   SceneDesc plain = *scene;
@@ -227,6 +224,7 @@ TEST(RasterVsRaytrace, DemoTerrainAgreesAtLowResolution) {
   scene->primitives.clear();
   scene->models.clear();
   scene->camera.farPlane = 4000.0;
+  scene->render.ambient = Ambient::Hemisphere;  // the Whitted tracer's, as above
   const Image traced = rayTraced(*scene, kW, kH, 1.0);
   ASSERT_FALSE(traced.empty());
   const Image raster = rasterized(*scene, -1, kW, kH, 1.0);

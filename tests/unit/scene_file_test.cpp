@@ -61,6 +61,25 @@ TEST(SceneFile, ErrorsNameFilePathAndExpectation) {
             "s.json: /primitives/0/radius: expected a number in [1e-09, 1e+12], got -1");
 }
 
+// render.ambient: unset falls back by the sky (IBL under one); a name not known
+// is an error naming the choices.
+TEST(SceneFile, AmbientChoice) {
+  auto sky = parseScene("{}", "s.json");
+  ASSERT_TRUE(sky.ok());
+  EXPECT_FALSE(sky->render.ambient.has_value());
+  EXPECT_EQ(ambientOf(*sky), Ambient::Ibl);
+  auto bare = parseScene(R"({"sky": false})", "s.json");
+  ASSERT_TRUE(bare.ok());
+  EXPECT_EQ(ambientOf(*bare), Ambient::Hemisphere);
+  auto sh = parseScene(R"({"render": {"ambient": "sh", "ibl_size": 64}})", "s.json");
+  ASSERT_TRUE(sh.ok());
+  EXPECT_EQ(ambientOf(*sh), Ambient::Sh);
+  EXPECT_EQ(sh->render.iblSize, 64);
+  EXPECT_EQ(errorOf(R"({"render": {"ambient": "bright"}})"),
+            "s.json: /render/ambient: \"bright\" is not one of: hemisphere, ibl, sh");
+  EXPECT_EQ(errorOf(R"({"render": {"ibl_size": 8}})").rfind("s.json: /render/ibl_size: ", 0), 0u);
+}
+
 TEST(SceneFile, UnknownKeysAreErrors) {
   const std::string e = errorOf(R"({"camera": {"fov": 60}})");
   EXPECT_EQ(e.rfind("s.json: /camera/fov: unknown key; expected one of:", 0), 0u) << e;
