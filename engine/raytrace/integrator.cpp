@@ -1,17 +1,13 @@
 #include "raytrace/integrator.h"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <mutex>
-#include <numbers>
 #include <optional>
-
 
 #include "core/brdf.h"
 #include "raytrace/camera.h"
 #include "raytrace/path_tracer.h"
+#include "raytrace/ray_cone.h"
 #include "raytrace/rng.h"
 #include "raytrace/tile_render.h"
 
@@ -27,24 +23,13 @@ struct LightSample {
   float visibility = 1.0f;
 };
 
-// A ray cone: the footprint's width where the ray starts and its growth per unit of
-// distance (radians).
-struct RayCone {
-  float width = 0.0f;
-  float spread = 0.0f;
-};
-
 template <typename T>
 class Tracer {
  public:
   Tracer(const RtScene& scene, const RenderSettings& settings)
       : scene_(scene), settings_(settings), camera_(scene.camera(), settings.width, settings.height),
-        strata_(strataFor(std::max(1, settings.samplesPerPixel))) {
-    // A pixel's angle (the course camera's image plane at z = 1 is 2 tan(fovy / 2)
-    // high), shared among the pixel's samples, which each cover 1 / spp of it.
-    pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
-                         (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
-  }
+        strata_(strataFor(std::max(1, settings.samplesPerPixel))),
+        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
 
   glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
     Pcg32 rng = Pcg32::forPixel(settings_.seed, x, y);
@@ -65,19 +50,13 @@ class Tracer {
     return sum / float(spp);
   }
 
-  // `cone`: the ray's footprint (ray cones, Akenine-Moeller et al., Ray Tracing Gems
-  // ch. 20), which picks the textures' mipmap level as the rasterizer's screen-space
-  // derivatives do; {0, 0}: the full-resolution level.
+  // `cone`: the ray's footprint (raytrace/ray_cone.h).
   glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {}) const {
     const std::optional<SurfaceInteraction<T>> hit = firstSolidHit(ray);
     if (!hit) return escaped(ray.d);
     const Vec3<T> v = glm::normalize(ray.d);
     const float distance = float(hit->t * glm::length(ray.d));
-    cone.width += cone.spread * distance;
-    // Foreshortening stretches the footprint along the slope by 1 / cos, and GL's
-    // isotropic level of detail takes the longer axis.
-    const float cosine = std::max(float(std::abs(glm::dot(hit->n, v))), 1e-2f);
-    const float footprint = cone.width / cosine * hit->uvPerMetre;
+    const float footprint = footprintAt(cone, *hit, v, distance);
     // The terrain's layers read the unflipped shading normal, as terrain.frag does.
     const HitMaterial m = scene_.materialAt(hit->material, hit->uv, footprint, double(hit->p.y), glm::vec3(hit->ns));
     // Surfaces are two-sided: shade with the normal that faces the viewer.
@@ -92,13 +71,7 @@ class Tracer {
       ++counters.reflection;
       color += m.reflection * Li(hit->spawnRay(r), depth + 1, rng, counters, cone);
     }
-    // The rasterizer's distance fog (shaders/scene.frag, common/fog.glsl) on what the
-    // camera sees directly: mix(fog colour, colour, exp(-density * distance)).
-    const FogDesc& fog = scene_.fog();
-    if (depth == 0 && fog.enabled) {
-      color = glm::mix(fog.color, color, std::clamp(std::exp(-fog.density * distance), 0.0f, 1.0f));
-    }
-    return color;
+    return depth == 0 ? scene_.fogged(color, distance) : color;
   }
 
  private:

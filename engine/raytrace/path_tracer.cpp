@@ -7,6 +7,7 @@
 
 #include "raytrace/bsdf.h"
 #include "raytrace/camera.h"
+#include "raytrace/ray_cone.h"
 #include "raytrace/rng.h"
 #include "raytrace/tile_render.h"
 
@@ -72,12 +73,6 @@ struct LightSample {
   }
 };
 
-// A ray cone (the Whitted tracer's, Ray Tracing Gems ch. 20): texture footprints.
-struct RayCone {
-  float width = 0.0f;
-  float spread = 0.0f;
-};
-
 // Cut-away and transparent surfaces a ray may pass before it gives up: a forest of
 // alpha-tested leaves is deep, but not this deep.
 constexpr int kMaxPassThrough = 64;
@@ -87,9 +82,8 @@ class PathTracer {
  public:
   PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
       : scene_(scene), env_(lights.environment), settings_(settings),
-        camera_(scene.camera(), settings.width, settings.height), cameraPosition_(scene.camera().position) {
-    pixelSpread_ = float(2.0 * std::tan(glm::radians(scene.camera().fovyDegrees) / 2.0) /
-                         (double(std::max(1, settings.height)) * std::sqrt(double(std::max(1, settings.samplesPerPixel)))));
+        camera_(scene.camera(), settings.width, settings.height), cameraPosition_(scene.camera().position),
+        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {
     for (const LightDesc& l : scene.lights()) lights_.push_back(pathLightOf(l));
   }
 
@@ -111,7 +105,7 @@ class PathTracer {
       const Ray<T> ray = camera_.clippedToFarPlane(camera_.generateRay<T>(x + (jx - std::floor(jx)), y + (jy - std::floor(jy))));
       float distance = -1.0f;
       glm::vec3 c = Li(ray, rng, counters, RayCone{0.0f, pixelSpread_}, &distance);
-      sum += finite(withFog(c, distance));
+      sum += finite(distance < 0.0f ? c : scene_.fogged(c, distance));
     }
     return sum / float(spp);
   }
@@ -130,9 +124,7 @@ class PathTracer {
       radiance += beta * emittersAlong(ray, d, tHit, !hit, countEmitters, bsdfPdf, depth == 0);
       if (!hit) break;
       const Vec3<T> v = glm::normalize(ray.d);
-      cone.width += cone.spread * float(hit->t * glm::length(ray.d));
-      const float cosine = std::max(float(std::abs(glm::dot(hit->n, v))), 1e-2f);
-      const float footprint = cone.width / cosine * hit->uvPerMetre;
+      const float footprint = footprintAt(cone, *hit, v, float(hit->t * glm::length(ray.d)));
       // MASK's cut-away parts and single-sided faces seen from behind are not there;
       // BLEND stops a share alpha of the paths (stochastic transparency). Either way
       // the ray goes on unbent, no bounce.
@@ -178,15 +170,6 @@ class PathTracer {
   }
 
  private:
-  // The scene's distance fog on what the camera sees, as the rasterizer and the
-  // Whitted tracer define it: mix(fog colour, colour, exp(-density * distance)). It is
-  // the scene's own look, not a medium: no light scatters in it.
-  glm::vec3 withFog(const glm::vec3& color, float distance) const {
-    const FogDesc& fog = scene_.fog();
-    if (!fog.enabled || distance < 0.0f) return color;
-    return glm::mix(fog.color, color, std::clamp(std::exp(-fog.density * distance), 0.0f, 1.0f));
-  }
-
   static glm::vec3 finite(const glm::vec3& c) {
     return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) ? c : glm::vec3(0.0f);
   }

@@ -10,6 +10,8 @@
 // new pose refits that character's BVH (its vertices move, its triangles stay) and
 // never touches the terrain's. A linear top level suits the few groups a scene has
 // (the demo: 5); hundreds of instances would want a BVH over the groups.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -151,6 +153,13 @@ class RtScene {
   glm::vec3 ambientGround() const { return ambientGround_; }
   const RenderDesc& render() const { return render_; }
   const FogDesc& fog() const { return fog_; }
+  // The rasterizer's distance fog (shaders/scene.frag, common/fog.glsl) on a colour the
+  // camera sees at `distance`: mix(fog colour, colour, exp(-density * distance)). It
+  // is the scene's look, not a medium: no light scatters in it, in either tracer.
+  glm::vec3 fogged(const glm::vec3& color, float distance) const {
+    if (!fog_.enabled) return color;
+    return glm::mix(fog_.color, color, std::clamp(std::exp(-fog_.density * distance), 0.0f, 1.0f));
+  }
   const std::vector<RtMesh>& meshes() const { return meshes_; }
   int groupCount() const { return int(groups_.size()); }
   const Bvh& bvh(int group = 0) const { return groups_[std::size_t(group)].bvh; }
