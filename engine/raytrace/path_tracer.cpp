@@ -17,22 +17,6 @@ namespace {
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 float maxComponent(const glm::vec3& c) { return std::max({c.x, c.y, c.z}); }
 
-// One light as the path tracer sees it: what it emits and how it is sampled.
-struct PathLight {
-  LightType type = LightType::Sun;
-  glm::vec3 power{0.0f};  // colour * intensity
-  bool shadows = true;
-  bool falloff = false;
-  // Sun: unit direction toward it; a cone when cosMax < 1, with radiance `radiance`.
-  glm::vec3 direction{0.0f, 1.0f, 0.0f};
-  float cosMax = 1.0f;
-  glm::vec3 radiance{0.0f};
-  // Point and area: the position (area: the centre), edges, unit normal and area.
-  glm::dvec3 position{0.0}, edgeU{0.0}, edgeV{0.0};
-  glm::vec3 normal{0.0f, -1.0f, 0.0f};
-  float area = 0.0f;
-};
-
 PathLight pathLightOf(const LightDesc& l) {
   PathLight p;
   p.type = l.type;
@@ -81,11 +65,9 @@ template <typename T>
 class PathTracer {
  public:
   PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
-      : scene_(scene), env_(lights.environment), settings_(settings),
+      : scene_(scene), env_(lights.environment), lights_(lights.lights), coneSun_(lights.coneSun), settings_(settings),
         camera_(scene.camera(), settings.width, settings.height), cameraPosition_(scene.camera().position),
-        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {
-    for (const LightDesc& l : scene.lights()) lights_.push_back(pathLightOf(l));
-  }
+        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
 
   // The mean of samples [firstSample, firstSample + spp) of the pixel. Their image
   // positions follow the R2 sequence (Roberts 2018: the plastic number's powers, a
@@ -194,14 +176,9 @@ class PathTracer {
     }
     // The camera sees the sky's sun disk as the rasterizer draws it; light paths find
     // the sun through its light alone.
-    if (cameraRay) return sum + scene_.environment().radiance(d, !hasConeSun());
+    if (cameraRay) return sum + scene_.environment().radiance(d, !coneSun_);
     if (env_.black()) return sum;
     return sum + env_.radiance(d) * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, env_.pdf(d)));
-  }
-
-  bool hasConeSun() const {
-    return std::any_of(lights_.begin(), lights_.end(),
-                       [](const PathLight& l) { return l.type == LightType::Sun && l.cosMax < 1.0f; });
   }
 
   // Whether the ray crosses the rectangle's emitting side before tHit; its
@@ -303,11 +280,12 @@ class PathTracer {
 
   const RtScene& scene_;
   const EnvironmentLight& env_;
+  const std::vector<PathLight>& lights_;
+  bool coneSun_;
   const RenderSettings& settings_;
   PinholeCamera camera_;
   glm::dvec3 cameraPosition_;
   float pixelSpread_ = 0.0f;
-  std::vector<PathLight> lights_;
 };
 
 }  // namespace
@@ -359,6 +337,10 @@ float EnvironmentLight::pdf(const glm::vec3& dir) const {
 
 std::shared_ptr<const PathLights> preparePathLights(const RtScene& scene) {
   auto lights = std::make_shared<PathLights>();
+  for (const LightDesc& l : scene.lights()) {
+    lights->lights.push_back(pathLightOf(l));
+    if (lights->lights.back().type == LightType::Sun && lights->lights.back().cosMax < 1.0f) lights->coneSun = true;
+  }
   // Without its sun disk: the sun is sampled as a light of its own. The scene outlives
   // the integrator that holds these.
   const Environment* environment = &scene.environment();

@@ -21,6 +21,7 @@
 // not occluders: a ray passes through them, as shadow rays always have.
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -52,9 +53,28 @@ class EnvironmentLight {
   bool black_ = true;
 };
 
-// What a path-traced render of one scene precomputes (the environment's
-// distribution); shared by every pixel and thread.
+// One light as the path tracer sees it: what it emits and how it is sampled.
+struct PathLight {
+  LightType type = LightType::Sun;
+  glm::vec3 power{0.0f};  // colour * intensity
+  bool shadows = true;
+  bool falloff = false;
+  // Sun: unit direction toward it; a cone when cosMax < 1, with radiance `radiance`.
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};
+  float cosMax = 1.0f;
+  glm::vec3 radiance{0.0f};
+  // Point and area: the position (area: the centre), edges, unit normal and area.
+  glm::dvec3 position{0.0}, edgeU{0.0}, edgeV{0.0};
+  glm::vec3 normal{0.0f, -1.0f, 0.0f};
+  float area = 0.0f;
+};
+
+// What a path-traced render of one scene precomputes, once: the lights in the form
+// they are sampled in and the environment's distribution; shared by every pixel,
+// pass and thread.
 struct PathLights {
+  std::vector<PathLight> lights;
+  bool coneSun = false;  // a sun of non-zero angle, seen by rays as a disk of its own
   EnvironmentLight environment;
 };
 std::shared_ptr<const PathLights> preparePathLights(const RtScene& scene);
