@@ -296,6 +296,13 @@ const std::map<std::string, Ambient>& ambientNames() {
   return names;
 }
 
+std::string ambientName(Ambient ambient) {
+  for (const auto& [name, value] : ambientNames()) {
+    if (value == ambient) return name;
+  }
+  return "?";
+}
+
 namespace {
 
 Status readRender(const Node& n, RenderDesc& r) {

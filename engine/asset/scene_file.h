@@ -16,5 +16,7 @@ Result<SceneDesc> loadSceneFile(const std::string& path);
 Result<SceneDesc> parseScene(const std::string& text, const std::string& name);
 // render.ambient's names ("hemisphere", "sh", "ibl"), which demo --ambient takes too.
 const std::map<std::string, Ambient>& ambientNames();
+// The name of `ambient` in that map (for --describe).
+std::string ambientName(Ambient ambient);
 
 }  // namespace engine

@@ -119,7 +119,7 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
         scene.addSphere(p.center, p.radius, p.material);
         break;
       case PrimitiveType::Plane:
-        scene.addPlane(p.point, p.normal, p.material, p.extent > 0.0 ? p.extent : desc.camera.farPlane);
+        scene.addPlane(p.point, p.normal, p.material, planeExtent(p, desc.camera.farPlane));
         break;
       case PrimitiveType::Box: {
         auto id = scene.addMesh(boxMesh(p, p.material, scene.materials_[size_t(p.material)].textureScale));

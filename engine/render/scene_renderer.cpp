@@ -12,6 +12,7 @@
 
 #include "asset/gltf_loader.h"
 #include "asset/material_texture.h"
+#include "asset/scene_file.h"
 #include "core/linear_image.h"
 #include "render/character.h"
 #include "render/frame_block.h"
@@ -1082,7 +1083,7 @@ std::string SceneRenderer::describe() const {
     out << "(image " << std::filesystem::path(s.scene.sky.image).filename().string() << " " << s.skyImage.width() << "x"
         << s.skyImage.height() << ")";
   }
-  if (s.environmentLighting) out << (s.ambient == Ambient::Ibl ? " ibl(" : " sh(") << s.environmentLighting->describe() << ")";
+  if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
   if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
@@ -1090,7 +1091,7 @@ std::string SceneRenderer::describe() const {
   out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   out << "\nshading: " << (s.scene.render.shading == Shading::Classic ? "classic" : "pbr");
   if (s.scene.render.shading == Shading::Pbr) {
-    out << ", ambient " << (s.ambient == Ambient::Ibl ? "ibl" : s.ambient == Ambient::Sh ? "sh" : "hemisphere");
+    out << ", ambient " << ambientName(s.ambient);
     if (s.environmentLighting) out << " (built once in " << std::fixed << std::setprecision(1) << s.iblMilliseconds << " ms)";
   }
   out << "\nvariants:";

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
   app.add_option("--ambient", ambient,
                  "PBR ambient: hemisphere (two sky colours), sh (SH irradiance of the sky) or ibl (split-sum "
                  "image-based lighting); default: the scene's render.ambient, ibl under a sky")
-      ->check(CLI::IsMember({"hemisphere", "sh", "ibl"}));
+      ->check(CLI::IsMember(engine::ambientNames()));
   app.add_option("--ibl-size", render.iblSizeOverride, "Cube map size of the environment for sh and ibl")
       ->check(CLI::Range(16, 1024));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
