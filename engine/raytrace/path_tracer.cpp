@@ -101,11 +101,11 @@ class PathTracer {
     int passes = 0;             // through cut-away or transparent surfaces
     for (int depth = 0;; ++depth) {
       const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
-      const glm::vec3 d = glm::normalize(glm::vec3(ray.d));
+      const Vec3<T> v = glm::normalize(ray.d);
+      const glm::vec3 d(v);
       const T tHit = hit ? hit->t : ray.tMax;
       radiance += beta * emittersAlong(ray, d, tHit, !hit, countEmitters, bsdfPdf, depth == 0);
       if (!hit) break;
-      const Vec3<T> v = glm::normalize(ray.d);
       const float footprint = footprintAt(cone, *hit, v, float(hit->t * glm::length(ray.d)));
       // MASK's cut-away parts and single-sided faces seen from behind are not there;
       // BLEND stops a share alpha of the paths (stochastic transparency). Either way

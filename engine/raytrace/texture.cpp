@@ -46,15 +46,15 @@ RtTexture::Level RtTexture::halve(const Level& above) {
   return level;
 }
 
-RtTexture::RtTexture(const Image& srgb, TextureOrigin origin, TextureEncoding encoding) {
+RtTexture::RtTexture(const Image& image, TextureOrigin origin, TextureEncoding encoding) {
   Level base;
-  if (srgb.empty()) {
+  if (image.empty()) {
     base.texels.assign(1, glm::vec4(1.0f));
     levels_.push_back(std::move(base));
     return;
   }
-  base.width = srgb.width;
-  base.height = srgb.height;
+  base.width = image.width;
+  base.height = image.height;
   base.texels.resize(std::size_t(base.width) * std::size_t(base.height));
   static const std::array<float, 256> linear = [] {
     std::array<float, 256> t{};
@@ -65,7 +65,7 @@ RtTexture::RtTexture(const Image& srgb, TextureOrigin origin, TextureEncoding en
   for (int y = 0; y < base.height; ++y) {
     const int row = origin == TextureOrigin::TopLeft ? y : base.height - 1 - y;
     for (int x = 0; x < base.width; ++x) {
-      const std::uint8_t* p = &srgb.pixels[(std::size_t(row) * std::size_t(base.width) + std::size_t(x)) * 4];
+      const std::uint8_t* p = &image.pixels[(std::size_t(row) * std::size_t(base.width) + std::size_t(x)) * 4];
       base.texels[std::size_t(y) * std::size_t(base.width) + std::size_t(x)] = {table[p[0]], table[p[1]], table[p[2]], float(p[3]) / 255.0f};
     }
   }

@@ -26,7 +26,6 @@ inline glm::ivec2 strataFor(int n) {
   return {sx, n / sx};
 }
 
-
 struct AtomicCounters {
   std::atomic<std::uint64_t> primary{0}, shadow{0}, reflection{0};
 
@@ -44,8 +43,8 @@ struct AtomicCounters {
 // TBB rather than std::thread or OpenMP: its work stealing balances tiles of very
 // different cost (a mirror tile traces six times the rays of a wall tile), it is a
 // Debian package the project already uses, and it needs no compiler flag. The image
-// does not depend on the schedule: each pixel has its own RNG seeded from
-// (seed, x, y), and each pixel is written by exactly one tile.
+// does not depend on the schedule: each pixel's (or sample's) RNG is seeded from its
+// coordinates and the seed alone (rng.h), and each pixel is written by exactly one tile.
 // `tracer`: anything with renderPixel(x, y, RayCounters&) const, safe to call from
 // several threads at once.
 template <typename Tracer>
@@ -94,6 +93,5 @@ RenderResult renderTiles(const Tracer& tracer, const RenderSettings& settings) {
   result.cancelled = cancelled.load();
   return result;
 }
-
 
 }  // namespace engine::rt::detail
