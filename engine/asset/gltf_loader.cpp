@@ -299,9 +299,11 @@ bool tolerantImageLoader(tinygltf::Image* image, const int imageIndex, std::stri
       return true;
     }
   }
+  std::vector<std::uint8_t> padded;
+  const auto decoded = png ? withFullPalette(std::span(bytes, length), padded) : std::span(bytes, length);
   std::string decodeError;
-  if (tinygltf::LoadImageData(image, imageIndex, &decodeError, warn, reqWidth, reqHeight,
-                              bytes, size, nullptr))
+  if (tinygltf::LoadImageData(image, imageIndex, &decodeError, warn, reqWidth, reqHeight, decoded.data(),
+                              static_cast<int>(decoded.size()), nullptr))
     return true;
   (void)err;
   return refuse("cannot decode: " + decodeError);

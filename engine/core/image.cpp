@@ -26,6 +26,70 @@ void flipVertically(Image& image) {
   }
 }
 
+namespace {
+
+std::uint32_t readBe32(std::span<const std::uint8_t> bytes, std::size_t at) {
+  return std::uint32_t{bytes[at]} << 24 | std::uint32_t{bytes[at + 1]} << 16 | std::uint32_t{bytes[at + 2]} << 8 |
+         std::uint32_t{bytes[at + 3]};
+}
+
+void appendBe32(std::vector<std::uint8_t>& out, std::uint32_t value) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(value >> shift));
+}
+
+// PNG's CRC-32 (ISO 3309), over a chunk's type and data.
+std::uint32_t pngCrc(std::span<const std::uint8_t> bytes) {
+  static const std::array<std::uint32_t, 256> kTable = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t n = 0; n < 256; ++n) {
+      std::uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::uint8_t b : bytes) c = kTable[(c ^ b) & 0xFF] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> pngWithFullPalette(std::span<const std::uint8_t> bytes) {
+  constexpr std::size_t kFullPalette = 256 * 3;
+  if (bytes.size() < 26 || bytes[25] != 3) return {};  // IHDR's colour type: 3 is indexed
+  for (std::size_t at = 8; at + 12 <= bytes.size();) {
+    const std::size_t length = readBe32(bytes, at);
+    if (at + 12 + length > bytes.size()) return {};
+    const auto type = bytes.subspan(at + 4, 4);
+    if (std::equal(type.begin(), type.end(), "IDAT") || std::equal(type.begin(), type.end(), "IEND")) return {};
+    if (!std::equal(type.begin(), type.end(), "PLTE")) {
+      at += 12 + length;
+      continue;
+    }
+    // A length that is not whole entries, or over 256 of them, stb refuses itself.
+    if (length % 3 != 0 || length >= kFullPalette) return {};
+    std::vector<std::uint8_t> out(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(at));
+    out.reserve(bytes.size() + kFullPalette - length);
+    appendBe32(out, kFullPalette);
+    const std::size_t chunkStart = out.size();
+    out.insert(out.end(), type.begin(), type.end());
+    const auto data = bytes.subspan(at + 8, length);
+    out.insert(out.end(), data.begin(), data.end());
+    out.resize(chunkStart + 4 + kFullPalette, 0);
+    appendBe32(out, pngCrc(std::span(out).subspan(chunkStart)));
+    out.insert(out.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at + 12 + length), bytes.end());
+    return out;
+  }
+  return {};
+}
+
+std::span<const std::uint8_t> withFullPalette(std::span<const std::uint8_t> bytes,
+                                              std::vector<std::uint8_t>& storage) {
+  storage = pngWithFullPalette(bytes);
+  return storage.empty() ? bytes : std::span<const std::uint8_t>(storage);
+}
+
 Status checkPngHeader(std::span<const std::uint8_t> bytes, const std::string& name) {
   static const std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
@@ -36,10 +100,7 @@ Status checkPngHeader(std::span<const std::uint8_t> bytes, const std::string& na
   // IHDR is the first chunk: length, "IHDR", width, height (big-endian).
   if (bytes.size() < 24 || !std::equal(bytes.begin() + 12, bytes.begin() + 16, "IHDR"))
     return makeError(name + ": cannot read image: PNG has no IHDR header");
-  auto be32 = [&](std::size_t at) {
-    return std::uint32_t{bytes[at]} << 24 | std::uint32_t{bytes[at + 1]} << 16 | std::uint32_t{bytes[at + 2]} << 8 |
-           std::uint32_t{bytes[at + 3]};
-  };
+  auto be32 = [&](std::size_t at) { return readBe32(bytes, at); };
   const std::uint64_t w = be32(16), h = be32(20);
   if (w == 0 || h == 0 || w > std::uint64_t(kMaxImageSide) || h > std::uint64_t(kMaxImageSide))
     return makeError(name + ": image is " + std::to_string(w) + "x" + std::to_string(h) +
@@ -70,9 +131,10 @@ Status checkPngHeader(std::span<const std::uint8_t> bytes, const std::string& na
 
 Result<Image> decodePng(std::span<const std::uint8_t> bytes, const std::string& name) {
   if (Status s = checkPngHeader(bytes, name); !s) return s.error();
-  const int size = static_cast<int>(bytes.size());
+  std::vector<std::uint8_t> padded;
+  const auto png = withFullPalette(bytes, padded);
   int w = 0, h = 0, channels = 0;
-  stbi_uc* data = stbi_load_from_memory(bytes.data(), size, &w, &h, &channels, 4);
+  stbi_uc* data = stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &w, &h, &channels, 4);
   if (!data) return makeError(name + ": cannot read image: " + stbi_failure_reason());
   Image image(w, h);
   std::copy(data, data + static_cast<size_t>(w) * h * 4, image.pixels.begin());

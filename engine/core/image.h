@@ -45,6 +45,16 @@ Result<Image> decodePng(std::span<const std::uint8_t> bytes, const std::string& 
 // real PNG cannot have but a decompression bomb does; stb would allocate the whole
 // image before finding out.
 Status checkPngHeader(std::span<const std::uint8_t> bytes, const std::string& name);
+// stb expands an indexed PNG through a 256-entry table that it fills only as far
+// as PLTE goes, so an index past the palette read whatever its stack held and the
+// same bytes decoded to different pixels. The PNG spec calls such an index an
+// error; libpng draws it black. This returns the file with PLTE padded to 256
+// black entries (CRC recomputed), which gives stb libpng's answer; empty when the
+// file needs no padding. Every stb decode of untrusted PNG bytes goes through it.
+std::vector<std::uint8_t> pngWithFullPalette(std::span<const std::uint8_t> bytes);
+// `bytes`, or the padded copy held in `storage` when one is needed.
+std::span<const std::uint8_t> withFullPalette(std::span<const std::uint8_t> bytes,
+                                              std::vector<std::uint8_t>& storage);
 // Writes to a temporary file beside `path` and renames it, so a failure never
 // leaves a half-written PNG behind.
 Status writePng(const std::string& path, const Image& image);

@@ -170,8 +170,10 @@ Result<std::unique_ptr<ImageHeights>> loadHeightmap(const std::string& path, flo
                                   std::istreambuf_iterator<char>());
   if (bytes.empty()) return makeError(path + ": heightmap file is empty");
   if (Status header = checkPngHeader(bytes, path); !header) return header.error();
-  const auto* data = bytes.data();
-  const int size = int(bytes.size());
+  std::vector<std::uint8_t> padded;
+  const auto png = withFullPalette(bytes, padded);
+  const auto* data = png.data();
+  const int size = int(png.size());
   int w = 0, h = 0, channels = 0;
   std::vector<std::uint16_t> samples;
   if (stbi_is_16_bit_from_memory(data, size)) {

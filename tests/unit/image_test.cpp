@@ -125,3 +125,87 @@ TEST(Image, StructuralSimilarityWeighsStructureNotBrightness) {
   EXPECT_LT(speckled, shifted - 0.05);
   EXPECT_FALSE(structuralSimilarity(Image(2, 2), Image(2, 3)).ok());
 }
+
+namespace {
+void appendBe32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int s = 24; s >= 0; s -= 8) out.push_back(std::uint8_t(v >> s));
+}
+// A PNG chunk; the CRC is left zero (stb does not check it, and the padding's
+// own CRC is checked separately below).
+void appendChunk(std::vector<std::uint8_t>& out, const char* type, const std::vector<std::uint8_t>& data) {
+  appendBe32(out, std::uint32_t(data.size()));
+  out.insert(out.end(), type, type + 4);
+  out.insert(out.end(), data.begin(), data.end());
+  appendBe32(out, 0);
+}
+// An 8-bit indexed PNG of one row per `rows` entry, its IDAT a stored (level 0)
+// zlib stream, so the test needs no compressor.
+std::vector<std::uint8_t> indexedPng(int width, const std::vector<std::vector<std::uint8_t>>& rows,
+                                     const std::vector<std::uint8_t>& palette) {
+  std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  std::vector<std::uint8_t> ihdr;
+  appendBe32(ihdr, std::uint32_t(width));
+  appendBe32(ihdr, std::uint32_t(rows.size()));
+  ihdr.insert(ihdr.end(), {8, 3, 0, 0, 0});
+  appendChunk(png, "IHDR", ihdr);
+  appendChunk(png, "PLTE", palette);
+  std::vector<std::uint8_t> raw;
+  for (const auto& row : rows) {
+    raw.push_back(0);  // filter: none
+    raw.insert(raw.end(), row.begin(), row.end());
+  }
+  std::vector<std::uint8_t> z = {0x78, 0x01, 0x01, std::uint8_t(raw.size()), std::uint8_t(raw.size() >> 8),
+                                 std::uint8_t(~raw.size()), std::uint8_t(~raw.size() >> 8)};
+  z.insert(z.end(), raw.begin(), raw.end());
+  std::uint32_t a = 1, b = 0;
+  for (std::uint8_t c : raw) a = (a + c) % 65521, b = (b + a) % 65521;
+  appendBe32(z, b << 16 | a);
+  appendChunk(png, "IDAT", z);
+  appendChunk(png, "IEND", {});
+  return png;
+}
+}  // namespace
+
+// The fuzzer's find: stb read indices past PLTE from uninitialised stack, so the
+// same bytes gave different pixels from one decode to the next. Every palette
+// length from 1 to 255 entries, with every index 0..255 present: indices inside
+// the palette give its colour, those past it opaque black (libpng's answer).
+TEST(Image, IndicesPastThePaletteAreBlackForEveryPaletteLength) {
+  std::vector<std::vector<std::uint8_t>> rows(16, std::vector<std::uint8_t>(16));
+  for (int i = 0; i < 256; ++i) rows[std::size_t(i / 16)][std::size_t(i % 16)] = std::uint8_t(i);
+  for (int entries = 1; entries < 256; ++entries) {
+    std::vector<std::uint8_t> palette;
+    for (int e = 0; e < entries; ++e) palette.insert(palette.end(), {std::uint8_t(e), std::uint8_t(255 - e), 77});
+    const auto png = indexedPng(16, rows, palette);
+    auto image = decodePng(png, "indexed.png");
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    for (int i = 0; i < 256; ++i) {
+      const std::uint8_t* p = image->at(i % 16, i / 16);
+      const bool inside = i < entries;
+      ASSERT_EQ(p[0], inside ? i : 0) << entries << " entries, index " << i;
+      ASSERT_EQ(p[1], inside ? 255 - i : 0) << entries << " entries, index " << i;
+      ASSERT_EQ(p[2], inside ? 77 : 0) << entries << " entries, index " << i;
+      ASSERT_EQ(p[3], 255) << entries << " entries, index " << i;
+    }
+  }
+}
+
+TEST(Image, PaddedPaletteIsAValidChunk) {
+  const auto png = indexedPng(1, {{1}}, {10, 20, 30});
+  const auto padded = pngWithFullPalette(png);
+  // Signature, IHDR (25 bytes), then PLTE: length 768, "PLTE", 768 bytes, CRC.
+  const std::size_t plte = 8 + 25;
+  ASSERT_EQ(padded.size(), png.size() + 765);
+  EXPECT_EQ((padded[plte] << 24 | padded[plte + 1] << 16 | padded[plte + 2] << 8 | padded[plte + 3]), 768);
+  EXPECT_EQ(padded[plte + 8], 10);
+  EXPECT_EQ(padded[plte + 8 + 3], 0);
+  // The CRC of "PLTE" + 10 20 30 + 765 zero bytes, from Python's zlib.crc32.
+  const std::size_t crc = plte + 8 + 768;
+  EXPECT_EQ(std::uint32_t(padded[crc]) << 24 | std::uint32_t(padded[crc + 1]) << 16 |
+                std::uint32_t(padded[crc + 2]) << 8 | padded[crc + 3],
+            0x19ee4133u);
+  // Already full, not indexed, or no PLTE before IDAT: nothing to pad.
+  std::vector<std::uint8_t> full(768, 1);
+  EXPECT_TRUE(pngWithFullPalette(indexedPng(1, {{1}}, full)).empty());
+  EXPECT_TRUE(pngWithFullPalette(std::vector<std::uint8_t>(png.begin(), png.begin() + 20)).empty());
+}
