@@ -196,8 +196,8 @@ int main(int argc, char** argv) {
   engine::Status frame = engine::Ok{};
   for (int i = 0; i < options.run.frames && frame; ++i) {
     sceneMs.push_back(timeFrame(*target, [&] {
-      (*renderer)->update(time);
-      frame = (*renderer)->render(camera, width, height);
+      frame = (*renderer)->update(time);
+      if (frame) frame = (*renderer)->render(camera, width, height);
     }));
     floorMs.push_back(timeFrame(*target, [&] { floor.draw(); }));
   }

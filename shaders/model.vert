@@ -1,7 +1,7 @@
 #version 450 core
 // glTF meshes: static, or morphed and/or skinned on the GPU (see common/deform.glsl). For a
-// skinned mesh u_model holds only the camera offset: the palette already places
-// the vertices in the world, and glTF says the mesh node's own transform is ignored.
+// skinned mesh u_model is the model's root, camera-relative: the palette places the
+// vertices in model space, and glTF says the mesh node's own transform is ignored.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;

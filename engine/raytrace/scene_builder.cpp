@@ -3,34 +3,23 @@
 #include <algorithm>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
-#include <map>
-#include <optional>
 
-#include "anim/jobs.h"
 #include "anim/model_builder.h"
-#include "anim/player.h"
-#include "asset/gltf_loader.h"
 #include "raytrace/tone_map.h"
-#include "scene/instances.h"
+#include "scene/scene.h"
 #include "terrain/lod.h"
 #include "terrain/materials.h"
-#include "terrain/scene_terrain.h"
 #include "terrain/terrain.h"
 
 namespace engine::rt {
-
-struct LoadedModel {
-  ModelData model;
-  AnimatedModel animated;
-  std::vector<int> materials;  // glTF material -> RtScene material
-};
 
 namespace {
 
 // glTF base colour: the factor times the texture (uploaded as is by the rasterizer,
 // so uv (0, 0) is the image's top-left).
-Status addMaterials(LoadedModel& loaded, RtScene& scene) {
-  for (const MaterialData& m : loaded.model.materials) {
+Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
+  std::vector<int> materials;  // glTF material -> RtScene material
+  for (const MaterialData& m : model.materials) {
     MaterialDesc desc;
     desc.name = m.name;
     desc.color = glm::vec3(m.baseColorFactor);
@@ -40,55 +29,47 @@ Status addMaterials(LoadedModel& loaded, RtScene& scene) {
     desc.emission = m.emissiveFactor;
     const int material = scene.addMaterial(desc);
     if (m.baseColorImage >= 0) {
-      const RtTexture texture(loaded.model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft);
-      if (auto s = scene.setMaterialTexture(material, texture); !s) return s;
+      const RtTexture texture(model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft);
+      if (auto s = scene.setMaterialTexture(material, texture); !s) return s.error();
     }
     if (m.emissiveImage >= 0) {
-      const RtTexture emissive(loaded.model.images[size_t(m.emissiveImage)].image, TextureOrigin::TopLeft);
-      if (auto s = scene.setEmissiveTexture(material, emissive); !s) return s;
+      const RtTexture emissive(model.images[size_t(m.emissiveImage)].image, TextureOrigin::TopLeft);
+      if (auto s = scene.setEmissiveTexture(material, emissive); !s) return s.error();
     }
     if (m.metallicRoughnessImage >= 0) {
-      const RtTexture mr(loaded.model.images[size_t(m.metallicRoughnessImage)].image, TextureOrigin::TopLeft,
+      const RtTexture mr(model.images[size_t(m.metallicRoughnessImage)].image, TextureOrigin::TopLeft,
                          TextureEncoding::Linear);
-      if (auto s = scene.setMetallicRoughnessTexture(material, mr); !s) return s;
+      if (auto s = scene.setMetallicRoughnessTexture(material, mr); !s) return s.error();
     }
-    if (auto s = scene.setMaterialAlpha(material, m.alphaMode, m.baseColorFactor.a, m.alphaCutoff); !s) return s;
-    if (auto s = scene.setSingleSided(material, !m.doubleSided); !s) return s;
-    loaded.materials.push_back(material);
+    if (auto s = scene.setMaterialAlpha(material, m.alphaMode, m.baseColorFactor.a, m.alphaCutoff); !s) return s.error();
+    if (auto s = scene.setSingleSided(material, !m.doubleSided); !s) return s.error();
+    materials.push_back(material);
   }
-  return Ok{};
+  return materials;
 }
 
-// Poses one model instance at `time` into `meshes`, one per triangle primitive:
-// positions and normals morphed, then skinned (or moved rigidly) into world space; material and
-// indices are filled the first time only, as they never change.
-Status poseInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, double time, double ground,
+// One model instance of the scene, in its pose, into `meshes`, one per triangle
+// primitive: positions and normals morphed, then skinned (or moved rigidly) into
+// world space by the instance's root; material and indices are filled the first
+// time only, as they never change.
+Status skinInstance(const ModelAsset& asset, std::span<const int> materials, const ModelInstance& instance,
                     std::vector<RtMesh>& meshes) {
-  const Skeleton& skeleton = loaded.animated.skeleton;
-  const MorphLayout& morphs = loaded.animated.morphs;
-  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
-  std::vector<float> weights = morphs.restWeights;
-  if (clip >= 0) {
-    const Clip& c = loaded.animated.clips[size_t(clip)];
-    const double local = wrapTime(clipTimeAt(desc, time), c.duration(), LoopMode::Repeat);
-    if (auto s = runJob(SamplingJob{&c, local, skeleton.restPose(), locals}, loaded.model.path); !s) return s;
-    if (auto s = runJob(MorphSamplingJob{&c, local, morphs.restWeights, weights}, loaded.model.path); !s) return s;
-  }
-  std::vector<glm::mat4> models(locals.size());
-  const LocalToModelJob toModel{skeleton.parents(), locals, glm::mat4(modelTransform(desc, ground)), models};
-  if (auto s = runJob(toModel, loaded.model.path); !s) return s;
-  const SkinningMethod method = desc.dualQuat ? SkinningMethod::DualQuat : SkinningMethod::Linear;
+  const ModelData& model = asset.model;
+  const Skeleton& skeleton = asset.animated.skeleton;
+  std::vector<glm::mat4> joints(instance.pose.joints.size());
+  for (size_t j = 0; j < joints.size(); ++j) joints[j] = glm::mat4(instance.world * glm::dmat4(instance.pose.joints[j]));
+  const SkinningMethod method = instance.desc.dualQuat ? SkinningMethod::DualQuat : SkinningMethod::Linear;
   const bool first = meshes.empty();
   std::size_t next = 0;
-  for (size_t n = 0; n < loaded.model.nodes.size(); ++n) {
-    const NodeData& node = loaded.model.nodes[n];
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    const NodeData& node = model.nodes[n];
     if (node.mesh < 0) continue;
-    const glm::mat4& world = models[size_t(skeleton.jointOfRaw(int(n)))];
-    for (const PrimitiveData& prim : loaded.model.meshes[size_t(node.mesh)].primitives) {
+    const glm::mat4& world = joints[size_t(skeleton.jointOfRaw(int(n)))];
+    for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
       if (prim.mode != 4) continue;  // triangles only
       if (first) {
         RtMesh mesh;
-        mesh.material = prim.material >= 0 ? loaded.materials[size_t(prim.material)] : 0;
+        mesh.material = prim.material >= 0 ? materials[size_t(prim.material)] : 0;
         mesh.positions.resize(prim.positions.size());
         if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
         mesh.uvs = prim.uvs;
@@ -101,10 +82,10 @@ Status poseInstance(const LoadedModel& loaded, const ModelDesc& desc, int clip, 
       }
       RtMesh& mesh = meshes[next++];
       const bool skinned = node.skin >= 0 && prim.influences > 0;
-      const PrimitivePose pose{morphs.of(weights, int(n)),
-                               skinned ? &loaded.animated.skins[size_t(node.skin)] : nullptr, models, world, method};
+      const PrimitivePose pose{asset.animated.morphs.of(instance.pose.morphWeights, int(n)),
+                               skinned ? &asset.animated.skins[size_t(node.skin)] : nullptr, joints, world, method};
       if (!posePrimitive(prim, pose, mesh.positions, mesh.normals)) {
-        return makeError(loaded.model.path + ": node " + std::to_string(n) + ": morphing or skinning failed");
+        return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning failed");
       }
     }
   }
@@ -164,45 +145,28 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Result<AnimatedRtScene> AnimatedRtScene::create(const SceneDesc& desc, double time, int viewportHeight,
+Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, int viewportHeight,
                                                 SceneBuildStats* statsOut) {
+  const SceneDesc& desc = source->desc();
   auto scene = RtScene::fromSceneDesc(desc);
   if (!scene) return scene.error();
   AnimatedRtScene out;
   out.scene_ = std::move(scene).value();
+  out.source_ = std::move(source);
   RtScene& rt = out.scene_;
   SceneBuildStats stats;
   const auto start = std::chrono::steady_clock::now();
-  std::optional<terrain::Terrain> field;
-  if (desc.terrain.enabled) {
-    auto created = terrain::Terrain::create(terrain::settingsFromScene(desc.terrain));
-    if (!created) return makeError(desc.path + ": /terrain: " + created.error().message);
-    field.emplace(std::move(created).value());
+  for (const auto& asset : out.source_->assets()) {
+    auto materials = addMaterials(asset->model, rt);
+    if (!materials) return makeError(desc.path + ": " + asset->model.path + ": " + materials.error().message);
+    out.materials_.push_back(std::move(materials).value());
   }
-  for (size_t i = 0; i < desc.models.size(); ++i) {
-    const ModelDesc& m = desc.models[i];
+  const auto instances = out.source_->instances();
+  for (size_t i = 0; i < instances.size(); ++i) {
     const std::string where = desc.path + ": /models/" + std::to_string(i);
-    auto it = out.models_.find(m.path);
-    if (it == out.models_.end()) {
-      auto model = loadGltf(m.path);
-      if (!model) return makeError(where + "/path: " + model.error().message);
-      auto animated = buildAnimatedModel(*model);
-      if (!animated) return makeError(where + ": " + animated.error().message);
-      auto loaded = std::make_unique<LoadedModel>(LoadedModel{std::move(model).value(), std::move(animated).value(), {}});
-      if (auto s = addMaterials(*loaded, rt); !s) return makeError(where + ": " + s.error().message);
-      it = out.models_.emplace(m.path, std::move(loaded)).first;
-    }
-    auto clip = findClip(it->second->animated, m.clip, m.path);
-    if (!clip) return makeError(where + "/clip: " + clip.error().message);
     Instance instance;
-    instance.model = it->second.get();
-    instance.desc = m;
-    instance.clip = *clip;
-    instance.ground = m.onTerrain && field ? field->heightAt(m.position.x, m.position.z) : 0.0;
     instance.group = rt.addGroup();
-    if (auto s = poseInstance(*instance.model, m, instance.clip, time, instance.ground, instance.meshes); !s) {
-      return makeError(where + ": " + s.error().message);
-    }
+    if (auto s = out.skin(i, instance.meshes); !s) return makeError(where + ": " + s.error().message);
     for (const RtMesh& mesh : instance.meshes) {
       RtMesh copy = mesh;
       copy.group = instance.group;
@@ -214,7 +178,7 @@ Result<AnimatedRtScene> AnimatedRtScene::create(const SceneDesc& desc, double ti
     }
     out.instances_.push_back(std::move(instance));
   }
-  if (field) {
+  if (const terrain::Terrain* field = out.source_->terrain()) {
     if (auto s = addTerrain(desc, *field, viewportHeight, rt, stats); !s) return s.error();
   }
   stats.skinSeconds = secondsSince(start);
@@ -230,22 +194,37 @@ Result<AnimatedRtScene> AnimatedRtScene::create(const SceneDesc& desc, double ti
   return out;
 }
 
+Result<AnimatedRtScene> AnimatedRtScene::create(const SceneDesc& desc, double time, int viewportHeight,
+                                                SceneBuildStats* stats) {
+  auto source = Scene::load(desc);
+  if (!source) return source.error();
+  if (auto s = (*source)->update(time); !s) return s.error();
+  return create(std::move(source).value(), viewportHeight, stats);
+}
+
+Status AnimatedRtScene::skin(size_t index, std::vector<RtMesh>& meshes) const {
+  const ModelInstance& instance = source_->instances()[index];
+  return skinInstance(source_->assetOf(instance), materials_[size_t(instance.asset)], instance, meshes);
+}
+
+// The skinning time includes the scene layer's sampling of every pose.
 Status AnimatedRtScene::setTime(double time, SceneBuildStats* statsOut) {
   SceneBuildStats stats;
-  for (Instance& instance : instances_) {
+  const auto poseStart = std::chrono::steady_clock::now();
+  if (auto s = source_->update(time); !s) return s;
+  const double poseSeconds = secondsSince(poseStart);
+  for (size_t i = 0; i < instances_.size(); ++i) {
+    Instance& instance = instances_[i];
     InstanceStats is;
     const auto start = std::chrono::steady_clock::now();
-    if (auto s = poseInstance(*instance.model, instance.desc, instance.clip, time, instance.ground, instance.meshes);
-        !s) {
-      return s;
-    }
+    if (auto s = skin(i, instance.meshes); !s) return s;
     for (std::size_t k = 0; k < instance.meshes.size(); ++k) {
       if (auto s = scene_.updateMesh(instance.ids[k], instance.meshes[k].positions, instance.meshes[k].normals); !s) {
         return s;
       }
       is.triangles += int(instance.meshes[k].indices.size() / 3);
     }
-    is.skinSeconds = secondsSince(start);
+    is.skinSeconds = secondsSince(start) + poseSeconds / double(instances_.size());
     is.bvhSeconds = scene_.refitGroup(instance.group);
     stats.skinSeconds += is.skinSeconds;
     stats.bvhSeconds += is.bvhSeconds;

@@ -1,9 +1,8 @@
 #pragma once
-// The ray tracer's view of a scene file at one time: the analytic primitives and
-// lights of the SceneDesc, plus every glTF model posed at that time and skinned on
-// the CPU with the same jobs and palettes the rasterizer uses (anim/jobs.h), as
-// triangle meshes in the BVH.
-#include <map>
+// The ray tracer's view of a scene at one time: the analytic primitives and lights
+// of the SceneDesc, plus every glTF model instance as the scene layer posed it
+// (scene/scene.h), skinned on the CPU with the same jobs and palettes the
+// rasterizer uses (anim/jobs.h), as triangle meshes in the BVH.
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +12,10 @@
 #include "core/result.h"
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
+
+namespace engine {
+class Scene;
+}
 
 namespace engine::rt {
 
@@ -32,8 +35,6 @@ struct SceneBuildStats {
   std::vector<InstanceStats> instances;  // in the scene file's order
 };
 
-struct LoadedModel;
-
 // A scene file's ray-traced view that follows time: the static world (primitives,
 // terrain) in BVH group 0, built once; each model instance in a group of its own,
 // skinned on the CPU at the new time and refitted (not rebuilt) by setTime.
@@ -42,9 +43,15 @@ class AnimatedRtScene {
   // Errors name the scene file and the model element, like the rasterizer's. The
   // terrain is triangulated exactly as the rasterizer draws it for this camera and
   // an image `viewportHeight` pixels high (the same CDLOD selection and morph).
+  // The scene layer's scene (scene/scene.h) at its current time; the tracer keeps
+  // it and skins its poses.
+  static Result<AnimatedRtScene> create(std::shared_ptr<Scene> scene, int viewportHeight = 720,
+                                        SceneBuildStats* stats = nullptr);
+  // Scene::load and update(time), then the above.
   static Result<AnimatedRtScene> create(const SceneDesc& scene, double time, int viewportHeight = 720,
                                         SceneBuildStats* stats = nullptr);
-  // Poses every model instance at `time` and refits its BVH; stats cover only them.
+  // Poses the scene at `time` (Scene::update), skins every model instance and
+  // refits its BVH; stats cover only them.
   Status setTime(double time, SceneBuildStats* stats = nullptr);
 
   RtScene& scene() { return scene_; }
@@ -57,17 +64,18 @@ class AnimatedRtScene {
  private:
   AnimatedRtScene();
 
+  // Scene instance `index` in its current pose into `meshes`.
+  Status skin(size_t index, std::vector<RtMesh>& meshes) const;
+
+  // The ray-traced side of a scene instance, in the scene's order.
   struct Instance {
-    const LoadedModel* model = nullptr;
-    ModelDesc desc;
-    int clip = -1;
-    double ground = 0.0;
     int group = 0;
     std::vector<RtMesh> meshes;  // the pose being built; copied into the scene
     std::vector<MeshId> ids;
   };
   RtScene scene_;
-  std::map<std::string, std::unique_ptr<LoadedModel>> models_;
+  std::shared_ptr<Scene> source_;
+  std::vector<std::vector<int>> materials_;  // per scene asset: glTF material -> RtScene material
   std::vector<Instance> instances_;
 };
 

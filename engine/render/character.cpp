@@ -6,69 +6,18 @@
 
 namespace engine {
 
-Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(ModelData model) {
-  auto animated = buildAnimatedModel(model);
-  if (!animated) return animated.error();
-  auto gpu = GpuModel::upload(model);
+Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(std::shared_ptr<const ModelAsset> source) {
+  auto gpu = GpuModel::upload(source->model);
   if (!gpu) return gpu.error();
-  auto asset = std::make_shared<CharacterAsset>(
-      CharacterAsset{std::move(model), std::move(animated).value(), std::move(gpu).value()});
-  return std::shared_ptr<const CharacterAsset>(std::move(asset));
+  const ModelAsset& m = *source;
+  return std::shared_ptr<const CharacterAsset>(
+      std::make_shared<CharacterAsset>(CharacterAsset{std::move(source), m.model, m.animated, std::move(gpu).value()}));
 }
 
-namespace {
-
-// The clip times that the bounds sample: `samples` + 1 evenly spaced, and every
-// key of a morph track, where LINEAR weights (and so the vertices) peak.
-std::vector<double> boundsSampleTimes(const Clip& clip, int samples) {
-  std::vector<double> times;
-  for (int i = 0; i <= samples; ++i) times.push_back(clip.duration() * double(i) / double(samples));
-  for (const MorphTrack& track : clip.morphTracks()) times.insert(times.end(), track.times.begin(), track.times.end());
-  return times;
-}
-
-}  // namespace
-
-Result<CharacterAsset::Bounds> CharacterAsset::boundsOfAllPoses(int samples) const {
-  Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
-  const Skeleton& skeleton = animated.skeleton;
-  const MorphLayout& morphs = animated.morphs;
-  std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
-  std::vector<float> weights = morphs.restWeights;
-  std::vector<glm::mat4> models(locals.size());
-  std::vector<glm::vec3> posed;
-  auto addPose = [&]() -> Status {
-    if (auto s = runJob(LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}, model.path); !s) return s;
-    for (size_t n = 0; n < model.nodes.size(); ++n) {
-      const NodeData& node = model.nodes[n];
-      if (node.mesh < 0) continue;
-      for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        const bool skinned = node.skin >= 0 && prim.influences > 0;
-        const PrimitivePose pose{morphs.of(weights, int(n)), skinned ? &animated.skins[size_t(node.skin)] : nullptr,
-                                 models, models[size_t(skeleton.jointOfRaw(int(n)))]};
-        posed.resize(prim.positions.size());
-        if (!posePrimitive(prim, pose, posed)) {
-          return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning rejected its inputs");
-        }
-        for (const glm::vec3& p : posed) {
-          b.min = glm::min(b.min, p);
-          b.max = glm::max(b.max, p);
-        }
-      }
-    }
-    return Ok{};
-  };
-  if (auto s = addPose(); !s) return s.error();
-  for (const Clip& clip : animated.clips) {
-    for (const double time : boundsSampleTimes(clip, samples)) {
-      const std::string where = model.path + ": clip " + clip.name();
-      if (auto s = runJob(SamplingJob{&clip, time, skeleton.restPose(), locals}, where); !s) return s.error();
-      if (auto s = runJob(MorphSamplingJob{&clip, time, morphs.restWeights, weights}, where); !s) return s.error();
-      if (auto s = addPose(); !s) return s.error();
-    }
-  }
-  if (b.min.x > b.max.x) b = Bounds{};
-  return b;
+Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(ModelData model) {
+  auto source = ModelAsset::create(std::move(model));
+  if (!source) return source.error();
+  return create(std::move(source).value());
 }
 
 CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset)
@@ -102,7 +51,7 @@ void CharacterInstance::crossFade(int clip, double seconds) {
   player_.crossFade(asset_->animated.clips[size_t(clip)], seconds);
 }
 
-void CharacterInstance::evaluate(bool bindPose) {
+Status CharacterInstance::evaluate(bool bindPose) {
   const auto rest = asset_->animated.skeleton.restPose();
   const auto restWeights = std::span<const float>(asset_->animated.morphs.restWeights);
   if (bindPose || clip_ < 0 || !player_.evaluate(locals_, morphWeights_)) {
@@ -110,19 +59,28 @@ void CharacterInstance::evaluate(bool bindPose) {
     std::copy(restWeights.begin(), restWeights.end(), morphWeights_.begin());
   }
   palettesCurrent_ = false;
+  return jointsFromLocals(*asset_->source, locals_, models_);
 }
 
-Status CharacterInstance::computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition) {
-  glm::dmat4 root = transform;
-  root[3] -= glm::dvec4(cameraPosition, 0.0);
-  const Skeleton& skeleton = asset_->animated.skeleton;
+void CharacterInstance::setPose(const Pose& pose) {
+  std::copy_n(pose.joints.begin(), std::min(pose.joints.size(), models_.size()), models_.begin());
+  std::copy_n(pose.morphWeights.begin(), std::min(pose.morphWeights.size(), morphWeights_.size()),
+              morphWeights_.begin());
   palettesCurrent_ = false;
-  if (auto s = runJob(LocalToModelJob{skeleton.parents(), locals_, glm::mat4(root), models_}, asset_->model.path);
-      !s) {
-    return s;
-  }
-  for (size_t n = 0; n < nodeWorlds_.size(); ++n) nodeWorlds_[n] = models_[size_t(skeleton.jointOfRaw(int(n)))];
-  return Ok{};
+}
+
+void CharacterInstance::place(const glm::dmat4& world, const glm::dvec3& cameraPosition) {
+  root_ = world;
+  root_[3] -= glm::dvec4(cameraPosition, 0.0);
+  const Skeleton& skeleton = asset_->animated.skeleton;
+  for (size_t n = 0; n < nodeWorlds_.size(); ++n)
+    nodeWorlds_[n] = glm::mat4(root_ * glm::dmat4(models_[size_t(skeleton.jointOfRaw(int(n)))]));
+}
+
+std::vector<glm::mat4> CharacterInstance::placedJoints() const {
+  std::vector<glm::mat4> out;
+  for (const glm::mat4& joint : models_) out.push_back(glm::mat4(root_ * glm::dmat4(joint)));
+  return out;
 }
 
 Status CharacterInstance::uploadPalettes(SkinMode mode) {
@@ -160,7 +118,8 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   }
   ModelFrame frame;
   frame.viewProjection = viewProjection;
-  frame.cameraPosition = glm::dvec3(0.0);  // the models are camera-relative already
+  frame.cameraPosition = glm::dvec3(0.0);  // the root is camera-relative already
+  frame.root = root_;
   frame.nodeWorlds = nodeWorlds_;
   frame.skinBuffers = skinBuffers_;
   frame.skinMode = mode;

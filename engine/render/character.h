@@ -10,22 +10,24 @@
 #include "anim/player.h"
 #include "asset/model_data.h"
 #include "render/model_renderer.h"
+#include "scene/model_asset.h"
 
 namespace engine {
 
+// A model asset (scene/model_asset.h) on the GPU. `model` and `animated` are the
+// source's, named here for the many places that read them.
 struct CharacterAsset {
-  ModelData model;
-  AnimatedModel animated;
+  std::shared_ptr<const ModelAsset> source;
+  const ModelData& model;
+  const AnimatedModel& animated;
   GpuModel gpu;
 
-  // Builds the runtime animation data and uploads the model (needs a context).
+  // Uploads the model (needs a context).
+  static Result<std::shared_ptr<const CharacterAsset>> create(std::shared_ptr<const ModelAsset> source);
+  // ModelAsset::create, then the upload.
   static Result<std::shared_ptr<const CharacterAsset>> create(ModelData model);
-  // Model-space bounds that hold every pose of every clip (sampled `samples`
-  // times per clip, and the rest pose), for culling skinned meshes.
-  struct Bounds {
-    glm::vec3 min{0.0f}, max{0.0f};
-  };
-  Result<Bounds> boundsOfAllPoses(int samples = 24) const;
+  using Bounds = ModelAsset::Bounds;
+  Result<Bounds> boundsOfAllPoses(int samples = 24) const { return source->boundsOfAllPoses(samples); }
 };
 
 class CharacterInstance {
@@ -38,19 +40,24 @@ class CharacterInstance {
   Player& player() { return player_; }
   int clip() const { return clip_; }
 
-  // Samples the pose at the player's time (the rest pose when `bindPose`).
-  void evaluate(bool bindPose = false);
-  // Joint matrices relative to the camera: root = camera offset * `transform`,
-  // composed in double so that characters far from the origin stay precise.
-  Status computeModels(const glm::dmat4& transform, const glm::dvec3& cameraPosition);
-  // Uploads the skin palettes (once per computeModels) and draws every primitive;
+  // Samples the pose at the player's time (the rest pose when `bindPose`): the
+  // joints in model space, once per pose however many views draw it.
+  Status evaluate(bool bindPose = false);
+  // Takes a pose made elsewhere (a Scene's instance, scene/scene.h) instead.
+  void setPose(const Pose& pose);
+  // Places the posed model for one view: its root `world` relative to
+  // `cameraPosition`, composed in double so that characters far from the origin
+  // stay precise. Touches no joint: the palettes stay in model space and the root
+  // reaches the shader as its model matrix.
+  void place(const glm::dmat4& world, const glm::dvec3& cameraPosition);
+  // Uploads the skin palettes (once per pose) and draws every primitive;
   // without `includeBlend` the BLEND ones are left for drawBlend.
   // `setUniforms` sets the program's lights and shadows.
   Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
               const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly = false,
               bool includeBlend = true);
   // The BLEND primitives and their distances from the camera of the last
-  // computeModels, for a scene to sort with those of other models.
+  // place, for a scene to sort with those of other models.
   std::vector<BlendPrimitive> blendPrimitives() const;
   Status drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                    const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive);
@@ -58,7 +65,9 @@ class CharacterInstance {
   Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
               const Lighting& lighting);
 
+  // The joints of the pose in model space, and placed for the last place() view.
   std::span<const glm::mat4> models() const { return models_; }
+  std::vector<glm::mat4> placedJoints() const;
   // The morph weights of the last evaluate(), in the asset's MorphLayout order.
   std::span<const float> morphWeights() const { return morphWeights_; }
   const CharacterAsset& asset() const { return *asset_; }
@@ -73,8 +82,9 @@ class CharacterInstance {
   Player player_;
   int clip_ = -1;
   std::vector<Srt> locals_;
-  std::vector<glm::mat4> models_;      // per runtime joint, camera-relative
-  std::vector<glm::mat4> nodeWorlds_;  // per glTF node, camera-relative
+  std::vector<glm::mat4> models_;      // per runtime joint, model space
+  glm::dmat4 root_{1.0};               // the model's root, camera-relative (place)
+  std::vector<glm::mat4> nodeWorlds_;  // per glTF node, camera-relative (place)
   std::vector<glm::mat4> palette_;     // scratch, reused every frame
   std::vector<DualQuat> dualQuats_;    // scratch
   std::vector<gl::Buffer> skinBuffers_;

@@ -228,7 +228,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     pr.set("u_alphaCutoff", material->alphaCutoff);
   }
   const glm::mat4 model4 =
-      skinned ? glm::mat4(toCamera) : glm::mat4(toCamera * glm::dmat4(frame.nodeWorlds[n]));
+      glm::mat4(skinned ? toCamera * frame.root : toCamera * glm::dmat4(frame.nodeWorlds[n]));
   pr.set("u_model", model4);
   pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
   // scene.vert's tiling of analytic shapes: a program may be shared with them.

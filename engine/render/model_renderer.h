@@ -121,6 +121,9 @@ struct ModelFrame {
   glm::dvec3 cameraPosition{0.0};
   // World matrix of every glTF node (node order).
   std::span<const glm::mat4> nodeWorlds;
+  // The model's root in the world: skinned primitives are placed by it, their
+  // palettes being in the root's space (model space).
+  glm::dmat4 root{1.0};
   // One storage buffer per skin: mat4 palette (Linear) or 2 vec4 per joint (DualQuat).
   std::span<const gl::Buffer> skinBuffers;
   SkinMode skinMode = SkinMode::Linear;

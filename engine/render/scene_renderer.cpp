@@ -10,7 +10,6 @@
 #include <optional>
 #include <sstream>
 
-#include "asset/gltf_loader.h"
 #include "asset/material_texture.h"
 #include "asset/scene_file.h"
 #include "core/linear_image.h"
@@ -20,10 +19,9 @@
 #include "render/mesh.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
-#include "scene/instances.h"
+#include "scene/scene.h"
 #include "render/textures.h"
 #include "terrain/lod.h"
-#include "terrain/scene_terrain.h"
 #include "terrain/terrain.h"
 #include "terrain/terrain_renderer.h"
 
@@ -69,6 +67,8 @@ struct Probe {
   gl::Texture cube;
 };
 
+// A scene instance (scene/scene.h) on the GPU: its pose is the scene's, copied in
+// by update; `world`, the bounds and the file's entry are the instance's.
 struct CharacterDraw {
   std::unique_ptr<CharacterInstance> instance;
   glm::dmat4 world{1.0};
@@ -157,6 +157,9 @@ void frustumPlanes(const glm::dmat4& m, glm::dvec4 planes[6]) {
 }  // namespace
 
 struct SceneRenderer::Impl {
+  // What is drawn: the scene layer's models, poses and terrain (shared with any
+  // other renderer of the same scene); `scene` is its description.
+  std::shared_ptr<Scene> source;
   SceneDesc scene;
   RenderDesc render;
   std::string shaderDir;
@@ -204,7 +207,7 @@ struct SceneRenderer::Impl {
   gl::Framebuffer probeFbo;
   bool probesValid = false;  // static scenes draw their probes once
   bool blendPass = false;  // some model has a BLEND material
-  std::unique_ptr<terrain::Terrain> terrain;
+  terrain::Terrain* terrain = nullptr;  // the scene's, when it has one
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
   SceneStats* stats = nullptr;
@@ -243,7 +246,7 @@ struct SceneRenderer::Impl {
   Status drawWorld(const View& view, int skipShape, bool useProbes);
   Status makeProbes();
   Status renderProbes(const glm::dvec3& cameraPosition);
-  Status poseCharacters(const glm::dvec3& cameraPosition);
+  void placeCharacters(const glm::dvec3& cameraPosition);
   Status drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
                         const glm::mat4& viewProjection);
   Status drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection);
@@ -428,10 +431,8 @@ Status SceneRenderer::Impl::makeProbes() {
 }
 
 Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
-  if (!scene.terrain.enabled) return Ok{};
-  auto created = terrain::Terrain::create(terrain::settingsFromScene(scene.terrain));
-  if (!created) return makeError(scene.path + ": /terrain: " + created.error().message);
-  terrain = std::make_unique<terrain::Terrain>(std::move(created).value());
+  terrain = source->terrain();
+  if (!terrain) return Ok{};
   // The scene programs' variant: the terrain is lit and shadowed as they are.
   auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, defines);
   if (!renderer) return renderer.error();
@@ -487,33 +488,22 @@ Status SceneRenderer::Impl::loadMaterials() {
   return Ok{};
 }
 
+// One upload per model file, one CharacterInstance per scene instance.
 Status SceneRenderer::Impl::loadModels() {
-  std::map<std::string, std::shared_ptr<const CharacterAsset>> byPath;
-  for (size_t i = 0; i < scene.models.size(); ++i) {
-    const ModelDesc& desc = scene.models[i];
-    const std::string where = scene.path + ": /models/" + std::to_string(i);
-    auto& asset = byPath[desc.path];
-    if (!asset) {
-      auto model = loadGltf(desc.path);
-      if (!model) return makeError(where + "/path: " + model.error().message);
-      auto created = CharacterAsset::create(std::move(model).value());
-      if (!created) return makeError(where + ": " + created.error().message);
-      asset = std::move(created).value();
-    }
-    auto clip = findClip(asset->animated, desc.clip, desc.path);
-    if (!clip) return makeError(where + "/clip: " + clip.error().message);
+  std::vector<std::shared_ptr<const CharacterAsset>> uploaded;
+  for (const auto& asset : source->assets()) {
+    auto created = CharacterAsset::create(asset);
+    if (!created) return makeError(scene.path + ": " + asset->model.path + ": " + created.error().message);
+    uploaded.push_back(std::move(created).value());
+  }
+  for (const ModelInstance& instance : source->instances()) {
     CharacterDraw draw;
-    draw.instance = std::make_unique<CharacterInstance>(asset);
-    draw.instance->play(*clip);
-    draw.instance->player().setSpeed(desc.speed);
-    draw.desc = desc;
-    const double ground = desc.onTerrain && terrain ? terrain->heightAt(desc.position.x, desc.position.z) : 0.0;
-    draw.world = modelTransform(desc, ground);
-    const auto bounds = asset->boundsOfAllPoses();
-    if (!bounds) return makeError(where + ": " + bounds.error().message);
-    draw.localCenter = glm::dvec3(bounds->min + bounds->max) * 0.5;
-    draw.localRadius = 0.5 * double(glm::length(bounds->max - bounds->min)) *
-                       std::max({desc.scale.x, desc.scale.y, desc.scale.z});
+    draw.instance = std::make_unique<CharacterInstance>(uploaded[size_t(instance.asset)]);
+    draw.instance->setPose(instance.pose);
+    draw.desc = instance.desc;
+    draw.world = instance.world;
+    draw.localCenter = instance.boundsCenter;
+    draw.localRadius = instance.boundsRadius;
     characters.push_back(std::move(draw));
   }
   return Ok{};
@@ -880,12 +870,11 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   return drawBlended(view.planes, glm::mat4(view.viewProjection));
 }
 
-Status SceneRenderer::Impl::poseCharacters(const glm::dvec3& cameraPosition) {
+// Every character placed for a view from `cameraPosition`: only its root moves, the
+// pose (and its palettes) stay as update left them.
+void SceneRenderer::Impl::placeCharacters(const glm::dvec3& cameraPosition) {
   eye = cameraPosition;
-  for (auto& c : characters) {
-    if (auto s = c.instance->computeModels(c.world, cameraPosition); !s) return s;
-  }
-  return Ok{};
+  for (auto& c : characters) c.instance->place(c.world, cameraPosition);
 }
 
 // Each probe's six faces, seen from the mirror's centre without the mirror itself.
@@ -899,7 +888,7 @@ Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
   const glm::vec3 background = scene.sky.background;
   glFrontFace(GL_CCW);
   for (const Probe& probe : probes) {
-    if (auto s = poseCharacters(probe.center); !s) return s;
+    placeCharacters(probe.center);
     if (sunShadows) {
       // All around the probe, as far as the camera's maps reach ahead of it.
       const ShadowSphere nearSphere{glm::dvec3(0.0), std::min(scene.camera.farPlane, kSunShadowDistance)};
@@ -923,18 +912,27 @@ Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
       if (auto s = drawWorld(view, probe.shape, false); !s) return s;
     }
   }
-  return poseCharacters(cameraPosition);
+  placeCharacters(cameraPosition);
+  return Ok{};
 }
 
 SceneRenderer::SceneRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) { impl_->stats = &stats_; }
 SceneRenderer::~SceneRenderer() = default;
 
-Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const SceneDesc& scene, const SceneRenderOptions& options) {
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(std::shared_ptr<Scene> source,
+                                                             const SceneRenderOptions& options) {
   auto impl = std::make_unique<Impl>();
-  impl->scene = scene;
+  impl->scene = source->desc();
+  impl->source = std::move(source);
   std::unique_ptr<SceneRenderer> renderer(new SceneRenderer(std::move(impl)));
   if (auto s = renderer->impl_->init(options); !s) return s.error();
   return renderer;
+}
+
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const SceneDesc& scene, const SceneRenderOptions& options) {
+  auto source = Scene::load(scene);
+  if (!source) return source.error();
+  return create(std::move(source).value(), options);
 }
 
 const SceneDesc& SceneRenderer::scene() const { return impl_->scene; }
@@ -949,13 +947,11 @@ std::vector<CharacterInstance*> SceneRenderer::characters() {
   return out;
 }
 
-void SceneRenderer::update(double time) {
-  // Clip time is a function of the scene time alone (start + time * speed), so a
-  // frame never depends on the frames before it.
-  for (auto& c : impl_->characters) {
-    c.instance->player().seek(clipTimeAt(c.desc, time));
-    c.instance->evaluate();
-  }
+Status SceneRenderer::update(double time) {
+  if (auto s = impl_->source->update(time); !s) return s;
+  const auto instances = impl_->source->instances();
+  for (size_t i = 0; i < impl_->characters.size(); ++i) impl_->characters[i].instance->setPose(instances[i].pose);
+  return Ok{};
 }
 
 Camera SceneRenderer::initialCamera() const {
@@ -994,7 +990,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
 
   GLint callerFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
-  if (auto status = poseCharacters(cameraPosition); !status) return status;
+  placeCharacters(cameraPosition);
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);

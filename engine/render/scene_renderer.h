@@ -17,6 +17,7 @@ namespace engine {
 
 class CharacterInstance;
 class EnvironmentLighting;
+class Scene;
 
 struct SceneRenderOptions {
   std::string shaderDir;
@@ -39,13 +40,20 @@ struct SceneStats {
 
 class SceneRenderer {
  public:
-  // Loads the scene's models (clip names are checked: "demo.json: /models/2/clip:
-  // no clip ..."), textures and programs. Needs a current context.
+  // Uploads what the scene layer loaded (scene/scene.h: models, terrain), loads the
+  // textures and builds the programs. Needs a current context. The renderer keeps
+  // `scene` and draws its poses.
+  static Result<std::unique_ptr<SceneRenderer>> create(std::shared_ptr<Scene> scene,
+                                                       const SceneRenderOptions& options);
+  // Scene::load (clip names are checked: "demo.json: /models/2/clip: no clip ..."),
+  // then the above.
   static Result<std::unique_ptr<SceneRenderer>> create(const SceneDesc& scene, const SceneRenderOptions& options);
   ~SceneRenderer();
 
-  // Poses the characters at scene time `time` (seconds).
-  void update(double time);
+  // Poses the scene at scene time `time` (seconds; Scene::update, which does
+  // nothing when another renderer of the same scene has posed it at that time) and
+  // takes its poses.
+  Status update(double time);
   // Draws the frame into the framebuffer bound now, of `width` x `height` pixels.
   Status render(const Camera& camera, int width, int height);
 

@@ -15,9 +15,11 @@ engine::Status SceneGame::init() {
   return engine::Ok{};
 }
 
-void SceneGame::update(double time, double) { renderer_->update(time); }
+// A failed pose ends the run at the next render, which has no frame to show.
+void SceneGame::update(double time, double) { updated_ = renderer_->update(time); }
 
 engine::Status SceneGame::render(const engine::FrameInfo& frame) {
+  if (!updated_) return updated_;
   return renderer_->render(camera_, frame.width, frame.height);
 }
 

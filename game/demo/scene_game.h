@@ -29,6 +29,7 @@ class SceneGame final : public engine::Game {
   engine::SceneRenderOptions options_;
   engine::Camera camera_;
   std::unique_ptr<engine::SceneRenderer> renderer_;
+  engine::Status updated_ = engine::Ok{};
 };
 
 }  // namespace demo

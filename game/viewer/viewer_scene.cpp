@@ -102,7 +102,7 @@ void ViewerScene::update(double time, double dt) {
   } else if (playing_) {
     player.update(dt);
   }
-  character_->evaluate(settings_.bindPose);
+  posed_ = character_->evaluate(settings_.bindPose);  // a failure ends the run at render
 }
 
 void ViewerScene::drawGround(const glm::mat4& viewProjection) {
@@ -126,7 +126,7 @@ void ViewerScene::drawGround(const glm::mat4& viewProjection) {
 void ViewerScene::drawSkeleton(const glm::mat4& viewProjection) {
   std::vector<glm::vec3> vertices;
   const auto parents = character_->asset().animated.skeleton.parents();
-  const auto models = character_->models();  // camera-relative already
+  const auto models = character_->placedJoints();  // camera-relative
   for (size_t j = 0; j < models.size(); ++j) {
     if (parents[j] < 0) continue;
     const glm::vec3 color = j % 2 ? glm::vec3(1.0f, 0.85f, 0.1f) : glm::vec3(1.0f, 0.4f, 0.1f);
@@ -164,7 +164,8 @@ Status ViewerScene::render(const FrameInfo& frame) {
   glEnable(GL_DEPTH_TEST);
 
   drawGround(viewProjection);
-  if (auto s = character_->computeModels(glm::dmat4(1.0), camera_.position); !s) return s;
+  if (!posed_) return posed_;
+  character_->place(glm::dmat4(1.0), camera_.position);
   if (auto s = character_->draw(gpu_->variants, viewProjection, settings_.skinMode, lighting_); !s) return s;
   if (settings_.skeleton) drawSkeleton(viewProjection);
   return Ok{};
@@ -201,7 +202,7 @@ void ViewerScene::drawUi() {
     float t = float(player.localTime());
     if (ImGui::SliderFloat("time", &t, 0.0f, float(std::max(clip->duration(), 1e-3)), "%.3f s")) {
       player.seek(t);
-      character_->evaluate(settings_.bindPose);
+      posed_ = character_->evaluate(settings_.bindPose);
     }
   }
   float speed = float(settings_.speed);

@@ -56,6 +56,7 @@ class ViewerScene final : public engine::Game {
   double groundSize_ = 10.0;
   double startTime_ = 0.0;
   std::unique_ptr<Gpu> gpu_;
+  engine::Status posed_ = engine::Ok{};  // the last evaluate's
 };
 
 }  // namespace viewer

@@ -61,12 +61,12 @@ TEST_P(Probes, StaticProbesDoNotKeepTheFirstCamerasShadows) {
 
   auto moved = SceneRenderer::create(*scene, options);
   ASSERT_TRUE(moved.ok()) << moved.error().message;
-  (*moved)->update(0.0);
+  ASSERT_TRUE((*moved)->update(0.0).ok());
   const Image afterMoving = renderFrames(**moved, {away, near});
 
   auto fresh = SceneRenderer::create(*scene, options);
   ASSERT_TRUE(fresh.ok()) << fresh.error().message;
-  (*fresh)->update(0.0);
+  ASSERT_TRUE((*fresh)->update(0.0).ok());
   const Image direct = renderFrames(**fresh, {near});
 
   ASSERT_EQ(afterMoving.pixels.size(), direct.pixels.size());

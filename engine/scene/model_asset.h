@@ -1,0 +1,49 @@
+#pragma once
+// A glTF model as every renderer uses it, loaded once per file however many
+// instances a scene places: the file's data, its runtime skeleton, clips, skins and
+// morph layout, and the one way a pose of it is sampled. GL-free: the rasterizer
+// uploads it (render/character.h), the tracers skin it on the CPU.
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "anim/clip.h"
+#include "anim/model_builder.h"
+#include "asset/model_data.h"
+#include "core/result.h"
+
+namespace engine {
+
+struct ModelAsset {
+  ModelData model;
+  AnimatedModel animated;
+
+  // Builds the runtime animation data of `model`.
+  static Result<std::shared_ptr<const ModelAsset>> create(ModelData model);
+  // loadGltf, then create.
+  static Result<std::shared_ptr<const ModelAsset>> load(const std::string& path);
+
+  // Model-space bounds that hold every pose of every clip (sampled `samples`
+  // times per clip, every morph key, and the rest pose), for culling skinned meshes.
+  struct Bounds {
+    glm::vec3 min{0.0f}, max{0.0f};
+  };
+  Result<Bounds> boundsOfAllPoses(int samples = 24) const;
+};
+
+// A pose of a model: every runtime joint's matrix in model space (the instance's
+// root not applied: each view applies it relative to its own eye) and every
+// morphing node's weights, in the asset's MorphLayout order.
+struct Pose {
+  std::vector<glm::mat4> joints;
+  std::vector<float> morphWeights;
+};
+
+// The pose of `asset` at `clipTime` of `clip`, wrapped into the clip (looping);
+// clip -1 is the rest pose. `locals` is scratch, resized as needed.
+Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vector<Srt>& locals, Pose& pose);
+// The model-space joint matrices of `locals` (LocalToModelJob, identity root).
+Status jointsFromLocals(const ModelAsset& asset, std::span<const Srt> locals, std::span<glm::mat4> joints);
+
+}  // namespace engine
