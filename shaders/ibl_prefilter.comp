@@ -12,8 +12,8 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 0) uniform samplerCube u_environment;  // mipmapped, seamless
-layout(binding = 0, rgba16f) writeonly uniform imageCube u_level;
+layout(binding = UNIT_IBL_SOURCE) uniform samplerCube u_environment;  // mipmapped, seamless
+layout(binding = IMAGE_IBL_LEVEL, rgba16f) writeonly uniform imageCube u_level;
 uniform int u_size;          // of the level written
 uniform float u_roughness;
 uniform int u_samples;

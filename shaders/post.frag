@@ -2,7 +2,7 @@
 // HDR to display: exposure, tone map, then the output curve; with supersampling
 // each output pixel averages its N x N HDR samples after tone mapping (the course's
 // "render larger, average down").
-layout(binding = 0) uniform sampler2D u_hdr;
+layout(binding = UNIT_HDR) uniform sampler2D u_hdr;
 uniform float u_exposure;
 uniform int u_toneMap;      // 0 none (clamp), 1 Reinhard, 2 ACES (Narkowicz fit)
 uniform int u_outputCurve;  // 0 sRGB, 1 gamma 1/2.2 (the course)

@@ -9,7 +9,7 @@ layout(location = 0) out vec4 o_color;
 #ifdef SKY_IMAGE
 #include "common/latlong.glsl"
 // Linear RGB (float), repeating in u, clamped in v, mipmapped.
-layout(binding = 9) uniform sampler2D u_skyImage;
+layout(binding = UNIT_SKY_IMAGE) uniform sampler2D u_skyImage;
 uniform float u_skyIntensity;
 uniform vec2 u_skyRotation;  // cosine and sine of the image's turn about +y
 

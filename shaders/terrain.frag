@@ -15,9 +15,9 @@ in vec3 v_normal;
 in float v_height;
 in vec2 v_uv;
 
-layout(binding = 1) uniform sampler2D u_grassTexture;
-layout(binding = 2) uniform sampler2D u_rockTexture;
-layout(binding = 3) uniform sampler2D u_snowTexture;
+layout(binding = UNIT_TERRAIN_LAYERS) uniform sampler2D u_grassTexture;
+layout(binding = UNIT_TERRAIN_LAYERS + 1) uniform sampler2D u_rockTexture;
+layout(binding = UNIT_TERRAIN_LAYERS + 2) uniform sampler2D u_snowTexture;
 uniform float u_heightScale;
 
 layout(location = 0) out vec4 o_color;

@@ -21,7 +21,7 @@
 layout(location = 0) in ivec2 a_grid;      // (i, j) in [0, PATCH_QUADS]
 layout(location = 1) in ivec4 a_patch;     // global sample of vertex (0,0), level, page slot
 
-layout(binding = 0) uniform sampler2DArray u_heightPages;
+layout(binding = UNIT_TERRAIN_HEIGHTS) uniform sampler2DArray u_heightPages;
 
 #ifdef DEPTH_ONLY
 uniform mat4 u_lightViewProjection;  // camera-relative world -> the light's clip space

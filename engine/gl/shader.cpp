@@ -1,5 +1,7 @@
 #include "gl/shader.h"
 
+#include "gl/bindings.h"
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include <filesystem>
@@ -74,6 +76,7 @@ struct Preprocessor {
       }
       out.text += line + "\n";
       for (const auto& d : *defines) out.text += "#define " + d + "\n";
+      for (const auto& b : binding::kDefines) out.text += "#define " + std::string(b.name) + " " + std::to_string(b.value) + "\n";
     }
     out.text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(fileIndex) + "\n";
     while (std::getline(lines, line)) {

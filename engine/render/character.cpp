@@ -139,6 +139,15 @@ Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewPr
   return drawModel(variants, asset_->model, asset_->gpu, *f);
 }
 
+Status CharacterInstance::drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+                                        const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly,
+                                        int node, int primitive) {
+  auto f = frame(viewProjection, mode, setUniforms);
+  if (!f) return f.error();
+  f->depthOnly = depthOnly;
+  return drawModelPrimitive(variants, asset_->model, asset_->gpu, *f, node, primitive);
+}
+
 std::vector<BlendPrimitive> CharacterInstance::blendPrimitives() const {
   return engine::blendPrimitives(asset_->model, asset_->gpu, nodeWorlds_);
 }

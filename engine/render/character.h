@@ -61,6 +61,10 @@ class CharacterInstance {
   std::vector<BlendPrimitive> blendPrimitives() const;
   Status drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                    const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive);
+  // One primitive, in whatever pass state the caller set (a scene's draw items).
+  Status drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+                       const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly, int node,
+                       int primitive);
   // The same with lit.frag's lighting uniforms (the viewer).
   Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
               const Lighting& lighting);

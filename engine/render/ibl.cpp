@@ -4,6 +4,7 @@
 #include <bit>
 #include <sstream>
 
+#include "gl/bindings.h"
 #include "gl/shader.h"
 
 namespace engine {
@@ -90,12 +91,12 @@ Status EnvironmentLighting::prefilter(const std::string& shaderDir, const gl::Te
   program->use();
   program->set("u_samples", kPrefilterSamples);
   program->set("u_sourceSize", float(size));
-  environment.bind(0);
+  environment.bind(gl::binding::kIblSource);
   for (int level = 1; level < levels_; ++level) {
     const int levelSize = size >> level;
     program->set("u_size", levelSize);
     program->set("u_roughness", float(level) / float(levels_ - 1));
-    glBindImageTexture(0, prefiltered_.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(gl::binding::kIblLevelImage, prefiltered_.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(GLuint((levelSize + 7) / 8), GLuint((levelSize + 7) / 8), 6);
   }
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -103,8 +104,8 @@ Status EnvironmentLighting::prefilter(const std::string& shaderDir, const gl::Te
 }
 
 void EnvironmentLighting::bind() const {
-  splitSum_.bind(kSplitSumUnit);
-  if (prefiltered_) prefiltered_.bind(kPrefilteredUnit);
+  splitSum_.bind(gl::binding::kSplitSum);
+  if (prefiltered_) prefiltered_.bind(gl::binding::kPrefiltered);
 }
 
 std::string EnvironmentLighting::describe() const {

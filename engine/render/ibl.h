@@ -15,10 +15,6 @@
 
 namespace engine {
 
-// Texture units of the scene programs (common/frame.glsl lists them all).
-inline constexpr unsigned kSplitSumUnit = 10;
-inline constexpr unsigned kPrefilteredUnit = 11;
-
 class EnvironmentLighting {
  public:
   // `environment`: an RGBA16F cube map with its full mip chain filled, `size` texels

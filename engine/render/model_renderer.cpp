@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gl/bindings.h"
+
 namespace engine {
 
 std::string ShaderVariant::describe() const {
@@ -85,11 +87,11 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
 
 // Texture units of common/material.glsl.
 void bindMaterialTextures(const GpuModel& gpu, const MaterialData& m, const ShaderVariant& v) {
-  if (v.textured) gpu.image(m.baseColorImage, true).bind(0);
-  if (v.normalMap) gpu.image(m.normalImage, false).bind(1);
-  if (v.metallicRoughnessTexture) gpu.image(m.metallicRoughnessImage, false).bind(2);
-  if (v.emissiveTexture) gpu.image(m.emissiveImage, true).bind(3);
-  if (v.occlusion) gpu.image(m.occlusionImage, false).bind(6);
+  if (v.textured) gpu.image(m.baseColorImage, true).bind(gl::binding::kBaseColor);
+  if (v.normalMap) gpu.image(m.normalImage, false).bind(gl::binding::kNormal);
+  if (v.metallicRoughnessTexture) gpu.image(m.metallicRoughnessImage, false).bind(gl::binding::kMetallicRoughness);
+  if (v.emissiveTexture) gpu.image(m.emissiveImage, true).bind(gl::binding::kEmissive);
+  if (v.occlusion) gpu.image(m.occlusionImage, false).bind(gl::binding::kOcclusion);
 }
 
 template <typename T>
@@ -235,7 +237,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   pr.set("u_uvScale", glm::vec2(1.0f));
   if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
   if (skinned) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.skinBuffers[size_t(node.skin)].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kSkinBuffer, frame.skinBuffers[size_t(node.skin)].id());
   }
   if (variant.morph) {
     if (auto s = bindNodeMorphTargets(pr, prim, frame, n); !s) return makeError(model.path + ": " + s.error().message);
@@ -243,7 +245,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   if (material) {
     bindMaterialTextures(gpu, *material, variant);
   } else if (!frame.depthOnly) {
-    gpu.image(-1, true).bind(0);
+    gpu.image(-1, true).bind(gl::binding::kBaseColor);
   }
   // Double-sided: no culling for this draw; the caller's setting is restored (the
   // point-light shadow pass draws everything without culling).
@@ -263,8 +265,8 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
 }  // namespace
 
 void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, const gl::Buffer& weights, int first) {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, prim.morphDeltas.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, weights.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kMorphDeltasBuffer, prim.morphDeltas.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kMorphWeightsBuffer, weights.id());
   program.set("u_morphTargets", prim.morphTargets);
   program.set("u_morphFirst", first);
   program.set("u_morphPositions", prim.morphPositions);
@@ -361,6 +363,11 @@ Status drawBlendPrimitive(ShaderVariants& variants, const ModelData& model, cons
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   return status;
+}
+
+Status drawModelPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
+                          const ModelFrame& frame, int node, int primitive) {
+  return drawPrimitive(variants, model, gpu, frame, size_t(node), size_t(primitive));
 }
 
 Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,

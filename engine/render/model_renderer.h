@@ -158,6 +158,11 @@ std::vector<BlendPrimitive> blendPrimitives(const ModelData& model, const GpuMod
 // opaque sheet.
 Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
                  const ModelFrame& frame);
+// Draws primitive `primitive` of `node` with the blend and depth state the caller
+// set (a pass's: render/pass_state.h); only a double-sided material's culling is
+// changed, and put back.
+Status drawModelPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
+                          const ModelFrame& frame, int node, int primitive);
 // Draws one BLEND primitive, with the blend state set around it (blending in
 // the target's linear colour, depth test on, depth writes off).
 Status drawBlendPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "gl/bindings.h"
 #include "asset/material_texture.h"
 #include "asset/scene_file.h"
 #include "core/linear_image.h"
@@ -18,6 +19,8 @@
 #include "render/ibl.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
+#include "render/draw_items.h"
+#include "render/pass_state.h"
 #include "render/render_target.h"
 #include "scene/scene.h"
 #include "render/textures.h"
@@ -58,6 +61,20 @@ struct View {
   glm::dvec4 planes[6];
   double fovy = 1.0;
   int height = 1;
+  bool mirrored = false;  // a left-handed camera: faces wind the other way
+};
+
+// What the draws of one pass share besides the items themselves.
+struct PassInputs {
+  bool depthOnly = false;
+  glm::mat4 lightViewProjection{1.0f};  // shadow passes
+  glm::mat4 viewProjection{1.0f};
+  bool useProbes = false;  // mirrors show their reflection probe
+};
+
+// The opaque and the blended draws of one view.
+struct DrawLists {
+  std::vector<DrawItem> opaque, blend;
 };
 
 // A cube map of the scene seen from a mirror shape's centre.
@@ -240,16 +257,16 @@ struct SceneRenderer::Impl {
   Status buildVariants();
   Status makeTarget(int width, int height);
   void setUniforms(const gl::Program& program) const;
-  Status drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
-                    int skipShape = -1, bool useProbes = false);
+  Result<DrawLists> collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape = -1);
+  Status collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists);
+  Status collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists);
+  Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass);
+  void drawShape(const ShapeDraw& shape, const gl::Program& program, const PassInputs& pass);
   void drawSky(const glm::dmat4& viewProjection, bool sunDisk = true);
   Status drawWorld(const View& view, int skipShape, bool useProbes);
   Status makeProbes();
   Status renderProbes(const glm::dvec3& cameraPosition);
   void placeCharacters(const glm::dvec3& cameraPosition);
-  Status drawCharacters(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
-                        const glm::mat4& viewProjection);
-  Status drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection);
   Status renderSunShadow(const ShadowSphere& nearSphere, const ShadowSphere& farSphere, double fovy,
                          int viewportHeight);
   Status renderPointShadow(const glm::dvec3& cameraPosition);
@@ -382,7 +399,7 @@ Status SceneRenderer::Impl::makeEnvironmentLighting() {
   const glm::dmat4 projection = glm::perspective(glm::half_pi<double>(), 1.0, 0.1, 10.0);
   const glm::vec3 background = scene.sky.background;
   glViewport(0, 0, iblSize, iblSize);
-  glDisable(GL_CULL_FACE);
+  applyPassState(kSkyPass);
   for (int face = 0; face < 6; ++face) {
     glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, environment.id(), 0, face);
     if (auto s = fbo.check("ibl-environment"); !s) return s;
@@ -394,6 +411,7 @@ Status SceneRenderer::Impl::makeEnvironmentLighting() {
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
+  applyPassState(kCallerState);
   environment.generateMipmaps();
   auto lighting = EnvironmentLighting::create(shaderDir, environment, iblSize, ambient);
   if (!lighting) return makeError(scene.path + ": /render/ambient: " + lighting.error().message);
@@ -473,9 +491,8 @@ void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy, int 
   const double r = box.radius;
   const glm::dmat4 cullProjection = glm::orthoRH_ZO(-r, r, -r, r, -reach, 2.0 * r + reach);
   const auto selection = selectTerrain(glm::mat4(cullProjection * box.view), fovy, viewportHeight);
-  glEnable(GL_DEPTH_CLAMP);
+  applyPassState(kTerrainShadowPass);
   terrainRenderer->drawDepth(selection, glm::mat4(box.projection * box.view));
-  glDisable(GL_DEPTH_CLAMP);
   stats->drawCalls += 1;
 }
 
@@ -587,12 +604,12 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
 void SceneRenderer::Impl::setUniforms(const gl::Program& program) const {
   if (sunShadows) {
     program.set("u_sunTexelWorld", float(sunTexelWorld));
-    sunShadowMap.bind(4);
-    if (sunFarShadows) sunShadowMapFar.bind(7);
+    sunShadowMap.bind(gl::binding::kSunShadow);
+    if (sunFarShadows) sunShadowMapFar.bind(gl::binding::kSunShadowFar);
   }
   if (pointShadows) {
     program.set("u_pointNear", float(pointNear));
-    pointShadowMap.bind(5);
+    pointShadowMap.bind(gl::binding::kPointShadow);
   }
 }
 
@@ -622,113 +639,154 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
     environmentLighting->bind();
   }
   frameUbo.upload(0, sizeof(FrameBlock), &frame);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
+  glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
 }
 
-Status SceneRenderer::Impl::drawShapes(const glm::dvec4* planes, bool depthOnly, const glm::mat4& lightViewProjection,
-                                       int skipShape, bool useProbes) {
+// The scene's shapes for one view: culled, each with its program (shadow passes
+// draw the depth-only one), keyed by program, material and distance.
+Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists) {
   for (int index = 0; index < int(shapes.size()); ++index) {
     const ShapeDraw& s = shapes[size_t(index)];
     if (index == skipShape) continue;
-    if (planes && !sphereVisible(planes, s.center - eye, s.radius)) {
+    const glm::dvec3 center = s.center - eye;
+    if (planes && !sphereVisible(planes, center, s.radius)) {
       ++stats->objectsCulled;
       continue;
     }
-    const MaterialDesc& m = scene.materials[size_t(s.material)];
+    ++stats->objectsDrawn;
     const bool textured = !depthOnly && materialTextures[size_t(s.material)].id() != 0;
     auto program = variants->get({0, SkinMode::Linear, textured, depthOnly});
     if (!program) return program.error();
-    const gl::Program& p = **program;
-    p.use();
-    ++stats->programChanges;
-    setUniforms(p);
-    // Camera-relative: the offset is taken in double, then the matrix goes to float.
-    glm::dmat4 relative = s.world;
-    relative[3] -= glm::dvec4(eye, 0.0);
-    const glm::mat4 model(relative);
-    p.set("u_model", model);
-    p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model)))));
-    p.set("u_uvScale", s.uvScale * (s.mesh == quad.get() ? 1.0f : m.textureScale));
-    if (depthOnly) {
-      p.set("u_lightViewProjection", lightViewProjection);
-    } else {
-      p.set("u_baseColorFactor", glm::vec4(m.color, 1.0f));
-      p.set("u_metallic", m.metallic);
-      p.set("u_roughness", m.roughness);
-      p.set("u_ambient", m.ambient);
-      p.set("u_diffuse", m.diffuse);
-      p.set("u_specular", m.specular);
-      p.set("u_shininess", m.shininess);
-      p.set("u_reflection", m.reflection);
-      p.set("u_emissive", m.emission);
-      if (textured) materialTextures[size_t(s.material)].bind(0);
-      if (!probes.empty()) {
-        const bool probed = useProbes && s.probe >= 0;
-        p.set("u_hasProbe", probed ? 1 : 0);
-        if (probed) probes[size_t(s.probe)].cube.bind(8);
-      }
-    }
-    if (s.twoSided) glDisable(GL_CULL_FACE);
-    s.mesh->draw();
-    if (s.twoSided) glEnable(GL_CULL_FACE);
-    ++stats->drawCalls;
-    ++stats->objectsDrawn;
+    const GLuint id = (*program)->id();
+    const double distance = s.radius < 0.0 ? 0.0 : glm::length(center);
+    lists.opaque.push_back({DrawItem::Source::Shape, index, -1, -1, id, opaqueKey(id, std::uint32_t(s.material), distance)});
   }
   return Ok{};
 }
 
-Status SceneRenderer::Impl::drawCharacters(const glm::dvec4* planes, bool depthOnly,
-                                           const glm::mat4& lightViewProjection, const glm::mat4& viewProjection) {
-  for (CharacterDraw& c : characters) {
+// Every primitive of every visible character: opaque and MASK ones keyed like
+// shapes (materials after the scene's own), BLEND ones back to front by the centre
+// of their bounds (whole primitives, so intersecting panes can still be out of
+// order). Shadow passes take no BLEND primitive: a tinted pane in a depth map
+// would be an opaque sheet.
+Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists) {
+  for (int index = 0; index < int(characters.size()); ++index) {
+    const CharacterDraw& c = characters[size_t(index)];
     const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
     if (planes && !sphereVisible(planes, center, c.localRadius)) {
       ++stats->objectsCulled;
       continue;
     }
-    const SkinMode mode = skinModeOf(c.desc);
-    auto set = [this, depthOnly, &lightViewProjection](const gl::Program& p) {
-      setUniforms(p);
-      if (depthOnly) p.set("u_lightViewProjection", lightViewProjection);
-    };
-    if (auto s = c.instance->draw(*variants, viewProjection, mode, set, depthOnly, false); !s) return s;
-    const ModelData& model = c.instance->asset().model;
-    for (const NodeData& node : model.nodes) {
-      if (node.mesh < 0) continue;
-      const int prims = int(model.meshes[size_t(node.mesh)].primitives.size());
-      stats->drawCalls += prims;
-      stats->programChanges += prims;
-    }
     ++stats->objectsDrawn;
+    const ModelData& model = c.instance->asset().model;
+    const SkinMode mode = skinModeOf(c.desc);
+    const double distance = glm::length(center);
+    for (int n = 0; n < int(model.nodes.size()); ++n) {
+      const NodeData& node = model.nodes[size_t(n)];
+      if (node.mesh < 0) continue;
+      const auto& prims = model.meshes[size_t(node.mesh)].primitives;
+      for (int p = 0; p < int(prims.size()); ++p) {
+        const PrimitiveData& prim = prims[size_t(p)];
+        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
+        if (blend && depthOnly) continue;
+        auto program = variants->get(primitiveVariant(model, node, prim, mode, depthOnly));
+        if (!program) return program.error();
+        const GLuint id = (*program)->id();
+        if (!blend) {
+          const std::uint32_t material = std::uint32_t(scene.materials.size()) + std::uint32_t(std::max(prim.material, 0));
+          lists.opaque.push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance)});
+        }
+      }
+    }
+    if (depthOnly) continue;
+    for (const BlendPrimitive& b : c.instance->blendPrimitives()) {
+      auto program = variants->get(primitiveVariant(model, model.nodes[size_t(b.node)],
+                                                    model.meshes[size_t(model.nodes[size_t(b.node)].mesh)].primitives[size_t(b.primitive)],
+                                                    mode, false));
+      if (!program) return program.error();
+      lists.blend.push_back({DrawItem::Source::Character, index, b.node, b.primitive, (*program)->id(), blendKey(b.distance)});
+    }
   }
   return Ok{};
 }
 
-// BLEND primitives of every model, after everything opaque and the sky: sorted
-// back to front across models (whole primitives by the centre of their bounds,
-// so intersecting panes can still be out of order), depth test on, no depth write.
-Status SceneRenderer::Impl::drawBlended(const glm::dvec4* planes, const glm::mat4& viewProjection) {
-  if (!blendPass) return Ok{};
-  struct Item {
-    CharacterDraw* character;
-    BlendPrimitive primitive;
-  };
-  std::vector<Item> items;
-  for (CharacterDraw& c : characters) {
-    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
-    if (planes && !sphereVisible(planes, center, c.localRadius)) continue;
-    for (const BlendPrimitive& b : c.instance->blendPrimitives()) items.push_back({&c, b});
+Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape) {
+  DrawLists lists;
+  if (auto s = collectShapes(planes, depthOnly, skipShape, lists); !s) return s.error();
+  if (auto s = collectCharacters(planes, depthOnly, lists); !s) return s.error();
+  sortDrawItems(lists.opaque);
+  sortDrawItems(lists.blend);
+  return lists;
+}
+
+void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, const PassInputs& pass) {
+  const MaterialDesc& m = scene.materials[size_t(s.material)];
+  // Camera-relative: the offset is taken in double, then the matrix goes to float.
+  glm::dmat4 relative = s.world;
+  relative[3] -= glm::dvec4(eye, 0.0);
+  const glm::mat4 model(relative);
+  p.set("u_model", model);
+  p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model)))));
+  p.set("u_uvScale", s.uvScale * (s.mesh == quad.get() ? 1.0f : m.textureScale));
+  if (pass.depthOnly) {
+    p.set("u_lightViewProjection", pass.lightViewProjection);
+  } else {
+    p.set("u_baseColorFactor", glm::vec4(m.color, 1.0f));
+    p.set("u_metallic", m.metallic);
+    p.set("u_roughness", m.roughness);
+    p.set("u_ambient", m.ambient);
+    p.set("u_diffuse", m.diffuse);
+    p.set("u_specular", m.specular);
+    p.set("u_shininess", m.shininess);
+    p.set("u_reflection", m.reflection);
+    p.set("u_emissive", m.emission);
+    if (materialTextures[size_t(s.material)].id() != 0) materialTextures[size_t(s.material)].bind(gl::binding::kBaseColor);
+    if (!probes.empty()) {
+      const bool probed = pass.useProbes && s.probe >= 0;
+      p.set("u_hasProbe", probed ? 1 : 0);
+      if (probed) probes[size_t(s.probe)].cube.bind(gl::binding::kReflectionProbe);
+    }
   }
-  std::stable_sort(items.begin(), items.end(),
-                   [](const Item& a, const Item& b) { return a.primitive.distance > b.primitive.distance; });
-  auto set = [this](const gl::Program& p) { setUniforms(p); };
-  for (const Item& item : items) {
-    if (auto s = item.character->instance->drawBlend(*variants, viewProjection, skinModeOf(item.character->desc),
-                                                     set, item.primitive);
+  if (s.twoSided) glDisable(GL_CULL_FACE);
+  s.mesh->draw();
+  if (s.twoSided) glEnable(GL_CULL_FACE);
+}
+
+// The items in order, in the pass state the caller set. A program's pass-wide
+// uniforms (shadow parameters) are set when the pass first binds it, and each
+// change of program is counted: sorting keeps the count near the number of
+// programs the view needs.
+Status SceneRenderer::Impl::drawItems(const std::vector<DrawItem>& items, const PassInputs& pass) {
+  std::vector<std::uint32_t> programs;
+  for (const DrawItem& item : items) programs.push_back(item.program);
+  std::sort(programs.begin(), programs.end());
+  stats->programsNeeded += int(std::unique(programs.begin(), programs.end()) - programs.begin());
+  GLuint bound = 0;
+  auto set = [&](const gl::Program& p) {
+    if (p.id() == bound) return;
+    bound = p.id();
+    ++stats->programChanges;
+    setUniforms(p);
+    if (pass.depthOnly) p.set("u_lightViewProjection", pass.lightViewProjection);
+  };
+  for (const DrawItem& item : items) {
+    ++stats->drawCalls;
+    if (item.source == DrawItem::Source::Shape) {
+      const ShapeDraw& shape = shapes[size_t(item.object)];
+      const bool textured = !pass.depthOnly && materialTextures[size_t(shape.material)].id() != 0;
+      auto program = variants->get({0, SkinMode::Linear, textured, pass.depthOnly});
+      if (!program) return program.error();
+      (*program)->use();
+      set(**program);
+      drawShape(shape, **program, pass);
+      continue;
+    }
+    CharacterDraw& c = characters[size_t(item.object)];
+    if (auto s = c.instance->drawPrimitive(*variants, pass.viewProjection, skinModeOf(c.desc), set, pass.depthOnly,
+                                           item.node, item.primitive);
         !s) {
       return s;
     }
-    ++stats->drawCalls;
-    ++stats->programChanges;
   }
   return Ok{};
 }
@@ -790,14 +848,13 @@ Status SceneRenderer::Impl::renderSunShadow(const ShadowSphere& nearSphere, cons
 
   sunShadowFbo.bind();
   glViewport(0, 0, sunShadowSize, sunShadowSize);
+  applyPassState(kShadowPass);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
-  glDepthFunc(GL_LESS);
-  // Slope-scaled offset: surfaces at grazing angles to the sun get more.
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.5f, 2.0f);
-  if (auto s = drawShapes(nullptr, true, lightViewProjection); !s) return s;
-  if (auto s = drawCharacters(nullptr, true, lightViewProjection, lightViewProjection); !s) return s;
+  // Every caster: the sun's box is fitted to what the view sees, not culled to it.
+  auto casters = collectDraws(nullptr, true);
+  if (!casters) return casters.error();
+  if (auto s = drawItems(casters->opaque, {true, lightViewProjection, lightViewProjection}); !s) return s;
   if (terrain) drawTerrainShadow(box, fovy, viewportHeight);
 
   if (sunFarShadows) {
@@ -809,7 +866,6 @@ Status SceneRenderer::Impl::renderSunShadow(const ShadowSphere& nearSphere, cons
     glClear(GL_DEPTH_BUFFER_BIT);
     drawTerrainShadow(far, fovy, viewportHeight);
   }
-  glDisable(GL_POLYGON_OFFSET_FILL);
   return Ok{};
 }
 
@@ -817,23 +873,18 @@ Status SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) 
   const glm::dvec3 light = scene.lights[size_t(pointLights[0])].position - cameraPosition;
   const glm::dmat4 proj = glm::perspectiveRH_ZO(glm::half_pi<double>(), 1.0, pointNear, pointFar);
   glViewport(0, 0, cubeSize, cubeSize);
-  glDepthFunc(GL_LESS);
+  applyPassState(kCubeShadowPass);
   glClearDepth(1.0);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.5f, 2.0f);
-  // Cube faces are seen from inside: a right-handed face view mirrors nothing,
-  // but GL's cube orientation does; draw both sides so no caster is lost.
-  glDisable(GL_CULL_FACE);
+  // One list for the six faces: nothing is culled to a face.
+  auto casters = collectDraws(nullptr, true);
+  if (!casters) return casters.error();
   for (int face = 0; face < 6; ++face) {
     glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, face);
     pointShadowFbo.bind();
     glClear(GL_DEPTH_BUFFER_BIT);
     const glm::mat4 faceViewProjection(proj * glm::lookAt(light, light + kCubeFaceDirections[face], kCubeFaceUps[face]));
-    if (auto s = drawShapes(nullptr, true, faceViewProjection); !s) return s;
-    if (auto s = drawCharacters(nullptr, true, faceViewProjection, faceViewProjection); !s) return s;
+    if (auto s = drawItems(casters->opaque, {true, faceViewProjection, faceViewProjection}); !s) return s;
   }
-  glEnable(GL_CULL_FACE);
-  glDisable(GL_POLYGON_OFFSET_FILL);
   return Ok{};
 }
 
@@ -843,7 +894,7 @@ void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk
     const float radians = glm::radians(scene.sky.rotationDegrees);
     sky.set("u_skyIntensity", scene.sky.intensity);
     sky.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
-    skyImage.bind(9);
+    skyImage.bind(gl::binding::kSkyImage);
   } else {
     Lighting lighting;
     lighting.sunDirection = sunLight >= 0 ? glm::vec3(scene.lights[size_t(sunLight)].direction) : glm::vec3(0, -1, 0);
@@ -855,19 +906,26 @@ void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk
   }
   sky.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
   emptyVao.bind();
-  glDisable(GL_DEPTH_TEST);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  glEnable(GL_DEPTH_TEST);
   ++stats->drawCalls;
 }
 
-// Everything a colour pass shows, into the bound HDR framebuffer.
+// Everything a colour pass shows, into the bound HDR framebuffer (cleared): the
+// sky, the terrain, the opaque draws of the view, then its blended ones.
 Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useProbes) {
-  if (scene.sky.enabled) drawSky(view.viewProjection);
+  if (scene.sky.enabled) {
+    applyPassState(kSkyPass);
+    drawSky(view.viewProjection);
+  }
+  applyPassState(opaquePassFor(view.mirrored));
   if (terrain) drawTerrain(view.viewProjection, view.fovy, view.height);
-  if (auto s = drawShapes(view.planes, false, glm::mat4(1.0f), skipShape, useProbes); !s) return s;
-  if (auto s = drawCharacters(view.planes, false, glm::mat4(1.0f), glm::mat4(view.viewProjection)); !s) return s;
-  return drawBlended(view.planes, glm::mat4(view.viewProjection));
+  auto lists = collectDraws(view.planes, false, skipShape);
+  if (!lists) return lists.error();
+  const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
+  if (auto s = drawItems(lists->opaque, pass); !s) return s;
+  if (lists->blend.empty()) return Ok{};
+  applyPassState(blendPassFor(view.mirrored));
+  return drawItems(lists->blend, pass);
 }
 
 // Every character placed for a view from `cameraPosition`: only its root moves, the
@@ -886,7 +944,6 @@ void SceneRenderer::Impl::placeCharacters(const glm::dvec3& cameraPosition) {
 Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
   const glm::dmat4 projection = reverseZProjection(glm::half_pi<double>(), 1.0, kProbeNear, scene.camera.farPlane);
   const glm::vec3 background = scene.sky.background;
-  glFrontFace(GL_CCW);
   for (const Probe& probe : probes) {
     placeCharacters(probe.center);
     if (sunShadows) {
@@ -905,10 +962,10 @@ Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
       fillFrame(probe.center, glm::mat4(view.viewProjection));
       glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probe.cube.id(), 0, face);
       probeFbo.bind();
+      applyPassState(opaquePassFor(false));  // depth writes on, for the clear
       glClearColor(background.r, background.g, background.b, 1.0f);
       glClearDepth(0.0);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      glDepthFunc(GL_GREATER);
       if (auto s = drawWorld(view, probe.shape, false); !s) return s;
     }
   }
@@ -991,13 +1048,9 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   GLint callerFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
   placeCharacters(cameraPosition);
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_CULL_FACE);
-  glFrontFace(GL_CCW);
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo.id());
+  glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
   if (pointShadows && !(pointShadowValid && characters.empty())) {
     if (auto status = renderPointShadow(cameraPosition); !status) return status;
     pointShadowValid = true;
@@ -1021,14 +1074,13 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   drawFbo.bind();
   glViewport(0, 0, targetWidth, targetHeight);
   glDisable(GL_FRAMEBUFFER_SRGB);
+  applyPassState(opaquePassFor(scene.camera.leftHanded));  // depth writes on, for the clear
   const glm::vec3 background = scene.sky.background;
   glClearColor(background.r, background.g, background.b, 1.0f);
   glClearDepth(0.0);  // reverse-Z: far is 0
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glDepthFunc(GL_GREATER);
-  // A left-handed view is a mirror: it turns counter-clockwise faces clockwise.
-  glFrontFace(scene.camera.leftHanded ? GL_CW : GL_CCW);
   View mainView;
+  mainView.mirrored = scene.camera.leftHanded;
   mainView.viewProjection = viewProjection;
   std::copy(std::begin(planes), std::end(planes), std::begin(mainView.planes));
   mainView.fovy = fovy;
@@ -1041,23 +1093,20 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   }
   // Post: into the framebuffer the caller bound. It receives display values, so
   // sRGB encoding on write is off (the shader applies the output curve itself).
-  glFrontFace(GL_CCW);
-  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
-  glDepthFunc(GL_LESS);
+  applyPassState(kPostPass);
   glClearDepth(1.0);
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
   glViewport(0, 0, width, height);
   glDisable(GL_FRAMEBUFFER_SRGB);
-  glDisable(GL_DEPTH_TEST);
   post.use();
   post.set("u_exposure", render.exposure);
   post.set("u_toneMap", int(render.toneMap));
   post.set("u_outputCurve", render.output == OutputCurve::Gamma22 ? 1 : 0);
   post.set("u_supersample", render.supersample);
-  hdr.bind(0);
+  hdr.bind(gl::binding::kHdr);
   emptyVao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  glEnable(GL_DEPTH_TEST);
+  applyPassState(kCallerState);
   stats->drawCalls += 1;
   return Ok{};
 }
@@ -1092,7 +1141,7 @@ std::string SceneRenderer::describe() const {
   }
   out << "\nvariants:";
   for (const auto& v : s.variants->built()) out << " " << v.describe();
-  out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes, "
+  out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes (" << stats_.programsNeeded << " needed), "
       << stats_.objectsDrawn << " objects drawn, " << stats_.objectsCulled << " culled";
   if (s.terrain) out << ", " << stats_.terrainTriangles << " terrain triangles";
   out << "\n";

@@ -33,6 +33,9 @@ struct SceneRenderOptions {
 struct SceneStats {
   int drawCalls = 0;
   int programChanges = 0;
+  // The least program changes the frame's draws allow: the distinct programs of
+  // each pass, summed. Sorted draws (render/draw_items.h) bind each once.
+  int programsNeeded = 0;
   int objectsCulled = 0;
   int objectsDrawn = 0;
   int terrainTriangles = 0;

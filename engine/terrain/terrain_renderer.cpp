@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gl/bindings.h"
 #include "terrain/materials.h"
 
 namespace engine::terrain {
@@ -172,7 +173,7 @@ void TerrainRenderer::setGridUniforms(const gl::Program& p, const LodSelection& 
 }
 
 void TerrainRenderer::drawInstances(std::size_t count) const {
-  glBindTextureUnit(0, heightPages_.id());
+  glBindTextureUnit(gl::binding::kTerrainHeights, heightPages_.id());
   vertexArray_.bind();
   glDrawElementsInstanced(GL_TRIANGLES, kIndexCount, GL_UNSIGNED_SHORT, nullptr, GLsizei(count));
   glBindVertexArray(0);
@@ -191,7 +192,7 @@ TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm:
   p.set("u_tileMetres", kLayerTileMetres);
   p.use();
   if (setUniforms) setUniforms(p);
-  for (std::size_t i = 0; i < layers_.size(); ++i) layers_[i].bind(GLuint(1 + i));
+  for (std::size_t i = 0; i < layers_.size(); ++i) layers_[i].bind(GLuint(gl::binding::kTerrainLayers + i));
   drawInstances(stats.patchesDrawn);
   return stats;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gl/bindings.h"
 #include "anim/jobs.h"
 #include "anim/pose_dump.h"
 #include "render/mesh.h"
@@ -119,7 +120,7 @@ void ViewerScene::drawGround(const glm::mat4& viewProjection) {
   pr.set("u_baseColorFactor", glm::vec4(1.0f));
   pr.set("u_specular", 0.0f);
   pr.set("u_shininess", 16.0f);
-  gpu_->groundTexture.bind(0);
+  gpu_->groundTexture.bind(gl::binding::kBaseColor);
   gpu_->ground->draw();
 }
 

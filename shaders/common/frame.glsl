@@ -1,13 +1,11 @@
-// Per-frame data shared by every scene program (uniform block, binding 0), filled
+// Per-frame data shared by every scene program (uniform block BLOCK_FRAME), filled
 // once per frame by engine/render/scene_renderer.cpp. Positions are camera-relative.
 //
-// Texture units of the scene programs (one owner each; a shared unit with two
-// sampler types is a draw-time GL error): 0 base colour, 1 normal map, 2
-// metallic-roughness, 3 emissive (terrain: 1-3 its layers, 0 its height pages),
-// 4 sun shadow, 5 point shadow cube, 6 occlusion, 7 far sun shadow, 8 reflection probe,
-// 10 the split-sum BRDF table, 11 the prefiltered environment (9: the sky's image).
+// Texture units and binding points are engine/gl/bindings.h's, which every program
+// receives as #defines (UNIT_BASE_COLOR, ...): one owner each, as a unit shared by
+// two sampler types is a draw-time GL error.
 #define MAX_POINT_LIGHTS 4
-layout(std140, binding = 0) uniform Frame {
+layout(std140, binding = BLOCK_FRAME) uniform Frame {
   mat4 u_viewProjection;
   mat4 u_sunShadowMatrix;   // camera-relative world -> shadow map [0,1]^3
   vec4 u_sunDirection;      // toward the sun; w = 1 when there is a sun

@@ -9,7 +9,7 @@
 //   ALPHA_MASK        discard below u_alphaCutoff
 // Units 4 and 5 are the shadow maps.
 #ifdef TEXTURED
-layout(binding = 0) uniform sampler2D u_baseColorTexture;
+layout(binding = UNIT_BASE_COLOR) uniform sampler2D u_baseColorTexture;
 #endif
 uniform vec4 u_baseColorFactor = vec4(1.0);
 
@@ -33,7 +33,7 @@ void materialAlphaTest(float alpha) {
 }
 
 #ifdef NORMAL_MAP
-layout(binding = 1) uniform sampler2D u_normalTexture;
+layout(binding = UNIT_NORMAL) uniform sampler2D u_normalTexture;
 uniform float u_normalScale = 1.0;
 
 // The normal map's direction in world space. `n` is the interpolated vertex
@@ -55,7 +55,7 @@ vec3 materialNormal(vec3 n, vec4 tangent, vec2 uv) {
 #endif
 
 #ifdef MR_TEXTURE
-layout(binding = 2) uniform sampler2D u_metallicRoughnessTexture;
+layout(binding = UNIT_METALLIC_ROUGHNESS) uniform sampler2D u_metallicRoughnessTexture;
 #endif
 
 // x = metallic, y = roughness: the factors times the texture's B and G.
@@ -69,7 +69,7 @@ vec2 materialMetallicRoughness(float metallic, float roughness, vec2 uv) {
 }
 
 #ifdef EMISSIVE_TEXTURE
-layout(binding = 3) uniform sampler2D u_emissiveTexture;
+layout(binding = UNIT_EMISSIVE) uniform sampler2D u_emissiveTexture;
 #endif
 
 vec3 materialEmissive(vec3 factor, vec2 uv) {
@@ -81,7 +81,7 @@ vec3 materialEmissive(vec3 factor, vec2 uv) {
 }
 
 #ifdef OCCLUSION
-layout(binding = 6) uniform sampler2D u_occlusionTexture;
+layout(binding = UNIT_OCCLUSION) uniform sampler2D u_occlusionTexture;
 uniform float u_occlusionStrength = 1.0;
 #endif
 

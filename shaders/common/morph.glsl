@@ -5,8 +5,8 @@
 // moves; u_morphPositions, u_morphNormals and u_morphTangents say where each block
 // starts (-1: no target moves it). The weights of every morphing node of the
 // model share a second buffer; this node's start at u_morphFirst.
-layout(std430, binding = 1) readonly buffer MorphDeltas { float u_morphDeltas[]; };
-layout(std430, binding = 2) readonly buffer MorphWeights { float u_morphWeights[]; };
+layout(std430, binding = BUFFER_MORPH_DELTAS) readonly buffer MorphDeltas { float u_morphDeltas[]; };
+layout(std430, binding = BUFFER_MORPH_WEIGHTS) readonly buffer MorphWeights { float u_morphWeights[]; };
 
 uniform int u_morphTargets;
 uniform int u_morphFirst;

@@ -36,9 +36,9 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
 // under AMBIENT_SH it is E(r) / pi, the environment as blurred as a Lambert lobe
 // sees it: right for rough surfaces, too dull a highlight on smooth ones.
 #include "common/ibl_sampling.glsl"
-layout(binding = 10) uniform sampler2D u_splitSum;
+layout(binding = UNIT_SPLIT_SUM) uniform sampler2D u_splitSum;
 #ifdef AMBIENT_IBL
-layout(binding = 11) uniform samplerCube u_prefiltered;
+layout(binding = UNIT_PREFILTERED) uniform samplerCube u_prefiltered;
 #endif
 
 // Written out with constant indices, so that each shBasis folds to its polynomial
@@ -89,7 +89,7 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
 // A mirror reflects the cube map of the scene seen from its centre: right in
 // direction, off by parallax for things close to the mirror, one bounce only. The
 // ray tracer traces the reflected ray itself; the difference is measured.
-layout(binding = 8) uniform samplerCube u_reflectionProbe;
+layout(binding = UNIT_REFLECTION_PROBE) uniform samplerCube u_reflectionProbe;
 uniform int u_hasProbe;
 
 vec3 reflectedEnvironment(Surface s) {

@@ -5,12 +5,12 @@
 // the lookup point along the normal by about one shadow texel, which grows with the
 // texel's world size instead of a fixed epsilon.
 #ifdef SUN_SHADOWS
-layout(binding = 4) uniform sampler2DShadow u_sunShadowMap;
+layout(binding = UNIT_SUN_SHADOW) uniform sampler2DShadow u_sunShadowMap;
 uniform float u_sunTexelWorld;  // world size of one shadow texel
 #ifdef SUN_FAR_SHADOWS
 // Terrain scenes: a second, coarse map of the terrain over the view out to a few
 // kilometres, so mountains shade valleys beyond the near map's reach.
-layout(binding = 7) uniform sampler2DShadow u_sunShadowMapFar;
+layout(binding = UNIT_SUN_SHADOW_FAR) uniform sampler2DShadow u_sunShadowMapFar;
 #endif
 
 // Visibility through one map with an N x N PCF kernel (radius `r` texels), and in
@@ -50,7 +50,7 @@ float sunShadow(vec3 position, vec3 n) {
 #endif
 
 #ifdef POINT_SHADOWS
-layout(binding = 5) uniform samplerCubeShadow u_pointShadowMap;
+layout(binding = UNIT_POINT_SHADOW) uniform samplerCubeShadow u_pointShadowMap;
 uniform float u_pointNear;
 
 // Depth the cube face's projection (90 degrees, zero-to-one) gives a point at

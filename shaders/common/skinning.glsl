@@ -4,9 +4,9 @@
 //   DUAL_QUAT              dual-quaternion skinning instead of linear blend
 #ifdef DUAL_QUAT
 // Two vec4 per joint: the real part (rotation) and the dual part (translation).
-layout(std430, binding = 0) readonly buffer SkinDualQuats { vec4 u_dualQuats[]; };
+layout(std430, binding = BUFFER_SKIN) readonly buffer SkinDualQuats { vec4 u_dualQuats[]; };
 #else
-layout(std430, binding = 0) readonly buffer SkinPalette { mat4 u_palette[]; };
+layout(std430, binding = BUFFER_SKIN) readonly buffer SkinPalette { mat4 u_palette[]; };
 #endif
 
 layout(location = 3) in uvec4 a_joints0;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "gl/shader.h"
 
@@ -75,4 +76,25 @@ TEST(ShaderLog, MesaAndNvidiaFormatsGetFileNames) {
             "lit.frag:12(5): error: bad\ncommon/lighting.glsl:3(1): error: worse");
   EXPECT_EQ(gl::translateShaderLog("1(7) : error C0000: syntax error", files),
             "common/lighting.glsl:7 : error C0000: syntax error");
+}
+
+// Every binding in the shipped shaders names engine/gl/bindings.h's define, never a
+// number that C++ could bind differently (the test shaders are exempt: they are
+// driven by their own tests). The defines reach every program.
+TEST(ShaderBindings, ShippedShadersNameTheirBindings) {
+  const std::regex numbered(R"(binding\s*=\s*[0-9])");
+  int files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(std::string(ENGINE_SOURCE_DIR) + "/shaders")) {
+    if (!entry.is_regular_file() || entry.path().parent_path().filename() == "test") continue;
+    ++files;
+    std::ifstream in(entry.path());
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n)
+      EXPECT_FALSE(std::regex_search(line, numbered)) << entry.path().string() << ":" << n << ": " << line;
+  }
+  EXPECT_GT(files, 20);
+  auto src = gl::preprocessShader(std::string(ENGINE_SOURCE_DIR) + "/shaders", "scene.frag");
+  ASSERT_TRUE(src.ok()) << src.error().message;
+  EXPECT_NE(src->text.find("#define UNIT_BASE_COLOR 0\n"), std::string::npos);
+  EXPECT_NE(src->text.find("#define BUFFER_MORPH_WEIGHTS 2\n"), std::string::npos);
 }

@@ -1,0 +1,70 @@
+#pragma once
+// Every texture unit and buffer binding point a program uses, defined once here
+// and handed to every GLSL program as #defines (gl::preprocessShader puts them
+// after #version), so that the C++ that binds and the GLSL that samples cannot
+// disagree: shaders write `layout(binding = UNIT_BASE_COLOR)`, never a number
+// (tests/unit/shader_source_test checks). Units are per program: the terrain's
+// and post's reuse the material ones' numbers.
+#include <array>
+#include <string>
+
+namespace engine::gl::binding {
+
+// Material textures (common/material.glsl).
+inline constexpr unsigned kBaseColor = 0;
+inline constexpr unsigned kNormal = 1;
+inline constexpr unsigned kMetallicRoughness = 2;
+inline constexpr unsigned kEmissive = 3;
+inline constexpr unsigned kOcclusion = 6;
+// Shadow maps (common/shadows.glsl).
+inline constexpr unsigned kSunShadow = 4;
+inline constexpr unsigned kPointShadow = 5;
+inline constexpr unsigned kSunShadowFar = 7;
+// Environment (common/shading.glsl, sky.frag).
+inline constexpr unsigned kReflectionProbe = 8;
+inline constexpr unsigned kSkyImage = 9;
+inline constexpr unsigned kSplitSum = 10;
+inline constexpr unsigned kPrefiltered = 11;
+// The terrain's programs: height pages, then its material layers from 1.
+inline constexpr unsigned kTerrainHeights = 0;
+inline constexpr unsigned kTerrainLayers = 1;
+// Post's HDR image and the IBL prefilter's source cube.
+inline constexpr unsigned kHdr = 0;
+inline constexpr unsigned kIblSource = 0;
+inline constexpr unsigned kIblLevelImage = 0;  // an image unit: the level being written
+// Storage buffers: the skin palette (common/skinning.glsl), morph targets and
+// weights (common/morph.glsl). Uniform buffers: the frame block (common/frame.glsl).
+inline constexpr unsigned kSkinBuffer = 0;
+inline constexpr unsigned kMorphDeltasBuffer = 1;
+inline constexpr unsigned kMorphWeightsBuffer = 2;
+inline constexpr unsigned kFrameBlock = 0;
+
+struct Define {
+  const char* name;
+  unsigned value;
+};
+inline constexpr std::array<Define, 21> kDefines{{
+    {"UNIT_BASE_COLOR", kBaseColor},
+    {"UNIT_NORMAL", kNormal},
+    {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
+    {"UNIT_EMISSIVE", kEmissive},
+    {"UNIT_OCCLUSION", kOcclusion},
+    {"UNIT_SUN_SHADOW", kSunShadow},
+    {"UNIT_POINT_SHADOW", kPointShadow},
+    {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},
+    {"UNIT_REFLECTION_PROBE", kReflectionProbe},
+    {"UNIT_SKY_IMAGE", kSkyImage},
+    {"UNIT_SPLIT_SUM", kSplitSum},
+    {"UNIT_PREFILTERED", kPrefiltered},
+    {"UNIT_TERRAIN_HEIGHTS", kTerrainHeights},
+    {"UNIT_TERRAIN_LAYERS", kTerrainLayers},
+    {"UNIT_HDR", kHdr},
+    {"UNIT_IBL_SOURCE", kIblSource},
+    {"IMAGE_IBL_LEVEL", kIblLevelImage},
+    {"BUFFER_SKIN", kSkinBuffer},
+    {"BUFFER_MORPH_DELTAS", kMorphDeltasBuffer},
+    {"BUFFER_MORPH_WEIGHTS", kMorphWeightsBuffer},
+    {"BLOCK_FRAME", kFrameBlock},
+}};
+
+}  // namespace engine::gl::binding

@@ -1,0 +1,54 @@
+#pragma once
+// A pass's fixed-function state in one struct, set whole when the pass begins
+// (Filament's RenderPass, sokol's pipelines) instead of toggled here and there: a
+// pass cannot inherit a stray glDisable from the one before it. Draws change only
+// culling, for a double-sided material, and put it back.
+#include <glad/gl.h>
+
+namespace engine {
+
+struct PassState {
+  bool depthTest = true;
+  GLenum depthFunc = GL_GREATER;  // reverse-Z colour passes; shadow maps use GL_LESS
+  bool depthWrite = true;
+  bool depthClamp = false;  // shadow casters in front of the light's near plane still cast
+  bool cull = true;
+  GLenum frontFace = GL_CCW;
+  bool polygonOffset = false;
+  float offsetFactor = 0.0f, offsetUnits = 0.0f;
+  bool blend = false;      // "over" in the target's linear colour, the target's alpha kept
+  bool zeroToOneDepth = true;  // glClipControl: reverse-Z and shadow boxes clip depth to 0..w
+};
+
+void applyPassState(const PassState& state);
+
+// The passes of the scene renderer. Shadow maps: a slope-scaled offset (surfaces at
+// grazing angles to the light get more), depth-less-than into a map cleared to 1.
+inline constexpr PassState kShadowPass{.depthFunc = GL_LESS, .polygonOffset = true, .offsetFactor = 1.5f,
+                                       .offsetUnits = 2.0f};
+// The terrain into a sun map: as above, depth clamped.
+inline constexpr PassState kTerrainShadowPass{.depthFunc = GL_LESS, .depthClamp = true, .polygonOffset = true,
+                                              .offsetFactor = 1.5f, .offsetUnits = 2.0f};
+// The point light's cube faces are seen from inside, where GL's cube orientation
+// mirrors: both sides drawn, so no caster is lost.
+inline constexpr PassState kCubeShadowPass{.depthFunc = GL_LESS, .cull = false, .polygonOffset = true,
+                                           .offsetFactor = 1.5f, .offsetUnits = 2.0f};
+// Opaque colour: reverse-Z. A left-handed view is a mirror, which turns
+// counter-clockwise faces clockwise.
+constexpr PassState opaquePassFor(bool leftHanded) {
+  return PassState{.frontFace = GLenum(leftHanded ? GL_CW : GL_CCW)};
+}
+// The sky: behind everything, written where nothing is.
+inline constexpr PassState kSkyPass{.depthTest = false, .depthWrite = false, .cull = false};
+// BLEND materials after the opaque ones: tested against their depth, writing none.
+constexpr PassState blendPassFor(bool leftHanded) {
+  return PassState{.depthWrite = false, .frontFace = GLenum(leftHanded ? GL_CW : GL_CCW), .blend = true};
+}
+// Tone mapping into the caller's framebuffer.
+inline constexpr PassState kPostPass{.depthTest = false, .depthFunc = GL_LESS, .cull = false,
+                                     .zeroToOneDepth = false};
+// What a frame leaves for the caller (a UI drawn over it, the viewer): GL's usual
+// depth test and clip space, back faces culled.
+inline constexpr PassState kCallerState{.depthFunc = GL_LESS, .zeroToOneDepth = false};
+
+}  // namespace engine
