@@ -119,6 +119,12 @@ GLuint64 Query::result() const {
   return value;
 }
 
+bool Query::available() const {
+  GLuint ready = GL_FALSE;
+  glGetQueryObjectuiv(id(), GL_QUERY_RESULT_AVAILABLE, &ready);
+  return ready == GL_TRUE;
+}
+
 Framebuffer Framebuffer::create() {
   GLuint id = 0;
   glCreateFramebuffers(1, &id);

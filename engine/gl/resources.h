@@ -117,6 +117,8 @@ class Query : public Object<QueryDeleter> {
   void end() const { glEndQuery(target_); }
   // Waits for the result: for benchmarks and tools, not inside a frame.
   GLuint64 result() const;
+  // Whether result() would return without waiting.
+  bool available() const;
 
  private:
   Query(GLuint id, GLenum target) : Object(id), target_(target) {}

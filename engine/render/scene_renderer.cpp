@@ -230,6 +230,18 @@ struct SceneRenderer::Impl {
   SceneStats* stats = nullptr;
   gl::Query primitives;  // triangles of the whole frame
   bool primitivesValid = false;
+  // GPU time per pass: one query each, begun only once its last result is read.
+  struct PassTimer {
+    std::string pass;
+    gl::Query query;
+    bool pending = false;
+    double ms = 0.0;
+  };
+  std::vector<PassTimer> timers;
+  int activeTimer = -1;
+  void beginTimer(const std::string& pass);
+  void endTimer();
+  void collectTimers();
 
   Status init(const SceneRenderOptions& options);
   Status makeSky();
@@ -1022,6 +1034,35 @@ Camera SceneRenderer::initialCamera() const {
   return camera;
 }
 
+void SceneRenderer::Impl::beginTimer(const std::string& pass) {
+  auto it = std::find_if(timers.begin(), timers.end(), [&](const PassTimer& t) { return t.pass == pass; });
+  if (it == timers.end()) it = timers.insert(timers.end(), PassTimer{pass, gl::Query::create(GL_TIME_ELAPSED)});
+  activeTimer = it->pending ? -1 : int(it - timers.begin());
+  if (activeTimer >= 0) it->query.begin();
+}
+
+void SceneRenderer::Impl::endTimer() {
+  if (activeTimer < 0) return;
+  timers[size_t(activeTimer)].query.end();
+  timers[size_t(activeTimer)].pending = true;
+  activeTimer = -1;
+}
+
+void SceneRenderer::Impl::collectTimers() {
+  for (PassTimer& t : timers) {
+    if (!t.pending || !t.query.available()) continue;
+    t.ms = double(t.query.result()) * 1e-6;
+    t.pending = false;
+  }
+}
+
+std::vector<PassTime> SceneRenderer::passTimes() const {
+  impl_->collectTimers();
+  std::vector<PassTime> out;
+  for (const auto& t : impl_->timers) out.push_back({t.pass, t.ms});
+  return out;
+}
+
 Status SceneRenderer::render(const Camera& camera, int width, int height) {
   stats_ = SceneStats{};
   Impl& s = *impl_;
@@ -1051,14 +1092,21 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
   glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
+  collectTimers();
   if (pointShadows && !(pointShadowValid && characters.empty())) {
-    if (auto status = renderPointShadow(cameraPosition); !status) return status;
+    beginTimer("shadow-point");
+    const Status status = renderPointShadow(cameraPosition);
+    endTimer();
+    if (!status) return status;
     pointShadowValid = true;
   }
   // Probes depend on the scene, not on the camera: a scene where nothing moves
   // draws them once.
   if (!probes.empty() && !(probesValid && characters.empty())) {
-    if (auto status = renderProbes(cameraPosition); !status) return status;
+    beginTimer("reflection-probes");
+    const Status status = renderProbes(cameraPosition);
+    endTimer();
+    if (!status) return status;
     probesValid = true;
   }
   if (sunShadows) {
@@ -1067,7 +1115,10 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
         frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunShadowDistance));
     const ShadowSphere farSphere =
         frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunFarShadowDistance));
-    if (auto status = renderSunShadow(nearSphere, farSphere, fovy, targetHeight); !status) return status;
+    beginTimer("shadow-sun");
+    const Status status = renderSunShadow(nearSphere, farSphere, fovy, targetHeight);
+    endTimer();
+    if (!status) return status;
   }
   fillFrame(cameraPosition, glm::mat4(viewProjection));
 
@@ -1085,7 +1136,11 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   std::copy(std::begin(planes), std::end(planes), std::begin(mainView.planes));
   mainView.fovy = fovy;
   mainView.height = targetHeight;
-  if (auto status = drawWorld(mainView, -1, true); !status) return status;
+  beginTimer("world");
+  const Status world = drawWorld(mainView, -1, true);
+  endTimer();
+  if (!world) return world;
+  beginTimer("post");
 
   if (render.msaa > 1) {
     glBlitNamedFramebuffer(drawFbo.id(), resolveFbo.id(), 0, 0, targetWidth, targetHeight, 0, 0,
@@ -1106,6 +1161,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   hdr.bind(gl::binding::kHdr);
   emptyVao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  endTimer();
   applyPassState(kCallerState);
   stats->drawCalls += 1;
   return Ok{};

@@ -41,6 +41,13 @@ struct SceneStats {
   int terrainTriangles = 0;
 };
 
+// One pass's GPU time (a GL_TIME_ELAPSED query), from the latest frame whose
+// result the GL has: reading never waits, so a figure may be a frame or two old.
+struct PassTime {
+  std::string pass;  // as --describe names it: shadow-sun, shadow-point, reflection-probes, world, post
+  double gpuMs = 0.0;
+};
+
 class SceneRenderer {
  public:
   // Uploads what the scene layer loaded (scene/scene.h: models, terrain), loads the
@@ -68,6 +75,8 @@ class SceneRenderer {
   // Triangles the GL processed in the last frame, every pass included (a
   // GL_PRIMITIVES_GENERATED query). Waits for the frame: for benchmarks and tools.
   long long lastFrameTriangles() const;
+  // Every pass's GPU time, in the order the frame draws them.
+  std::vector<PassTime> passTimes() const;
   const SceneDesc& scene() const;
   // The PBR ambient's image-based lighting (render/ibl.h): null for the hemisphere
   // ambient and classic shading. For tests and tools.

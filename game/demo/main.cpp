@@ -162,7 +162,8 @@ int main(int argc, char** argv) {
     return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
   }
   if (soakSeconds > 0.0) return runSoak(scenePath, render, soakSeconds, soakReload, backend, options.run);
-  demo::SceneGame game(std::move(scene).value(), render);
+  // The trade panel only in a window: offscreen frames never show it.
+  demo::SceneGame game(std::move(scene).value(), render, backend == engine::Backend::Window);
   if (describe) {
     // Builds the renderer for the scene (one frame) and prints what it made.
     options.run.frames = 1;

@@ -1,0 +1,139 @@
+// The demo window's trade panel (issue #17's first part): every render knob of the
+// scene file and the command line changed live over the same loaded scene, another
+// scene picked from the scene's folder, time paused, slowed or scrubbed, and what
+// the frame costs per pass on the GPU (GL_TIME_ELAPSED) with a history.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "asset/scene_file.h"
+#include "scene_game.h"
+
+namespace demo {
+namespace {
+
+// A knob: the choices it offers, and the override it sets (0 = the scene's own).
+bool pickInt(const char* label, int& value, std::initializer_list<int> choices) {
+  bool changed = false;
+  const std::string current = std::to_string(value);
+  if (ImGui::BeginCombo(label, current.c_str())) {
+    for (int choice : choices) {
+      if (ImGui::Selectable(std::to_string(choice).c_str(), choice == value)) {
+        changed = choice != value;
+        value = choice;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+std::vector<std::string> sceneFiles(const std::string& scenePath) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  const auto folder = std::filesystem::path(scenePath).parent_path();
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// The effective value of each knob: the override, or the scene's own.
+engine::SceneRenderOptions effective(const engine::SceneRenderOptions& o, const engine::SceneDesc& scene) {
+  engine::SceneRenderOptions e = o;
+  const engine::RenderDesc& r = scene.render;
+  if (e.msaaOverride <= 0) e.msaaOverride = r.msaa;
+  if (e.supersampleOverride <= 0) e.supersampleOverride = r.supersample;
+  if (e.shadowMapOverride <= 0) e.shadowMapOverride = r.shadowMapSize;
+  if (e.pcfKernelOverride <= 0) e.pcfKernelOverride = r.shadowFilter == engine::ShadowFilter::Hard ? 1 : r.pcfKernel;
+  if (e.reflectionProbeOverride < 0) e.reflectionProbeOverride = r.reflectionProbe;
+  if (e.iblSizeOverride <= 0) e.iblSizeOverride = r.iblSize;
+  if (!e.ambientOverride) e.ambientOverride = engine::ambientOf(scene);
+  return e;
+}
+
+void knobs(SceneGame& game) {
+  const engine::SceneDesc& scene = game.renderer()->scene();
+  engine::SceneRenderOptions o = effective(game.options(), scene);
+  bool changed = pickInt("MSAA", o.msaaOverride, {1, 2, 4, 8});
+  changed |= pickInt("supersample", o.supersampleOverride, {1, 2, 3});
+  changed |= pickInt("shadow map", o.shadowMapOverride, {256, 512, 1024, 2048, 4096});
+  changed |= pickInt("PCF kernel", o.pcfKernelOverride, {1, 3, 5, 7, 9});
+  changed |= pickInt("probe size", o.reflectionProbeOverride, {0, 64, 128, 256, 512});
+  if (scene.render.shading == engine::Shading::Pbr) {
+    const std::string current = engine::ambientName(*o.ambientOverride);
+    if (ImGui::BeginCombo("ambient", current.c_str())) {
+      for (const auto& [name, ambient] : engine::ambientNames()) {
+        if (ImGui::Selectable(name.c_str(), ambient == *o.ambientOverride) && ambient != *o.ambientOverride) {
+          o.ambientOverride = ambient;
+          changed = true;
+        }
+      }
+      ImGui::EndCombo();
+    }
+    changed |= pickInt("IBL size", o.iblSizeOverride, {16, 32, 64, 128, 256});
+  }
+  if (changed) (void)game.applyOptions(o);  // a failure shows in the panel
+}
+
+void timeControls(SceneGame& game) {
+  TimeControl& t = game.timeControl();
+  bool touched = ImGui::Checkbox("pause", &t.paused);
+  float speed = float(t.speed);
+  if (ImGui::SliderFloat("speed", &speed, -2.0f, 2.0f, "%.2fx")) {
+    t.speed = speed;
+    touched = true;
+  }
+  float now = float(t.time);
+  if (ImGui::SliderFloat("time", &now, 0.0f, std::max(30.0f, now), "%.2f s")) {
+    t.time = now;
+    touched = true;
+  }
+  if (touched) t.taken = true;
+}
+
+void costs(SceneGame& game, GpuHistory& history) {
+  const auto passes = game.renderer()->passTimes();
+  double total = 0.0;
+  for (const auto& p : passes) total += p.gpuMs;
+  history.ms[size_t(history.next)] = float(total);
+  history.next = (history.next + 1) % int(history.ms.size());
+  ImGui::Text("GPU %.2f ms a frame", total);
+  for (const auto& p : passes) {
+    ImGui::ProgressBar(total > 0.0 ? float(p.gpuMs / total) : 0.0f, ImVec2(120, 0), "");
+    ImGui::SameLine();
+    ImGui::Text("%s %.2f ms", p.pass.c_str(), p.gpuMs);
+  }
+  ImGui::PlotLines("history", history.ms.data(), int(history.ms.size()), history.next, nullptr, 0.0f, FLT_MAX,
+                   ImVec2(0, 50));
+  const engine::SceneStats& s = game.renderer()->stats();
+  ImGui::Text("%d draws, %d program changes (%d needed)", s.drawCalls, s.programChanges, s.programsNeeded);
+  ImGui::Text("%d objects drawn, %d culled", s.objectsDrawn, s.objectsCulled);
+}
+
+}  // namespace
+
+void SceneGame::drawUi() {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Trade");
+  const std::string current = std::filesystem::path(desc_.path).filename().string();
+  if (ImGui::BeginCombo("scene", current.c_str())) {
+    for (const std::string& file : sceneFiles(desc_.path)) {
+      const std::string name = std::filesystem::path(file).filename().string();
+      if (ImGui::Selectable(name.c_str(), name == current) && name != current) (void)switchScene(file);
+    }
+    ImGui::EndCombo();
+  }
+  if (!lastError_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", lastError_.c_str());
+  if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) knobs(*this);
+  if (ImGui::CollapsingHeader("time", ImGuiTreeNodeFlags_DefaultOpen)) timeControls(*this);
+  if (ImGui::CollapsingHeader("cost", ImGuiTreeNodeFlags_DefaultOpen)) costs(*this, history_);
+  ImGui::End();
+}
+
+}  // namespace demo

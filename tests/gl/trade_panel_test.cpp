@@ -1,0 +1,134 @@
+// The demo's trade panel logic (game/demo/scene_game.h), without clicking: a knob
+// rebuilds the renderer over the same loaded scene, a scene that fails to load
+// leaves the current one in place with its error for the panel, and the frame's
+// passes report GPU times.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "../support/gl_test.h"
+#include "asset/scene_file.h"
+#include "render/render_target.h"
+#include "scene/scene.h"
+#include "scene_game.h"
+
+using namespace engine;
+using engine::test::GlTest;
+
+namespace {
+
+class TradePanel : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(TradePanel);
+
+const std::string kScenes = std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/";
+
+std::unique_ptr<demo::SceneGame> startGame(const std::string& file) {
+  auto desc = loadSceneFile(kScenes + file);
+  EXPECT_TRUE(desc.ok()) << desc.error().message;
+  if (!desc) return nullptr;
+  SceneRenderOptions options;
+  options.shaderDir = test::shaderDir();
+  options.iblSizeOverride = 16;
+  auto game = std::make_unique<demo::SceneGame>(*desc, options, true);
+  const Status started = game->init();
+  EXPECT_TRUE(started.ok()) << started.error().message;
+  return started ? std::move(game) : nullptr;
+}
+
+Status frame(demo::SceneGame& game, RenderTarget& target, double time) {
+  target.bind();
+  game.update(time, 1.0 / 60.0);
+  return game.render({time, target.width(), target.height()});
+}
+
+}  // namespace
+
+TEST_P(TradePanel, AKnobRebuildsTheRendererOverTheSameScene) {
+  auto game = startGame("demo.json");
+  ASSERT_TRUE(game);
+  auto target = RenderTarget::create(160, 90, 1);
+  ASSERT_TRUE(target.ok());
+  ASSERT_TRUE(frame(*game, *target, 0.5).ok());
+  const Scene* before = game->scene();
+  EXPECT_NE(game->renderer()->describe().find("msaa 1,"), std::string::npos);
+  SceneRenderOptions options = game->options();
+  options.msaaOverride = 4;
+  options.pcfKernelOverride = 1;
+  ASSERT_TRUE(game->applyOptions(options).ok()) << game->lastError();
+  EXPECT_EQ(game->scene(), before) << "the scene was reloaded";
+  const std::string described = game->renderer()->describe();
+  EXPECT_NE(described.find("msaa 4,"), std::string::npos) << described;
+  EXPECT_NE(described.find("shadow-sun(2048, hard)"), std::string::npos) << described;
+  EXPECT_TRUE(game->lastError().empty());
+  ASSERT_TRUE(frame(*game, *target, 0.6).ok());
+}
+
+// An impossible knob (more samples than the GL has) and a scene file that does not
+// parse both leave the game as it was, the error kept for the panel.
+TEST_P(TradePanel, FailuresKeepTheCurrentSceneAndShowTheirError) {
+  auto game = startGame("cornell.json");
+  ASSERT_TRUE(game);
+  SceneRenderOptions options = game->options();
+  options.msaaOverride = 64;
+  EXPECT_FALSE(game->applyOptions(options).ok());
+  EXPECT_NE(game->lastError().find("/render/msaa"), std::string::npos) << game->lastError();
+  EXPECT_NE(game->renderer()->describe().find("msaa 1,"), std::string::npos);
+
+  const std::string broken = (std::filesystem::temp_directory_path() / "engine_panel_broken.json").string();
+  std::ofstream(broken) << "{\"lights\": [{\"type\": \"sun\", \"direction\": [0, -1, 0]}], \"primitives\": [";
+  const Scene* before = game->scene();
+  EXPECT_FALSE(game->switchScene(broken).ok());
+  EXPECT_NE(game->lastError().find("engine_panel_broken.json"), std::string::npos) << game->lastError();
+  EXPECT_EQ(game->scene(), before);
+  EXPECT_EQ(game->renderer()->scene().path, kScenes + "cornell.json");
+  auto target = RenderTarget::create(64, 36, 1);
+  ASSERT_TRUE(target.ok());
+  EXPECT_TRUE(frame(*game, *target, 0.0).ok());
+  std::filesystem::remove(broken);
+
+  ASSERT_TRUE(game->switchScene(kScenes + "materials.json").ok()) << game->lastError();
+  EXPECT_TRUE(game->lastError().empty());
+  EXPECT_EQ(game->renderer()->scene().path, kScenes + "materials.json");
+}
+
+// Paused, the poses hold however the runner's time moves; at speed 0.5 they
+// advance by half of each step.
+TEST_P(TradePanel, TimeControlsTakeOverFromTheRunner) {
+  auto game = startGame("demo.json");
+  ASSERT_TRUE(game);
+  game->update(1.0, 0.1);
+  EXPECT_EQ(game->scene()->time(), 1.0);
+  demo::TimeControl& t = game->timeControl();
+  t.taken = true;
+  t.paused = true;
+  game->update(5.0, 0.1);
+  EXPECT_EQ(game->scene()->time(), 1.0);
+  t.paused = false;
+  t.speed = 0.5;
+  game->update(5.1, 0.1);
+  EXPECT_DOUBLE_EQ(game->scene()->time(), 1.05);
+}
+
+// Every pass of demo.json (both sun maps in one, the world, post) has a GPU time
+// once its query is back; none is negative, and the world costs something.
+TEST_P(TradePanel, PassesReportGpuTimes) {
+  auto game = startGame("demo.json");
+  ASSERT_TRUE(game);
+  auto target = RenderTarget::create(160, 90, 1);
+  ASSERT_TRUE(target.ok());
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(frame(*game, *target, 0.1 * i).ok());
+  glFinish();
+  const auto times = game->renderer()->passTimes();
+  std::vector<std::string> names;
+  for (const auto& p : times) {
+    names.push_back(p.pass);
+    EXPECT_GE(p.gpuMs, 0.0) << p.pass;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"shadow-sun", "world", "post"}));
+  for (const auto& p : times) {
+    if (p.pass == "world") {
+      EXPECT_GT(p.gpuMs, 0.0);
+    }
+  }
+}
