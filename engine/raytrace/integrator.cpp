@@ -228,6 +228,7 @@ glm::vec3 Integrator::renderPixelSamples(int x, int y, int first, int count, Ray
   RenderSettings pass = settings_;
   pass.firstSample = first;
   pass.samplesPerPixel = count;
+  pass.totalSamples = settings_.samplesPerPixel;
   RayCounters local;
   const glm::vec3 c = pathTracePixel(*scene_, *pathLights_, pass, x, y, local);
   if (counters) *counters += local;

@@ -47,6 +47,10 @@ struct RenderSettings {
   int height = 480;
   int samplesPerPixel = 1;  // Whitted: 1 the pixel centre, N stratified jittered samples
   int firstSample = 0;      // path: the samples rendered are [firstSample, firstSample + spp)
+  // Path: the samples the whole image gets, when spp is only one pass of them (the
+  // progressive window): each sample's ray cone is its share of the pixel, so a
+  // pass must use the whole image's share to sum to the image render() makes. 0: spp.
+  int totalSamples = 0;
   int shadowSamples = 4;    // an area light gets N x N stratified jittered shadow rays
   int maxDepth = 5;         // bounces after the primary hit (Whitted: mirror bounces; path: 0 is direct light only)
   int rouletteDepth = 3;    // path: Russian roulette from this bounce on

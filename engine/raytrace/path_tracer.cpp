@@ -67,7 +67,8 @@ class PathTracer {
   PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
       : scene_(scene), env_(lights.environment), lights_(lights.lights), coneSun_(lights.coneSun), settings_(settings),
         camera_(scene.camera(), settings.width, settings.height), cameraPosition_(scene.camera().position),
-        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
+        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height,
+                                     settings.totalSamples > 0 ? settings.totalSamples : settings.samplesPerPixel)) {}
 
   // The mean of samples [firstSample, firstSample + spp) of the pixel. Their image
   // positions follow the R2 sequence (Roberts 2018: the plastic number's powers, a

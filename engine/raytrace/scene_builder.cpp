@@ -146,8 +146,9 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, int viewportHeight,
-                                                SceneBuildStats* statsOut) {
-  const SceneDesc& desc = source->desc();
+                                                SceneBuildStats* statsOut, const CameraDesc* camera) {
+  SceneDesc desc = source->desc();
+  if (camera) desc.camera = *camera;
   auto scene = RtScene::fromSceneDesc(desc);
   if (!scene) return scene.error();
   AnimatedRtScene out;

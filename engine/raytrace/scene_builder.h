@@ -45,8 +45,10 @@ class AnimatedRtScene {
   // an image `viewportHeight` pixels high (the same CDLOD selection and morph).
   // The scene layer's scene (scene/scene.h) at its current time; the tracer keeps
   // it and skins its poses.
+  // `camera`, when given, replaces the file's: the view traced and the one the
+  // terrain is triangulated for (the trade panel's reference of the window's view).
   static Result<AnimatedRtScene> create(std::shared_ptr<Scene> scene, int viewportHeight = 720,
-                                        SceneBuildStats* stats = nullptr);
+                                        SceneBuildStats* stats = nullptr, const CameraDesc* camera = nullptr);
   // Scene::load and update(time), then the above.
   static Result<AnimatedRtScene> create(const SceneDesc& scene, double time, int viewportHeight = 720,
                                         SceneBuildStats* stats = nullptr);

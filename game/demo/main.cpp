@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -98,6 +99,11 @@ int main(int argc, char** argv) {
   app.add_option("--ibl-size", render.iblSizeOverride, "Cube map size of the environment for sh and ibl")
       ->check(CLI::Range(16, 1024));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
+  std::string reference = "off";
+  app.add_option("--reference", reference,
+                 "Window: the trade panel's reference view at start (off, split, reference or heatmap); it traces "
+                 "once the camera holds still with time paused or nothing moving")
+      ->check(CLI::IsMember({"off", "split", "reference", "heatmap"}))->capture_default_str();
   double soakSeconds = 0.0, soakReload = 10.0;
   app.add_option("--soak", soakSeconds,
                  "Soak: draw for SECONDS of wall time, the camera circling, the scene reloaded every --soak-reload")
@@ -164,6 +170,10 @@ int main(int argc, char** argv) {
   if (soakSeconds > 0.0) return runSoak(scenePath, render, soakSeconds, soakReload, backend, options.run);
   // The trade panel only in a window: offscreen frames never show it.
   demo::SceneGame game(std::move(scene).value(), render, backend == engine::Backend::Window);
+  const std::map<std::string, demo::ReferenceMode> referenceModes = {{"off", demo::ReferenceMode::Off},
+      {"split", demo::ReferenceMode::Split}, {"reference", demo::ReferenceMode::Reference},
+      {"heatmap", demo::ReferenceMode::Heatmap}};
+  if (backend == engine::Backend::Window) game.reference().mode = referenceModes.at(reference);
   if (describe) {
     // Builds the renderer for the scene (one frame) and prints what it made.
     options.run.frames = 1;

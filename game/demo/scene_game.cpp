@@ -62,7 +62,108 @@ void SceneGame::update(double time, double dt) {
 
 engine::Status SceneGame::render(const engine::FrameInfo& frame) {
   if (!updated_) return updated_;
-  return renderer_->render(camera_, frame.width, frame.height);
+  if (reference_.mode == ReferenceMode::Off) {
+    reference_.view.stop();
+    return renderer_->render(camera_, frame.width, frame.height);
+  }
+  return referenceFrame(frame);
+}
+
+namespace {
+constexpr int kStillFrames = 10;  // frames without camera motion before the reference starts
+}
+
+// The reference traces one view at one time: it starts once the camera has held
+// still for a few frames with time paused (or nothing in the scene moving), and
+// stops when either moves. The raster frame is compared with it whenever a new
+// pass of the reference is finished.
+engine::Status SceneGame::referenceFrame(const engine::FrameInfo& frame) {
+  ReferencePanel& r = reference_;
+  const bool still = camera_.position == r.lastPosition && camera_.forward() == r.lastForward;
+  r.stillFrames = still ? r.stillFrames + 1 : 0;
+  r.lastPosition = camera_.position;
+  r.lastForward = camera_.forward();
+  const bool frozen = (time_.taken && time_.paused) || !scene_->animated();
+  ReferenceRequest request;
+  request.camera = desc_.camera;
+  request.camera.position = camera_.position;
+  request.camera.forward = camera_.forward();
+  request.camera.fovyDegrees = camera_.fovyDegrees;
+  // A scene where nothing moves looks the same at every time: the trace keeps going.
+  request.time = scene_->animated() ? scene_->time() : 0.0;
+  request.width = std::max(1, frame.width / r.divisor);
+  request.height = std::max(1, frame.height / r.divisor);
+  request.settings.method = r.pathTraced ? engine::rt::Method::Path : engine::rt::Method::Whitted;
+  request.settings.samplesPerPixel = r.pathTraced ? 4096 : 1;
+  request.settings.maxDepth = r.pathTraced ? 16 : 5;
+  if (!frozen || !still) {
+    r.view.stop();
+    r.error.reset();
+    r.status = !frozen ? "pause time for a reference" : "hold the camera still for a reference";
+  } else if (r.stillFrames >= kStillFrames && !(r.view.running() && r.view.request().sameAs(request))) {
+    if (auto s = r.view.update(scene_, request); !s) {
+      r.status = s.error().message;
+    } else {
+      r.status.clear();
+      r.comparedPasses = -1;
+    }
+  }
+  GLint callerFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  if (r.view.running()) {
+    r.view.trace()->uploadFinishedTiles();
+    if (auto s = compareWithReference(); !s) r.status = s.error().message;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
+  if (auto s = renderer_->render(camera_, frame.width, frame.height); !s) return s;
+  if (r.view.running()) showReference(frame);
+  return engine::Ok{};
+}
+
+// The raster frame at the reference's size, read back and compared, once per
+// finished pass of the reference.
+engine::Status SceneGame::compareWithReference() {
+  ReferencePanel& r = reference_;
+  ProgressiveTrace& trace = *r.view.trace();
+  const int passes = trace.passesDone();
+  if (passes == 0 || passes == r.comparedPasses) return engine::Ok{};
+  if (!r.compareTarget || r.compareTarget->width() != trace.width() || r.compareTarget->height() != trace.height()) {
+    auto target = engine::RenderTarget::create(trace.width(), trace.height(), 1);
+    if (!target) return target.error();
+    r.compareTarget = std::move(target).value();
+  }
+  r.compareTarget->bind();
+  if (auto s = renderer_->render(camera_, trace.width(), trace.height()); !s) return s;
+  r.compareTarget->resolve();
+  auto error = r.view.compare(r.compareTarget->readPixels());
+  if (!error) return error.error();
+  r.error = *error;
+  r.comparedPasses = passes;
+  return engine::Ok{};
+}
+
+// The reference's image (or the heatmap) over the frame just drawn: its right
+// half, or all of it. Both images are stored top row first: blitted flipped.
+void SceneGame::showReference(const engine::FrameInfo& frame) {
+  ReferencePanel& r = reference_;
+  GLint target = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+  const ProgressiveTrace& trace = *r.view.trace();
+  engine::gl::Framebuffer heat;
+  GLuint source = trace.framebuffer().id();
+  if (r.mode == ReferenceMode::Heatmap && r.view.heatmap()) {
+    heat = engine::gl::Framebuffer::create();
+    heat.attach(GL_COLOR_ATTACHMENT0, r.view.heatmap());
+    source = heat.id();
+  }
+  const int w = trace.width(), h = trace.height();
+  if (r.mode == ReferenceMode::Split) {
+    glBlitNamedFramebuffer(source, GLuint(target), w / 2, 0, w, h, frame.width / 2, frame.height, frame.width, 0,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  } else {
+    glBlitNamedFramebuffer(source, GLuint(target), 0, 0, w, h, 0, frame.height, frame.width, 0, GL_COLOR_BUFFER_BIT,
+                           GL_NEAREST);
+  }
 }
 
 engine::Game::Counters SceneGame::frameCounters() {

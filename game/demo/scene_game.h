@@ -6,10 +6,13 @@
 // and what each pass costs on the GPU.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "app/game.h"
 #include "asset/scene_desc.h"
+#include "reference_view.h"
+#include "render/render_target.h"
 #include "render/scene_renderer.h"
 
 namespace engine {
@@ -32,6 +35,23 @@ struct GpuHistory {
   int next = 0;
 };
 
+// The panel's reference view: off, the reference on the right half of the
+// window, the reference alone, or the error heatmap.
+enum class ReferenceMode { Off, Split, Reference, Heatmap };
+
+struct ReferencePanel {
+  ReferenceMode mode = ReferenceMode::Off;
+  bool pathTraced = true;  // else the Whitted tracer
+  int divisor = 2;         // the reference's size: the window's over this
+  ReferenceView view;
+  std::optional<ReferenceError> error;  // at the last comparison
+  int comparedPasses = -1;
+  std::optional<engine::RenderTarget> compareTarget;  // the raster frame at the reference's size
+  glm::dvec3 lastPosition{0.0}, lastForward{0.0};
+  int stillFrames = 0;
+  std::string status;  // why there is no reference, for the panel
+};
+
 class SceneGame final : public engine::Game {
  public:
   SceneGame(engine::SceneDesc scene, engine::SceneRenderOptions options, bool panel = false);
@@ -41,7 +61,11 @@ class SceneGame final : public engine::Game {
   void update(double time, double dt) override;
   engine::Status render(const engine::FrameInfo& frame) override;
   engine::Camera& camera() override { return camera_; }
-  void shutdown() override { renderer_.reset(); }
+  void shutdown() override {
+    reference_.view.release();
+    reference_.compareTarget.reset();
+    renderer_.reset();
+  }
   Counters frameCounters() override;
   bool wantsUi() const override { return panel_; }
   void drawUi() override;
@@ -50,6 +74,7 @@ class SceneGame final : public engine::Game {
   const engine::SceneRenderOptions& options() const { return options_; }
   const engine::Scene* scene() const { return scene_.get(); }
   TimeControl& timeControl() { return time_; }
+  ReferencePanel& reference() { return reference_; }
 
   // Rebuilds the renderer with `options` over the same scene (nothing is
   // reloaded). On failure the current renderer stays and the error is returned.
@@ -61,6 +86,10 @@ class SceneGame final : public engine::Game {
 
  private:
   engine::Status build(std::shared_ptr<engine::Scene> scene, const engine::SceneRenderOptions& options);
+  // The reference view's part of a frame: start or keep the trace, compare, show.
+  engine::Status referenceFrame(const engine::FrameInfo& frame);
+  engine::Status compareWithReference();
+  void showReference(const engine::FrameInfo& frame);
 
   engine::SceneDesc desc_;
   engine::SceneRenderOptions options_;
@@ -72,6 +101,7 @@ class SceneGame final : public engine::Game {
   TimeControl time_;
   std::string lastError_;
   GpuHistory history_;
+  ReferencePanel reference_;
 };
 
 }  // namespace demo

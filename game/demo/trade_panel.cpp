@@ -115,6 +115,30 @@ void costs(SceneGame& game, GpuHistory& history) {
   ImGui::Text("%d objects drawn, %d culled", s.objectsDrawn, s.objectsCulled);
 }
 
+void referenceControls(ReferencePanel& r) {
+  int mode = int(r.mode);
+  ImGui::RadioButton("off", &mode, int(ReferenceMode::Off));
+  ImGui::SameLine();
+  ImGui::RadioButton("split", &mode, int(ReferenceMode::Split));
+  ImGui::SameLine();
+  ImGui::RadioButton("reference", &mode, int(ReferenceMode::Reference));
+  ImGui::SameLine();
+  ImGui::RadioButton("heatmap", &mode, int(ReferenceMode::Heatmap));
+  r.mode = ReferenceMode(mode);
+  ImGui::Checkbox("path traced (else Whitted)", &r.pathTraced);
+  pickInt("size divisor", r.divisor, {1, 2, 4, 8});
+  if (r.mode == ReferenceMode::Off) return;
+  if (!r.status.empty()) ImGui::TextWrapped("%s", r.status.c_str());
+  if (r.view.running()) {
+    ProgressiveTrace& t = *r.view.trace();
+    ImGui::Text("%dx%d, pass %d of %d", t.width(), t.height(), t.passesDone(), t.passes());
+  }
+  if (r.error) {
+    ImGui::Text("at %d spp: PSNR %.2f dB, mean error %.2f, SSIM %.4f", r.error->spp, r.error->psnr, r.error->meanAbs,
+                r.error->ssim);
+  }
+}
+
 }  // namespace
 
 void SceneGame::drawUi() {
@@ -133,6 +157,7 @@ void SceneGame::drawUi() {
   if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) knobs(*this);
   if (ImGui::CollapsingHeader("time", ImGuiTreeNodeFlags_DefaultOpen)) timeControls(*this);
   if (ImGui::CollapsingHeader("cost", ImGuiTreeNodeFlags_DefaultOpen)) costs(*this, history_);
+  if (ImGui::CollapsingHeader("reference", ImGuiTreeNodeFlags_DefaultOpen)) referenceControls(reference_);
   ImGui::End();
 }
 

@@ -4,17 +4,22 @@
 // passes report GPU times.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "../support/gl_test.h"
 #include "asset/scene_file.h"
+#include "raytrace/scene_builder.h"
+#include "reference_view.h"
 #include "render/render_target.h"
 #include "scene/scene.h"
 #include "scene_game.h"
 
 using namespace engine;
 using engine::test::GlTest;
+using demo::ProgressiveTrace;
 
 namespace {
 
@@ -132,3 +137,46 @@ TEST_P(TradePanel, PassesReportGpuTimes) {
     }
   }
 }
+
+// The reference view traces what demo --mode raytrace|pathtrace writes: at the
+// scene's own camera and time, the same size, spp and seed, the finished image is
+// the same byte for byte (materials.json: glTF models through the scene layer).
+TEST_P(TradePanel, TheReferenceIsWhatTheTracerWrites) {
+  auto desc = loadSceneFile(kScenes + "materials.json");
+  ASSERT_TRUE(desc.ok()) << desc.error().message;
+  for (const bool path : {false, true}) {
+    SCOPED_TRACE(path ? "pathtrace" : "raytrace");
+    auto scene = Scene::load(*desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    demo::ReferenceRequest request;
+    request.camera = desc->camera;
+    request.width = 96;
+    request.height = 54;
+    request.settings.method = path ? rt::Method::Path : rt::Method::Whitted;
+    request.settings.samplesPerPixel = path ? 2 : 1;
+    request.settings.seed = 5;
+    demo::ReferenceView view;
+    ASSERT_TRUE(view.update(*scene, request).ok());
+    const auto start = std::chrono::steady_clock::now();
+    while (view.trace()->passesDone() < view.trace()->passes()) {
+      ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(120));
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    const Image got = view.trace()->snapshot();
+    rt::RenderSettings settings = request.settings;
+    settings.width = request.width;
+    settings.height = request.height;
+    auto want = rt::raytraceScene(*desc, 0.0, settings);
+    ASSERT_TRUE(want.ok()) << want.error().message;
+    ASSERT_EQ(got.pixels.size(), want->image.pixels.size());
+    auto diff = compareImages(got, want->image, 0);
+    ASSERT_TRUE(diff.ok());
+    EXPECT_EQ(diff->maxAbs, 0) << "mean " << diff->meanAbs << ", share over 0: " << diff->shareOver;
+    // A second request for the same view keeps the finished trace.
+    ProgressiveTrace* same = view.trace();
+    ASSERT_TRUE(view.update(*scene, request).ok());
+    EXPECT_EQ(view.trace(), same);
+    view.release();
+  }
+}
+
