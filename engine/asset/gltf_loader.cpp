@@ -15,6 +15,7 @@
 
 #include "asset/gltf_accessor.h"
 #include "asset/tangents.h"
+#include "asset/texture_transform.h"
 #include "core/log.h"
 #include "core/math.h"
 
@@ -114,7 +115,8 @@ bool uriStaysInFolder(const std::string& uri) {
 // The glTF extensions this loader implements. KHR_mesh_quantization needs nothing
 // of its own: every accessor is read with its component type and normalisation.
 const std::set<std::string>& supportedExtensions() {
-  static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength"};
+  static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength",
+                                               "KHR_texture_transform"};
   return supported;
 }
 
@@ -549,24 +551,97 @@ class Converter {
     return true;
   }
 
-  // The image behind a material's texture slot, or -1. A texture index or source
-  // out of range, or a texture set other than TEXCOORD_0, is a warning naming the
-  // material and the slot, and the slot is left empty (or sampled with set 0).
+  // The image behind a material's texture slot, or -1, and how the slot samples
+  // it (`slot`: uv set, KHR_texture_transform, sampler). A texture index or source
+  // out of range is a warning naming the material and the slot, and the slot is
+  // left empty; a uv set other than 0 and 1, a malformed transform or sampler a
+  // warning, and the default is used in its place.
   template <typename Info>
-  int textureImage(const Info& info, const std::string& material, const char* slot) {
+  int textureImage(const Info& info, const std::string& material, const char* slotName, TextureSlotData& slot) {
     if (info.index < 0) return -1;
-    const std::string where = material + ": " + slot + " " + str(info.index);
+    const std::string where = material + ": " + slotName + " " + str(info.index);
     if (!validIndex(info.index, gltf_.textures.size())) {
       warn(where + " does not exist; drawn without it");
       return -1;
     }
-    const int source = gltf_.textures[static_cast<std::size_t>(info.index)].source;
+    const tinygltf::Texture& texture = gltf_.textures[static_cast<std::size_t>(info.index)];
+    const int source = texture.source;
     if (!validIndex(source, out_.images.size())) {
       warn(where + ": image " + str(source) + " does not exist; drawn without it");
       return -1;
     }
-    if (info.texCoord != 0) warn(where + ": TEXCOORD_" + str(info.texCoord) + " is not supported; TEXCOORD_0 is used");
+    int texCoord = info.texCoord;
+    if (auto ext = info.extensions.find("KHR_texture_transform"); ext != info.extensions.end())
+      readTextureTransform(ext->second, where + ": KHR_texture_transform", slot, texCoord);
+    if (texCoord != 0 && texCoord != 1) {
+      warn(where + ": TEXCOORD_" + str(texCoord) + " is not supported (TEXCOORD_0 and TEXCOORD_1 are); TEXCOORD_0 is used");
+      texCoord = 0;
+    }
+    slot.texCoord = texCoord;
+    if (texture.sampler >= 0) slot.sampler = readSampler(texture.sampler, where);
     return source;
+  }
+
+  // KHR_texture_transform on one textureInfo: offset, rotation, scale (each
+  // defaulted when absent or malformed, with a warning for the latter) and the
+  // texCoord that overrides the textureInfo's.
+  void readTextureTransform(const tinygltf::Value& ext, const std::string& where, TextureSlotData& slot,
+                            int& texCoord) {
+    auto number = [&](const tinygltf::Value& v, double& out) {
+      if (!v.IsNumber()) return false;
+      out = v.GetNumberAsDouble();
+      return std::isfinite(out) && std::abs(out) < 1e30;
+    };
+    auto vec2 = [&](const char* key, glm::vec2 fallback) {
+      if (!ext.Has(key)) return fallback;
+      const tinygltf::Value& v = ext.Get(key);
+      double x = 0.0, y = 0.0;
+      if (!v.IsArray() || v.ArrayLen() != 2 || !number(v.Get(0), x) || !number(v.Get(1), y)) {
+        warn(where + ": " + key + " must be 2 finite numbers; [" + (fallback.x == 0.0f ? "0, 0" : "1, 1") +
+             "] is used");
+        return fallback;
+      }
+      return glm::vec2(float(x), float(y));
+    };
+    const glm::vec2 offset = vec2("offset", glm::vec2(0.0f));
+    const glm::vec2 scale = vec2("scale", glm::vec2(1.0f));
+    double rotation = 0.0;
+    if (ext.Has("rotation") && !number(ext.Get("rotation"), rotation)) {
+      warn(where + ": rotation must be a finite number; 0 is used");
+      rotation = 0.0;
+    }
+    if (ext.Has("texCoord")) {
+      const tinygltf::Value& v = ext.Get("texCoord");
+      if (v.IsInt() && v.GetNumberAsInt() >= 0) texCoord = v.GetNumberAsInt();
+      else warn(where + ": texCoord must be an integer >= 0; the textureInfo's TEXCOORD_" + str(texCoord) + " is used");
+    }
+    slot.uvTransform = textureTransformMatrix(offset, float(rotation), scale);
+  }
+
+  // A glTF sampler's wrap modes and filters; an unknown value (or a sampler that
+  // does not exist) is a warning and glTF's default in its place.
+  SamplerData readSampler(int index, const std::string& where) {
+    SamplerData out;
+    if (!validIndex(index, gltf_.samplers.size())) {
+      warn(where + ": sampler " + str(index) + " does not exist; repeat and trilinear are used");
+      return out;
+    }
+    const tinygltf::Sampler& s = gltf_.samplers[static_cast<std::size_t>(index)];
+    const std::string name = where + ": sampler " + str(index);
+    auto wrap = [&](int value, const char* key) {
+      if (value == 10497 || value == 33071 || value == 33648) return static_cast<TextureWrap>(value);
+      warn(name + ": " + key + " " + str(value) + " is not a wrap mode; REPEAT is used");
+      return TextureWrap::Repeat;
+    };
+    out.wrapS = wrap(s.wrapS, "wrapS");
+    out.wrapT = wrap(s.wrapT, "wrapT");
+    if (s.magFilter == 9728 || s.magFilter == 9729) out.magFilter = static_cast<TextureFilter>(s.magFilter);
+    else if (s.magFilter != -1) warn(name + ": magFilter " + str(s.magFilter) + " is not NEAREST or LINEAR; LINEAR is used");
+    if (s.minFilter == 9728 || s.minFilter == 9729 || (s.minFilter >= 9984 && s.minFilter <= 9987))
+      out.minFilter = static_cast<TextureFilter>(s.minFilter);
+    else if (s.minFilter != -1)
+      warn(name + ": minFilter " + str(s.minFilter) + " is not a glTF filter; LINEAR_MIPMAP_LINEAR is used");
+    return out;
   }
 
   std::string imageName(int image) const {
@@ -584,11 +659,11 @@ class Converter {
       if (pbr.baseColorFactor.size() == 4)
         m.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1],
                                       pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
-      m.baseColorImage = textureImage(pbr.baseColorTexture, name, "baseColorTexture");
+      m.baseColorImage = textureImage(pbr.baseColorTexture, name, "baseColorTexture", m.texture(TextureSlot::BaseColor));
       m.metallicFactor = static_cast<float>(pbr.metallicFactor);
       m.roughnessFactor = static_cast<float>(pbr.roughnessFactor);
-      m.metallicRoughnessImage = textureImage(pbr.metallicRoughnessTexture, name, "metallicRoughnessTexture");
-      m.normalImage = textureImage(src.normalTexture, name, "normalTexture");
+      m.metallicRoughnessImage = textureImage(pbr.metallicRoughnessTexture, name, "metallicRoughnessTexture", m.texture(TextureSlot::MetallicRoughness));
+      m.normalImage = textureImage(src.normalTexture, name, "normalTexture", m.texture(TextureSlot::Normal));
       m.normalScale = static_cast<float>(src.normalTexture.scale);
       // A missing image becomes white (see convertImages), which is neutral for
       // every slot but the normal map, where it would tilt every normal: there the
@@ -597,9 +672,9 @@ class Converter {
         warn(name + ": normalTexture " + imageName(m.normalImage) + " is missing; drawn with the mesh normals");
         m.normalImage = -1;
       }
-      m.occlusionImage = textureImage(src.occlusionTexture, name, "occlusionTexture");
+      m.occlusionImage = textureImage(src.occlusionTexture, name, "occlusionTexture", m.texture(TextureSlot::Occlusion));
       m.occlusionStrength = static_cast<float>(src.occlusionTexture.strength);
-      m.emissiveImage = textureImage(src.emissiveTexture, name, "emissiveTexture");
+      m.emissiveImage = textureImage(src.emissiveTexture, name, "emissiveTexture", m.texture(TextureSlot::Emissive));
       if (src.emissiveFactor.size() == 3)
         m.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
       auto strength = emissiveStrength(src, name);
@@ -625,11 +700,34 @@ class Converter {
   void addMissingTangents(PrimitiveData& prim, const std::string& name) {
     if (prim.material < 0 || !prim.tangents.empty()) return;
     if (out_.materials[static_cast<std::size_t>(prim.material)].normalImage < 0) return;
-    if (prim.normals.empty() || prim.uvs.empty() || prim.mode != 4) {
-      warn(name + ": a normal map needs NORMAL, TEXCOORD_0 and triangles to build tangents; drawn without it");
+    const MaterialData& material = out_.materials[static_cast<std::size_t>(prim.material)];
+    const bool set1 = material.texture(TextureSlot::Normal).texCoord == 1;
+    const std::vector<glm::vec2>& uvs = set1 ? prim.uvs1 : prim.uvs;
+    if (prim.normals.empty() || uvs.empty() || prim.mode != 4) {
+      warn(name + ": a normal map needs NORMAL, TEXCOORD_" + (set1 ? "1" : "0") +
+           " and triangles to build tangents; drawn without it");
       return;
     }
-    prim.tangents = generateTangents(prim.positions, prim.normals, prim.uvs, prim.indices);
+    prim.tangents = generateTangents(prim.positions, prim.normals, uvs, prim.indices);
+  }
+
+  // A material texture that reads TEXCOORD_1 on a primitive without it: a warning
+  // naming the primitive, the material and the slot, and set 0 is read instead
+  // (copied into uvs1, so that every renderer finds the set it asks for).
+  void checkUvSets(PrimitiveData& prim, const std::string& name) {
+    if (prim.material < 0 || !prim.uvs1.empty()) return;
+    static const char* const kSlotNames[kTextureSlots] = {"baseColorTexture", "normalTexture",
+                                                          "metallicRoughnessTexture", "emissiveTexture",
+                                                          "occlusionTexture"};
+    const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
+    const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
+    bool needed = false;
+    for (int i = 0; i < kTextureSlots; ++i) {
+      if (m.image(TextureSlot(i)) < 0 || m.textures[std::size_t(i)].texCoord != 1) continue;
+      warn(name + ": " + material + ": " + kSlotNames[i] + " reads TEXCOORD_1, which the primitive does not have; TEXCOORD_0 is used");
+      needed = true;
+    }
+    if (needed) prim.uvs1 = prim.uvs;
   }
 
   // Reads an attribute that must have `components` per element and `count`
@@ -752,6 +850,11 @@ class Converter {
       if (!v) return v.error();
       prim.uvs = toVectors<glm::vec2>(*v);
     }
+    if (int a = attribute(src, "TEXCOORD_1"); a >= 0) {
+      auto v = readFloats(a, 2, count, name + " TEXCOORD_1");
+      if (!v) return v.error();
+      prim.uvs1 = toVectors<glm::vec2>(*v);
+    }
     if (int a = attribute(src, "TANGENT"); a >= 0) {
       auto v = readFloats(a, 4, count, name + " TANGENT");
       if (!v) return v.error();
@@ -763,6 +866,7 @@ class Converter {
     prim.material = src.material;
     prim.mode = src.mode < 0 ? 4 : src.mode;
     if (Status s = readIndices(src, prim, name); !s) return s;
+    checkUvSets(prim, name);
     addMissingTangents(prim, name);
     return readSkinAttributes(src, prim, name);
   }

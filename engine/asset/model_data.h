@@ -2,6 +2,7 @@
 // The engine's own plain copy of a glTF model: what the loader hands to anim and
 // render, so that no other folder sees tinygltf. Everything is validated on load:
 // indices are in range, times sorted, weights normalised.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,6 +35,9 @@ struct PrimitiveData {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;   // empty or one per position
   std::vector<glm::vec2> uvs;       // TEXCOORD_0; empty or one per position
+  // TEXCOORD_1; empty or one per position. When a material texture asks for set 1
+  // and the mesh has none, the loader warns and copies set 0 here.
+  std::vector<glm::vec2> uvs1;
   std::vector<glm::vec4> tangents;  // empty or one per position
   std::vector<std::uint32_t> indices;  // empty for non-indexed primitives
   // Skinning: `influences` (0, 4 or 8) entries per vertex in `joints` and
@@ -63,9 +67,44 @@ struct MeshData {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+// glTF sampler settings, with glTF's (= GL's) enum values.
+enum class TextureWrap { Repeat = 10497, ClampToEdge = 33071, MirroredRepeat = 33648 };
+enum class TextureFilter {
+  Nearest = 9728,
+  Linear = 9729,
+  NearestMipmapNearest = 9984,
+  LinearMipmapNearest = 9985,
+  NearestMipmapLinear = 9986,
+  LinearMipmapLinear = 9987,
+};
+
+// A texture without a sampler (glTF: "repeat wrapping and auto filtering") gets
+// these: trilinear, as every texture of the engine was before samplers were read.
+struct SamplerData {
+  TextureWrap wrapS = TextureWrap::Repeat;
+  TextureWrap wrapT = TextureWrap::Repeat;
+  TextureFilter magFilter = TextureFilter::Linear;
+  TextureFilter minFilter = TextureFilter::LinearMipmapLinear;
+  auto operator<=>(const SamplerData&) const = default;
+};
+
+// The material texture slots, in the order of MaterialData::textures.
+enum class TextureSlot { BaseColor, Normal, MetallicRoughness, Emissive, Occlusion };
+inline constexpr int kTextureSlots = 5;
+
+// How one slot reads its texture: which uv set, KHR_texture_transform's matrix
+// (asset/texture_transform.h; identity without the extension) and the sampler.
+struct TextureSlotData {
+  int texCoord = 0;  // 0 or 1 (others are warned about and read as 0)
+  glm::mat3 uvTransform{1.0f};
+  SamplerData sampler;
+  // Whether the slot needs more than TEXCOORD_0 as it is (a set other than 0 or a
+  // transform): only then does a draw pay for the uv transform.
+  bool transformsUv() const { return texCoord != 0 || uvTransform != glm::mat3(1.0f); }
+};
+
 // glTF 2.0's metallic-roughness material. Image indices are into
-// ModelData::images, -1 = none. Only TEXCOORD_0 is read: a texture that asks for
-// another set is still sampled with the first (the loader warns).
+// ModelData::images, -1 = none; `textures` says how each slot samples its image.
 struct MaterialData {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
@@ -82,6 +121,20 @@ struct MaterialData {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;  // MASK: fragments with alpha below it are discarded
   bool doubleSided = false;  // no back-face culling; back faces flip the normal
+  std::array<TextureSlotData, kTextureSlots> textures;  // by TextureSlot
+  const TextureSlotData& texture(TextureSlot slot) const { return textures[static_cast<std::size_t>(slot)]; }
+  TextureSlotData& texture(TextureSlot slot) { return textures[static_cast<std::size_t>(slot)]; }
+  // The image of `slot` (the *Image fields above), -1 = none.
+  int image(TextureSlot slot) const {
+    switch (slot) {
+      case TextureSlot::BaseColor: return baseColorImage;
+      case TextureSlot::Normal: return normalImage;
+      case TextureSlot::MetallicRoughness: return metallicRoughnessImage;
+      case TextureSlot::Emissive: return emissiveImage;
+      case TextureSlot::Occlusion: return occlusionImage;
+    }
+    return -1;
+  }
 };
 
 struct ImageData {

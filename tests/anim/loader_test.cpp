@@ -13,6 +13,7 @@
 #include "anim/model_builder.h"
 #include "anim/pose_dump.h"
 #include "asset/gltf_loader.h"
+#include "asset/texture_transform.h"
 
 namespace engine {
 namespace {
@@ -471,7 +472,142 @@ TEST_F(LoaderTest, MaterialTextureIndexOutOfRangeIsIgnoredWithAWarning) {
   EXPECT_TRUE(hasWarning(*model, {"model.gltf", "material 0 (\"brick\")", "normalTexture 7 does not exist"}))
       << allWarnings(*model);
   EXPECT_TRUE(hasWarning(*model, {"occlusionTexture 3 does not exist"})) << allWarnings(*model);
-  EXPECT_TRUE(hasWarning(*model, {"emissiveTexture 0", "TEXCOORD_1"})) << allWarnings(*model);
+  // TEXCOORD_1 is read now; the primitive has none, so the warning names that.
+  EXPECT_TRUE(hasWarning(*model, {"model.gltf", "material 0 (\"brick\")", "emissiveTexture", "TEXCOORD_1",
+                                  "TEXCOORD_0 is used"}))
+      << allWarnings(*model);
+}
+
+// normalMappedModel with its uvs also as TEXCOORD_1, a base colour texture that
+// reads set 1 through the KHR_texture_transform of the extension's own example
+// (offset [0, 1], rotation pi/2, scale 0.5: the lower left quadrant turned 90
+// degrees clockwise), and an emissive texture through a sampler.
+TestModel transformedModel() {
+  TestModel m = normalMappedModel("normal.png");
+  m.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 8;
+  m.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  m.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}, {"minFilter", 9984}}, json::object()};
+  m.doc["textures"] = {{{"source", 0}}, {{"source", 0}, {"sampler", 0}}, {{"source", 0}, {"sampler", 1}}};
+  m.doc["materials"][0]["pbrMetallicRoughness"] = {
+      {"baseColorTexture",
+       {{"index", 0},
+        {"texCoord", 1},
+        {"extensions",
+         {{"KHR_texture_transform", {{"offset", {0.0, 1.0}}, {"rotation", 1.57079632679}, {"scale", {0.5, 0.5}}}}}}}},
+      {"metallicRoughnessTexture", {{"index", 2}}}};
+  m.doc["materials"][0]["emissiveTexture"] = {{"index", 1}};
+  return m;
+}
+
+TEST_F(LoaderTest, ReadsTexCoordTextureTransformAndSamplers) {
+  ASSERT_TRUE(writePng((dir_ / "models" / "normal.png").string(), Image(2, 2)).ok());
+  auto model = loadGltf(write(transformedModel()));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(model->warnings.empty()) << allWarnings(*model);
+  const PrimitiveData& prim = model->meshes[0].primitives[0];
+  ASSERT_EQ(prim.uvs1.size(), 3u);
+  EXPECT_EQ(prim.uvs1[0], glm::vec2(0, 1));
+  const MaterialData& material = model->materials[0];
+  const TextureSlotData& base = material.texture(TextureSlot::BaseColor);
+  EXPECT_EQ(base.texCoord, 1);
+  EXPECT_TRUE(base.transformsUv());
+  // The example's corners: (0, 0) -> (0, 1), (1, 0) -> (0, 0.5), (0, 1) -> (0.5, 1).
+  auto near = [](glm::vec2 a, glm::vec2 b) { return glm::distance(a, b) < 1e-6f; };
+  EXPECT_TRUE(near(transformUv(base.uvTransform, {0, 0}), {0, 1}));
+  EXPECT_TRUE(near(transformUv(base.uvTransform, {1, 0}), {0, 0.5f}));
+  EXPECT_TRUE(near(transformUv(base.uvTransform, {0, 1}), {0.5f, 1}));
+  // No sampler: repeat, trilinear.
+  EXPECT_EQ(base.sampler, SamplerData{});
+  const TextureSlotData& emissive = material.texture(TextureSlot::Emissive);
+  EXPECT_EQ(emissive.texCoord, 0);
+  EXPECT_FALSE(emissive.transformsUv());
+  EXPECT_EQ(emissive.sampler.wrapS, TextureWrap::ClampToEdge);
+  EXPECT_EQ(emissive.sampler.wrapT, TextureWrap::MirroredRepeat);
+  EXPECT_EQ(emissive.sampler.magFilter, TextureFilter::Nearest);
+  EXPECT_EQ(emissive.sampler.minFilter, TextureFilter::NearestMipmapNearest);
+  // An empty sampler is glTF's defaults.
+  EXPECT_EQ(material.texture(TextureSlot::MetallicRoughness).sampler, SamplerData{});
+  // The untouched slots keep theirs.
+  EXPECT_EQ(material.texture(TextureSlot::Occlusion).uvTransform, glm::mat3(1.0f));
+  EXPECT_EQ(material.texture(TextureSlot::Occlusion).texCoord, 0);
+}
+
+// The extension's texCoord overrides the textureInfo's; required, it is supported.
+TEST_F(LoaderTest, TextureTransformTexCoordOverridesAndMayBeRequired) {
+  ASSERT_TRUE(writePng((dir_ / "models" / "normal.png").string(), Image(2, 2)).ok());
+  TestModel m = transformedModel();
+  m.doc["extensionsRequired"] = {"KHR_texture_transform"};
+  m.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+      {"texCoord", 0}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(model->warnings.empty()) << allWarnings(*model);
+  const TextureSlotData& base = model->materials[0].texture(TextureSlot::BaseColor);
+  EXPECT_EQ(base.texCoord, 0);
+  EXPECT_EQ(base.uvTransform, glm::mat3(1.0f));  // no offset, rotation or scale: identity
+  EXPECT_FALSE(base.transformsUv());
+}
+
+// Bad texture settings warn, naming the file, the material and the slot, and load
+// with the defaults: no crash, no refused model.
+TEST_F(LoaderTest, BadTexCoordTransformAndSamplerWarnAndUseDefaults) {
+  ASSERT_TRUE(writePng((dir_ / "models" / "normal.png").string(), Image(2, 2)).ok());
+  TestModel m = transformedModel();
+  m.doc["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_1");
+  auto& pbr = m.doc["materials"][0]["pbrMetallicRoughness"];
+  pbr["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+      {"offset", "far"}, {"rotation", "left"}, {"scale", json::array({2.0})}, {"texCoord", -1}};
+  m.doc["materials"][0]["occlusionTexture"] = {{"index", 0}, {"texCoord", 2}};
+  m.doc["samplers"][0] = {{"wrapS", 1234}, {"magFilter", 9984}, {"minFilter", 5}};
+  m.doc["textures"][2]["sampler"] = 9;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const std::string material = "material 0 (\"brick\")";
+  for (const char* needle : {"offset must be 2 finite numbers", "rotation must be a finite number",
+                             "scale must be 2 finite numbers", "texCoord must be an integer >= 0"})
+    EXPECT_TRUE(hasWarning(*model, {"model.gltf", material, "baseColorTexture 0: KHR_texture_transform", needle}))
+        << needle << "\n" << allWarnings(*model);
+  // Set 1 (from the textureInfo) on a primitive without TEXCOORD_1: set 0 is read.
+  EXPECT_TRUE(hasWarning(*model, {"model.gltf", "mesh 0", material, "baseColorTexture reads TEXCOORD_1",
+                                  "TEXCOORD_0 is used"}))
+      << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"model.gltf", material, "occlusionTexture 0: TEXCOORD_2 is not supported"}))
+      << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"emissiveTexture 1: sampler 0: wrapS 1234 is not a wrap mode"})) << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"sampler 0: magFilter 9984 is not NEAREST or LINEAR"})) << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"sampler 0: minFilter 5"})) << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"metallicRoughnessTexture 2: sampler 9 does not exist"})) << allWarnings(*model);
+
+  const MaterialData& mat = model->materials[0];
+  const TextureSlotData& base = mat.texture(TextureSlot::BaseColor);
+  EXPECT_EQ(base.texCoord, 1);
+  EXPECT_EQ(base.uvTransform, glm::mat3(1.0f));
+  const PrimitiveData& prim = model->meshes[0].primitives[0];
+  EXPECT_EQ(prim.uvs1, prim.uvs);
+  EXPECT_EQ(mat.texture(TextureSlot::Occlusion).texCoord, 0);
+  EXPECT_EQ(mat.texture(TextureSlot::Emissive).sampler.wrapS, TextureWrap::Repeat);
+  EXPECT_EQ(mat.texture(TextureSlot::Emissive).sampler.wrapT, TextureWrap::Repeat);  // absent: the default
+  EXPECT_EQ(mat.texture(TextureSlot::Emissive).sampler.magFilter, TextureFilter::Linear);
+  EXPECT_EQ(mat.texture(TextureSlot::Emissive).sampler.minFilter, TextureFilter::LinearMipmapLinear);
+  EXPECT_EQ(mat.texture(TextureSlot::MetallicRoughness).sampler, SamplerData{});
+}
+
+// T * R * S against hand-worked values: a rotation alone turns u = (1, 0) to
+// (cos r, -sin r), counter-clockwise with v down; the order is scale, rotate,
+// then offset.
+TEST(TextureTransform, MatrixIsTranslationRotationScale) {
+  const float r = 0.3f;
+  const glm::mat3 rotate = textureTransformMatrix({0, 0}, r, {1, 1});
+  EXPECT_NEAR(glm::distance(transformUv(rotate, {1, 0}), glm::vec2(std::cos(r), -std::sin(r))), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(transformUv(rotate, {0, 1}), glm::vec2(std::sin(r), std::cos(r))), 0.0f, 1e-6f);
+  const glm::mat3 all = textureTransformMatrix({-0.2f, -0.1f}, r, {1.5f, 2.0f});
+  const glm::vec2 uv(0.4f, 0.7f);
+  const glm::vec2 scaled = uv * glm::vec2(1.5f, 2.0f);
+  const glm::vec2 expected = glm::vec2(std::cos(r) * scaled.x + std::sin(r) * scaled.y,
+                                       -std::sin(r) * scaled.x + std::cos(r) * scaled.y) +
+                             glm::vec2(-0.2f, -0.1f);
+  EXPECT_NEAR(glm::distance(transformUv(all, uv), expected), 0.0f, 1e-6f);
+  EXPECT_EQ(textureTransformMatrix({0, 0}, 0.0f, {1, 1}), glm::mat3(1.0f));
 }
 
 
