@@ -1,8 +1,8 @@
 #version 450 core
 // The viewer's glTF meshes: classic lighting (hemisphere ambient, one sun,
-// Blinn-Phong) with the base colour, normal map and alpha mask of the glTF
-// material (common/material.glsl). Metallic-roughness, emissive and occlusion
-// textures are not read here; scene.frag does.
+// Blinn-Phong) with the base colour, normal map, emission and alpha mask of the
+// glTF material (common/material.glsl). Metallic-roughness and occlusion textures
+// are not read here; scene.frag does.
 #include "common/lighting.glsl"
 #include "common/fog.glsl"
 #include "common/material.glsl"
@@ -14,6 +14,7 @@ in vec2 v_uv;
 in vec4 v_tangent;
 #endif
 
+uniform vec3 u_emissive;
 uniform float u_specular;
 uniform float u_shininess;
 uniform vec3 u_sunDirection;
@@ -37,7 +38,7 @@ void main() {
   vec3 albedo = base.rgb;
   Sun sun = Sun(u_sunDirection, u_sunColor);
   vec3 color = albedo * hemisphereAmbient(n, u_skyColor, u_groundColor) +
-               blinnPhong(albedo, n, toEye, sun, u_specular, u_shininess);
+               blinnPhong(albedo, n, toEye, sun, u_specular, u_shininess) + materialEmissive(u_emissive, v_uv);
   color = applyFog(color, length(v_position), u_fogColor, u_fogDensity);
   // Linear out; the sRGB render target encodes. A simple Reinhard keeps the sun's
   // highlights from clipping hard. Alpha is for BLEND materials.

@@ -5,6 +5,10 @@
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
+#ifdef UV_TRANSFORM
+layout(location = 8) in vec2 a_uv1;  // TEXCOORD_1 (common/material.glsl)
+out vec2 v_uv1;
+#endif
 
 #include "common/deform.glsl"
 
@@ -24,5 +28,8 @@ void main() {
   v_position = world.xyz;
   v_normal = u_normalMatrix * normal;
   v_uv = a_uv;
+#ifdef UV_TRANSFORM
+  v_uv1 = a_uv1;
+#endif
   gl_Position = u_viewProjection * world;
 }

@@ -4,6 +4,10 @@
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
+#ifdef UV_TRANSFORM
+layout(location = 8) in vec2 a_uv1;  // TEXCOORD_1 (common/material.glsl)
+out vec2 v_uv1;
+#endif
 
 #include "common/frame.glsl"
 #include "common/deform.glsl"
@@ -27,6 +31,9 @@ void main() {
   v_position = world.xyz;
   v_normal = u_normalMatrix * normal;
   v_uv = a_uv * u_uvScale;
+#ifdef UV_TRANSFORM
+  v_uv1 = a_uv1;
+#endif
 #ifdef DEPTH_ONLY
   gl_Position = u_lightViewProjection * world;
 #else

@@ -73,6 +73,7 @@ struct FramebufferDeleter { void operator()(GLuint id) const { glDeleteFramebuff
 struct RenderbufferDeleter { void operator()(GLuint id) const { glDeleteRenderbuffers(1, &id); } };
 struct ProgramDeleter { void operator()(GLuint id) const { glDeleteProgram(id); } };
 struct ShaderDeleter { void operator()(GLuint id) const { glDeleteShader(id); } };
+struct SamplerDeleter { void operator()(GLuint id) const { glDeleteSamplers(1, &id); } };
 struct QueryDeleter { void operator()(GLuint id) const { glDeleteQueries(1, &id); } };
 
 }  // namespace engine::gl

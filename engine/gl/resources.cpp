@@ -63,6 +63,12 @@ Texture Texture::create2D(GLenum format, int width, int height, int levels) {
   return texture;
 }
 
+Sampler Sampler::create() {
+  GLuint id = 0;
+  glCreateSamplers(1, &id);
+  return Sampler(id);
+}
+
 Texture Texture::create2DMultisample(GLenum format, int width, int height, int samples) {
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &id);

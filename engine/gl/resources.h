@@ -82,6 +82,22 @@ class Texture : public Object<TextureDeleter> {
   int height_ = 0;
 };
 
+// A sampler object: wrap modes and filters that override a texture's own on the
+// unit it is bound to (glTF's samplers, which several textures may share and one
+// image may be sampled through several of).
+class Sampler : public Object<SamplerDeleter> {
+ public:
+  Sampler() = default;
+  static Sampler create();
+  void parameter(GLenum name, GLint value) const { glSamplerParameteri(id(), name, value); }
+  void bind(GLuint unit) const { glBindSampler(unit, id()); }
+  // Back to the texture's own parameters on `unit`.
+  static void unbind(GLuint unit) { glBindSampler(unit, 0); }
+
+ private:
+  using Object::Object;
+};
+
 class Renderbuffer : public Object<RenderbufferDeleter> {
  public:
   Renderbuffer() = default;

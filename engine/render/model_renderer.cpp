@@ -1,6 +1,7 @@
 #include "render/model_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl/bindings.h"
@@ -18,6 +19,7 @@ std::string ShaderVariant::describe() const {
   if (emissiveTexture) name += "+emissive";
   if (occlusion) name += "+occlusion";
   if (alphaMask) name += "+mask";
+  if (uvTransform) name += "+uvtransform";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -48,6 +50,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.occlusion) defines.push_back("OCCLUSION 1");
   if (variant.alphaMask) defines.push_back("ALPHA_MASK 1");
   if (variant.morph) defines.push_back("MORPH 1");
+  if (variant.uvTransform) defines.push_back("UV_TRANSFORM 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -85,13 +88,46 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
   pr.set("u_alphaCutoff", material->alphaCutoff);
 }
 
-// Texture units of common/material.glsl.
+// Each slot's uv set and KHR_texture_transform matrix, for UV_TRANSFORM variants.
+void setUvTransforms(const gl::Program& pr, const MaterialData& m) {
+  static constexpr const char* kTransforms[kTextureSlots] = {"u_uvTransform[0]", "u_uvTransform[1]", "u_uvTransform[2]",
+                                                             "u_uvTransform[3]", "u_uvTransform[4]"};
+  static constexpr const char* kTexCoords[kTextureSlots] = {"u_texCoord[0]", "u_texCoord[1]", "u_texCoord[2]",
+                                                            "u_texCoord[3]", "u_texCoord[4]"};
+  for (int i = 0; i < kTextureSlots; ++i) {
+    pr.set(kTransforms[i], m.textures[size_t(i)].uvTransform);
+    pr.set(kTexCoords[i], m.textures[size_t(i)].texCoord);
+  }
+}
+
+// Texture units of common/material.glsl (gl/bindings.h), by TextureSlot.
+constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor, gl::binding::kNormal,
+                                              gl::binding::kMetallicRoughness, gl::binding::kEmissive,
+                                              gl::binding::kOcclusion};
+
+// Which slots the variant samples.
+std::array<bool, kTextureSlots> sampledSlots(const ShaderVariant& v) {
+  return {v.textured, v.normalMap, v.metallicRoughnessTexture, v.emissiveTexture, v.occlusion};
+}
+
+// Binds each sampled slot's image (colour slots as sRGB) and its glTF sampler.
 void bindMaterialTextures(const GpuModel& gpu, const MaterialData& m, const ShaderVariant& v) {
-  if (v.textured) gpu.image(m.baseColorImage, true).bind(gl::binding::kBaseColor);
-  if (v.normalMap) gpu.image(m.normalImage, false).bind(gl::binding::kNormal);
-  if (v.metallicRoughnessTexture) gpu.image(m.metallicRoughnessImage, false).bind(gl::binding::kMetallicRoughness);
-  if (v.emissiveTexture) gpu.image(m.emissiveImage, true).bind(gl::binding::kEmissive);
-  if (v.occlusion) gpu.image(m.occlusionImage, false).bind(gl::binding::kOcclusion);
+  const auto sampled = sampledSlots(v);
+  for (int i = 0; i < kTextureSlots; ++i) {
+    if (!sampled[size_t(i)]) continue;
+    const TextureSlot slot = TextureSlot(i);
+    const bool srgb = slot == TextureSlot::BaseColor || slot == TextureSlot::Emissive;
+    gpu.image(m.image(slot), srgb).bind(kSlotUnits[i]);
+    gpu.sampler(m.textures[size_t(i)].sampler).bind(kSlotUnits[i]);
+  }
+}
+
+// The units' own texture parameters again, for whatever draws next (the scene's
+// shapes and terrain bind textures on the same units without samplers).
+void unbindMaterialSamplers(const ShaderVariant& v) {
+  const auto sampled = sampledSlots(v);
+  for (int i = 0; i < kTextureSlots; ++i)
+    if (sampled[size_t(i)]) gl::Sampler::unbind(kSlotUnits[i]);
 }
 
 template <typename T>
@@ -145,6 +181,11 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
   if (!data.uvs.empty()) {
     prim.vao.vertexBuffer(2, addBuffer(prim, data.uvs), sizeof(glm::vec2));
     prim.vao.attribute(2, 2, 2, 0);
+  }
+  // TEXCOORD_1: location 8 (UV_TRANSFORM variants), binding 6.
+  if (!data.uvs1.empty()) {
+    prim.vao.vertexBuffer(6, addBuffer(prim, data.uvs1), sizeof(glm::vec2));
+    prim.vao.attribute(8, 6, 2, 0);
   }
   if (data.influences > 0) {
     const GLsizei n = data.influences;
@@ -229,6 +270,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     pr.set("u_baseColorFactor", material->baseColorFactor);
     pr.set("u_alphaCutoff", material->alphaCutoff);
   }
+  if (variant.uvTransform) setUvTransforms(pr, *material);
   const glm::mat4 model4 =
       glm::mat4(skinned ? toCamera * frame.root : toCamera * glm::dmat4(frame.nodeWorlds[n]));
   pr.set("u_model", model4);
@@ -259,6 +301,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     glDrawArrays(mode, 0, prim.vertexCount);
   }
   if (twoSided) glEnable(GL_CULL_FACE);
+  if (material) unbindMaterialSamplers(variant);
   return Ok{};
 }
 
@@ -288,13 +331,15 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
   // A shadow pass needs the material only to cut out MASK holes.
   if (depthOnly) {
     v.textured = v.alphaMask && m->baseColorImage >= 0;
-    return v;
+  } else {
+    v.textured = m->baseColorImage >= 0;
+    v.normalMap = m->normalImage >= 0 && !prim.tangents.empty();
+    v.metallicRoughnessTexture = m->metallicRoughnessImage >= 0;
+    v.emissiveTexture = m->emissiveImage >= 0;
+    v.occlusion = m->occlusionImage >= 0;
   }
-  v.textured = m->baseColorImage >= 0;
-  v.normalMap = m->normalImage >= 0 && !prim.tangents.empty();
-  v.metallicRoughnessTexture = m->metallicRoughnessImage >= 0;
-  v.emissiveTexture = m->emissiveImage >= 0;
-  v.occlusion = m->occlusionImage >= 0;
+  const auto sampled = sampledSlots(v);
+  for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();
   return v;
 }
 
@@ -323,6 +368,17 @@ Result<GpuModel> GpuModel::upload(const ModelData& model) {
     if (srgb[i]) gpu.srgbImages_[i] = uploadImage(image, GL_SRGB8_ALPHA8);
     if (linear[i]) gpu.linearImages_[i] = uploadImage(image, GL_RGBA8);
   }
+  for (const MaterialData& m : model.materials) {
+    for (const TextureSlotData& slot : m.textures) {
+      if (gpu.samplers_.count(slot.sampler)) continue;
+      gl::Sampler sampler = gl::Sampler::create();
+      sampler.parameter(GL_TEXTURE_WRAP_S, GLint(slot.sampler.wrapS));
+      sampler.parameter(GL_TEXTURE_WRAP_T, GLint(slot.sampler.wrapT));
+      sampler.parameter(GL_TEXTURE_MAG_FILTER, GLint(slot.sampler.magFilter));
+      sampler.parameter(GL_TEXTURE_MIN_FILTER, GLint(slot.sampler.minFilter));
+      gpu.samplers_.emplace(slot.sampler, std::move(sampler));
+    }
+  }
   gpu.white_ = gl::Texture::create2D(GL_SRGB8_ALPHA8, 1, 1, 1);
   const std::uint8_t white[4] = {255, 255, 255, 255};
   gpu.white_.uploadRgba8(white);
@@ -333,6 +389,11 @@ const gl::Texture& GpuModel::image(int image, bool srgb) const {
   const auto& images = srgb ? srgbImages_ : linearImages_;
   if (image < 0 || image >= int(images.size()) || images[size_t(image)].id() == 0) return white_;
   return images[size_t(image)];
+}
+
+const gl::Sampler& GpuModel::sampler(const SamplerData& settings) const {
+  // Every material slot's settings were made on upload.
+  return samplers_.at(settings);
 }
 
 std::vector<BlendPrimitive> blendPrimitives(const ModelData& model, const GpuModel& gpu,

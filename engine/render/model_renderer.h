@@ -37,6 +37,9 @@ struct ShaderVariant {
   // Morph targets (common/morph.glsl), before skinning. Last, so that the
   // positional initialisations above keep their meaning.
   bool morph = false;
+  // Some texture of the material reads TEXCOORD_1 or has a KHR_texture_transform
+  // (common/material.glsl's UV_TRANSFORM); the others sample TEXCOORD_0 as it is.
+  bool uvTransform = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -97,12 +100,16 @@ class GpuModel {
   const std::vector<std::vector<GpuPrimitive>>& meshes() const { return meshes_; }
   // The texture of `image` in the wanted colour space, or a white one (no image).
   const gl::Texture& image(int image, bool srgb) const;
+  // The sampler object of a glTF sampler's settings (one per distinct setting the
+  // model's materials use; made on upload).
+  const gl::Sampler& sampler(const SamplerData& settings) const;
 
  private:
   std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<gl::Texture> srgbImages_;    // empty texture where no colour slot uses the image
   std::vector<gl::Texture> linearImages_;  // the same for data slots
   gl::Texture white_;
+  std::map<SamplerData, gl::Sampler> samplers_;
 };
 
 // The variant a primitive of `node` is drawn with (skinning mode, material

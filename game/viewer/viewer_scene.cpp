@@ -52,7 +52,7 @@ void ViewerScene::frameCamera(const ModelData& model) {
   const glm::dvec3 center = glm::dvec3(lo + hi) * 0.5;
   const double radius = std::max(1e-3, 0.5 * double(glm::length(hi - lo)));
   const double distance = radius / std::sin(glm::radians(camera_.fovyDegrees) * 0.5) * 1.1;
-  camera_.position = center + glm::normalize(glm::dvec3(0.45, 0.3, 1.0)) * distance;
+  camera_.position = center + glm::normalize(settings_.viewDirection) * distance;
   camera_.nearPlane = distance / 100.0;
   camera_.farPlane = distance * 100.0;
   camera_.lookAt(center);

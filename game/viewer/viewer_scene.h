@@ -20,6 +20,10 @@ struct ViewerSettings {
   engine::SkinMode skinMode = engine::SkinMode::Linear;
   bool skeleton = false;
   bool bindPose = false;
+  // Where the camera looks from, toward the model's centre (framed to fit its
+  // bounds). Golden tests of flat test models look straight at them (0, 0, 1), as
+  // Khronos's screenshots do.
+  glm::dvec3 viewDirection{0.45, 0.3, 1.0};
 };
 
 class ViewerScene final : public engine::Game {

@@ -7,7 +7,38 @@
 //   EMISSIVE_TEXTURE  emissive (sRGB, unit 3)
 //   OCCLUSION         ambient occlusion (linear, unit 6): R, with u_occlusionStrength
 //   ALPHA_MASK        discard below u_alphaCutoff
-// Units 4 and 5 are the shadow maps.
+//   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
+//                     every slot reads its set (u_texCoord) through its matrix
+//                     (u_uvTransform, built in C++: asset/texture_transform.h)
+// Units 4 and 5 are the shadow maps. Each slot's glTF sampler (wrap, filters) is a
+// sampler object bound on its unit.
+//
+// Without UV_TRANSFORM a slot samples TEXCOORD_0 as it is: models that use neither
+// feature run the same programs as before. With it, each texture fetch costs a
+// select and a mat3 multiply more; the variant is built only for such materials.
+
+// The slots, as engine::TextureSlot numbers them.
+const int SLOT_BASE_COLOR = 0;
+const int SLOT_NORMAL = 1;
+const int SLOT_METALLIC_ROUGHNESS = 2;
+const int SLOT_EMISSIVE = 3;
+const int SLOT_OCCLUSION = 4;
+
+#ifdef UV_TRANSFORM
+in vec2 v_uv1;  // TEXCOORD_1 (set 0 where the mesh has none)
+uniform mat3 u_uvTransform[5];
+uniform int u_texCoord[5];
+#endif
+
+// The uv that `slot` samples at, from the fragment's TEXCOORD_0 `uv`.
+vec2 materialUv(int slot, vec2 uv) {
+#ifdef UV_TRANSFORM
+  vec2 set = u_texCoord[slot] == 1 ? v_uv1 : uv;
+  return (u_uvTransform[slot] * vec3(set, 1.0)).xy;
+#else
+  return uv;
+#endif
+}
 #ifdef TEXTURED
 layout(binding = UNIT_BASE_COLOR) uniform sampler2D u_baseColorTexture;
 #endif
@@ -15,7 +46,7 @@ uniform vec4 u_baseColorFactor = vec4(1.0);
 
 vec4 materialBaseColor(vec2 uv) {
 #ifdef TEXTURED
-  return u_baseColorFactor * texture(u_baseColorTexture, uv);
+  return u_baseColorFactor * texture(u_baseColorTexture, materialUv(SLOT_BASE_COLOR, uv));
 #else
   return u_baseColorFactor;
 #endif
@@ -46,7 +77,7 @@ vec3 materialNormal(vec3 n, vec4 tangent, vec2 uv) {
   if (!(len > 1e-6)) return n;
   t /= len;
   vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
-  vec3 m = texture(u_normalTexture, uv).xyz * 2.0 - 1.0;
+  vec3 m = texture(u_normalTexture, materialUv(SLOT_NORMAL, uv)).xyz * 2.0 - 1.0;
   m.xy *= u_normalScale;
   vec3 perturbed = mat3(t, b, n) * m;
   float plen = length(perturbed);
@@ -61,7 +92,7 @@ layout(binding = UNIT_METALLIC_ROUGHNESS) uniform sampler2D u_metallicRoughnessT
 // x = metallic, y = roughness: the factors times the texture's B and G.
 vec2 materialMetallicRoughness(float metallic, float roughness, vec2 uv) {
 #ifdef MR_TEXTURE
-  vec4 mr = texture(u_metallicRoughnessTexture, uv);
+  vec4 mr = texture(u_metallicRoughnessTexture, materialUv(SLOT_METALLIC_ROUGHNESS, uv));
   return vec2(metallic * mr.b, roughness * mr.g);
 #else
   return vec2(metallic, roughness);
@@ -74,7 +105,7 @@ layout(binding = UNIT_EMISSIVE) uniform sampler2D u_emissiveTexture;
 
 vec3 materialEmissive(vec3 factor, vec2 uv) {
 #ifdef EMISSIVE_TEXTURE
-  return factor * texture(u_emissiveTexture, uv).rgb;
+  return factor * texture(u_emissiveTexture, materialUv(SLOT_EMISSIVE, uv)).rgb;
 #else
   return factor;
 #endif
@@ -88,7 +119,7 @@ uniform float u_occlusionStrength = 1.0;
 // The factor on the ambient term: 1 + strength * (R - 1), as glTF defines it.
 float materialOcclusion(vec2 uv) {
 #ifdef OCCLUSION
-  return 1.0 + u_occlusionStrength * (texture(u_occlusionTexture, uv).r - 1.0);
+  return 1.0 + u_occlusionStrength * (texture(u_occlusionTexture, materialUv(SLOT_OCCLUSION, uv)).r - 1.0);
 #else
   return 1.0;
 #endif

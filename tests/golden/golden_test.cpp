@@ -24,7 +24,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum class SceneKind { Demo, Cornell, TerrainValley, TerrainOverview, TerrainLowSun, RobotWalk, RobotWaveDqs, Materials };
+enum class SceneKind {
+  Demo,
+  Cornell,
+  TerrainValley,
+  TerrainOverview,
+  TerrainLowSun,
+  RobotWalk,
+  RobotWaveDqs,
+  Materials,
+  Sample,  // a Khronos sample model in the viewer (GoldenCase::model, under ../shared/gltf-samples)
+};
 
 struct GoldenCase {
   const char* name;
@@ -33,6 +43,7 @@ struct GoldenCase {
   int msaa = 0;         // 0: the scene's own setting
   int supersample = 0;
   int pcf = 0;          // 0: the scene's own; 1: hard shadows
+  const char* model = nullptr;  // SceneKind::Sample: the path under ../shared/gltf-samples
 };
 
 // The default scene (PBR, sun shadows with PCF, sky, fog, four skinned robots) at
@@ -54,12 +65,33 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"terrain_low_sun", SceneKind::TerrainLowSun, 1.0},
                              {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3},
                              {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6},
-                             {"materials", SceneKind::Materials, 0.0}};
+                             {"materials", SceneKind::Materials, 0.0},
+                             // Khronos's texture tests in the viewer, as their screenshots
+                             // show them: TEXCOORD_1 (the emissive logo), KHR_texture_transform
+                             // (offset, rotation, scale; clamped samplers), wrap modes.
+                             {"sample_multiuv", SceneKind::Sample, 0.0, 0, 0, 0, "MultiUVTest/glTF-Binary/MultiUVTest.glb"},
+                             {"sample_texture_transform", SceneKind::Sample, 0.0, 0, 0, 0,
+                              "TextureTransformTest/glTF/TextureTransformTest.gltf"},
+                             {"sample_texture_settings", SceneKind::Sample, 0.0, 0, 0, 0,
+                              "TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb"}};
 
 const std::string kShaders = std::string(ENGINE_SOURCE_DIR) + "/shaders";
 const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
 
+const std::string kSamples = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
+
 std::unique_ptr<Game> makeScene(const GoldenCase& c) {
+  if (c.scene == SceneKind::Sample) {
+    auto model = loadGltf(kSamples + c.model);
+    if (!model) return nullptr;
+    viewer::ViewerSettings settings;
+    settings.clip = -1;  // the rest pose: these models have no animation
+    // The flat test boards face +z: straight at them, as Khronos's screenshots, so
+    // that they fill the frame; the cube from the viewer's usual corner.
+    if (c.scene == SceneKind::Sample && std::string(c.model).rfind("MultiUVTest", 0) != 0)
+      settings.viewDirection = glm::dvec3(0.0, 0.0, 1.0);
+    return std::make_unique<viewer::ViewerScene>(kShaders, std::move(model).value(), settings);
+  }
   if (c.scene != SceneKind::RobotWalk && c.scene != SceneKind::RobotWaveDqs) {
     const char* file = c.scene == SceneKind::Demo      ? "/scenes/demo.json"
                        : c.scene == SceneKind::Cornell   ? "/scenes/cornell.json"
@@ -112,6 +144,8 @@ class Golden : public ::testing::TestWithParam<Param> {};
 TEST_P(Golden, MatchesTheGoldenImage) {
   const Backend backend = std::get<0>(GetParam());
   const GoldenCase& c = kCases[std::get<1>(GetParam())];
+  if (c.scene == SceneKind::Sample && !fs::exists(kSamples + c.model))
+    GTEST_SKIP() << kSamples + c.model << " not found (../shared/gltf-samples absent)";
   auto scene = makeScene(c);
   ASSERT_NE(scene, nullptr);
   RunOptions options;
