@@ -157,7 +157,7 @@ Status RtScene::setMaterialTexture(int material, RtTexture texture) {
   return attachTexture(material, &MaterialExtras::texture, std::move(texture));
 }
 
-glm::vec3 RtScene::baseColor(int material, glm::vec2 uv, float footprint) const {
+glm::vec3 RtScene::baseColor(int material, const HitUv& uv, float footprint) const {
   const glm::vec3 color = materials_[size_t(material)].color;
   const int texture = extras_[size_t(material)].texture;
   return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv, footprint);
@@ -188,7 +188,7 @@ Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
   return attachTexture(material, &MaterialExtras::emissiveTexture, std::move(texture));
 }
 
-float RtScene::opacityAt(int material, glm::vec2 uv, float footprint) const {
+float RtScene::opacityAt(int material, const HitUv& uv, float footprint) const {
   const MaterialExtras& e = extras_[size_t(material)];
   if (e.alphaMode == AlphaMode::Opaque) return 1.0f;
   const float alpha = e.alpha * (e.texture >= 0 ? textures_[size_t(e.texture)].sampleRgba(uv, footprint).a : 1.0f);
@@ -204,7 +204,7 @@ Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
   return Ok{};
 }
 
-HitMaterial RtScene::materialAt(int material, glm::vec2 uv, float footprint, double y, const glm::vec3& ns) const {
+HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns) const {
   const MaterialDesc& m = materials_[size_t(material)];
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
                   m.metallic, m.roughness, m.emission};
@@ -217,7 +217,7 @@ HitMaterial RtScene::materialAt(int material, glm::vec2 uv, float footprint, dou
     out.emission *= textures_[size_t(emissive)].sample(uv, footprint);
   }
   if (const int terrain = extras_[size_t(material)].terrain; terrain >= 0) {
-    const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv, footprint, y, ns.y);
+    const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv.uv0, footprint, y, ns.y);
     out.albedo *= layers.albedo;
     out.roughness = layers.roughness;
     out.specular = layers.specular;
@@ -256,6 +256,10 @@ Result<MeshId> RtScene::addMesh(RtMesh mesh) {
   }
   if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
     return makeError(where + ": " + std::to_string(mesh.uvs.size()) + " uvs for " +
+                     std::to_string(mesh.positions.size()) + " positions");
+  }
+  if (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size()) {
+    return makeError(where + ": " + std::to_string(mesh.uvs1.size()) + " second-set uvs for " +
                      std::to_string(mesh.positions.size()) + " positions");
   }
   if (mesh.material < 0 || mesh.material >= int(materials_.size())) {
@@ -397,6 +401,9 @@ SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<
     const float area = glm::length(glm::cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]));
     si.uvPerMetre = area > 0.0f ? std::sqrt(uvArea / area) : 0.0f;
   }
+  si.uv1 = mesh.uvs1.empty()
+               ? si.uv
+               : float(hit.hit.b0) * mesh.uvs1[i0] + float(hit.hit.b1) * mesh.uvs1[i1] + float(hit.hit.b2) * mesh.uvs1[i2];
   si.material = mesh.material;
   return si;
 }
@@ -444,6 +451,7 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
     si.uv = sphereUv(glm::dvec3(si.n)) * scale;
     // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
     si.uvPerMetre = scale / (float(std::numbers::pi) * std::sqrt(2.0f) * float(sphereList[index].radius));
+    si.uv1 = si.uv;
     return si;
   }
   if (kind == 2) {
@@ -453,6 +461,7 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
     si.uv = glm::vec2(glm::dvec2(glm::dot(local, q.axisU) + q.extent, glm::dot(local, q.axisV) + q.extent) *
                       double(materials_[size_t(si.material)].textureScale));
     si.uvPerMetre = materials_[size_t(si.material)].textureScale;
+    si.uv1 = si.uv;
     return si;
   }
   return std::nullopt;
@@ -485,7 +494,7 @@ float RtScene::transmittance(const Ray<T>& shadowRay, const Vec3<T>* target, std
   for (int i = 0; i <= 64; ++i) {
     const std::optional<SurfaceInteraction<T>> hit = intersect(ray);
     if (!hit) return share;
-    share *= 1.0f - opacityAt(hit->material, hit->uv);
+    share *= 1.0f - opacityAt(hit->material, HitUv(hit->uv, hit->uv1));
     if (share <= 0.0f) return 0.0f;
     ++rays;
     ray = target ? hit->spawnRayTo(*target, T(1)) : Ray<T>{hit->spawnRay(ray.d).o, ray.d, ray.tMax - hit->t};

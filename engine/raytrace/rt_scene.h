@@ -37,6 +37,7 @@ struct RtMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;  // empty, or one per position (glTF TEXCOORD_0)
+  std::vector<glm::vec2> uvs1;  // empty (hits take uvs), or one per position (TEXCOORD_1)
   std::vector<std::uint32_t> indices;  // three per triangle
   int material = 0;
   int group = 0;  // the BVH it lives in: 0 the static world, or one from addGroup()
@@ -67,7 +68,7 @@ class RtScene {
   Status setMaterialTexture(int material, RtTexture texture);
   // The material's colour times its texture at the hit's uv, linear RGB; `footprint`
   // as RtTexture::sample takes it.
-  glm::vec3 baseColor(int material, glm::vec2 uv, float footprint = 0.0f) const;
+  glm::vec3 baseColor(int material, const HitUv& uv, float footprint = 0.0f) const;
   // glTF's alpha: `factor` times the base colour texture's alpha. MASK removes the
   // surface where that is below `cutoff`; BLEND makes it that opaque.
   Status setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff);
@@ -81,10 +82,10 @@ class RtScene {
   bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
   // BLEND's alpha; the path tracer lets the rest through.
-  float opacityAt(int material, glm::vec2 uv, float footprint = 0.0f) const;
+  float opacityAt(int material, const HitUv& uv, float footprint = 0.0f) const;
   // opacityAt for a hit seen from the back (`backFacing`) or the front: 0 for a
   // single-sided material seen from behind, which the rasterizer culls.
-  float surfaceOpacity(int material, glm::vec2 uv, float footprint, bool backFacing) const {
+  float surfaceOpacity(int material, const HitUv& uv, float footprint, bool backFacing) const {
     return backFacing && singleSided(material) ? 0.0f : opacityAt(material, uv, footprint);
   }
   // Whether any material is not opaque (else shadow rays need no more than any hit).
@@ -96,7 +97,7 @@ class RtScene {
   Status setTerrainMaterial(int material, RtTerrainMaterial layers);
   // The material at a hit with uv `uv` (and `footprint`, as RtTexture::sample takes
   // it), world height `y` and unit shading normal `ns`.
-  HitMaterial materialAt(int material, glm::vec2 uv, float footprint, double y, const glm::vec3& ns) const;
+  HitMaterial materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns) const;
   // A sun also draws the gradient sky's disk, as the last sun did before.
   void addLight(const LightDesc& light);
   void addSphere(const glm::dvec3& center, double radius, int material);

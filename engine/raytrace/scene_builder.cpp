@@ -28,18 +28,24 @@ Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
     desc.specular = 0.5f * (1.0f - m.roughnessFactor);
     desc.emission = m.emissiveFactor;
     const int material = scene.addMaterial(desc);
+    // Each slot's image with its sampler's wrap, uv set and KHR_texture_transform.
+    auto slotTexture = [&](TextureSlot slot, TextureEncoding encoding) {
+      const TextureSlotData& t = m.texture(slot);
+      RtTexture texture(model.images[size_t(m.image(slot))].image, TextureOrigin::TopLeft, encoding);
+      texture.setWrap(t.sampler.wrapS, t.sampler.wrapT).setMapping(t.texCoord, t.uvTransform);
+      return texture;
+    };
     if (m.baseColorImage >= 0) {
-      const RtTexture texture(model.images[size_t(m.baseColorImage)].image, TextureOrigin::TopLeft);
-      if (auto s = scene.setMaterialTexture(material, texture); !s) return s.error();
+      if (auto s = scene.setMaterialTexture(material, slotTexture(TextureSlot::BaseColor, TextureEncoding::Srgb)); !s)
+        return s.error();
     }
     if (m.emissiveImage >= 0) {
-      const RtTexture emissive(model.images[size_t(m.emissiveImage)].image, TextureOrigin::TopLeft);
-      if (auto s = scene.setEmissiveTexture(material, emissive); !s) return s.error();
+      if (auto s = scene.setEmissiveTexture(material, slotTexture(TextureSlot::Emissive, TextureEncoding::Srgb)); !s)
+        return s.error();
     }
     if (m.metallicRoughnessImage >= 0) {
-      const RtTexture mr(model.images[size_t(m.metallicRoughnessImage)].image, TextureOrigin::TopLeft,
-                         TextureEncoding::Linear);
-      if (auto s = scene.setMetallicRoughnessTexture(material, mr); !s) return s.error();
+      auto mr = slotTexture(TextureSlot::MetallicRoughness, TextureEncoding::Linear);
+      if (auto s = scene.setMetallicRoughnessTexture(material, std::move(mr)); !s) return s.error();
     }
     if (auto s = scene.setMaterialAlpha(material, m.alphaMode, m.baseColorFactor.a, m.alphaCutoff); !s) return s.error();
     if (auto s = scene.setSingleSided(material, !m.doubleSided); !s) return s.error();
@@ -73,6 +79,7 @@ Status skinInstance(const ModelAsset& asset, std::span<const int> materials, con
         mesh.positions.resize(prim.positions.size());
         if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
         mesh.uvs = prim.uvs;
+        mesh.uvs1 = prim.uvs1;
         if (prim.indices.empty()) {
           for (std::uint32_t i = 0; i < std::uint32_t(prim.positions.size()); ++i) mesh.indices.push_back(i);
         } else {

@@ -1,5 +1,6 @@
 #include "raytrace/texture.h"
 
+#include "asset/texture_transform.h"
 #include "core/linear_image.h"
 
 #include <algorithm>
@@ -22,6 +23,33 @@ const std::array<float, 256>& decodeTable() {
 int wrap(int i, int n) {
   const int r = i % n;
   return r < 0 ? r + n : r;
+}
+
+// GL's wrap of texel index i of n (OpenGL 4.5 core, 8.14.2): repeat; clamp to the
+// edge texel; mirrored repeat, (n - 1) - mirror((i mod 2n) - n) with mirror(a) = a
+// for a >= 0, -(1 + a) otherwise.
+int wrapIndex(int i, int n, TextureWrap mode) {
+  switch (mode) {
+    case TextureWrap::ClampToEdge: return std::clamp(i, 0, n - 1);
+    case TextureWrap::MirroredRepeat: {
+      const int a = wrap(i, 2 * n) - n;
+      return (n - 1) - (a >= 0 ? a : -(1 + a));
+    }
+    case TextureWrap::Repeat: break;
+  }
+  return wrap(i, n);
+}
+
+// A coordinate reduced to one period of its wrap (two for mirrored repeat), so that
+// large uv (a plane's tiling far from the origin) keep their fraction's precision;
+// clamping to [0, 1] picks the same edge texels as CLAMP_TO_EDGE does beyond them.
+float reduce(float x, TextureWrap mode) {
+  switch (mode) {
+    case TextureWrap::ClampToEdge: return std::clamp(x, 0.0f, 1.0f);
+    case TextureWrap::MirroredRepeat: return x - 2.0f * std::floor(0.5f * x);
+    case TextureWrap::Repeat: break;
+  }
+  return x - std::floor(x);
 }
 
 }  // namespace
@@ -73,23 +101,36 @@ RtTexture::RtTexture(const Image& image, TextureOrigin origin, TextureEncoding e
   while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(halve(levels_.back()));
 }
 
-glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 uv) {
-  // Texel centres sit at (i + 0.5) / n; reduce to one period first, so that large uv
-  // (a plane's tiling far from the origin) keep their fraction's precision.
-  const float u = (uv.x - std::floor(uv.x)) * float(level.width) - 0.5f;
-  const float v = (uv.y - std::floor(uv.y)) * float(level.height) - 0.5f;
+glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 uv) const {
+  // Texel centres sit at (i + 0.5) / n.
+  const float u = reduce(uv.x, wrapS_) * float(level.width) - 0.5f;
+  const float v = reduce(uv.y, wrapT_) * float(level.height) - 0.5f;
   if (!std::isfinite(u) || !std::isfinite(v)) return level.texels[0];
   const float fu = std::floor(u), fv = std::floor(v);
   const float tu = u - fu, tv = v - fv;
-  const int x0 = wrap(int(fu), level.width), x1 = wrap(int(fu) + 1, level.width);
-  const int y0 = wrap(int(fv), level.height), y1 = wrap(int(fv) + 1, level.height);
+  const int x0 = wrapIndex(int(fu), level.width, wrapS_), x1 = wrapIndex(int(fu) + 1, level.width, wrapS_);
+  const int y0 = wrapIndex(int(fv), level.height, wrapT_), y1 = wrapIndex(int(fv) + 1, level.height, wrapT_);
   const auto at = [&](int x, int y) { return level.texels[std::size_t(y) * std::size_t(level.width) + std::size_t(x)]; };
   return glm::mix(glm::mix(at(x0, y0), at(x1, y0), tu), glm::mix(at(x0, y1), at(x1, y1), tu), tv);
 }
 
-glm::vec3 RtTexture::sample(glm::vec2 uv, float footprint) const { return glm::vec3(sampleRgba(uv, footprint)); }
+RtTexture& RtTexture::setMapping(int texCoord, const glm::mat3& uvTransform) {
+  texCoord_ = texCoord;
+  uvTransform_ = uvTransform;
+  transformed_ = uvTransform != glm::mat3(1.0f);
+  // The transform's area scale, as uvPerMetre measures a footprint (sqrt of areas).
+  footprintScale_ = std::sqrt(std::abs(uvTransform[0][0] * uvTransform[1][1] - uvTransform[1][0] * uvTransform[0][1]));
+  return *this;
+}
 
-glm::vec4 RtTexture::sampleRgba(glm::vec2 uv, float footprint) const {
+glm::vec3 RtTexture::sample(const HitUv& uv, float footprint) const { return glm::vec3(sampleRgba(uv, footprint)); }
+
+glm::vec4 RtTexture::sampleRgba(const HitUv& hitUv, float footprint) const {
+  glm::vec2 uv = texCoord_ == 1 ? hitUv.uv1 : hitUv.uv0;
+  if (transformed_) {
+    uv = transformUv(uvTransform_, uv);
+    footprint *= footprintScale_;
+  }
   const float texels = footprint * float(std::max(width(), height()));
   const float lod = texels > 1.0f ? std::min(std::log2(texels), float(levels() - 1)) : 0.0f;
   if (!(lod > 0.0f)) return bilinear(levels_[0], uv);

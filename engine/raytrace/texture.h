@@ -1,17 +1,32 @@
 #pragma once
 // A base colour texture as the rasterizer samples it, for the ray tracer: texels
 // decoded from sRGB to linear before filtering (GL does that for SRGB8_ALPHA8),
-// bilinear between texel centres, wrap repeat (GL's default, which every texture of
-// the rasterizer uses, glTF's default too), and mipmaps as glGenerateMipmap makes
-// them (each level the 2x2 average of the one above, in linear), sampled trilinearly
-// (GL_LINEAR_MIPMAP_LINEAR) at the level a ray cone's footprint picks.
+// bilinear between texel centres, wrapped in s and t as GL wraps (glTF's REPEAT,
+// CLAMP_TO_EDGE, MIRRORED_REPEAT; repeat by default), and mipmaps as
+// glGenerateMipmap makes them (each level the 2x2 average of the one above, in
+// linear), sampled trilinearly (GL_LINEAR_MIPMAP_LINEAR) at the level a ray cone's
+// footprint picks, whatever the glTF sampler's filters (the tracer's own filtering).
+//
+// A texture of a glTF material slot also knows where it is sampled: the hit's uv set
+// (texCoord) through the slot's KHR_texture_transform matrix, the very matrix the
+// rasterizer gets as a uniform (asset/texture_transform.h).
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "asset/model_data.h"
 #include "core/image.h"
 
 namespace engine::rt {
+
+// A hit's texture coordinates: glTF's TEXCOORD_0 and TEXCOORD_1 (the same where a
+// surface has only one set, as analytic shapes).
+struct HitUv {
+  glm::vec2 uv0{0.0f}, uv1{0.0f};
+  HitUv() = default;
+  HitUv(glm::vec2 uv) : uv0(uv), uv1(uv) {}  // NOLINT: one set is both
+  HitUv(glm::vec2 a, glm::vec2 b) : uv0(a), uv1(b) {}
+};
 
 // Which image row uv v = 0 reads: glTF textures are uploaded as they are (v = 0 is the
 // top row), the scene file's textures flipped (v = 0 is the bottom row).
@@ -23,12 +38,26 @@ class RtTexture {
  public:
   RtTexture(const Image& image, TextureOrigin origin, TextureEncoding encoding = TextureEncoding::Srgb);
 
-  // Linear RGB at uv (repeating outside [0, 1)). `footprint`: the width of the
-  // pixel's footprint in uv units (0: the full-resolution level, as when magnified);
-  // its log2 in texels is GL's level of detail.
-  glm::vec3 sample(glm::vec2 uv, float footprint = 0.0f) const;
+  // The glTF sampler's wrap modes (its filters are not the tracer's business).
+  RtTexture& setWrap(TextureWrap s, TextureWrap t) {
+    wrapS_ = s;
+    wrapT_ = t;
+    return *this;
+  }
+  // The material slot's uv set (0 or 1) and KHR_texture_transform matrix.
+  RtTexture& setMapping(int texCoord, const glm::mat3& uvTransform);
+
+  // Linear RGB at the hit's uv (its set, through the transform, wrapped).
+  // `footprint`: the width of the pixel's footprint in units of TEXCOORD_0 (0: the
+  // full-resolution level, as when magnified), scaled here as the transform scales
+  // uv; its log2 in texels is GL's level of detail. (Set 1 takes set 0's footprint:
+  // the cone's width is only known in set 0's units.)
+  glm::vec3 sample(const HitUv& uv, float footprint = 0.0f) const;
   // The same with the alpha channel (linear, as GL reads it; not sRGB-decoded).
-  glm::vec4 sampleRgba(glm::vec2 uv, float footprint = 0.0f) const;
+  glm::vec4 sampleRgba(const HitUv& uv, float footprint = 0.0f) const;
+  // At one uv standing for both sets (analytic shapes, the terrain's layers).
+  glm::vec3 sample(glm::vec2 uv, float footprint = 0.0f) const { return sample(HitUv(uv), footprint); }
+  glm::vec4 sampleRgba(glm::vec2 uv, float footprint = 0.0f) const { return sampleRgba(HitUv(uv), footprint); }
 
   int width() const { return levels_[0].width; }
   int height() const { return levels_[0].height; }
@@ -40,9 +69,14 @@ class RtTexture {
     std::vector<glm::vec4> texels;  // linear RGB and alpha, rows with v = 0 first
   };
   static Level halve(const Level& above);
-  static glm::vec4 bilinear(const Level& level, glm::vec2 uv);
+  glm::vec4 bilinear(const Level& level, glm::vec2 uv) const;
 
   std::vector<Level> levels_;
+  TextureWrap wrapS_ = TextureWrap::Repeat, wrapT_ = TextureWrap::Repeat;
+  int texCoord_ = 0;
+  glm::mat3 uvTransform_{1.0f};
+  bool transformed_ = false;  // uvTransform_ is not the identity
+  float footprintScale_ = 1.0f;  // how much the transform scales lengths in uv
 };
 
 }  // namespace engine::rt

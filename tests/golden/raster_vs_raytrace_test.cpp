@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 
 #include "app/runner.h"
@@ -245,4 +247,67 @@ TEST(RasterVsRaytrace, DemoTerrainAgreesAtLowResolution) {
   // between the last two versions.
   EXPECT_LT(diff->meanAbs, 1.7);
   EXPECT_GT(diff->psnr, 40.0);
+}
+
+namespace {
+
+// A scene of one Khronos sample model seen straight on, classic shading, no sky or
+// shadows: what is left to differ between the renderers is how they sample the
+// model's textures. The sun lies half way between +y and +z: TextureTransformTest
+// has no NORMAL, which the rasterizer reads as +y and the tracer as the face's +z,
+// and both then see the same N.L.
+Result<SceneDesc> sampleBoard(const std::string& model, glm::dvec3 camera, double fovy) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "engine_raster_vs_raytrace_textures";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "board.json").string();
+  std::ofstream(path) << R"({"camera": {"position": [)" << camera.x << ", " << camera.y << ", " << camera.z
+                      << R"(], "target": [0, )" << camera.y << R"(, 0], "fovy": )" << fovy
+                      << R"(, "near": 0.1, "far": 100},
+    "lights": [{"type": "sun", "direction": [0, 1, 1], "color": [1, 1, 1], "intensity": 0.9, "shadows": false}],
+    "models": [{"path": ")" << model << R"("}],
+    "sky": {"enabled": false, "background": [0.1, 0.1, 0.1]},
+    "render": {"shading": "classic", "msaa": 1}})";
+  return loadSceneFile(path);
+}
+
+}  // namespace
+
+// TextureTransformTest (offsets, rotation, scale under a clamping sampler) and
+// TextureSettingsTest (repeat, clamp and mirror per axis) through both renderers:
+// the tracer reads the same uv matrix and wraps as GL does, so the boards agree.
+TEST(RasterVsRaytrace, KhronosTextureBoardsAgree) {
+  const std::string samples = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
+  struct Board {
+    const char* model;
+    glm::dvec3 camera;
+  };
+  const Board boards[] = {{"TextureTransformTest/glTF/TextureTransformTest.gltf", {0.0, 0.0, 4.6}},
+                          {"TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", {0.0, -0.55, 16.0}}};
+  for (const Board& board : boards) {
+    if (!std::filesystem::exists(samples + board.model)) GTEST_SKIP() << samples + board.model << " not found";
+    auto scene = sampleBoard(samples + board.model, board.camera, 40.0);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Image traced = rayTraced(*scene);
+    const Image raster = rasterized(*scene);
+    ASSERT_FALSE(traced.empty());
+    ASSERT_FALSE(raster.empty());
+    auto diff = compareImages(traced, raster, 16);
+    ASSERT_TRUE(diff.ok());
+    std::printf("raster vs ray traced %s: mean %.3f, PSNR %.2f dB, %.2f%% over 16\n", board.model, diff->meanAbs,
+                diff->psnr, diff->shareOver * 100.0);
+    if (HasFailure() || std::getenv("ENGINE_WRITE_DIFFS")) {
+      const std::string stem = std::filesystem::path(board.model).stem().string();
+      (void)writePng("raster_vs_raytrace_" + stem + "_traced.png", traced);
+      (void)writePng("raster_vs_raytrace_" + stem + "_raster.png", raster);
+    }
+    // Measured (llvmpipe, Mesa 22): TextureTransformTest mean 2.09, 28.0 dB, 2.8% of
+    // pixels over 16; TextureSettingsTest 1.39, 28.9 dB, 2.3%. What remains are the
+    // edges of the checks and letters: the tracer filters trilinearly at its ray
+    // cone's level, GL by the sampler's filter (these use NEAREST_MIPMAP_LINEAR) at its
+    // quad derivatives' level. Broken, measured: the tracer ignoring the samplers'
+    // wrap, 3.26, 24.1 dB (transform) and 2.94, 22.3 dB (settings); ignoring the uv
+    // transform, 27.8, 11.2 dB. The limits sit between, 2 dB below the agreement.
+    EXPECT_LT(diff->meanAbs, 2.6) << board.model;
+    EXPECT_GT(diff->psnr, 26.0) << board.model;
+  }
 }

@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 
+#include "asset/texture_transform.h"
 #include "raytrace/shapes.h"
 #include "raytrace/texture.h"
 
@@ -237,4 +239,74 @@ TEST(RtTexture, MipmapsAverageAndTheFootprintPicksTheLevel) {
   // Odd and non-square sizes halve to floor(size / 2), down to 1 x 1.
   EXPECT_EQ(rt::RtTexture(engine::Image(5, 2), rt::TextureOrigin::TopLeft).levels(), 3);  // 5x2, 2x1, 1x1
   EXPECT_EQ(rt::RtTexture(engine::Image(1, 1), rt::TextureOrigin::TopLeft).levels(), 1);
+}
+
+namespace {
+
+// A linear texture of `w` x `h` texels whose red is each texel's index / (w h - 1).
+rt::RtTexture rampTexture(int w, int h) {
+  engine::Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const auto r = std::uint8_t(std::lround(255.0 * (y * w + x) / (w * h - 1)));
+      const std::uint8_t p[4] = {r, 0, 0, 255};
+      std::copy(p, p + 4, image.at(x, y));
+    }
+  return rt::RtTexture(image, rt::TextureOrigin::TopLeft, rt::TextureEncoding::Linear);
+}
+
+}  // namespace
+
+// glTF's wrap modes as GL applies them to texel indices (OpenGL 4.5, 8.14.2), on a
+// 4-texel ramp 0, 1/3, 2/3, 1 at texel centres and edges past [0, 1].
+TEST(RtTexture, WrapModesMatchGl) {
+  using engine::TextureWrap;
+  rt::RtTexture t = rampTexture(4, 1);
+  auto at = [&](float u) { return t.sample(glm::vec2(u, 0.5f)).x; };
+  t.setWrap(TextureWrap::Repeat, TextureWrap::Repeat);
+  EXPECT_FLOAT_EQ(at(1.125f), 0.0f);
+  EXPECT_FLOAT_EQ(at(-0.125f), 1.0f);
+  EXPECT_FLOAT_EQ(at(1.0f), 0.5f);  // between texel 3 and texel 0
+  t.setWrap(TextureWrap::ClampToEdge, TextureWrap::Repeat);
+  EXPECT_FLOAT_EQ(at(1.125f), 1.0f);
+  EXPECT_FLOAT_EQ(at(1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(at(0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(at(-7.5f), 0.0f);
+  EXPECT_FLOAT_EQ(at(0.25f), 1.0f / 6.0f);  // inside, bilinear as before
+  t.setWrap(TextureWrap::MirroredRepeat, TextureWrap::Repeat);
+  EXPECT_FLOAT_EQ(at(1.125f), 1.0f);        // mirrored: texel 3 again
+  EXPECT_FLOAT_EQ(at(1.375f), 2.0f / 3.0f);  // texel 2
+  EXPECT_FLOAT_EQ(at(1.0f), 1.0f);          // texels 3 and its mirror
+  EXPECT_FLOAT_EQ(at(-0.125f), 0.0f);
+  EXPECT_FLOAT_EQ(at(2.125f), 0.0f);        // a period is 2
+  EXPECT_FLOAT_EQ(at(-1.875f), 0.0f);
+  // t wraps by its own mode.
+  rt::RtTexture column = rampTexture(1, 4);
+  column.setWrap(TextureWrap::Repeat, TextureWrap::ClampToEdge);
+  EXPECT_FLOAT_EQ(column.sample(glm::vec2(0.5f, 1.125f)).x, 1.0f);
+  column.setWrap(TextureWrap::ClampToEdge, TextureWrap::Repeat);
+  EXPECT_FLOAT_EQ(column.sample(glm::vec2(0.5f, 1.125f)).x, 0.0f);
+}
+
+// A slot's uv set and KHR_texture_transform: the texture reads set 1 through the
+// matrix, the same matrix the rasterizer takes as a uniform.
+TEST(RtTexture, SamplesItsUvSetThroughTheTransform) {
+  using engine::TextureWrap;
+  rt::RtTexture t = rampTexture(4, 1);
+  t.setMapping(1, engine::textureTransformMatrix({0.5f, 0.0f}, 0.0f, {1.0f, 1.0f}));
+  // Set 1 at texel 0's centre, offset by half the width: texel 2. Set 0 is ignored.
+  EXPECT_FLOAT_EQ(t.sample(rt::HitUv({0.875f, 0.5f}, {0.125f, 0.5f})).x, 2.0f / 3.0f);
+  // A scale of 2 doubles the footprint: one texel at scale 1 (level 0) is two (level 1).
+  t.setMapping(0, engine::textureTransformMatrix({0.0f, 0.0f}, 0.0f, {2.0f, 2.0f}));
+  // At u 0.125 (after the scale) level 0 reads texel 0 (0); level 1 (texels 1/6, 5/6)
+  // reads 3/4 of the way from 5/6 (wrapped) to 1/6: 1/3.
+  EXPECT_NEAR(t.sample(glm::vec2(0.0625f, 0.5f), 0.25f).x, 1.0f / 3.0f, 1e-5f);
+
+  // A quarter turn on a 2 x 2 ramp: (u, v) -> (v, -u), so set 0's (0.25, 0.75) reads
+  // (0.75, -0.25): texel (1, 1) when t repeats, (1, 0) when it clamps.
+  rt::RtTexture square = rampTexture(2, 2);
+  square.setMapping(0, engine::textureTransformMatrix({0, 0}, float(std::numbers::pi / 2), {1, 1}));
+  EXPECT_NEAR(square.sample(glm::vec2(0.25f, 0.75f)).x, 1.0f, 1e-5f);
+  square.setWrap(TextureWrap::Repeat, TextureWrap::ClampToEdge);
+  EXPECT_NEAR(square.sample(glm::vec2(0.25f, 0.75f)).x, 1.0f / 3.0f, 1e-5f);
 }
