@@ -20,6 +20,8 @@ static_assert(!std::is_copy_constructible_v<gl::Buffer>);
 static_assert(!std::is_copy_assignable_v<gl::Texture>);
 static_assert(std::is_nothrow_move_constructible_v<gl::Framebuffer>);
 static_assert(!std::is_copy_constructible_v<gl::Program>);
+static_assert(!std::is_copy_assignable_v<gl::Sampler>);
+static_assert(std::is_nothrow_move_constructible_v<gl::Sampler>);
 
 class GlObjects : public GlTest {};
 ENGINE_INSTANTIATE_OFFSCREEN(GlObjects);
