@@ -71,6 +71,7 @@ case "$CASE" in
   # and the image, a white fallback, exit 0.
   zero_size_image) model zero_size_image.glb 0 "warning: zero_size_image\.glb: image 0: image is 0x0 pixels" ;;
   huge_image) model huge_image.glb 0 "warning: huge_image\.glb: image 0: 20000 x 20000 pixels is over the limit of 16384" ;;
+  bad_texture_settings) model bad_texture_settings.glb 0 "warning: bad_texture_settings\.glb: material 0 \(\"tiles\"\): baseColorTexture 0: TEXCOORD_2 is not supported" ;;
   # The same images given to a program that needs them are errors.
   zero_size_png) expect 2 "zero_size\.png: image is 0x0 pixels; each side must be in \[1, 16384\]" -- "$BIN/imgdiff" zero_size.png zero_size.png ;;
   huge_claim_png) expect 2 "huge_claim\.png: image is 20000x20000 pixels; each side must be in \[1, 16384\]" -- "$BIN/imgdiff" huge_claim.png huge_claim.png ;;

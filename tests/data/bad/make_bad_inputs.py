@@ -204,6 +204,18 @@ def main(out):
     case("zero_size_image.glb", with_image(png(0, 0)))
     case("huge_image.glb", with_image(png(20000, 20000)))
 
+    # Texture settings the engine cannot honour: a uv set past TEXCOORD_1, a
+    # malformed KHR_texture_transform, a wrap mode that is not one.
+    def bad_texture_settings(m):
+        with_image(png(2, 2, [b"\xff" * 8] * 2))(m)
+        m.doc["extensionsUsed"] = ["KHR_texture_transform"]
+        m.doc["samplers"] = [{"wrapS": 1, "minFilter": 7}]
+        m.doc["textures"][0]["sampler"] = 0
+        m.doc["materials"][0]["name"] = "tiles"
+        m.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {
+            "index": 0, "texCoord": 2, "extensions": {"KHR_texture_transform": {"offset": "far", "scale": [1]}}}
+    case("bad_texture_settings.glb", bad_texture_settings)
+
     # Scene files (the format of assets/scenes/*.json) with values of the wrong type.
     write("scene_fovy_string.json", json.dumps({"camera": {"fovy": "wide"}}))
     write("scene_models_number.json", json.dumps({"models": 5}))
