@@ -1,23 +1,24 @@
 // glTF 2.0 material inputs, shared by every program that draws glTF meshes
 // (scene.frag, lit.frag, depth.frag). Each texture is compiled in only for the
 // variants that use it (#defines set by engine/render/model_renderer.cpp):
-//   TEXTURED          base colour texture (sRGB, unit 0)
-//   NORMAL_MAP        tangent-space normal map (linear, unit 1) with u_normalScale
-//   MR_TEXTURE        metallic-roughness (linear, unit 2): G roughness, B metallic
-//   EMISSIVE_TEXTURE  emissive (sRGB, unit 3)
-//   OCCLUSION         ambient occlusion (linear, unit 6): R, with u_occlusionStrength
+//   TEXTURED          base colour texture (sRGB, UNIT_BASE_COLOR)
+//   NORMAL_MAP        tangent-space normal map (linear, UNIT_NORMAL) with u_normalScale
+//   MR_TEXTURE        metallic-roughness (linear, UNIT_METALLIC_ROUGHNESS): G roughness, B metallic
+//   EMISSIVE_TEXTURE  emissive (sRGB, UNIT_EMISSIVE)
+//   OCCLUSION         ambient occlusion (linear, UNIT_OCCLUSION): R, with u_occlusionStrength
 //   ALPHA_MASK        discard below u_alphaCutoff
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
 //                     every slot reads its set (u_texCoord) through its matrix
 //                     (u_uvTransform, built in C++: asset/texture_transform.h)
-// Units 4 and 5 are the shadow maps. Each slot's glTF sampler (wrap, filters) is a
+// The units are engine/gl/bindings.h's. Each slot's glTF sampler (wrap, filters) is a
 // sampler object bound on its unit.
 //
 // Without UV_TRANSFORM a slot samples TEXCOORD_0 as it is: models that use neither
 // feature run the same programs as before. With it, each texture fetch costs a
 // select and a mat3 multiply more; the variant is built only for such materials.
 
-// The slots, as engine::TextureSlot numbers them.
+// The slots, as engine::TextureSlot numbers them (tests/unit/shader_source_test
+// holds the two together).
 const int SLOT_BASE_COLOR = 0;
 const int SLOT_NORMAL = 1;
 const int SLOT_METALLIC_ROUGHNESS = 2;

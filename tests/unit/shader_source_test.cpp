@@ -6,6 +6,7 @@
 #include <fstream>
 #include <regex>
 
+#include "asset/model_data.h"
 #include "gl/shader.h"
 
 using namespace engine;
@@ -97,4 +98,23 @@ TEST(ShaderBindings, ShippedShadersNameTheirBindings) {
   ASSERT_TRUE(src.ok()) << src.error().message;
   EXPECT_NE(src->text.find("#define UNIT_BASE_COLOR 0\n"), std::string::npos);
   EXPECT_NE(src->text.find("#define BUFFER_MORPH_WEIGHTS 2\n"), std::string::npos);
+}
+
+// material.glsl's slot numbers index the per-slot uv transforms that C++ uploads
+// in engine::TextureSlot order: each must be that enum's value.
+TEST(ShaderBindings, MaterialSlotsAreTextureSlotNumbers) {
+  std::ifstream in(std::string(ENGINE_SOURCE_DIR) + "/shaders/common/material.glsl");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::pair<const char*, TextureSlot> slots[] = {{"SLOT_BASE_COLOR", TextureSlot::BaseColor},
+                                                       {"SLOT_NORMAL", TextureSlot::Normal},
+                                                       {"SLOT_METALLIC_ROUGHNESS", TextureSlot::MetallicRoughness},
+                                                       {"SLOT_EMISSIVE", TextureSlot::Emissive},
+                                                       {"SLOT_OCCLUSION", TextureSlot::Occlusion}};
+  for (const auto& [name, slot] : slots) {
+    const std::regex declared("const int " + std::string(name) + " = ([0-9]+);");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(text, m, declared)) << name;
+    EXPECT_EQ(std::stoi(m[1]), static_cast<int>(slot)) << name;
+  }
+  EXPECT_EQ(kTextureSlots, 5);
 }
