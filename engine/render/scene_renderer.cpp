@@ -273,6 +273,8 @@ struct SceneRenderer::Impl {
   Status collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists);
   Status collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists);
   Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass);
+  Status submitItems(const std::vector<DrawItem>& items, const PassInputs& pass);
+  double animationMs = 0.0;  // the last update's
   void drawShape(const ShapeDraw& shape, const gl::Program& program, const PassInputs& pass);
   void drawSky(const glm::dmat4& viewProjection, bool sunDisk = true);
   Status drawWorld(const View& view, int skipShape, bool useProbes);
@@ -723,11 +725,13 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
 }
 
 Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape) {
+  const auto start = std::chrono::steady_clock::now();
   DrawLists lists;
   if (auto s = collectShapes(planes, depthOnly, skipShape, lists); !s) return s.error();
   if (auto s = collectCharacters(planes, depthOnly, lists); !s) return s.error();
   sortDrawItems(lists.opaque);
   sortDrawItems(lists.blend);
+  stats->cullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return lists;
 }
 
@@ -769,6 +773,13 @@ void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, co
 // change of program is counted: sorting keeps the count near the number of
 // programs the view needs.
 Status SceneRenderer::Impl::drawItems(const std::vector<DrawItem>& items, const PassInputs& pass) {
+  const auto start = std::chrono::steady_clock::now();
+  const Status status = submitItems(items, pass);
+  stats->submitMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return status;
+}
+
+Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, const PassInputs& pass) {
   std::vector<std::uint32_t> programs;
   for (const DrawItem& item : items) programs.push_back(item.program);
   std::sort(programs.begin(), programs.end());
@@ -1017,9 +1028,11 @@ std::vector<CharacterInstance*> SceneRenderer::characters() {
 }
 
 Status SceneRenderer::update(double time) {
+  const auto start = std::chrono::steady_clock::now();
   if (auto s = impl_->source->update(time); !s) return s;
   const auto instances = impl_->source->instances();
   for (size_t i = 0; i < impl_->characters.size(); ++i) impl_->characters[i].instance->setPose(instances[i].pose);
+  impl_->animationMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return Ok{};
 }
 
@@ -1065,6 +1078,7 @@ std::vector<PassTime> SceneRenderer::passTimes() const {
 
 Status SceneRenderer::render(const Camera& camera, int width, int height) {
   stats_ = SceneStats{};
+  stats_.animationMs = impl_->animationMs;
   Impl& s = *impl_;
   // The query spans the whole frame, and is ended even when a pass fails.
   if (!s.primitives) s.primitives = gl::Query::create(GL_PRIMITIVES_GENERATED);

@@ -39,6 +39,12 @@ struct SceneStats {
   int objectsCulled = 0;
   int objectsDrawn = 0;
   int terrainTriangles = 0;
+  // CPU time: the last update's posing (the scene layer's sampling and the copy of
+  // its poses), this frame's collecting and sorting of draw items (culling
+  // included), and its submission of them.
+  double animationMs = 0.0;
+  double cullMs = 0.0;
+  double submitMs = 0.0;
 };
 
 // One pass's GPU time (a GL_TIME_ELAPSED query), from the latest frame whose

@@ -1,5 +1,9 @@
 #include "scene_game.h"
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include "asset/scene_file.h"
 #include "scene/scene.h"
 
@@ -174,6 +178,49 @@ engine::Game::Counters SceneGame::frameCounters() {
           {"objects_culled", s.objectsCulled},
           {"terrain_triangles", s.terrainTriangles},
           {"triangles_all_passes", double(renderer_->lastFrameTriangles())}};
+}
+
+}  // namespace demo
+
+namespace demo {
+
+// Streamed, not concatenated: g++ 12 warns falsely (-Wrestrict) on a long chain of
+// std::string additions.
+std::string SceneGame::settingName() const {
+  const engine::SceneDesc& scene = renderer_->scene();
+  const engine::RenderDesc& r = scene.render;
+  const engine::SceneRenderOptions& o = options_;
+  auto pick = [](int override, int own) { return override > 0 ? override : own; };
+  std::ostringstream name;
+  name << "msaa" << pick(o.msaaOverride, r.msaa) << " ss" << pick(o.supersampleOverride, r.supersample) << " shadow"
+       << pick(o.shadowMapOverride, r.shadowMapSize) << " pcf"
+       << pick(o.pcfKernelOverride, r.shadowFilter == engine::ShadowFilter::Hard ? 1 : r.pcfKernel) << " probe"
+       << (o.reflectionProbeOverride >= 0 ? o.reflectionProbeOverride : r.reflectionProbe);
+  if (r.shading == engine::Shading::Pbr) {
+    name << " " << engine::ambientName(o.ambientOverride.value_or(engine::ambientOf(scene))) << " ibl"
+         << pick(o.iblSizeOverride, r.iblSize);
+  }
+  return name.str();
+}
+
+engine::Status SceneGame::addToTable(const std::string& csvPath) {
+  const ReferencePanel& r = reference_;
+  if (!r.error) return engine::makeError("no reference to measure against yet: hold the camera still with time paused");
+  double gpuMs = 0.0;
+  for (const auto& p : renderer_->passTimes()) gpuMs += p.gpuMs;
+  std::error_code ec;
+  const auto folder = std::filesystem::path(csvPath).parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder, ec);
+  const bool fresh = !std::filesystem::exists(csvPath, ec);
+  std::ofstream out(csvPath, std::ios::app);
+  if (!out) return engine::makeError(csvPath + ": cannot append to the table");
+  if (fresh) out << "scene,family,setting,time_ms,psnr_db,mean_abs,ssim,reference\n";
+  const std::string scene = std::filesystem::path(renderer_->scene().path).stem().string();
+  const bool path = r.view.request().settings.method == engine::rt::Method::Path;
+  out << scene << ",panel," << settingName() << "," << gpuMs << "," << r.error->psnr << "," << r.error->meanAbs << ","
+      << r.error->ssim << "," << (path ? "pathtrace " : "raytrace ") << r.error->spp << "spp\n";
+  if (!out) return engine::makeError(csvPath + ": cannot append to the table");
+  return engine::Ok{};
 }
 
 }  // namespace demo

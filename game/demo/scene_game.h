@@ -81,6 +81,13 @@ class SceneGame final : public engine::Game {
   engine::Status applyOptions(const engine::SceneRenderOptions& options);
   // Loads another scene file; on failure the current scene stays.
   engine::Status switchScene(const std::string& path);
+  // Appends the current setting's frame time and error against the reference as a
+  // row of bench/tradeoff's results.csv (scene,family,setting,time_ms,psnr_db,
+  // mean_abs,ssim,reference), the header first when the file is new. Needs a
+  // reference compared at least once.
+  engine::Status addToTable(const std::string& csvPath);
+  // The knobs in effect, as one word each ("msaa4 ss1 shadow2048 pcf3 ...").
+  std::string settingName() const;
   // What the panel reports: the last failure to apply or load, or "".
   const std::string& lastError() const { return lastError_; }
 
@@ -102,6 +109,7 @@ class SceneGame final : public engine::Game {
   std::string lastError_;
   GpuHistory history_;
   ReferencePanel reference_;
+  std::string tableMessage_;  // the last "add to table"'s outcome
 };
 
 }  // namespace demo

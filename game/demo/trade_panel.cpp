@@ -113,6 +113,7 @@ void costs(SceneGame& game, GpuHistory& history) {
   const engine::SceneStats& s = game.renderer()->stats();
   ImGui::Text("%d draws, %d program changes (%d needed)", s.drawCalls, s.programChanges, s.programsNeeded);
   ImGui::Text("%d objects drawn, %d culled", s.objectsDrawn, s.objectsCulled);
+  ImGui::Text("CPU: animation %.2f ms, culling %.2f ms, submission %.2f ms", s.animationMs, s.cullMs, s.submitMs);
 }
 
 void referenceControls(ReferencePanel& r) {
@@ -139,6 +140,16 @@ void referenceControls(ReferencePanel& r) {
   }
 }
 
+// "Add to table": the row goes where bench/tradeoff writes its own.
+void addToTableButton(SceneGame& game, std::string& message) {
+  if (ImGui::Button("add to table")) {
+    const std::string csv = "out/tradeoff/results.csv";
+    const engine::Status s = game.addToTable(csv);
+    message = s ? "added to " + csv : s.error().message;
+  }
+  if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
+}
+
 }  // namespace
 
 void SceneGame::drawUi() {
@@ -157,7 +168,10 @@ void SceneGame::drawUi() {
   if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) knobs(*this);
   if (ImGui::CollapsingHeader("time", ImGuiTreeNodeFlags_DefaultOpen)) timeControls(*this);
   if (ImGui::CollapsingHeader("cost", ImGuiTreeNodeFlags_DefaultOpen)) costs(*this, history_);
-  if (ImGui::CollapsingHeader("reference", ImGuiTreeNodeFlags_DefaultOpen)) referenceControls(reference_);
+  if (ImGui::CollapsingHeader("reference", ImGuiTreeNodeFlags_DefaultOpen)) {
+    referenceControls(reference_);
+    addToTableButton(*this, tableMessage_);
+  }
   ImGui::End();
 }
 

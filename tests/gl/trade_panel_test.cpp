@@ -180,3 +180,53 @@ TEST_P(TradePanel, TheReferenceIsWhatTheTracerWrites) {
   }
 }
 
+
+// "Add to table" needs a reference; with one, each press appends a row in
+// bench/tradeoff's columns, the header written once; an unwritable path is an
+// error naming it.
+TEST_P(TradePanel, AddToTableAppendsRowsAgainstTheReference) {
+  auto game = startGame("cornell.json");
+  ASSERT_TRUE(game);
+  const std::string csv = (std::filesystem::temp_directory_path() / "engine_panel_table" / "results.csv").string();
+  std::filesystem::remove_all(std::filesystem::path(csv).parent_path());
+  EXPECT_NE(game->addToTable(csv).error().message.find("no reference"), std::string::npos);
+  game->reference().mode = demo::ReferenceMode::Split;
+  game->reference().divisor = 4;
+  auto target = RenderTarget::create(96, 54, 1);
+  ASSERT_TRUE(target.ok());
+  const auto start = std::chrono::steady_clock::now();
+  while (!game->reference().error) {
+    ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(120)) << game->reference().status;
+    ASSERT_TRUE(frame(*game, *target, 0.0).ok());
+  }
+  EXPECT_GE(game->reference().error->spp, 1);
+  EXPECT_GT(game->reference().error->psnr, 5.0);
+  ASSERT_TRUE(game->addToTable(csv).ok());
+  ASSERT_TRUE(game->addToTable(csv).ok());
+  std::ifstream in(csv);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "scene,family,setting,time_ms,psnr_db,mean_abs,ssim,reference");
+  EXPECT_EQ(lines[1].rfind("cornell,panel,msaa1 ss1 shadow2048 pcf1 probe256,", 0), 0u) << lines[1];
+  EXPECT_NE(lines[1].find(",pathtrace "), std::string::npos) << lines[1];
+  const auto refused = game->addToTable("/proc/engine_no_such_dir/results.csv");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("/proc/engine_no_such_dir/results.csv"), std::string::npos);
+  game->shutdown();
+  std::filesystem::remove_all(std::filesystem::path(csv).parent_path());
+}
+
+// The CPU side of a frame is timed: posing at update, collecting and submitting
+// the draws at render.
+TEST_P(TradePanel, TheFrameTimesItsCpuWork) {
+  auto game = startGame("demo.json");
+  ASSERT_TRUE(game);
+  auto target = RenderTarget::create(96, 54, 1);
+  ASSERT_TRUE(target.ok());
+  ASSERT_TRUE(frame(*game, *target, 0.3).ok());
+  const SceneStats& s = game->renderer()->stats();
+  EXPECT_GT(s.animationMs, 0.0);
+  EXPECT_GT(s.cullMs, 0.0);
+  EXPECT_GT(s.submitMs, 0.0);
+}
