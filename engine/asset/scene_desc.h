@@ -123,6 +123,11 @@ enum class OutputCurve { Srgb, Gamma22 };
 // environment for the specular. The path tracer needs none of them.
 enum class Ambient { Hemisphere, Sh, Ibl };
 
+// How the rasterizer deforms skinned and morphed models: in each pass's vertex
+// shader, or once per pose by a compute shader into a skin cache that every pass
+// draws as a static mesh (render/skin_cache.h).
+enum class Skinning { Vertex, Compute };
+
 struct RenderDesc {
   int msaa = 1;
   int supersample = 1;  // render N x N times larger, average down
@@ -139,6 +144,7 @@ struct RenderDesc {
   // PBR ambient; unset: IBL under a sky, the hemisphere without one (render.ambient).
   std::optional<Ambient> ambient;
   int iblSize = 128;  // texels a side of the environment's cube map (render.ibl_size)
+  Skinning skinning = Skinning::Vertex;  // render.skinning: "vertex" or "compute"
 };
 
 struct TerrainDesc {

@@ -303,11 +303,18 @@ std::string ambientName(Ambient ambient) {
   return "?";
 }
 
+const std::map<std::string, Skinning>& skinningNames() {
+  static const std::map<std::string, Skinning> names{{"vertex", Skinning::Vertex}, {"compute", Skinning::Compute}};
+  return names;
+}
+
+std::string skinningName(Skinning skinning) { return skinning == Skinning::Compute ? "compute" : "vertex"; }
+
 namespace {
 
 Status readRender(const Node& n, RenderDesc& r) {
   TRY(n.expectObject({"msaa", "supersample", "shading", "shadow_map", "shadow_filter", "pcf_kernel", "exposure", "tonemap", "output",
-                          "reflection_probe", "ambient", "ibl_size"}));
+                          "reflection_probe", "ambient", "ibl_size", "skinning"}));
   TRY(readInt(n, "msaa", r.msaa, 1, 16));
   if (r.msaa & (r.msaa - 1)) return n.at("msaa").error("expected 1, 2, 4, 8 or 16");
   TRY(readInt(n, "supersample", r.supersample, 1, 4));
@@ -323,6 +330,7 @@ Status readRender(const Node& n, RenderDesc& r) {
     r.ambient = ambient;
   }
   TRY(readInt(n, "ibl_size", r.iblSize, 16, 1024));
+  TRY(readEnum(n, "skinning", r.skinning, skinningNames()));
   TRY(readFloat(n, "exposure", r.exposure, 1e-6, 1e6));
   TRY(readEnum(n, "tonemap", r.toneMap, std::map<std::string, ToneMap>{{"none", ToneMap::None}, {"reinhard", ToneMap::Reinhard}, {"aces", ToneMap::Aces}}));
   TRY(readEnum(n, "output", r.output, std::map<std::string, OutputCurve>{{"srgb", OutputCurve::Srgb}, {"gamma2.2", OutputCurve::Gamma22}}));

@@ -18,5 +18,8 @@ Result<SceneDesc> parseScene(const std::string& text, const std::string& name);
 const std::map<std::string, Ambient>& ambientNames();
 // The name of `ambient` in that map (for --describe).
 std::string ambientName(Ambient ambient);
+// render.skinning's and --skinning's names: vertex, compute.
+const std::map<std::string, Skinning>& skinningNames();
+std::string skinningName(Skinning skinning);
 
 }  // namespace engine

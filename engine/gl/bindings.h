@@ -37,13 +37,21 @@ inline constexpr unsigned kIblLevelImage = 0;  // an image unit: the level being
 inline constexpr unsigned kSkinBuffer = 0;
 inline constexpr unsigned kMorphDeltasBuffer = 1;
 inline constexpr unsigned kMorphWeightsBuffer = 2;
+// The skin cache's compute (skin.comp): a primitive's vertex buffers in, its
+// deformed vertices out.
+inline constexpr unsigned kSkinPositions = 3;
+inline constexpr unsigned kSkinNormals = 4;
+inline constexpr unsigned kSkinTangents = 5;
+inline constexpr unsigned kSkinJoints = 6;
+inline constexpr unsigned kSkinWeights = 7;
+inline constexpr unsigned kSkinOutput = 8;
 inline constexpr unsigned kFrameBlock = 0;
 
 struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 21> kDefines{{
+inline constexpr std::array<Define, 27> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -64,6 +72,12 @@ inline constexpr std::array<Define, 21> kDefines{{
     {"BUFFER_SKIN", kSkinBuffer},
     {"BUFFER_MORPH_DELTAS", kMorphDeltasBuffer},
     {"BUFFER_MORPH_WEIGHTS", kMorphWeightsBuffer},
+    {"BUFFER_SKIN_POSITIONS", kSkinPositions},
+    {"BUFFER_SKIN_NORMALS", kSkinNormals},
+    {"BUFFER_SKIN_TANGENTS", kSkinTangents},
+    {"BUFFER_SKIN_JOINTS", kSkinJoints},
+    {"BUFFER_SKIN_WEIGHTS", kSkinWeights},
+    {"BUFFER_SKIN_OUTPUT", kSkinOutput},
     {"BLOCK_FRAME", kFrameBlock},
 }};
 

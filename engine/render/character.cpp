@@ -107,15 +107,31 @@ void CharacterInstance::uploadMorphWeights() {
   if (!morphWeights_.empty()) morphBuffer_.upload(0, morphWeights_.size() * sizeof(float), morphWeights_.data());
 }
 
+void CharacterInstance::useSkinCache(SkinPrograms* programs) {
+  skinPrograms_ = programs;
+  if (programs && !cache_) cache_ = SkinCache::create(asset_->model, asset_->gpu);
+  if (!programs) cache_.reset();
+  palettesCurrent_ = false;
+}
+
+// Shadow passes and probes draw the same pose: upload (and deform) once per pose.
+Status CharacterInstance::prepare(SkinMode mode) {
+  if (palettesCurrent_ && uploadedMode_ == mode) return Ok{};
+  if (auto s = uploadPalettes(mode); !s) return s;
+  uploadMorphWeights();
+  if (cache_) {
+    const SkinCache::Inputs inputs{skinBuffers_, mode, morphWeights_.empty() ? nullptr : &morphBuffer_,
+                                   asset_->animated.morphs.first};
+    if (auto s = cache_->update(*skinPrograms_, asset_->model, asset_->gpu, inputs); !s) return s;
+  }
+  palettesCurrent_ = true;
+  uploadedMode_ = mode;
+  return Ok{};
+}
+
 Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mode,
                                            const std::function<void(const gl::Program&)>& setUniforms) {
-  // Shadow passes draw the same pose: upload the palettes once per pose.
-  if (!palettesCurrent_ || uploadedMode_ != mode) {
-    if (auto s = uploadPalettes(mode); !s) return s.error();
-    uploadMorphWeights();
-    palettesCurrent_ = true;
-    uploadedMode_ = mode;
-  }
+  if (auto s = prepare(mode); !s) return s.error();
   ModelFrame frame;
   frame.viewProjection = viewProjection;
   frame.cameraPosition = glm::dvec3(0.0);  // the root is camera-relative already
@@ -125,6 +141,7 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   frame.skinMode = mode;
   frame.morphWeights = morphWeights_.empty() ? nullptr : &morphBuffer_;
   frame.morphFirst = asset_->animated.morphs.first;
+  frame.skinCache = skinCache();
   frame.setUniforms = setUniforms;
   return frame;
 }

@@ -3,6 +3,7 @@
 // clips, GPU buffers) and per-instance state (player, pose, skin palettes), so
 // that many instances of one model cost one upload.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "anim/player.h"
 #include "asset/model_data.h"
 #include "render/model_renderer.h"
+#include "render/skin_cache.h"
 #include "scene/model_asset.h"
 
 namespace engine {
@@ -50,6 +52,15 @@ class CharacterInstance {
   // stay precise. Touches no joint: the palettes stay in model space and the root
   // reaches the shader as its model matrix.
   void place(const glm::dmat4& world, const glm::dvec3& cameraPosition);
+  // From now on deforms through a skin cache (render/skin_cache.h) with
+  // `programs`, which must outlive the instance; nullptr goes back to skinning in
+  // each pass's vertex shader.
+  void useSkinCache(SkinPrograms* programs);
+  const SkinCache* skinCache() const { return cache_ ? &*cache_ : nullptr; }
+  // Uploads the pose's skin palettes and morph weights and, with a skin cache,
+  // deforms: once per pose and mode, however many passes draw it (every draw
+  // calls it; a renderer calls it first to time it on its own).
+  Status prepare(SkinMode mode);
   // Uploads the skin palettes (once per pose) and draws every primitive;
   // without `includeBlend` the BLEND ones are left for drawBlend.
   // `setUniforms` sets the program's lights and shadows.
@@ -94,7 +105,9 @@ class CharacterInstance {
   std::vector<gl::Buffer> skinBuffers_;
   std::vector<float> morphWeights_;  // every morphing node's, MorphLayout order
   gl::Buffer morphBuffer_;           // the same on the GPU
-  bool palettesCurrent_ = false;  // palettes and weights uploaded since the last pose
+  SkinPrograms* skinPrograms_ = nullptr;
+  std::optional<SkinCache> cache_;
+  bool palettesCurrent_ = false;  // palettes and weights uploaded (and deformed) since the last pose
   SkinMode uploadedMode_ = SkinMode::Linear;
 };
 

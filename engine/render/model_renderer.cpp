@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl/bindings.h"
+#include "render/skin_cache.h"
 
 namespace engine {
 
@@ -131,9 +132,9 @@ void unbindMaterialSamplers(const ShaderVariant& v) {
 }
 
 template <typename T>
-const gl::Buffer& addBuffer(GpuPrimitive& prim, const std::vector<T>& data) {
+int addBuffer(GpuPrimitive& prim, const std::vector<T>& data) {
   prim.buffers.push_back(gl::Buffer::fromSpan(std::span<const T>(data)));
-  return prim.buffers.back();
+  return int(prim.buffers.size()) - 1;
 }
 
 // Appends a target-major attribute (PrimitiveData) vertex-major, so that the shader
@@ -163,52 +164,29 @@ void uploadMorphTargets(const PrimitiveData& data, GpuPrimitive& prim) {
 
 GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
   GpuPrimitive prim;
-  prim.vao = gl::VertexArray::create();
   prim.vertexCount = static_cast<GLsizei>(data.positions.size());
   prim.influences = data.influences;
   prim.material = data.material;
-  prim.buffers.reserve(8);
   // One buffer per attribute: glTF keeps them apart and the shaders need only
-  // some of them; missing normals and uvs get a constant attribute value.
-  prim.vao.vertexBuffer(0, addBuffer(prim, data.positions), sizeof(glm::vec3));
-  prim.vao.attribute(0, 0, 3, 0);
-  if (!data.normals.empty()) {
-    prim.vao.vertexBuffer(1, addBuffer(prim, data.normals), sizeof(glm::vec3));
-    prim.vao.attribute(1, 1, 3, 0);
-  } else {
-    glVertexAttrib3f(1, 0.0f, 1.0f, 0.0f);
-  }
-  if (!data.uvs.empty()) {
-    prim.vao.vertexBuffer(2, addBuffer(prim, data.uvs), sizeof(glm::vec2));
-    prim.vao.attribute(2, 2, 2, 0);
-  }
-  // TEXCOORD_1: location 8 (UV_TRANSFORM variants), binding 6.
-  if (!data.uvs1.empty()) {
-    prim.vao.vertexBuffer(6, addBuffer(prim, data.uvs1), sizeof(glm::vec2));
-    prim.vao.attribute(8, 6, 2, 0);
-  }
+  // some of them.
+  GpuPrimitive::Sources& in = prim.sources;
+  in.positions = addBuffer(prim, data.positions);
+  if (!data.normals.empty()) in.normals = addBuffer(prim, data.normals);
+  if (!data.uvs.empty()) in.uvs = addBuffer(prim, data.uvs);
+  if (!data.uvs1.empty()) in.uvs1 = addBuffer(prim, data.uvs1);
   if (data.influences > 0) {
-    const GLsizei n = data.influences;
-    prim.vao.vertexBuffer(3, addBuffer(prim, data.joints), n * GLsizei(sizeof(std::uint16_t)));
-    prim.vao.vertexBuffer(4, addBuffer(prim, data.weights), n * GLsizei(sizeof(float)));
-    prim.vao.integerAttribute(3, 3, 4, 0, GL_UNSIGNED_SHORT);
-    prim.vao.attribute(4, 4, 4, 0);
-    if (n == 8) {
-      prim.vao.integerAttribute(5, 3, 4, 4 * sizeof(std::uint16_t), GL_UNSIGNED_SHORT);
-      prim.vao.attribute(6, 4, 4, 4 * sizeof(float));
-    }
+    in.joints = addBuffer(prim, data.joints);
+    in.weights = addBuffer(prim, data.weights);
   }
-  // Location 7 (common/mesh_tangent.glsl), binding 5.
-  if (!data.tangents.empty()) {
-    prim.vao.vertexBuffer(5, addBuffer(prim, data.tangents), sizeof(glm::vec4));
-    prim.vao.attribute(7, 5, 4, 0);
-    prim.hasTangents = true;
-  }
-  uploadMorphTargets(data, prim);
+  if (!data.tangents.empty()) in.tangents = addBuffer(prim, data.tangents);
+  prim.hasTangents = in.tangents >= 0;
   if (!data.indices.empty()) {
-    prim.vao.indexBuffer(addBuffer(prim, data.indices));
+    in.indices = addBuffer(prim, data.indices);
     prim.indexCount = static_cast<GLsizei>(data.indices.size());
   }
+  prim.vao = gl::VertexArray::create();
+  attachAttributes(prim, prim.vao, nullptr);
+  uploadMorphTargets(data, prim);
   if (!data.positions.empty()) {
     glm::vec3 lo(data.positions[0]), hi(data.positions[0]);
     for (const glm::vec3& p : data.positions) {
@@ -256,8 +234,9 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   const NodeData& node = model.nodes[n];
   const GpuPrimitive& prim = gpu.meshes()[size_t(node.mesh)][p];
   const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[p];
-  const ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly);
-  const bool skinned = variant.influences > 0;
+  const gl::VertexArray* cached = frame.skinCache ? frame.skinCache->vertexArray(int(n), int(p)) : nullptr;
+  const bool skinned = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly).influences > 0;
+  const ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly, cached != nullptr);
   const MaterialData* material = materialOf(model, prim.material);
   auto program = variants.get(variant);
   if (!program) return program.error();
@@ -278,7 +257,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   // scene.vert's tiling of analytic shapes: a program may be shared with them.
   pr.set("u_uvScale", glm::vec2(1.0f));
   if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
-  if (skinned) {
+  if (variant.influences > 0) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kSkinBuffer, frame.skinBuffers[size_t(node.skin)].id());
   }
   if (variant.morph) {
@@ -293,7 +272,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   // point-light shadow pass draws everything without culling).
   const bool twoSided = material && material->doubleSided && glIsEnabled(GL_CULL_FACE);
   if (twoSided) glDisable(GL_CULL_FACE);
-  prim.vao.bind();
+  (cached ? *cached : prim.vao).bind();
   const GLenum mode = GLenum(data.mode);
   if (prim.indexCount > 0) {
     glDrawElements(mode, prim.indexCount, GL_UNSIGNED_INT, nullptr);
@@ -307,6 +286,53 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
 
 }  // namespace
 
+void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, const gl::Buffer* deformed) {
+  const GpuPrimitive::Sources& in = prim.sources;
+  auto buffer = [&prim](int index) -> const gl::Buffer& { return prim.buffers[size_t(index)]; };
+  // Bindings: 0 positions, 1 normals, 2 uvs, 3 joints, 4 weights, 5 tangents,
+  // 6 TEXCOORD_1; locations as model.vert and scene.vert read them.
+  if (deformed) {
+    constexpr GLsizei stride = 3 * sizeof(glm::vec4);  // skin.comp's DeformedVertex
+    vao.vertexBuffer(0, *deformed, stride);
+    vao.attribute(0, 0, 3, 0);
+    vao.attribute(1, 0, 3, sizeof(glm::vec4));
+    if (prim.hasTangents) vao.attribute(7, 0, 4, 2 * sizeof(glm::vec4));
+  } else {
+    vao.vertexBuffer(0, buffer(in.positions), sizeof(glm::vec3));
+    vao.attribute(0, 0, 3, 0);
+    if (in.normals >= 0) {
+      vao.vertexBuffer(1, buffer(in.normals), sizeof(glm::vec3));
+      vao.attribute(1, 1, 3, 0);
+    } else {
+      glVertexAttrib3f(1, 0.0f, 1.0f, 0.0f);  // missing normals: a constant (current) value
+    }
+    if (in.tangents >= 0) {
+      vao.vertexBuffer(5, buffer(in.tangents), sizeof(glm::vec4));
+      vao.attribute(7, 5, 4, 0);
+    }
+    if (in.joints >= 0) {
+      const GLsizei n = prim.influences;
+      vao.vertexBuffer(3, buffer(in.joints), n * GLsizei(sizeof(std::uint16_t)));
+      vao.vertexBuffer(4, buffer(in.weights), n * GLsizei(sizeof(float)));
+      vao.integerAttribute(3, 3, 4, 0, GL_UNSIGNED_SHORT);
+      vao.attribute(4, 4, 4, 0);
+      if (n == 8) {
+        vao.integerAttribute(5, 3, 4, 4 * sizeof(std::uint16_t), GL_UNSIGNED_SHORT);
+        vao.attribute(6, 4, 4, 4 * sizeof(float));
+      }
+    }
+  }
+  if (in.uvs >= 0) {
+    vao.vertexBuffer(2, buffer(in.uvs), sizeof(glm::vec2));
+    vao.attribute(2, 2, 2, 0);
+  }
+  if (in.uvs1 >= 0) {
+    vao.vertexBuffer(6, buffer(in.uvs1), sizeof(glm::vec2));
+    vao.attribute(8, 6, 2, 0);
+  }
+  if (in.indices >= 0) vao.indexBuffer(buffer(in.indices));
+}
+
 void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, const gl::Buffer& weights, int first) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kMorphDeltasBuffer, prim.morphDeltas.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kMorphWeightsBuffer, weights.id());
@@ -318,12 +344,12 @@ void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, cons
 }
 
 ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, const PrimitiveData& prim,
-                               SkinMode mode, bool depthOnly) {
+                               SkinMode mode, bool depthOnly, bool cached) {
   ShaderVariant v;
   const bool skinned = node.skin >= 0 && prim.influences > 0 && mode != SkinMode::None;
-  v.influences = skinned ? prim.influences : 0;
-  v.mode = mode;
-  v.morph = prim.morphTargets > 0;
+  v.influences = skinned && !cached ? prim.influences : 0;
+  v.mode = cached ? SkinMode::Linear : mode;
+  v.morph = prim.morphTargets > 0 && !cached;
   v.depthOnly = depthOnly;
   const MaterialData* m = materialOf(model, prim.material);
   if (!m) return v;

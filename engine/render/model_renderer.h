@@ -79,6 +79,11 @@ struct GpuPrimitive {
   int influences = 0;
   int material = -1;
   bool hasTangents = false;
+  // Where each source attribute is in `buffers` (-1: absent): the vertex array
+  // reads them, and so does the skin cache (render/skin_cache.h).
+  struct Sources {
+    int positions = -1, normals = -1, uvs = -1, uvs1 = -1, joints = -1, weights = -1, tangents = -1, indices = -1;
+  } sources;
   glm::vec3 center{0.0f};  // of the bind-pose bounds, mesh space: sorting BLEND draws
   // Morph targets: every displacement in one storage buffer, vertex-major, one
   // block per attribute that a target moves; each block's start (in vec3s, -1 for
@@ -114,8 +119,15 @@ class GpuModel {
 
 // The variant a primitive of `node` is drawn with (skinning mode, material
 // textures, alpha mask), for a colour pass or, with `depthOnly`, a shadow pass.
+// With `cached`, the primitive is drawn from a skin cache (render/skin_cache.h),
+// already deformed: no skinning or morph code.
 ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, const PrimitiveData& prim,
-                               SkinMode mode, bool depthOnly);
+                               SkinMode mode, bool depthOnly, bool cached = false);
+
+// Sets `prim`'s attributes and indices on `vao`: its own buffers, or, with
+// `deformed`, a skin cache's output for positions, normals and tangents (three
+// vec4 per vertex, skin.comp's DeformedVertex) and no joints or weights.
+void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, const gl::Buffer* deformed);
 
 // Binds `prim`'s morph displacements (storage buffer 1) and `weights` (storage
 // buffer 2, floats; the drawn node's start at `first`) for a MORPH variant of
@@ -138,6 +150,9 @@ struct ModelFrame {
   // (float, MorphLayout order) and where each node's start (per glTF node, -1 none).
   const gl::Buffer* morphWeights = nullptr;
   std::span<const int> morphFirst;
+  // The instance's skin cache, when it has one: its deforming primitives are
+  // drawn from it as static meshes (placed as before: skinned ones by the root).
+  const class SkinCache* skinCache = nullptr;
   // Sets what the program needs besides the mesh and material (lights, shadows).
   std::function<void(const gl::Program&)> setUniforms;
   bool depthOnly = false;  // shadow passes: no material, depth-only variant

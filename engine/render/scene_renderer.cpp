@@ -181,6 +181,9 @@ struct SceneRenderer::Impl {
   RenderDesc render;
   std::string shaderDir;
   std::unique_ptr<ShaderVariants> variants;
+  // The skin cache's compute programs (render.skinning compute; before the
+  // characters, which point at it).
+  std::unique_ptr<SkinPrograms> skinPrograms;
   gl::Program sky, post;
   gl::Texture skyImage;  // the sky's lat-long image, when the scene has one
   // The PBR ambient (render/ibl.h); built at load for Ambient::Sh and ::Ibl only.
@@ -285,6 +288,8 @@ struct SceneRenderer::Impl {
                          int viewportHeight);
   Status renderPointShadow(const glm::dvec3& cameraPosition);
   Status renderFrame(const Camera& camera, int width, int height);
+  Status deformCharacters();
+  std::string describeSkinCache() const;
   void fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection);
 };
 
@@ -292,6 +297,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   shaderDir = options.shaderDir;
   render = scene.render;
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
+  render.skinning = options.skinningOverride.value_or(render.skinning);
   if (options.supersampleOverride > 0) render.supersample = options.supersampleOverride;
   if (options.shadowMapOverride > 0) render.shadowMapSize = options.shadowMapOverride;
   if (options.pcfKernelOverride > 0) {
@@ -333,6 +339,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (auto s = makeProbes(); !s) return s;
   if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
+  if (render.skinning == Skinning::Compute) skinPrograms = std::make_unique<SkinPrograms>(shaderDir);
 
   if (auto s = makeSky(); !s) return s;
   auto postProgram = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}});
@@ -530,6 +537,7 @@ Status SceneRenderer::Impl::loadModels() {
   for (const ModelInstance& instance : source->instances()) {
     CharacterDraw draw;
     draw.instance = std::make_unique<CharacterInstance>(uploaded[size_t(instance.asset)]);
+    if (skinPrograms) draw.instance->useSkinCache(skinPrograms.get());
     draw.instance->setPose(instance.pose);
     draw.desc = instance.desc;
     draw.world = instance.world;
@@ -573,12 +581,15 @@ Status SceneRenderer::Impl::buildVariants() {
   for (const CharacterDraw& c : characters) {
     const ModelData& model = c.instance->asset().model;
     const SkinMode mode = skinModeOf(c.desc);
+    const bool cached = c.instance->skinCache() != nullptr;
+    // Deforms the first pose, which builds the skin cache's compute programs too.
+    if (auto s = c.instance->prepare(mode); !s) return s;
     for (const NodeData& node : model.nodes) {
       if (node.mesh < 0) continue;
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        needed.push_back(primitiveVariant(model, node, prim, mode, false));
+        needed.push_back(primitiveVariant(model, node, prim, mode, false, cached));
         const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
-        if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true));
+        if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
         blendPass = blendPass || blend;
       }
     }
@@ -694,6 +705,7 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
     ++stats->objectsDrawn;
     const ModelData& model = c.instance->asset().model;
     const SkinMode mode = skinModeOf(c.desc);
+    const bool cached = c.instance->skinCache() != nullptr;
     const double distance = glm::length(center);
     for (int n = 0; n < int(model.nodes.size()); ++n) {
       const NodeData& node = model.nodes[size_t(n)];
@@ -703,7 +715,7 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
         const PrimitiveData& prim = prims[size_t(p)];
         const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
         if (blend && depthOnly) continue;
-        auto program = variants->get(primitiveVariant(model, node, prim, mode, depthOnly));
+        auto program = variants->get(primitiveVariant(model, node, prim, mode, depthOnly, cached));
         if (!program) return program.error();
         const GLuint id = (*program)->id();
         if (!blend) {
@@ -716,7 +728,7 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
     for (const BlendPrimitive& b : c.instance->blendPrimitives()) {
       auto program = variants->get(primitiveVariant(model, model.nodes[size_t(b.node)],
                                                     model.meshes[size_t(model.nodes[size_t(b.node)].mesh)].primitives[size_t(b.primitive)],
-                                                    mode, false));
+                                                    mode, false, cached));
       if (!program) return program.error();
       lists.blend.push_back({DrawItem::Source::Character, index, b.node, b.primitive, (*program)->id(), blendKey(b.distance)});
     }
@@ -763,9 +775,13 @@ void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, co
       if (probed) probes[size_t(s.probe)].cube.bind(gl::binding::kReflectionProbe);
     }
   }
-  if (s.twoSided) glDisable(GL_CULL_FACE);
+  // Two-sided: no culling for this draw, and the pass's setting put back (the
+  // point light's cube pass culls nothing: turning culling on after the ground
+  // would cull every caster drawn after it, as the sort order falls).
+  const bool twoSided = s.twoSided && glIsEnabled(GL_CULL_FACE);
+  if (twoSided) glDisable(GL_CULL_FACE);
   s.mesh->draw();
-  if (s.twoSided) glEnable(GL_CULL_FACE);
+  if (twoSided) glEnable(GL_CULL_FACE);
 }
 
 // The items in order, in the pass state the caller set. A program's pass-wide
@@ -1089,6 +1105,16 @@ Status SceneRenderer::render(const Camera& camera, int width, int height) {
   return status;
 }
 
+// The skin cache's pass: every character's pose deformed once, before any pass
+// draws it.
+Status SceneRenderer::Impl::deformCharacters() {
+  for (CharacterDraw& c : characters) {
+    if (auto s = c.instance->prepare(skinModeOf(c.desc)); !s) return s;
+    stats->verticesDeformed += c.instance->skinCache() ? c.instance->skinCache()->verticesDeformed() : 0;
+  }
+  return Ok{};
+}
+
 Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int height) {
   if (auto status = makeTarget(width, height); !status) return status;
   const glm::dvec3 cameraPosition = camera.position;
@@ -1107,6 +1133,12 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
   glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
   collectTimers();
+  if (skinPrograms && !characters.empty()) {
+    beginTimer("skinning");
+    const Status status = deformCharacters();
+    endTimer();
+    if (!status) return status;
+  }
   if (pointShadows && !(pointShadowValid && characters.empty())) {
     beginTimer("shadow-point");
     const Status status = renderPointShadow(cameraPosition);
@@ -1185,6 +1217,25 @@ long long SceneRenderer::lastFrameTriangles() const {
   return impl_->primitivesValid ? static_cast<long long>(impl_->primitives.result()) : 0;
 }
 
+// "skinning(skin cache: 3 primitives, 4210 vertices, 197 KiB)": what the skin
+// cache holds across every instance.
+std::string SceneRenderer::Impl::describeSkinCache() const {
+  int entries = 0;
+  long long vertices = 0;
+  std::size_t bytes = 0;
+  for (const CharacterDraw& c : characters) {
+    const SkinCache* cache = c.instance->skinCache();
+    if (!cache) continue;
+    entries += cache->entries();
+    vertices += cache->verticesDeformed();
+    bytes += cache->bytes();
+  }
+  std::ostringstream out;
+  out << "skinning(skin cache: " << entries << " primitives, " << vertices << " vertices, " << (bytes + 1023) / 1024
+      << " KiB)";
+  return out.str();
+}
+
 std::string SceneRenderer::describe() const {
   const Impl& s = *impl_;
   std::ostringstream out;
@@ -1199,6 +1250,7 @@ std::string SceneRenderer::describe() const {
         << s.skyImage.height() << ")";
   }
   if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
+  if (s.skinPrograms) out << " " << s.describeSkinCache();
   if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
@@ -1211,6 +1263,10 @@ std::string SceneRenderer::describe() const {
   }
   out << "\nvariants:";
   for (const auto& v : s.variants->built()) out << " " << v.describe();
+  if (s.skinPrograms) {
+    out << "\nskin-cache variants:";
+    for (const auto& v : s.skinPrograms->built()) out << " " << v.describe();
+  }
   out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes (" << stats_.programsNeeded << " needed), "
       << stats_.objectsDrawn << " objects drawn, " << stats_.objectsCulled << " culled";
   if (s.terrain) out << ", " << stats_.terrainTriangles << " terrain triangles";

@@ -28,6 +28,7 @@ struct SceneRenderOptions {
   int reflectionProbeOverride = -1;  // >= 0 replaces render.reflection_probe (0 = off)
   std::optional<Ambient> ambientOverride;  // replaces render.ambient (PBR scenes)
   int iblSizeOverride = 0;                 // > 0 replaces render.ibl_size
+  std::optional<Skinning> skinningOverride;  // replaces render.skinning
 };
 
 struct SceneStats {
@@ -39,6 +40,7 @@ struct SceneStats {
   int objectsCulled = 0;
   int objectsDrawn = 0;
   int terrainTriangles = 0;
+  long long verticesDeformed = 0;  // by the skin cache's compute (render.skinning compute)
   // CPU time: the last update's posing (the scene layer's sampling and the copy of
   // its poses), this frame's collecting and sorting of draw items (culling
   // included), and its submission of them.
@@ -50,7 +52,7 @@ struct SceneStats {
 // One pass's GPU time (a GL_TIME_ELAPSED query), from the latest frame whose
 // result the GL has: reading never waits, so a figure may be a frame or two old.
 struct PassTime {
-  std::string pass;  // as --describe names it: shadow-sun, shadow-point, reflection-probes, world, post
+  std::string pass;  // as --describe names it: skinning, shadow-sun, shadow-point, reflection-probes, world, post
   double gpuMs = 0.0;
 };
 

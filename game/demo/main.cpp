@@ -98,6 +98,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(engine::ambientNames()));
   app.add_option("--ibl-size", render.iblSizeOverride, "Cube map size of the environment for sh and ibl")
       ->check(CLI::Range(16, 1024));
+  std::string skinning;
+  app.add_option("--skinning", skinning,
+                 "How characters deform: vertex (in every pass's vertex shader) or compute (once per pose into a "
+                 "skin cache that every pass draws); default: the scene's render.skinning, vertex")
+      ->check(CLI::IsMember(engine::skinningNames()));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
   std::string reference = "off";
   app.add_option("--reference", reference,
@@ -146,6 +151,7 @@ int main(int argc, char** argv) {
   // only receives the tone-mapped result.
   render.shaderDir = options.shaderDir;
   if (!ambient.empty()) render.ambientOverride = engine::ambientNames().at(ambient);
+  if (!skinning.empty()) render.skinningOverride = engine::skinningNames().at(skinning);
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
   options.run.targetSamples = 1;
   if (mode == "raytrace" || mode == "pathtrace") {

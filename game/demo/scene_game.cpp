@@ -170,14 +170,22 @@ void SceneGame::showReference(const engine::FrameInfo& frame) {
   }
 }
 
+// The last frame's counters, its CPU times and each pass's GPU time (timer
+// queries: the latest result the GL has, a frame or two old at most).
 engine::Game::Counters SceneGame::frameCounters() {
   const engine::SceneStats& s = renderer_->stats();
-  return {{"draw_calls", s.drawCalls},
-          {"program_changes", s.programChanges},
-          {"objects_drawn", s.objectsDrawn},
-          {"objects_culled", s.objectsCulled},
-          {"terrain_triangles", s.terrainTriangles},
-          {"triangles_all_passes", double(renderer_->lastFrameTriangles())}};
+  Counters counters{{"draw_calls", s.drawCalls},
+                    {"program_changes", s.programChanges},
+                    {"objects_drawn", s.objectsDrawn},
+                    {"objects_culled", s.objectsCulled},
+                    {"terrain_triangles", s.terrainTriangles},
+                    {"vertices_deformed", double(s.verticesDeformed)},
+                    {"triangles_all_passes", double(renderer_->lastFrameTriangles())},
+                    {"cpu_ms_animation", s.animationMs},
+                    {"cpu_ms_cull", s.cullMs},
+                    {"cpu_ms_submit", s.submitMs}};
+  for (const engine::PassTime& t : renderer_->passTimes()) counters.emplace_back("gpu_ms_" + t.pass, t.gpuMs);
+  return counters;
 }
 
 }  // namespace demo

@@ -14,8 +14,13 @@ uniform int u_morphPositions = -1;
 uniform int u_morphNormals = -1;
 uniform int u_morphTangents = -1;
 
+// The vertex being morphed: skin.comp (SKIN_COMPUTE) defines its own.
+#ifndef MORPH_VERTEX
+#define MORPH_VERTEX gl_VertexID
+#endif
+
 vec3 morphDelta(int block, int target) {
-  int i = 3 * (block + gl_VertexID * u_morphTargets + target);
+  int i = 3 * (block + MORPH_VERTEX * u_morphTargets + target);
   return vec3(u_morphDeltas[i], u_morphDeltas[i + 1], u_morphDeltas[i + 2]);
 }
 

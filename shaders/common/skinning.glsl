@@ -9,11 +9,15 @@ layout(std430, binding = BUFFER_SKIN) readonly buffer SkinDualQuats { vec4 u_dua
 layout(std430, binding = BUFFER_SKIN) readonly buffer SkinPalette { mat4 u_palette[]; };
 #endif
 
+// The vertex's joints and weights: attributes here; skin.comp (SKIN_COMPUTE)
+// defines a_joints0... as reads of the same buffers by invocation.
+#ifndef SKIN_COMPUTE
 layout(location = 3) in uvec4 a_joints0;
 layout(location = 4) in vec4 a_weights0;
 #if INFLUENCES == 8
 layout(location = 5) in uvec4 a_joints1;
 layout(location = 6) in vec4 a_weights1;
+#endif
 #endif
 
 // The blended transform of a vertex is computed once and applied to the

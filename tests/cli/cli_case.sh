@@ -190,8 +190,10 @@ PY
     python3 - bench.json <<'PY' || { cat bench.json; exit 1; }
 import json, sys
 counters = json.load(open(sys.argv[1]))["last_frame"]
-for key in ("draw_calls", "program_changes", "triangles_all_passes", "objects_drawn"):
-    assert counters[key] > 0, f"FAIL: last_frame.{key} = {counters[key]}"
+for key in ("draw_calls", "program_changes", "triangles_all_passes", "objects_drawn", "gpu_ms_world", "gpu_ms_shadow-sun"):
+    assert counters.get(key, 0) > 0, f"FAIL: last_frame.{key} = {counters.get(key)}"
+# Vertex skinning (the scene's default) runs no skin cache.
+assert counters["vertices_deformed"] == 0, counters["vertices_deformed"]
 PY
     ;;
   imgdiff)
@@ -213,6 +215,16 @@ PY
     for unwanted in "normalmap" "+mr" "+emissive" "+occlusion" "+mask" "blend"; do
       if grep -qF -- "$unwanted" "$OUT"; then echo "FAIL: demo built $unwanted"; cat "$OUT"; exit 1; fi
     done ;;
+  describe_skin_cache)
+    # Compute skinning: the robots are deformed once per pose into the skin cache,
+    # and every pass draws them with static programs: no skinning variant is built.
+    expect 0 "skinning\(skin cache: 4 primitives, 17944 vertices" -- "$BIN/demo" --describe --skinning compute
+    grep -qF "skin-cache variants: lbs4+normals dqs4+normals" "$OUT" || { echo "FAIL: no skin-cache variants"; cat "$OUT"; exit 1; }
+    if grep "^variants:" "$OUT" | grep -qE "lbs|dqs"; then echo "FAIL: a skinning variant was built"; cat "$OUT"; exit 1; fi
+    # Vertex skinning builds no skin cache.
+    expect 0 "shadow-sun" -- "$BIN/demo" --describe --skinning vertex
+    if grep -qF "skin cache" "$OUT"; then echo "FAIL: vertex skinning made a skin cache"; cat "$OUT"; exit 1; fi
+    expect 2 "skinning" -- "$BIN/demo" --describe --skinning gpu ;;
   describe_materials)
     # The material test model: one variant per combination it uses, a masked
     # shadow variant for the cut-out leaves, and the sorted blend pass.
