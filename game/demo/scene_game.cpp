@@ -208,6 +208,7 @@ std::string SceneGame::settingName() const {
     name << " " << engine::ambientName(o.ambientOverride.value_or(engine::ambientOf(scene))) << " ibl"
          << pick(o.iblSizeOverride, r.iblSize);
   }
+  if (!scene.models.empty()) name << " skinning-" << engine::skinningName(o.skinningOverride.value_or(r.skinning));
   return name.str();
 }
 

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cfloat>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,25 @@ bool pickInt(const char* label, int& value, std::initializer_list<int> choices) 
       if (ImGui::Selectable(std::to_string(choice).c_str(), choice == value)) {
         changed = choice != value;
         value = choice;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+// A knob over named choices (the scene file's names for them).
+template <typename Enum>
+bool pickNamed(const char* label, std::optional<Enum>& value, const std::map<std::string, Enum>& names) {
+  bool changed = false;
+  std::string current = "?";
+  for (const auto& [name, choice] : names)
+    if (value == choice) current = name;
+  if (ImGui::BeginCombo(label, current.c_str())) {
+    for (const auto& [name, choice] : names) {
+      if (ImGui::Selectable(name.c_str(), value == choice) && value != choice) {
+        value = choice;
+        changed = true;
       }
     }
     ImGui::EndCombo();
@@ -53,6 +74,7 @@ engine::SceneRenderOptions effective(const engine::SceneRenderOptions& o, const 
   if (e.reflectionProbeOverride < 0) e.reflectionProbeOverride = r.reflectionProbe;
   if (e.iblSizeOverride <= 0) e.iblSizeOverride = r.iblSize;
   if (!e.ambientOverride) e.ambientOverride = engine::ambientOf(scene);
+  if (!e.skinningOverride) e.skinningOverride = r.skinning;
   return e;
 }
 
@@ -65,18 +87,10 @@ void knobs(SceneGame& game) {
   changed |= pickInt("PCF kernel", o.pcfKernelOverride, {1, 3, 5, 7, 9});
   changed |= pickInt("probe size", o.reflectionProbeOverride, {0, 64, 128, 256, 512});
   if (scene.render.shading == engine::Shading::Pbr) {
-    const std::string current = engine::ambientName(*o.ambientOverride);
-    if (ImGui::BeginCombo("ambient", current.c_str())) {
-      for (const auto& [name, ambient] : engine::ambientNames()) {
-        if (ImGui::Selectable(name.c_str(), ambient == *o.ambientOverride) && ambient != *o.ambientOverride) {
-          o.ambientOverride = ambient;
-          changed = true;
-        }
-      }
-      ImGui::EndCombo();
-    }
+    changed |= pickNamed("ambient", o.ambientOverride, engine::ambientNames());
     changed |= pickInt("IBL size", o.iblSizeOverride, {16, 32, 64, 128, 256});
   }
+  if (!scene.models.empty()) changed |= pickNamed("skinning", o.skinningOverride, engine::skinningNames());
   if (changed) (void)game.applyOptions(o);  // a failure shows in the panel
 }
 

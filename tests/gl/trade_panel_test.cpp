@@ -67,6 +67,15 @@ TEST_P(TradePanel, AKnobRebuildsTheRendererOverTheSameScene) {
   EXPECT_NE(described.find("shadow-sun(2048, hard)"), std::string::npos) << described;
   EXPECT_TRUE(game->lastError().empty());
   ASSERT_TRUE(frame(*game, *target, 0.6).ok());
+  // Compute skinning: the robots go through the skin cache, a pass of its own.
+  EXPECT_EQ(described.find("skin cache"), std::string::npos) << described;
+  options.skinningOverride = Skinning::Compute;
+  ASSERT_TRUE(game->applyOptions(options).ok()) << game->lastError();
+  ASSERT_TRUE(frame(*game, *target, 0.7).ok());
+  EXPECT_NE(game->renderer()->describe().find("skinning(skin cache: 4 primitives"), std::string::npos)
+      << game->renderer()->describe();
+  EXPECT_NE(game->settingName().find("skinning-compute"), std::string::npos) << game->settingName();
+  EXPECT_GT(game->renderer()->stats().verticesDeformed, 0);
 }
 
 // An impossible knob (more samples than the GL has) and a scene file that does not
