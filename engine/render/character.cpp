@@ -23,16 +23,16 @@ Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(ModelData m
 CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset)
     : asset_(std::move(asset)),
       player_(asset_->animated.skeleton, asset_->animated.morphs.restWeights),
-      morphWeights_(asset_->animated.morphs.restWeights) {
+      pose_{{}, asset_->animated.morphs.restWeights} {
   const size_t joints = size_t(asset_->animated.skeleton.jointCount());
   locals_.resize(joints);
-  models_.resize(joints);
+  pose_.joints.resize(joints);
   nodeWorlds_.resize(asset_->model.nodes.size());
   for (const Skin& skin : asset_->animated.skins) {
     // Room for either layout: one mat4 (LBS) or two vec4 (DQS) per joint.
     skinBuffers_.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * sizeof(glm::mat4)));
   }
-  if (!morphWeights_.empty()) morphBuffer_ = gl::Buffer::create(morphWeights_.size() * sizeof(float));
+  if (!pose_.morphWeights.empty()) morphBuffer_ = gl::Buffer::create(pose_.morphWeights.size() * sizeof(float));
 }
 
 void CharacterInstance::play(int clip, LoopMode mode, double start) {
@@ -52,20 +52,14 @@ void CharacterInstance::crossFade(int clip, double seconds) {
 }
 
 Status CharacterInstance::evaluate(bool bindPose) {
-  const auto rest = asset_->animated.skeleton.restPose();
-  const auto restWeights = std::span<const float>(asset_->animated.morphs.restWeights);
-  if (bindPose || clip_ < 0 || !player_.evaluate(locals_, morphWeights_)) {
-    std::copy(rest.begin(), rest.end(), locals_.begin());
-    std::copy(restWeights.begin(), restWeights.end(), morphWeights_.begin());
-  }
   palettesCurrent_ = false;
-  return jointsFromLocals(*asset_->source, locals_, models_);
+  return playerPose(*asset_->source, player_, bindPose || clip_ < 0, locals_, pose_);
 }
 
 void CharacterInstance::setPose(const Pose& pose) {
-  std::copy_n(pose.joints.begin(), std::min(pose.joints.size(), models_.size()), models_.begin());
-  std::copy_n(pose.morphWeights.begin(), std::min(pose.morphWeights.size(), morphWeights_.size()),
-              morphWeights_.begin());
+  std::copy_n(pose.joints.begin(), std::min(pose.joints.size(), pose_.joints.size()), pose_.joints.begin());
+  std::copy_n(pose.morphWeights.begin(), std::min(pose.morphWeights.size(), pose_.morphWeights.size()),
+              pose_.morphWeights.begin());
   palettesCurrent_ = false;
 }
 
@@ -74,12 +68,12 @@ void CharacterInstance::place(const glm::dmat4& world, const glm::dvec3& cameraP
   root_[3] -= glm::dvec4(cameraPosition, 0.0);
   const Skeleton& skeleton = asset_->animated.skeleton;
   for (size_t n = 0; n < nodeWorlds_.size(); ++n)
-    nodeWorlds_[n] = glm::mat4(root_ * glm::dmat4(models_[size_t(skeleton.jointOfRaw(int(n)))]));
+    nodeWorlds_[n] = glm::mat4(root_ * glm::dmat4(pose_.joints[size_t(skeleton.jointOfRaw(int(n)))]));
 }
 
 std::vector<glm::mat4> CharacterInstance::placedJoints() const {
   std::vector<glm::mat4> out;
-  for (const glm::mat4& joint : models_) out.push_back(glm::mat4(root_ * glm::dmat4(joint)));
+  for (const glm::mat4& joint : pose_.joints) out.push_back(glm::mat4(root_ * glm::dmat4(joint)));
   return out;
 }
 
@@ -88,7 +82,7 @@ Status CharacterInstance::uploadPalettes(SkinMode mode) {
   for (size_t s = 0; s < skins.size(); ++s) {
     const std::string where = asset_->model.path + ": skin " + std::to_string(s);
     palette_.resize(skins[s].joints.size());
-    if (auto status = runJob(SkinningPaletteJob{models_, skins[s].joints, skins[s].inverseBinds, palette_}, where);
+    if (auto status = runJob(SkinningPaletteJob{pose_.joints, skins[s].joints, skins[s].inverseBinds, palette_}, where);
         !status) {
       return status;
     }
@@ -104,7 +98,7 @@ Status CharacterInstance::uploadPalettes(SkinMode mode) {
 }
 
 void CharacterInstance::uploadMorphWeights() {
-  if (!morphWeights_.empty()) morphBuffer_.upload(0, morphWeights_.size() * sizeof(float), morphWeights_.data());
+  if (!pose_.morphWeights.empty()) morphBuffer_.upload(0, pose_.morphWeights.size() * sizeof(float), pose_.morphWeights.data());
 }
 
 void CharacterInstance::useSkinCache(SkinPrograms* programs) {
@@ -120,7 +114,7 @@ Status CharacterInstance::prepare(SkinMode mode) {
   if (auto s = uploadPalettes(mode); !s) return s;
   uploadMorphWeights();
   if (cache_) {
-    const SkinCache::Inputs inputs{skinBuffers_, mode, morphWeights_.empty() ? nullptr : &morphBuffer_,
+    const SkinCache::Inputs inputs{skinBuffers_, mode, pose_.morphWeights.empty() ? nullptr : &morphBuffer_,
                                    asset_->animated.morphs.first};
     if (auto s = cache_->update(*skinPrograms_, asset_->model, asset_->gpu, inputs); !s) return s;
   }
@@ -139,7 +133,7 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   frame.nodeWorlds = nodeWorlds_;
   frame.skinBuffers = skinBuffers_;
   frame.skinMode = mode;
-  frame.morphWeights = morphWeights_.empty() ? nullptr : &morphBuffer_;
+  frame.morphWeights = pose_.morphWeights.empty() ? nullptr : &morphBuffer_;
   frame.morphFirst = asset_->animated.morphs.first;
   frame.skinCache = skinCache();
   frame.setUniforms = setUniforms;

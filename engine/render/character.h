@@ -81,10 +81,10 @@ class CharacterInstance {
               const Lighting& lighting);
 
   // The joints of the pose in model space, and placed for the last place() view.
-  std::span<const glm::mat4> models() const { return models_; }
+  std::span<const glm::mat4> models() const { return pose_.joints; }
   std::vector<glm::mat4> placedJoints() const;
   // The morph weights of the last evaluate(), in the asset's MorphLayout order.
-  std::span<const float> morphWeights() const { return morphWeights_; }
+  std::span<const float> morphWeights() const { return pose_.morphWeights; }
   const CharacterAsset& asset() const { return *asset_; }
 
  private:
@@ -97,13 +97,12 @@ class CharacterInstance {
   Player player_;
   int clip_ = -1;
   std::vector<Srt> locals_;
-  std::vector<glm::mat4> models_;      // per runtime joint, model space
+  Pose pose_;  // joints per runtime joint in model space; morph weights in MorphLayout order
   glm::dmat4 root_{1.0};               // the model's root, camera-relative (place)
   std::vector<glm::mat4> nodeWorlds_;  // per glTF node, camera-relative (place)
   std::vector<glm::mat4> palette_;     // scratch, reused every frame
   std::vector<DualQuat> dualQuats_;    // scratch
   std::vector<gl::Buffer> skinBuffers_;
-  std::vector<float> morphWeights_;  // every morphing node's, MorphLayout order
   gl::Buffer morphBuffer_;           // the same on the GPU
   SkinPrograms* skinPrograms_ = nullptr;
   std::optional<SkinCache> cache_;

@@ -1052,6 +1052,11 @@ Status SceneRenderer::update(double time) {
   return Ok{};
 }
 
+void SceneRenderer::setPose(int instance, const Pose& pose) {
+  impl_->source->setPose(instance, pose);
+  impl_->characters[size_t(instance)].instance->setPose(pose);
+}
+
 Camera SceneRenderer::initialCamera() const {
   Camera camera;
   const CameraDesc& d = impl_->scene.camera;

@@ -12,6 +12,7 @@
 #include "asset/scene_desc.h"
 #include "core/result.h"
 #include "render/camera.h"
+#include "scene/model_asset.h"
 
 namespace engine {
 
@@ -72,6 +73,9 @@ class SceneRenderer {
   // nothing when another renderer of the same scene has posed it at that time) and
   // takes its poses.
   Status update(double time);
+  // Poses instance `instance` with a pose made elsewhere (Scene::setPose: the
+  // viewer's player), in the scene and in what this renderer draws.
+  void setPose(int instance, const Pose& pose);
   // Draws the frame into the framebuffer bound now, of `width` x `height` pixels.
   Status render(const Camera& camera, int width, int height);
 

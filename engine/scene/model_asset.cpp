@@ -1,5 +1,7 @@
 #include "scene/model_asset.h"
 
+#include <algorithm>
+
 #include "anim/jobs.h"
 #include "anim/player.h"
 #include "asset/gltf_loader.h"
@@ -21,6 +23,19 @@ Result<std::shared_ptr<const ModelAsset>> ModelAsset::load(const std::string& pa
 
 Status jointsFromLocals(const ModelAsset& asset, std::span<const Srt> locals, std::span<glm::mat4> joints) {
   return runJob(LocalToModelJob{asset.animated.skeleton.parents(), locals, glm::mat4(1.0f), joints}, asset.model.path);
+}
+
+Status playerPose(const ModelAsset& asset, Player& player, bool bindPose, std::vector<Srt>& locals, Pose& pose) {
+  const Skeleton& skeleton = asset.animated.skeleton;
+  const auto rest = skeleton.restPose();
+  locals.resize(rest.size());
+  pose.morphWeights.resize(asset.animated.morphs.restWeights.size());
+  if (bindPose || !player.clip() || !player.evaluate(locals, pose.morphWeights)) {
+    std::copy(rest.begin(), rest.end(), locals.begin());
+    pose.morphWeights = asset.animated.morphs.restWeights;
+  }
+  pose.joints.resize(locals.size());
+  return jointsFromLocals(asset, locals, pose.joints);
 }
 
 Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vector<Srt>& locals, Pose& pose) {

@@ -10,6 +10,7 @@
 
 #include "anim/clip.h"
 #include "anim/model_builder.h"
+#include "anim/player.h"
 #include "asset/model_data.h"
 #include "core/result.h"
 
@@ -43,6 +44,10 @@ struct Pose {
 // The pose of `asset` at `clipTime` of `clip`, wrapped into the clip (looping);
 // clip -1 is the rest pose. `locals` is scratch, resized as needed.
 Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vector<Srt>& locals, Pose& pose);
+// The pose `player` plays now (its clips, cross-fades and loop mode), or the rest
+// pose when `bindPose`, nothing plays or the player has no clip: the viewer's and
+// the characters' way to pose. `locals` is scratch, resized as needed.
+Status playerPose(const ModelAsset& asset, Player& player, bool bindPose, std::vector<Srt>& locals, Pose& pose);
 // The model-space joint matrices of `locals` (LocalToModelJob, identity root).
 Status jointsFromLocals(const ModelAsset& asset, std::span<const Srt> locals, std::span<glm::mat4> joints);
 

@@ -12,7 +12,10 @@ namespace engine {
 
 Scene::~Scene() = default;
 
-Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc) {
+Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc) { return load(desc, {}); }
+
+Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc,
+                                           std::vector<std::shared_ptr<const ModelAsset>> preloaded) {
   std::shared_ptr<Scene> scene(new Scene());
   scene->desc_ = desc;
   if (desc.terrain.enabled) {
@@ -20,12 +23,23 @@ Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc) {
     if (!created) return makeError(desc.path + ": /terrain: " + created.error().message);
     scene->terrain_ = std::make_unique<terrain::Terrain>(std::move(created).value());
   }
-  if (auto s = scene->loadModels(); !s) return s.error();
+  if (auto s = scene->loadModels(preloaded); !s) return s.error();
   if (auto s = scene->update(0.0); !s) return s.error();
   return scene;
 }
 
-Status Scene::loadModels() {
+namespace {
+
+Result<std::shared_ptr<const ModelAsset>> findOrLoad(const std::string& path,
+                                                     std::span<const std::shared_ptr<const ModelAsset>> preloaded) {
+  for (const auto& asset : preloaded)
+    if (asset && asset->model.path == path) return asset;
+  return ModelAsset::load(path);
+}
+
+}  // namespace
+
+Status Scene::loadModels(std::span<const std::shared_ptr<const ModelAsset>> preloaded) {
   std::map<std::string, int> byPath;
   std::vector<std::optional<ModelAsset::Bounds>> bounds;
   for (size_t i = 0; i < desc_.models.size(); ++i) {
@@ -33,7 +47,7 @@ Status Scene::loadModels() {
     const std::string where = desc_.path + ": /models/" + std::to_string(i);
     auto [it, fresh] = byPath.emplace(m.path, int(assets_.size()));
     if (fresh) {
-      auto asset = ModelAsset::load(m.path);
+      auto asset = findOrLoad(m.path, preloaded);
       if (!asset) return makeError(where + "/path: " + asset.error().message);
       auto b = (*asset)->boundsOfAllPoses();
       if (!b) return makeError(where + ": " + b.error().message);

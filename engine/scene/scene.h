@@ -34,6 +34,11 @@ class Scene {
   // Loads every model (each file once) and the terrain. Errors name the scene
   // file and the element: "demo.json: /models/2/clip: no clip ...".
   static Result<std::shared_ptr<Scene>> load(const SceneDesc& desc);
+  // The same, with models already in memory: an entry of desc.models whose path is
+  // a preloaded asset's model.path uses that asset instead of reading the file
+  // (the viewer, which loaded the model to frame and dump it).
+  static Result<std::shared_ptr<Scene>> load(const SceneDesc& desc,
+                                             std::vector<std::shared_ptr<const ModelAsset>> preloaded);
   ~Scene();
 
   // Poses every instance at scene time `time` (seconds): clip time is
@@ -41,6 +46,9 @@ class Scene {
   // second update at the same time does nothing.
   Status update(double time);
   double time() const { return time_; }
+  // Replaces instance `instance`'s pose with one made elsewhere (the viewer's
+  // player: cross-fades, scrubbing, loop modes), until the next update at a new time.
+  void setPose(int instance, const Pose& pose) { instances_[size_t(instance)].pose = pose; }
 
   const SceneDesc& desc() const { return desc_; }
   std::span<const std::shared_ptr<const ModelAsset>> assets() const { return assets_; }
@@ -53,7 +61,7 @@ class Scene {
 
  private:
   Scene() = default;
-  Status loadModels();
+  Status loadModels(std::span<const std::shared_ptr<const ModelAsset>> preloaded);
 
   SceneDesc desc_;
   std::vector<std::shared_ptr<const ModelAsset>> assets_;

@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
   settings.loop = loopMode;
   settings.skinMode = dualQuat ? engine::SkinMode::DualQuat : engine::SkinMode::Linear;
   settings.skeleton = skeleton;
+  // The scene renderer multisamples its own HDR target; the runner's target then
+  // only receives the tone-mapped result.
+  settings.msaa = options.run.msaa;
+  options.run.targetSamples = 1;
   viewer::ViewerScene scene(options.shaderDir, std::move(model).value(), settings);
 
   const engine::Backend backend = engine::chosenBackend(options);

@@ -4,28 +4,56 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/gtc/matrix_transform.hpp>
 
-#include "gl/bindings.h"
-#include "anim/jobs.h"
 #include "anim/pose_dump.h"
-#include "render/mesh.h"
-#include "render/textures.h"
+#include "scene/scene.h"
 
 namespace viewer {
 using namespace engine;
 
-struct ViewerScene::Gpu {
-  ShaderVariants variants;
-  gl::Program sky;
+// The skeleton's lines, drawn over the frame.
+struct ViewerScene::Overlay {
   gl::Program lines;
-  gl::VertexArray emptyVao;
-  gl::VertexArray lineVao;
-  gl::Buffer lineBuffer;
-  std::unique_ptr<GpuMesh> ground;
-  gl::Texture groundTexture;
-  explicit Gpu(std::string shaderDir) : variants(std::move(shaderDir)) {}
+  gl::VertexArray vao;
+  gl::Buffer buffer;
 };
+
+namespace {
+
+// The scene the viewer draws a model in: the sky (which lights it through the
+// IBL), a sun with shadows, a checker ground under the model's lowest point and
+// the model at the origin. Lighting as the viewer always had it.
+SceneDesc viewerScene(const ModelData& model, const glm::dvec3& lo, double radius, const ViewerSettings& settings) {
+  SceneDesc scene;
+  scene.path = model.path;
+  LightDesc sun;
+  sun.direction = glm::normalize(glm::dvec3(0.5, 0.8, 0.3));
+  sun.color = glm::vec3(1.0f, 0.94f, 0.85f);
+  sun.intensity = 2.0f;
+  sun.angleDegrees = 0.53f;
+  scene.lights.push_back(sun);
+  MaterialDesc ground;
+  ground.name = "ground";
+  ground.color = glm::vec3(0.55f);
+  ground.roughness = 0.9f;
+  ground.texture = "checker";
+  ground.textureScale = float(2.0 / radius);
+  scene.materials.push_back(ground);
+  PrimitiveDesc plane;
+  plane.type = PrimitiveType::Plane;
+  plane.point = glm::dvec3(0.0, lo.y, 0.0);
+  plane.extent = radius * 8.0;
+  plane.material = 0;
+  scene.primitives.push_back(plane);
+  ModelDesc m;
+  m.path = model.path;
+  m.dualQuat = settings.skinMode == SkinMode::DualQuat;
+  scene.models.push_back(m);
+  scene.render.msaa = settings.msaa;
+  return scene;
+}
+
+}  // namespace
 
 ViewerScene::ViewerScene(std::string shaderDir, ModelData model, ViewerSettings settings)
     : shaderDir_(std::move(shaderDir)), model_(std::move(model)), settings_(settings) {
@@ -56,172 +84,155 @@ void ViewerScene::frameCamera(const ModelData& model) {
   camera_.nearPlane = distance / 100.0;
   camera_.farPlane = distance * 100.0;
   camera_.lookAt(center);
-  groundHeight_ = lo.y;
-  groundSize_ = radius * 8.0;
-  lighting_.fogDensity = float(0.15 / distance);
+  desc_ = viewerScene(model, glm::dvec3(lo), radius, settings_);
+  desc_.camera.position = camera_.position;
+  desc_.camera.forward = camera_.forward();
+  desc_.camera.fovyDegrees = camera_.fovyDegrees;
+  desc_.camera.nearPlane = camera_.nearPlane;
+  desc_.camera.farPlane = camera_.farPlane;
+}
+
+// A new renderer over a new one-model scene (the skinning mode is the instance's):
+// the model's data is shared, its GPU upload is not.
+Status ViewerScene::buildRenderer() {
+  desc_.models[0].dualQuat = settings_.skinMode == SkinMode::DualQuat;
+  auto scene = Scene::load(desc_, {asset_});
+  if (!scene) return scene.error();
+  SceneRenderOptions options;
+  options.shaderDir = shaderDir_;
+  auto renderer = SceneRenderer::create(std::move(scene).value(), options);
+  if (!renderer) return renderer.error();
+  renderer_ = std::move(renderer).value();
+  renderer_->setPose(0, pose_);
+  return Ok{};
 }
 
 Status ViewerScene::init() {
-  auto gpu = std::make_unique<Gpu>(shaderDir_);
-  auto asset = CharacterAsset::create(std::move(model_));
+  auto asset = ModelAsset::create(std::move(model_));
   if (!asset) return asset.error();
-  character_ = std::make_unique<CharacterInstance>(std::move(asset).value());
-  character_->play(settings_.clip, settings_.loop);
-  character_->player().setSpeed(settings_.speed);
-  auto sky = gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}});
-  if (!sky) return sky.error();
+  asset_ = std::move(asset).value();
+  player_ = std::make_unique<Player>(asset_->animated.skeleton, asset_->animated.morphs.restWeights);
+  clip_ = settings_.clip;
+  if (clip_ >= 0 && clip_ < int(asset_->animated.clips.size())) player_->play(asset_->animated.clips[size_t(clip_)], settings_.loop);
+  player_->setSpeed(settings_.speed);
+  posed_ = playerPose(*asset_, *player_, true, locals_, pose_);
+  if (auto s = buildRenderer(); !s) return s;
+  auto overlay = std::make_unique<Overlay>();
   auto lines = gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, "lines.vert"}, {GL_FRAGMENT_SHADER, "lines.frag"}});
   if (!lines) return lines.error();
-  gpu->sky = std::move(sky).value();
-  gpu->lines = std::move(lines).value();
-  gpu->emptyVao = gl::VertexArray::create();
+  overlay->lines = std::move(lines).value();
   // Two vertices (position, colour) per joint with a parent.
-  const size_t joints = size_t(character_->asset().animated.skeleton.jointCount());
-  gpu->lineBuffer = gl::Buffer::create(std::max<size_t>(1, joints) * 2 * 2 * sizeof(glm::vec3));
-  gpu->lineVao = gl::VertexArray::create();
-  gpu->lineVao.vertexBuffer(0, gpu->lineBuffer, 2 * sizeof(glm::vec3));
-  gpu->lineVao.attribute(0, 0, 3, 0);
-  gpu->lineVao.attribute(1, 0, 3, sizeof(glm::vec3));
-  gpu->ground = std::make_unique<GpuMesh>(makePlane(float(groundSize_), 8, 16.0f));
-  gpu->groundTexture = uploadTexture(makeChecker(128, 2, {170, 170, 165}, {120, 125, 120}), true);
-  gpu_ = std::move(gpu);
+  const size_t joints = size_t(asset_->animated.skeleton.jointCount());
+  overlay->buffer = gl::Buffer::create(std::max<size_t>(1, joints) * 2 * 2 * sizeof(glm::vec3));
+  overlay->vao = gl::VertexArray::create();
+  overlay->vao.vertexBuffer(0, overlay->buffer, 2 * sizeof(glm::vec3));
+  overlay->vao.attribute(0, 0, 3, 0);
+  overlay->vao.attribute(1, 0, 3, sizeof(glm::vec3));
+  overlay_ = std::move(overlay);
   return Ok{};
 }
 
 void ViewerScene::shutdown() {
-  gpu_.reset();
-  character_.reset();
+  overlay_.reset();
+  renderer_.reset();
 }
 
 void ViewerScene::update(double time, double dt) {
-  Player& player = character_->player();
   if (!started_) {
     // The first update places the playhead at the scene time, so the frame at
     // time T shows the clip at T * speed whether or not frames came before.
-    player.seek(time * settings_.speed);
+    player_->seek(time * settings_.speed);
     started_ = true;
   } else if (playing_) {
-    player.update(dt);
+    player_->update(dt);
   }
-  posed_ = character_->evaluate(settings_.bindPose);  // a failure ends the run at render
-}
-
-void ViewerScene::drawGround(const glm::mat4& viewProjection) {
-  auto program = gpu_->variants.get({0, SkinMode::Linear, true});  // textured: the checker
-  if (!program) return;
-  const gl::Program& pr = **program;
-  pr.use();
-  setLightingUniforms(pr, lighting_);
-  const glm::dvec3 offset = glm::dvec3(0.0, groundHeight_, 0.0) - camera_.position;
-  const glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(offset));
-  pr.set("u_model", m);
-  pr.set("u_normalMatrix", glm::mat3(1.0f));
-  pr.set("u_viewProjection", viewProjection);
-  pr.set("u_baseColorFactor", glm::vec4(1.0f));
-  pr.set("u_specular", 0.0f);
-  pr.set("u_shininess", 16.0f);
-  gpu_->groundTexture.bind(gl::binding::kBaseColor);
-  gpu_->ground->draw();
+  // A failure ends the run at render.
+  posed_ = playerPose(*asset_, *player_, settings_.bindPose || clip_ < 0, locals_, pose_);
+  if (posed_) renderer_->setPose(0, pose_);
 }
 
 void ViewerScene::drawSkeleton(const glm::mat4& viewProjection) {
   std::vector<glm::vec3> vertices;
-  const auto parents = character_->asset().animated.skeleton.parents();
-  const auto models = character_->placedJoints();  // camera-relative
-  for (size_t j = 0; j < models.size(); ++j) {
+  const auto parents = asset_->animated.skeleton.parents();
+  for (size_t j = 0; j < pose_.joints.size(); ++j) {
     if (parents[j] < 0) continue;
     const glm::vec3 color = j % 2 ? glm::vec3(1.0f, 0.85f, 0.1f) : glm::vec3(1.0f, 0.4f, 0.1f);
-    vertices.push_back(glm::vec3(models[j][3]));
+    // Camera-relative, as the renderer draws: the model's root is the origin.
+    vertices.push_back(glm::vec3(glm::dvec3(pose_.joints[j][3]) - camera_.position));
     vertices.push_back(color);
-    vertices.push_back(glm::vec3(models[size_t(parents[j])][3]));
+    vertices.push_back(glm::vec3(glm::dvec3(pose_.joints[size_t(parents[j])][3]) - camera_.position));
     vertices.push_back(color);
   }
   if (vertices.empty()) return;
-  gpu_->lineBuffer.upload(0, vertices.size() * sizeof(glm::vec3), vertices.data());
-  gpu_->lines.use();
-  gpu_->lines.set("u_viewProjection", viewProjection);
-  gpu_->lineVao.bind();
+  overlay_->buffer.upload(0, vertices.size() * sizeof(glm::vec3), vertices.data());
+  overlay_->lines.use();
+  overlay_->lines.set("u_viewProjection", viewProjection);
+  overlay_->vao.bind();
   glDisable(GL_DEPTH_TEST);  // the skeleton is inside the skin: draw it on top
   glDrawArrays(GL_LINES, 0, GLsizei(vertices.size() / 2));
   glEnable(GL_DEPTH_TEST);
 }
 
 Status ViewerScene::render(const FrameInfo& frame) {
-  const double aspect = double(frame.width) / double(frame.height);
-  const glm::mat4 viewProjection = camera_.projection(aspect) * camera_.rotationView();
-  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_CULL_FACE);
-
-  gpu_->sky.use();
-  setSkyUniforms(gpu_->sky, lighting_);
-  gpu_->sky.set("u_inverseViewProjection", glm::inverse(viewProjection));
-  gpu_->emptyVao.bind();
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glDepthMask(GL_TRUE);
-  glEnable(GL_DEPTH_TEST);
-
-  drawGround(viewProjection);
   if (!posed_) return posed_;
-  character_->place(glm::dmat4(1.0), camera_.position);
-  if (auto s = character_->draw(gpu_->variants, viewProjection, settings_.skinMode, lighting_); !s) return s;
-  if (settings_.skeleton) drawSkeleton(viewProjection);
+  if (auto s = renderer_->render(camera_, frame.width, frame.height); !s) return s;
+  if (settings_.skeleton) {
+    const double aspect = double(frame.width) / double(frame.height);
+    drawSkeleton(camera_.projection(aspect) * camera_.rotationView());
+  }
   return Ok{};
 }
 
-std::vector<std::string> ViewerScene::builtVariants() const {
-  std::vector<std::string> out;
-  if (gpu_)
-    for (const auto& v : gpu_->variants.built()) out.push_back(v.describe());
-  return out;
-}
+std::string ViewerScene::describe() const { return renderer_ ? renderer_->describe() : std::string(); }
 
 void ViewerScene::drawUi() {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Animation");
-  const CharacterAsset& asset = character_->asset();
-  Player& player = character_->player();
-  ImGui::Text("%s", asset.model.path.c_str());
-  ImGui::Text("%d joints, %zu clips", asset.animated.skeleton.jointCount(), asset.animated.clips.size());
+  const auto& clips = asset_->animated.clips;
+  ImGui::Text("%s", asset_->model.path.c_str());
+  ImGui::Text("%d joints, %zu clips", asset_->animated.skeleton.jointCount(), clips.size());
   if (ImGui::BeginListBox("clips", ImVec2(-1, 6 * ImGui::GetTextLineHeightWithSpacing()))) {
-    for (int i = 0; i < int(asset.animated.clips.size()); ++i) {
-      const Clip& clip = asset.animated.clips[size_t(i)];
-      const std::string label = (clip.name().empty() ? "clip " + std::to_string(i) : clip.name()) +
-                                " (" + std::to_string(clip.duration()).substr(0, 5) + " s)";
-      if (ImGui::Selectable(label.c_str(), character_->clip() == i)) character_->crossFade(i, 0.25);
+    for (int i = 0; i < int(clips.size()); ++i) {
+      const Clip& clip = clips[size_t(i)];
+      const std::string label = (clip.name().empty() ? "clip " + std::to_string(i) : clip.name()) + " (" +
+                                std::to_string(clip.duration()).substr(0, 5) + " s)";
+      if (ImGui::Selectable(label.c_str(), clip_ == i)) {
+        if (player_->clip()) player_->crossFade(clip, 0.25, settings_.loop);
+        else player_->play(clip, settings_.loop);
+        clip_ = i;
+      }
     }
     ImGui::EndListBox();
   }
   if (ImGui::Button(playing_ ? "Pause" : "Play")) playing_ = !playing_;
   ImGui::SameLine();
   ImGui::Checkbox("bind pose", &settings_.bindPose);
-  if (const Clip* clip = player.clip()) {
-    float t = float(player.localTime());
-    if (ImGui::SliderFloat("time", &t, 0.0f, float(std::max(clip->duration(), 1e-3)), "%.3f s")) {
-      player.seek(t);
-      posed_ = character_->evaluate(settings_.bindPose);
-    }
+  if (const Clip* clip = player_->clip()) {
+    float t = float(player_->localTime());
+    if (ImGui::SliderFloat("time", &t, 0.0f, float(std::max(clip->duration(), 1e-3)), "%.3f s")) player_->seek(t);
   }
   float speed = float(settings_.speed);
   if (ImGui::SliderFloat("speed", &speed, -2.0f, 2.0f, "%.2fx")) {
     settings_.speed = speed;
-    player.setSpeed(speed);
+    player_->setSpeed(speed);
   }
   int loop = int(settings_.loop);
   const char* loops[] = {"repeat", "clamp", "ping-pong"};
-  if (ImGui::Combo("loop", &loop, loops, 3)) {
+  if (ImGui::Combo("loop", &loop, loops, 3) && player_->clip()) {
     settings_.loop = LoopMode(loop);
-    character_->play(character_->clip(), settings_.loop, player.time());
+    const double time = player_->time();
+    player_->play(*player_->clip(), settings_.loop);
+    player_->seek(time);
   }
   int mode = int(settings_.skinMode);
   ImGui::RadioButton("LBS", &mode, int(SkinMode::Linear));
   ImGui::SameLine();
   ImGui::RadioButton("DQS", &mode, int(SkinMode::DualQuat));
-  settings_.skinMode = SkinMode(mode);
+  if (SkinMode(mode) != settings_.skinMode) {
+    settings_.skinMode = SkinMode(mode);
+    if (auto s = buildRenderer(); !s) posed_ = s;  // shown as the run's error
+  }
   ImGui::Checkbox("skeleton", &settings_.skeleton);
   ImGui::End();
 }

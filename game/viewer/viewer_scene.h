@@ -1,15 +1,23 @@
 #pragma once
-// The animation viewer's scene: one glTF model, animated by a Player, skinned on
-// the GPU (linear blend or dual quaternions), over a ground plane under the sky,
-// with an optional skeleton overlay and an ImGui panel in the window.
+// The glTF viewer's scene: one model, animated by a Player (clips, cross-fades,
+// scrubbing, speed, loop modes), drawn by the scene renderer as every scene is,
+// with its full metallic-roughness material and the sky's image-based light, on a
+// ground under a sun with shadows; an optional skeleton overlay and an ImGui panel
+// in the window. The model becomes a one-instance scene (scene/scene.h) whose
+// pose the player sets each frame.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "app/game.h"
 #include "asset/model_data.h"
-#include "render/character.h"
-#include "render/lighting.h"
+#include "asset/scene_desc.h"
+#include "gl/resources.h"
+#include "gl/shader.h"
+#include "render/camera.h"
+#include "render/model_renderer.h"
+#include "render/scene_renderer.h"
+#include "scene/model_asset.h"
 
 namespace viewer {
 
@@ -20,6 +28,7 @@ struct ViewerSettings {
   engine::SkinMode skinMode = engine::SkinMode::Linear;
   bool skeleton = false;
   bool bindPose = false;
+  int msaa = 1;
   // Where the camera looks from, toward the model's centre (framed to fit its
   // bounds). Golden tests of flat test models look straight at them (0, 0, 1), as
   // Khronos's screenshots do.
@@ -39,28 +48,31 @@ class ViewerScene final : public engine::Game {
   bool wantsUi() const override { return true; }
   void drawUi() override;
 
-  // The shader variants built so far ("static", "lbs4", "dqs8", ...).
-  std::vector<std::string> builtVariants() const;
+  // The scene the model was placed in, and what the renderer built for it.
+  const engine::SceneDesc& sceneDesc() const { return desc_; }
+  std::string describe() const;
 
  private:
-  struct Gpu;
+  struct Overlay;
   void frameCamera(const engine::ModelData& model);
-  void drawGround(const glm::mat4& viewProjection);
+  engine::Status buildRenderer();
   void drawSkeleton(const glm::mat4& viewProjection);
 
   std::string shaderDir_;
-  engine::ModelData model_;  // until init() moves it into the character asset
+  std::shared_ptr<const engine::ModelAsset> asset_;
+  engine::ModelData model_;  // until init() makes the asset
   ViewerSettings settings_;
-  std::unique_ptr<engine::CharacterInstance> character_;
+  engine::SceneDesc desc_;
+  std::unique_ptr<engine::SceneRenderer> renderer_;
+  std::unique_ptr<engine::Player> player_;
+  std::vector<engine::Srt> locals_;
+  engine::Pose pose_;
+  int clip_ = -1;
   engine::Camera camera_;
-  engine::Lighting lighting_;
   bool playing_ = true;
   bool started_ = false;
-  double groundHeight_ = 0.0;
-  double groundSize_ = 10.0;
-  double startTime_ = 0.0;
-  std::unique_ptr<Gpu> gpu_;
-  engine::Status posed_ = engine::Ok{};  // the last evaluate's
+  std::unique_ptr<Overlay> overlay_;
+  engine::Status posed_ = engine::Ok{};  // the last pose's
 };
 
 }  // namespace viewer
