@@ -122,6 +122,40 @@ TEST(Scene, TimesFarFromZeroPoseAsTheirWrappedTime) {
   EXPECT_LE(worst, 1e-5);
 }
 
+// The viewer's way in: a model already in memory is used, not read again (its
+// path names no file here), and a pose set from outside (a player's cross-fade)
+// stands until an update at another time poses the clip again.
+TEST(Scene, PreloadedModelsAndOutsidePoses) {
+  auto source = ModelAsset::load(std::string(ENGINE_SOURCE_DIR) + "/assets/models/character.gltf");
+  ASSERT_TRUE(source.ok()) << source.error().message;
+  ModelData model = (*source)->model;
+  model.path = "/nonexistent/in_memory.gltf";
+  auto asset = ModelAsset::create(model);
+  ASSERT_TRUE(asset.ok());
+  SceneDesc desc;
+  desc.path = "viewer";
+  ModelDesc m;
+  m.path = model.path;
+  m.clip = "Walk";
+  desc.models.push_back(m);
+  EXPECT_FALSE(Scene::load(desc).ok()) << "the file exists after all";
+  auto scene = Scene::load(desc, {*asset});
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  ASSERT_EQ((*scene)->assets().size(), 1u);
+  EXPECT_EQ((*scene)->assets()[0].get(), asset->get()) << "the asset was copied or reloaded";
+  ASSERT_TRUE((*scene)->update(0.5).ok());
+  const Pose clipPose = (*scene)->instances()[0].pose;
+  Pose rest;
+  std::vector<Srt> locals;
+  ASSERT_TRUE(samplePose(**asset, -1, 0.0, locals, rest).ok());
+  ASSERT_GT(largestJointDifference(clipPose, rest), 1e-3);
+  (*scene)->setPose(0, rest);
+  ASSERT_TRUE((*scene)->update(0.5).ok());  // the same time: nothing re-posed
+  EXPECT_EQ(largestJointDifference((*scene)->instances()[0].pose, rest), 0.0);
+  ASSERT_TRUE((*scene)->update(0.6).ok());
+  EXPECT_GT(largestJointDifference((*scene)->instances()[0].pose, rest), 1e-3);
+}
+
 TEST(Scene, AClipTheModelLacksNamesTheSceneFileAndElement) {
   SceneDesc desc = demo();
   desc.models[2].clip = "Moonwalk";
