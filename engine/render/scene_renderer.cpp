@@ -184,6 +184,9 @@ struct SceneRenderer::Impl {
   // The skin cache's compute programs (render.skinning compute; before the
   // characters, which point at it).
   std::unique_ptr<SkinPrograms> skinPrograms;
+  double terrainError = 2.0;                 // the LOD target in pixels (terrain.error_pixels or the override)
+  std::optional<SkinMode> skinModeOverride;  // every model's, when set
+  QuatInterpolation rotations = QuatInterpolation::Slerp;
   gl::Program sky, post;
   gl::Texture skyImage;  // the sky's lat-long image, when the scene has one
   // The PBR ambient (render/ibl.h); built at load for Ambient::Sh and ::Ibl only.
@@ -298,6 +301,9 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   render = scene.render;
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
   render.skinning = options.skinningOverride.value_or(render.skinning);
+  terrainError = options.terrainErrorOverride > 0.0 ? options.terrainErrorOverride : scene.terrain.errorPixels;
+  skinModeOverride = options.skinModeOverride;
+  rotations = options.rotations;
   if (options.supersampleOverride > 0) render.supersample = options.supersampleOverride;
   if (options.shadowMapOverride > 0) render.shadowMapSize = options.shadowMapOverride;
   if (options.pcfKernelOverride > 0) {
@@ -490,7 +496,7 @@ terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullVi
   camera.zeroToOneDepth = true;  // reverse-Z and the sun's box both clip depth to 0..w
   camera.fovY = fovy;
   camera.viewportHeight = viewportHeight;
-  return terrain::selectLodWithin(*terrain, camera, scene.terrain.errorPixels,
+  return terrain::selectLodWithin(*terrain, camera, terrainError,
                                   std::size_t(terrainRenderer->pageSlots()));
 }
 
@@ -540,6 +546,10 @@ Status SceneRenderer::Impl::loadModels() {
     if (skinPrograms) draw.instance->useSkinCache(skinPrograms.get());
     draw.instance->setPose(instance.pose);
     draw.desc = instance.desc;
+    if (skinModeOverride) {
+      draw.desc.dualQuat = *skinModeOverride == SkinMode::DualQuat;
+      draw.desc.unskinned = *skinModeOverride == SkinMode::None;
+    }
     draw.world = instance.world;
     draw.localCenter = instance.boundsCenter;
     draw.localRadius = instance.boundsRadius;
@@ -1045,7 +1055,7 @@ std::vector<CharacterInstance*> SceneRenderer::characters() {
 
 Status SceneRenderer::update(double time) {
   const auto start = std::chrono::steady_clock::now();
-  if (auto s = impl_->source->update(time); !s) return s;
+  if (auto s = impl_->source->update(time, impl_->rotations); !s) return s;
   const auto instances = impl_->source->instances();
   for (size_t i = 0; i < impl_->characters.size(); ++i) impl_->characters[i].instance->setPose(instances[i].pose);
   impl_->animationMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -1256,7 +1266,7 @@ std::string SceneRenderer::describe() const {
   }
   if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
   if (s.skinPrograms) out << " " << s.describeSkinCache();
-  if (s.terrain) out << " terrain(cdlod, " << s.scene.terrain.errorPixels << " px)";
+  if (s.terrain) out << " terrain(cdlod, " << s.terrainError << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
   if (s.blendPass) out << " blend(sorted)";

@@ -11,7 +11,9 @@
 
 #include "asset/scene_desc.h"
 #include "core/result.h"
+#include "anim/clip.h"
 #include "render/camera.h"
+#include "render/model_renderer.h"
 #include "scene/model_asset.h"
 
 namespace engine {
@@ -30,6 +32,11 @@ struct SceneRenderOptions {
   std::optional<Ambient> ambientOverride;  // replaces render.ambient (PBR scenes)
   int iblSizeOverride = 0;                 // > 0 replaces render.ibl_size
   std::optional<Skinning> skinningOverride;  // replaces render.skinning
+  double terrainErrorOverride = 0.0;         // > 0 replaces terrain.error_pixels (the LOD target)
+  // Replaces every model's skinning (lbs, dqs, none: the bind pose).
+  std::optional<SkinMode> skinModeOverride;
+  // How the rasterizer's poses interpolate rotation keys: slerp (exact) or nlerp.
+  QuatInterpolation rotations = QuatInterpolation::Slerp;
 };
 
 struct SceneStats {

@@ -38,7 +38,8 @@ Status playerPose(const ModelAsset& asset, Player& player, bool bindPose, std::v
   return jointsFromLocals(asset, locals, pose.joints);
 }
 
-Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vector<Srt>& locals, Pose& pose) {
+Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vector<Srt>& locals, Pose& pose,
+                  QuatInterpolation rotations) {
   const Skeleton& skeleton = asset.animated.skeleton;
   const MorphLayout& morphs = asset.animated.morphs;
   locals.assign(skeleton.restPose().begin(), skeleton.restPose().end());
@@ -47,7 +48,7 @@ Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vecto
     const Clip& c = asset.animated.clips[size_t(clip)];
     const double local = wrapTime(clipTime, c.duration(), LoopMode::Repeat);
     const std::string where = asset.model.path + ": clip " + c.name();
-    if (auto s = runJob(SamplingJob{&c, local, skeleton.restPose(), locals}, where); !s) return s;
+    if (auto s = runJob(SamplingJob{&c, local, skeleton.restPose(), locals, rotations}, where); !s) return s;
     if (auto s = runJob(MorphSamplingJob{&c, local, morphs.restWeights, pose.morphWeights}, where); !s) return s;
   }
   pose.joints.resize(locals.size());

@@ -43,7 +43,9 @@ struct Pose {
 
 // The pose of `asset` at `clipTime` of `clip`, wrapped into the clip (looping);
 // clip -1 is the rest pose. `locals` is scratch, resized as needed.
-Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vector<Srt>& locals, Pose& pose);
+// `rotations`: slerp (exact) or nlerp (the shortcut the trade table measures).
+Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vector<Srt>& locals, Pose& pose,
+                  QuatInterpolation rotations = QuatInterpolation::Slerp);
 // The pose `player` plays now (its clips, cross-fades and loop mode), or the rest
 // pose when `bindPose`, nothing plays or the player has no clip: the viewer's and
 // the characters' way to pose. `locals` is scratch, resized as needed.

@@ -71,16 +71,18 @@ Status Scene::loadModels(std::span<const std::shared_ptr<const ModelAsset>> prel
   return Ok{};
 }
 
-Status Scene::update(double time) {
-  if (posed_ && time == time_) return Ok{};
+Status Scene::update(double time, QuatInterpolation rotations) {
+  if (posed_ && time == time_ && rotations == rotations_) return Ok{};
   for (size_t i = 0; i < instances_.size(); ++i) {
     ModelInstance& instance = instances_[i];
-    if (auto s = samplePose(assetOf(instance), instance.clip, clipTimeAt(instance.desc, time), locals_, instance.pose);
+    if (auto s = samplePose(assetOf(instance), instance.clip, clipTimeAt(instance.desc, time), locals_, instance.pose,
+                            rotations);
         !s) {
       return makeError(desc_.path + ": /models/" + std::to_string(i) + ": " + s.error().message);
     }
   }
   time_ = time;
+  rotations_ = rotations;
   posed_ = true;
   return Ok{};
 }

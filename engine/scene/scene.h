@@ -43,8 +43,9 @@ class Scene {
 
   // Poses every instance at scene time `time` (seconds): clip time is
   // start + time * speed, so a pose never depends on the updates before it. A
-  // second update at the same time does nothing.
-  Status update(double time);
+  // second update at the same time (and interpolation) does nothing. `rotations`
+  // is the rasterizer's knob: the tracers, the truth, always pose with slerp.
+  Status update(double time, QuatInterpolation rotations = QuatInterpolation::Slerp);
   double time() const { return time_; }
   // Replaces instance `instance`'s pose with one made elsewhere (the viewer's
   // player: cross-fades, scrubbing, loop modes), until the next update at a new time.
@@ -69,6 +70,7 @@ class Scene {
   std::unique_ptr<terrain::Terrain> terrain_;
   std::vector<Srt> locals_;  // scratch of update
   double time_ = 0.0;
+  QuatInterpolation rotations_ = QuatInterpolation::Slerp;
   bool posed_ = false;
 };
 

@@ -103,6 +103,15 @@ int main(int argc, char** argv) {
                  "How characters deform: vertex (in every pass's vertex shader) or compute (once per pose into a "
                  "skin cache that every pass draws); default: the scene's render.skinning, vertex")
       ->check(CLI::IsMember(engine::skinningNames()));
+  app.add_option("--terrain-error", render.terrainErrorOverride,
+                 "The terrain's LOD target: screen-space error in pixels (default: the scene's terrain.error_pixels)")
+      ->check(CLI::Range(0.05, 64.0));
+  std::string skinBlend;
+  app.add_option("--skin-blend", skinBlend, "Every model's skinning: lbs, dqs or none (the bind pose); default: each model's")
+      ->check(CLI::IsMember({"lbs", "dqs", "none"}));
+  std::string rotations = "slerp";
+  app.add_option("--rotations", rotations, "How the rasterizer interpolates rotation keys: slerp or nlerp (the tracers always slerp)")
+      ->check(CLI::IsMember({"slerp", "nlerp"}))->capture_default_str();
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
   std::string reference = "off";
   app.add_option("--reference", reference,
@@ -152,6 +161,12 @@ int main(int argc, char** argv) {
   render.shaderDir = options.shaderDir;
   if (!ambient.empty()) render.ambientOverride = engine::ambientNames().at(ambient);
   if (!skinning.empty()) render.skinningOverride = engine::skinningNames().at(skinning);
+  if (!skinBlend.empty()) {
+    render.skinModeOverride = skinBlend == "dqs"    ? engine::SkinMode::DualQuat
+                              : skinBlend == "none" ? engine::SkinMode::None
+                                                    : engine::SkinMode::Linear;
+  }
+  render.rotations = rotations == "nlerp" ? engine::QuatInterpolation::Nlerp : engine::QuatInterpolation::Slerp;
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
   options.run.targetSamples = 1;
   if (mode == "raytrace" || mode == "pathtrace") {

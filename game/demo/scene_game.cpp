@@ -208,7 +208,16 @@ std::string SceneGame::settingName() const {
     name << " " << engine::ambientName(o.ambientOverride.value_or(engine::ambientOf(scene))) << " ibl"
          << pick(o.iblSizeOverride, r.iblSize);
   }
-  if (!scene.models.empty()) name << " skinning-" << engine::skinningName(o.skinningOverride.value_or(r.skinning));
+  if (scene.terrain.enabled) name << " lod" << (o.terrainErrorOverride > 0.0 ? o.terrainErrorOverride : scene.terrain.errorPixels);
+  if (!scene.models.empty()) {
+    name << " skinning-" << engine::skinningName(o.skinningOverride.value_or(r.skinning));
+    if (o.skinModeOverride) {
+      name << (*o.skinModeOverride == engine::SkinMode::DualQuat ? " dqs"
+               : *o.skinModeOverride == engine::SkinMode::None   ? " unskinned"
+                                                                 : " lbs");
+    }
+    if (o.rotations == engine::QuatInterpolation::Nlerp) name << " nlerp";
+  }
   return name.str();
 }
 

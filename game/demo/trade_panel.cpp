@@ -5,6 +5,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cfloat>
 #include <filesystem>
 #include <map>
@@ -34,11 +35,41 @@ bool pickInt(const char* label, int& value, std::initializer_list<int> choices) 
   return changed;
 }
 
+bool pickDouble(const char* label, double& value, std::initializer_list<double> choices) {
+  bool changed = false;
+  char current[32];
+  std::snprintf(current, sizeof current, "%g", value);
+  if (ImGui::BeginCombo(label, current)) {
+    for (double choice : choices) {
+      char name[32];
+      std::snprintf(name, sizeof name, "%g", choice);
+      if (ImGui::Selectable(name, choice == value)) {
+        changed = choice != value;
+        value = choice;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+const std::map<std::string, engine::SkinMode>& skinModeNames() {
+  static const std::map<std::string, engine::SkinMode> names{
+      {"lbs", engine::SkinMode::Linear}, {"dqs", engine::SkinMode::DualQuat}, {"none", engine::SkinMode::None}};
+  return names;
+}
+
+const std::map<std::string, engine::QuatInterpolation>& rotationNames() {
+  static const std::map<std::string, engine::QuatInterpolation> names{{"slerp", engine::QuatInterpolation::Slerp},
+                                                                      {"nlerp", engine::QuatInterpolation::Nlerp}};
+  return names;
+}
+
 // A knob over named choices (the scene file's names for them).
 template <typename Enum>
 bool pickNamed(const char* label, std::optional<Enum>& value, const std::map<std::string, Enum>& names) {
   bool changed = false;
-  std::string current = "?";
+  std::string current = value ? "?" : "(each model's)";
   for (const auto& [name, choice] : names)
     if (value == choice) current = name;
   if (ImGui::BeginCombo(label, current.c_str())) {
@@ -75,6 +106,7 @@ engine::SceneRenderOptions effective(const engine::SceneRenderOptions& o, const 
   if (e.iblSizeOverride <= 0) e.iblSizeOverride = r.iblSize;
   if (!e.ambientOverride) e.ambientOverride = engine::ambientOf(scene);
   if (!e.skinningOverride) e.skinningOverride = r.skinning;
+  if (e.terrainErrorOverride <= 0.0) e.terrainErrorOverride = scene.terrain.errorPixels;
   return e;
 }
 
@@ -90,7 +122,14 @@ void knobs(SceneGame& game) {
     changed |= pickNamed("ambient", o.ambientOverride, engine::ambientNames());
     changed |= pickInt("IBL size", o.iblSizeOverride, {16, 32, 64, 128, 256});
   }
-  if (!scene.models.empty()) changed |= pickNamed("skinning", o.skinningOverride, engine::skinningNames());
+  if (scene.terrain.enabled) changed |= pickDouble("LOD target (px)", o.terrainErrorOverride, {0.5, 1.0, 2.0, 4.0, 8.0});
+  if (!scene.models.empty()) {
+    changed |= pickNamed("skinning", o.skinningOverride, engine::skinningNames());
+    changed |= pickNamed("skin blend", o.skinModeOverride, skinModeNames());
+    std::optional<engine::QuatInterpolation> rotations = o.rotations;
+    changed |= pickNamed("rotations", rotations, rotationNames());
+    o.rotations = *rotations;
+  }
   if (changed) (void)game.applyOptions(o);  // a failure shows in the panel
 }
 

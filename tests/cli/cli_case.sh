@@ -225,7 +225,12 @@ PY
     # Vertex skinning builds no skin cache.
     expect 0 "shadow-sun" -- "$BIN/demo" --describe --skinning vertex
     if grep -qF "skin cache" "$OUT"; then echo "FAIL: vertex skinning made a skin cache"; cat "$OUT"; exit 1; fi
-    expect 2 "skinning" -- "$BIN/demo" --describe --skinning gpu ;;
+    expect 2 "skinning" -- "$BIN/demo" --describe --skinning gpu
+    # The other animation knobs: every robot blended by DQS builds no LBS variant.
+    expect 0 "dqs4" -- "$BIN/demo" --describe --skin-blend dqs
+    if grep "^variants:" "$OUT" | grep -q "lbs"; then echo "FAIL: --skin-blend dqs built an LBS variant"; cat "$OUT"; exit 1; fi
+    expect 0 "terrain\(cdlod, 4 px\)" -- "$BIN/demo" "$SRC/assets/scenes/terrain.json" --describe --terrain-error 4 --size 320x180
+    expect 2 "rotations" -- "$BIN/demo" --describe --rotations squad ;;
   describe_materials)
     # The material test model: one variant per combination it uses, a masked
     # shadow variant for the cut-out leaves, and the sorted blend pass.

@@ -156,6 +156,21 @@ TEST(Scene, PreloadedModelsAndOutsidePoses) {
   EXPECT_GT(largestJointDifference((*scene)->instances()[0].pose, rest), 1e-3);
 }
 
+// The rasterizer's nlerp knob poses the shared scene its way; the tracers' next
+// update at the same time, with slerp (the truth), poses it back exactly.
+TEST(Scene, NlerpPosesAreTheRasterizersAndSlerpComesBack) {
+  auto scene = loadScene(demo());
+  ASSERT_TRUE(scene);
+  ASSERT_TRUE(scene->update(1.3).ok());
+  const Pose slerp = scene->instances()[0].pose;
+  ASSERT_TRUE(scene->update(1.3, QuatInterpolation::Nlerp).ok());
+  const double moved = largestJointDifference(slerp, scene->instances()[0].pose);
+  EXPECT_GT(moved, 0.0) << "nlerp posed nothing differently";
+  EXPECT_LT(moved, 1e-2) << "nlerp strays further than a shortcut should";
+  ASSERT_TRUE(scene->update(1.3).ok());
+  EXPECT_EQ(largestJointDifference(slerp, scene->instances()[0].pose), 0.0);
+}
+
 TEST(Scene, AClipTheModelLacksNamesTheSceneFileAndElement) {
   SceneDesc desc = demo();
   desc.models[2].clip = "Moonwalk";
