@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "raytrace/progress_bar.h"
 #include "raytrace/tone_map.h"
@@ -29,6 +30,7 @@ engine::Result<std::unique_ptr<ProgressiveTrace>> ProgressiveTrace::start(std::u
   t->tileLocks_ = std::make_unique<std::mutex[]>(tiles);
   t->pixels_.assign(size_t(settings.width) * size_t(settings.height) * 4, 0);
   t->sum_.assign(size_t(settings.width) * size_t(settings.height), glm::vec3(0.0f));
+  t->oddSum_ = t->sum_;
   t->passes_ = settings.method == engine::rt::Method::Path ? std::max(1, settings.samplesPerPixel) : 1;
   t->texture_ = engine::gl::Texture::create2D(GL_RGBA8, settings.width, settings.height, 1);
   t->texture_.uploadRgba8(t->pixels_.data());
@@ -68,15 +70,21 @@ void ProgressiveTrace::tracePass(int pass, Progress& state) {
     const int x0 = (tile % tilesX_) * kTile, y0 = (tile / tilesX_) * kTile;
     engine::rt::RayCounters counters;
     const int x1 = std::min(x0 + kTile, settings_.width), y1 = std::min(y0 + kTile, settings_.height);
+    glm::vec3 samples[kTile * kTile];
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
-        sum_[size_t(y) * size_t(settings_.width) + size_t(x)] += integrator_->renderPixelSamples(x, y, pass, perPass, &counters);
+        samples[(y - y0) * kTile + (x - x0)] = integrator_->renderPixelSamples(x, y, pass, perPass, &counters);
       }
     }
+    // The sums and the bytes change together, under the tile's lock: the noise
+    // estimate reads both halves of a pixel at one pass count.
     std::lock_guard<std::mutex> tileLock(tileLocks_[size_t(tile)]);
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
         const std::size_t i = size_t(y) * size_t(settings_.width) + size_t(x);
+        const glm::vec3 sample = samples[(y - y0) * kTile + (x - x0)];
+        sum_[i] += sample;
+        if (pass % 2 == 1) oddSum_[i] += sample;
         const glm::vec3 c = engine::rt::toneMap(sum_[i] / float(pass + 1), scene_->render());
         std::uint8_t* p = &pixels_[i * 4];
         for (int k = 0; k < 3; ++k) p[k] = engine::rt::encodeChannel(c[k], scene_->render().output);
@@ -116,6 +124,38 @@ int ProgressiveTrace::passesDone() const {
   for (int tile = 0; tile < tilesX_ * tilesY_; ++tile)
     least = std::min(least, tilePasses_[size_t(tile)].load(std::memory_order_acquire));
   return least;
+}
+
+std::optional<double> ProgressiveTrace::noisePsnr() const {
+  if (passesDone() < 2) return std::nullopt;
+  const auto& render = scene_->render();
+  auto encode = [&render](const glm::vec3& linear, int k) {
+    return double(engine::rt::encodeChannel(engine::rt::toneMap(linear, render)[k], render.output));
+  };
+  double squares = 0.0;
+  std::size_t count = 0;
+  for (int tile = 0; tile < tilesX_ * tilesY_; ++tile) {
+    std::lock_guard<std::mutex> lock(tileLocks_[size_t(tile)]);
+    const int passes = tilePasses_[size_t(tile)].load(std::memory_order_acquire);
+    const float odd = float(passes / 2), even = float(passes - passes / 2);
+    const int x0 = (tile % tilesX_) * kTile, y0 = (tile / tilesX_) * kTile;
+    const int x1 = std::min(x0 + kTile, settings_.width), y1 = std::min(y0 + kTile, settings_.height);
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        const std::size_t i = size_t(y) * size_t(settings_.width) + size_t(x);
+        const glm::vec3 evenMean = (sum_[i] - oddSum_[i]) / even, oddMean = oddSum_[i] / odd;
+        for (int k = 0; k < 3; ++k) {
+          const double d = encode(evenMean, k) - encode(oddMean, k);
+          squares += d * d;
+        }
+        count += 3;
+      }
+    }
+  }
+  // Each half holds half the samples: twice the variance of the whole, so their
+  // difference has four times the whole's mean squared error.
+  const double mse = squares / double(std::max<std::size_t>(count, 1)) / 4.0;
+  return mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : 99.0;
 }
 
 engine::Image ProgressiveTrace::snapshot() const {

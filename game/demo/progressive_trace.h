@@ -9,6 +9,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -41,6 +42,11 @@ class ProgressiveTrace {
   // Passes every tile has finished, and how many there will be.
   int passesDone() const;
   int passes() const { return passes_; }
+  // The image's own noise as a PSNR (dB) against the image it converges to,
+  // estimated from two halves of its samples: the even passes' mean against the odd
+  // passes' (in displayed values). Empty before every tile has two passes (the
+  // Whitted tracer has one).
+  std::optional<double> noisePsnr() const;
   // A copy of the encoded image as it stands.
   engine::Image snapshot() const;
 
@@ -56,6 +62,7 @@ class ProgressiveTrace {
   bool progressBar_ = false;
   std::vector<std::uint8_t> pixels_;  // RGBA8, top row first, written by the tracer
   std::vector<glm::vec3> sum_;        // linear, the sum of each pixel's samples so far
+  std::vector<glm::vec3> oddSum_;     // the same over the odd passes only (noisePsnr)
   std::unique_ptr<std::atomic<int>[]> tilePasses_;  // passes each tile has finished
   std::vector<int> tileUploaded_;                   // the passes each tile showed
   // A tile's bytes are rewritten each pass: the tracer encodes and the window uploads

@@ -45,7 +45,7 @@ engine::Result<ReferenceError> ReferenceView::compare(const engine::Image& raste
   heatmap_.uploadRgba8(heat.pixels.data());
   const int done = trace_->passesDone();
   const int spp = request_.settings.method == engine::rt::Method::Path ? done : request_.settings.samplesPerPixel;
-  return ReferenceError{spp, diff->psnr, diff->meanAbs, *ssim};
+  return ReferenceError{spp, diff->psnr, diff->meanAbs, *ssim, trace_->noisePsnr()};
 }
 
 }  // namespace demo

@@ -31,6 +31,9 @@ struct ReferenceRequest {
 struct ReferenceError {
   int spp = 0;  // the reference's samples so far
   double psnr = 0.0, meanAbs = 0.0, ssim = 0.0;
+  // The reference's own noise (ProgressiveTrace::noisePsnr): a raster PSNR near it
+  // or above it says more about the reference than the raster.
+  std::optional<double> noisePsnr;
 };
 
 class ReferenceView {

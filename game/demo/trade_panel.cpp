@@ -190,6 +190,12 @@ void referenceControls(ReferencePanel& r) {
   if (r.error) {
     ImGui::Text("at %d spp: PSNR %.2f dB, mean error %.2f, SSIM %.4f", r.error->spp, r.error->psnr, r.error->meanAbs,
                 r.error->ssim);
+    if (r.error->noisePsnr) {
+      ImGui::Text("the reference's own noise: %.1f dB%s", *r.error->noisePsnr,
+                  r.error->psnr > *r.error->noisePsnr - 3.0 ? " (the raster is within it: trace longer)" : "");
+    } else {
+      ImGui::Text("the reference's own noise: needs 2 passes");
+    }
   }
 }
 
