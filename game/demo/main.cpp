@@ -112,6 +112,9 @@ int main(int argc, char** argv) {
   std::string rotations = "slerp";
   app.add_option("--rotations", rotations, "How the rasterizer interpolates rotation keys: slerp or nlerp (the tracers always slerp)")
       ->check(CLI::IsMember({"slerp", "nlerp"}))->capture_default_str();
+  int bookmark = -1;
+  app.add_option("--bookmark", bookmark, "Start from camera bookmark N of the scene (out/bookmarks/SCENE.json, saved from the trade panel)")
+      ->check(CLI::Range(0, 1000000));
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
   std::string reference = "off";
   app.add_option("--reference", reference,
@@ -191,6 +194,7 @@ int main(int argc, char** argv) {
   if (soakSeconds > 0.0) return runSoak(scenePath, render, soakSeconds, soakReload, backend, options.run);
   // The trade panel only in a window: offscreen frames never show it.
   demo::SceneGame game(std::move(scene).value(), render, backend == engine::Backend::Window);
+  if (bookmark >= 0) game.startAtBookmark(bookmark);
   const std::map<std::string, demo::ReferenceMode> referenceModes = {{"off", demo::ReferenceMode::Off},
       {"split", demo::ReferenceMode::Split}, {"reference", demo::ReferenceMode::Reference},
       {"heatmap", demo::ReferenceMode::Heatmap}};

@@ -28,7 +28,33 @@ engine::Status SceneGame::init() {
   if (!scene) return scene.error();
   if (auto s = build(std::move(scene).value(), options_); !s) return s;
   camera_ = renderer_->initialCamera();
+  if (!panel_ && startBookmark_ < 0) return engine::Ok{};
+  if (auto s = loadBookmarks(); !s) return s;
+  if (startBookmark_ >= 0) {
+    if (startBookmark_ >= int(bookmarks_.all().size())) {
+      return engine::makeError(bookmarks_.file() + ": --bookmark " + std::to_string(startBookmark_) + ": the file has " +
+                               std::to_string(bookmarks_.all().size()) + " bookmarks");
+    }
+    bookmarks_.apply(startBookmark_, camera_);
+  }
   return engine::Ok{};
+}
+
+engine::Status SceneGame::loadBookmarks() {
+  auto loaded = Bookmarks::load(Bookmarks::fileFor(desc_.path));
+  if (!loaded) return loaded.error();
+  bookmarks_ = std::move(loaded).value();
+  return engine::Ok{};
+}
+
+engine::Status SceneGame::bookmarkView() {
+  bookmarks_.add(camera_);
+  return bookmarks_.save();
+}
+
+engine::Status SceneGame::deleteBookmark(int index) {
+  bookmarks_.erase(index);
+  return bookmarks_.save();
 }
 
 engine::Status SceneGame::applyOptions(const engine::SceneRenderOptions& options) {
@@ -49,6 +75,9 @@ engine::Status SceneGame::switchScene(const std::string& path) {
     desc_ = std::move(desc).value();
     camera_ = renderer_->initialCamera();
     updated_ = renderer_->update(time_.taken ? time_.time : 0.0);
+    // A malformed bookmarks file leaves the scene loaded, without bookmarks.
+    bookmarks_ = Bookmarks{};
+    status = loadBookmarks();
   }
   lastError_ = status ? "" : status.error().message;
   return status;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "app/game.h"
+#include "bookmarks.h"
 #include "asset/scene_desc.h"
 #include "reference_view.h"
 #include "render/render_target.h"
@@ -88,6 +89,15 @@ class SceneGame final : public engine::Game {
   engine::Status addToTable(const std::string& csvPath);
   // The knobs in effect, as one word each ("msaa4 ss1 shadow2048 pcf3 ...").
   std::string settingName() const;
+  // The scene's camera bookmarks (bookmarks.h), loaded with the scene in a window
+  // or with startAtBookmark. bookmarkView adds the camera's view and saves them.
+  Bookmarks& bookmarks() { return bookmarks_; }
+  engine::Status bookmarkView();
+  engine::Status deleteBookmark(int index);
+  void goToBookmark(int index) { bookmarks_.apply(index, camera_); }
+  // demo --bookmark N: init starts from bookmark `index` of the scene's file, and
+  // fails (naming the file) when there is no such bookmark.
+  void startAtBookmark(int index) { startBookmark_ = index; }
   // What the panel reports: the last failure to apply or load, or "".
   const std::string& lastError() const { return lastError_; }
 
@@ -110,6 +120,10 @@ class SceneGame final : public engine::Game {
   GpuHistory history_;
   ReferencePanel reference_;
   std::string tableMessage_;  // the last "add to table"'s outcome
+  Bookmarks bookmarks_;
+  std::string bookmarkMessage_;  // the last bookmark save's failure
+  int startBookmark_ = -1;
+  engine::Status loadBookmarks();
 };
 
 }  // namespace demo

@@ -199,6 +199,28 @@ void referenceControls(ReferencePanel& r) {
   }
 }
 
+// Bookmarked views: go to one, drop one, or keep the view the camera has now.
+void bookmarkControls(SceneGame& game, std::string& message) {
+  const auto& views = game.bookmarks().all();
+  int go = -1, drop = -1;
+  for (int i = 0; i < int(views.size()); ++i) {
+    ImGui::PushID(i);
+    const glm::dvec3& p = views[size_t(i)].position;
+    if (ImGui::Button("go")) go = i;
+    ImGui::SameLine();
+    if (ImGui::Button("x")) drop = i;
+    ImGui::SameLine();
+    ImGui::Text("%d: (%.1f, %.1f, %.1f)", i, p.x, p.y, p.z);
+    ImGui::PopID();
+  }
+  if (go >= 0) game.goToBookmark(go);
+  engine::Status s = engine::Ok{};
+  if (drop >= 0) s = game.deleteBookmark(drop);
+  if (ImGui::Button("bookmark this view")) s = game.bookmarkView();
+  if (!s) message = s.error().message;
+  if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
+}
+
 // "Add to table": the row goes where bench/tradeoff writes its own.
 void addToTableButton(SceneGame& game, std::string& message) {
   if (ImGui::Button("add to table")) {
@@ -226,6 +248,7 @@ void SceneGame::drawUi() {
   if (!lastError_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", lastError_.c_str());
   if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) knobs(*this);
   if (ImGui::CollapsingHeader("time", ImGuiTreeNodeFlags_DefaultOpen)) timeControls(*this);
+  if (ImGui::CollapsingHeader("camera")) bookmarkControls(*this, bookmarkMessage_);
   if (ImGui::CollapsingHeader("cost", ImGuiTreeNodeFlags_DefaultOpen)) costs(*this, history_);
   if (ImGui::CollapsingHeader("reference", ImGuiTreeNodeFlags_DefaultOpen)) {
     referenceControls(reference_);

@@ -235,6 +235,56 @@ TEST_P(TradePanel, TheReferencesNoiseEstimateIsItsError) {
   view.release();
 }
 
+// Bookmarks: a saved view comes back in the next run (--bookmark N); a bookmark
+// that is not there and a malformed file are errors naming the file.
+TEST_P(TradePanel, BookmarksKeepViewsAcrossRuns) {
+  const auto home = std::filesystem::current_path();
+  // One folder per backend: ctest runs the two at once.
+  const auto work = std::filesystem::temp_directory_path() / ("engine_bookmarks_" + std::string(backendName(GetParam())));
+  std::filesystem::remove_all(work);
+  std::filesystem::create_directories(work);
+  std::filesystem::current_path(work);
+  {
+    auto game = startGame("cornell.json");
+    ASSERT_TRUE(game);
+    EXPECT_TRUE(game->bookmarks().all().empty());
+    game->camera().position = {0.3, 1.1, -2.5};
+    game->camera().yaw = 0.4;
+    game->camera().pitch = -0.1;
+    ASSERT_TRUE(game->bookmarkView().ok());
+    EXPECT_TRUE(std::filesystem::exists(work / "out/bookmarks/cornell.json"));
+  }
+  auto desc = loadSceneFile(kScenes + "cornell.json");
+  ASSERT_TRUE(desc.ok());
+  SceneRenderOptions options;
+  options.shaderDir = test::shaderDir();
+  demo::SceneGame again(*desc, options, false);
+  again.startAtBookmark(0);
+  ASSERT_TRUE(again.init().ok());
+  EXPECT_EQ(again.camera().position, glm::dvec3(0.3, 1.1, -2.5));
+  EXPECT_EQ(again.camera().yaw, 0.4);
+  EXPECT_EQ(again.camera().pitch, -0.1);
+  demo::SceneGame missing(*desc, options, false);
+  missing.startAtBookmark(3);
+  const Status none = missing.init();
+  ASSERT_FALSE(none.ok());
+  EXPECT_NE(none.error().message.find("out/bookmarks/cornell.json: --bookmark 3: the file has 1 bookmarks"),
+            std::string::npos)
+      << none.error().message;
+  { std::ofstream(work / "out/bookmarks/cornell.json") << R"([{"x": 1, "z": 2, "yaw": 0, "pitch": 0, "fovy": 60}])"; }
+  demo::SceneGame malformed(*desc, options, false);
+  malformed.startAtBookmark(0);
+  const Status bad = malformed.init();
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("cornell.json: /0/y: expected a finite number"), std::string::npos)
+      << bad.error().message;
+  again.shutdown();
+  missing.shutdown();
+  malformed.shutdown();
+  std::filesystem::current_path(home);
+  std::filesystem::remove_all(work);
+}
+
 // "Add to table" needs a reference; with one, each press appends a row in
 // bench/tradeoff's columns, the header written once; an unwritable path is an
 // error naming it.
