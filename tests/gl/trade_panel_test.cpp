@@ -291,7 +291,10 @@ TEST_P(TradePanel, BookmarksKeepViewsAcrossRuns) {
 TEST_P(TradePanel, AddToTableAppendsRowsAgainstTheReference) {
   auto game = startGame("cornell.json");
   ASSERT_TRUE(game);
-  const std::string csv = (std::filesystem::temp_directory_path() / "engine_panel_table" / "results.csv").string();
+  // One folder per backend: ctest runs the two at once.
+  const std::string csv = (std::filesystem::temp_directory_path() /
+                           ("engine_panel_table_" + std::string(backendName(GetParam()))) / "results.csv")
+                              .string();
   std::filesystem::remove_all(std::filesystem::path(csv).parent_path());
   EXPECT_NE(game->addToTable(csv).error().message.find("no reference"), std::string::npos);
   game->reference().mode = demo::ReferenceMode::Split;
