@@ -23,6 +23,8 @@ void addCommonOptions(CLI::App& app, CommonOptions& o) {
                  "offscreen; in a window, until it is closed)")
       ->check(CLI::Range(0, 10000000));
   app.add_option("--screenshot", o.run.screenshot, "Write the last frame to this PNG");
+  app.add_flag("--screenshot-window", o.run.screenshotWindow,
+               "Window with --frames: the screenshot is the whole window, its panel included");
   app.add_option("--msaa", o.msaa, "Multisample anti-aliasing samples (default 1)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
   app.add_option("--bench", o.run.benchFile,

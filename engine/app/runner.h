@@ -27,6 +27,9 @@ struct RunOptions {
   int targetSamples = 0;    // samples of the runner's own target; 0: msaa (a game
                             // that multisamples itself asks for 1)
   std::string screenshot;  // PNG of the last frame; empty = none
+  // Window runs of a fixed number of frames: the screenshot is the whole window as
+  // shown, ImGui panels included, not only the game's frame.
+  bool screenshotWindow = false;
   std::string benchFile;   // frame-time JSON; empty = none
   std::string command;     // the command line, recorded in the bench report
   bool vsync = true;

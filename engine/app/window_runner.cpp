@@ -41,6 +41,19 @@ void showFrameTime(GLFWwindow* window, double frameMs, const WindowState& state)
   glfwSetWindowTitle(window, title);
 }
 
+// The window's back buffer as it will be shown (the frame and the UI over it),
+// top row first.
+Image readWindow(int width, int height) {
+  Image image(width, height);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+  flipVertically(image);
+  for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;  // the window has no alpha to keep
+  return image;
+}
+
 }  // namespace
 
 Status runWindow(Game& game, const RunOptions& options) {
@@ -105,6 +118,7 @@ Status runWindow(Game& game, const RunOptions& options) {
       game.drawUi();
       ui->endFrame(width, height);
     }
+    if (options.screenshotWindow && scripted && frame == options.frames - 1) lastFrame = readWindow(width, height);
     setup->context->swapBuffers();
 
     frameMs.push_back(elapsed * 1000.0);
@@ -114,7 +128,7 @@ Status runWindow(Game& game, const RunOptions& options) {
       titleTimer = 0.0;
     }
   }
-  if (!options.screenshot.empty()) lastFrame = setup->target.readPixels();
+  if (!options.screenshot.empty() && lastFrame.empty()) lastFrame = setup->target.readPixels();
   // The first interval includes start-up; leave it out of the statistics.
   if (!frameMs.empty()) frameMs.erase(frameMs.begin());
   return finishRun(*setup->context, options, game, std::move(frameMs), lastFrame.empty() ? nullptr : &lastFrame);

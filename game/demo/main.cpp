@@ -115,6 +115,12 @@ int main(int argc, char** argv) {
   int bookmark = -1;
   app.add_option("--bookmark", bookmark, "Start from camera bookmark N of the scene (out/bookmarks/SCENE.json, saved from the trade panel)")
       ->check(CLI::Range(0, 1000000));
+  std::vector<std::string> panelSet;
+  app.add_option("--panel-set", panelSet,
+                 "Window: the trade panel turns knob KNOB=VALUE on its first frame, as its combo would (msaa=4, "
+                 "ambient=sh, skinning=compute, ...); repeatable");
+  bool noTimings = false;
+  app.add_flag("--panel-no-timings", noTimings, "Window: the trade panel shows no timing figures (reproducible screenshots)");
   app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
   std::string reference = "off";
   app.add_option("--reference", reference,
@@ -195,6 +201,13 @@ int main(int argc, char** argv) {
   // The trade panel only in a window: offscreen frames never show it.
   demo::SceneGame game(std::move(scene).value(), render, backend == engine::Backend::Window);
   if (bookmark >= 0) game.startAtBookmark(bookmark);
+  game.showTimings(!noTimings);
+  if (!panelSet.empty()) {
+    engine::SceneRenderOptions checked = render;
+    for (const std::string& k : panelSet)
+      if (auto s = demo::SceneGame::parseKnob(k, checked); !s) return fail(engine::kExitBadInput, s.error().message);
+    game.queueKnobs(panelSet);
+  }
   const std::map<std::string, demo::ReferenceMode> referenceModes = {{"off", demo::ReferenceMode::Off},
       {"split", demo::ReferenceMode::Split}, {"reference", demo::ReferenceMode::Reference},
       {"heatmap", demo::ReferenceMode::Heatmap}};

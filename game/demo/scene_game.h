@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/game.h"
 #include "bookmarks.h"
@@ -98,6 +99,17 @@ class SceneGame final : public engine::Game {
   // demo --bookmark N: init starts from bookmark `index` of the scene's file, and
   // fails (naming the file) when there is no such bookmark.
   void startAtBookmark(int index) { startBookmark_ = index; }
+  // One knob of the panel as "name=value" (msaa, supersample, shadow-map, pcf,
+  // probe, ambient, ibl-size, skinning, skin-blend, rotations, terrain-error, each
+  // taking the values its combo offers) applied to `options`; an unknown name or
+  // value is an error naming both.
+  static engine::Status parseKnob(const std::string& assignment, engine::SceneRenderOptions& options);
+  // demo --panel-set: the panel turns these knobs as it draws its first frame,
+  // through applyOptions as a click on its combo does.
+  void queueKnobs(std::vector<std::string> assignments) { pendingKnobs_ = std::move(assignments); }
+  // demo --panel-no-timings: the panel shows no timing figures, which change every
+  // run (the window's golden screenshot).
+  void showTimings(bool show) { showTimings_ = show; }
   // What the panel reports: the last failure to apply or load, or "".
   const std::string& lastError() const { return lastError_; }
 
@@ -123,6 +135,8 @@ class SceneGame final : public engine::Game {
   Bookmarks bookmarks_;
   std::string bookmarkMessage_;  // the last bookmark save's failure
   int startBookmark_ = -1;
+  std::vector<std::string> pendingKnobs_;
+  bool showTimings_ = true;
   engine::Status loadBookmarks();
 };
 

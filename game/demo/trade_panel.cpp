@@ -233,7 +233,63 @@ void addToTableButton(SceneGame& game, std::string& message) {
 
 }  // namespace
 
+namespace {
+
+engine::Result<int> knobInt(const std::string& name, const std::string& value, std::initializer_list<int> choices) {
+  for (int c : choices)
+    if (value == std::to_string(c)) return c;
+  std::string list;
+  for (int c : choices) list += (list.empty() ? "" : ", ") + std::to_string(c);
+  return engine::makeError("--panel-set " + name + "=" + value + ": expected one of " + list);
+}
+
+template <typename Enum>
+engine::Result<Enum> knobNamed(const std::string& name, const std::string& value, const std::map<std::string, Enum>& names) {
+  if (auto it = names.find(value); it != names.end()) return it->second;
+  std::string list;
+  for (const auto& [n, e] : names) list += (list.empty() ? "" : ", ") + n;
+  return engine::makeError("--panel-set " + name + "=" + value + ": expected one of " + list);
+}
+
+}  // namespace
+
+// The same choices the combos offer (knobs above).
+engine::Status SceneGame::parseKnob(const std::string& assignment, engine::SceneRenderOptions& o) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos) return engine::makeError("--panel-set " + assignment + ": expected KNOB=VALUE");
+  const std::string name = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+  auto set = [](auto result, auto& field) -> engine::Status {
+    if (!result) return result.error();
+    field = *result;
+    return engine::Ok{};
+  };
+  if (name == "msaa") return set(knobInt(name, value, {1, 2, 4, 8}), o.msaaOverride);
+  if (name == "supersample") return set(knobInt(name, value, {1, 2, 3}), o.supersampleOverride);
+  if (name == "shadow-map") return set(knobInt(name, value, {256, 512, 1024, 2048, 4096}), o.shadowMapOverride);
+  if (name == "pcf") return set(knobInt(name, value, {1, 3, 5, 7, 9}), o.pcfKernelOverride);
+  if (name == "probe") return set(knobInt(name, value, {0, 64, 128, 256, 512}), o.reflectionProbeOverride);
+  if (name == "ibl-size") return set(knobInt(name, value, {16, 32, 64, 128, 256}), o.iblSizeOverride);
+  if (name == "ambient") return set(knobNamed(name, value, engine::ambientNames()), o.ambientOverride);
+  if (name == "skinning") return set(knobNamed(name, value, engine::skinningNames()), o.skinningOverride);
+  if (name == "skin-blend") return set(knobNamed(name, value, skinModeNames()), o.skinModeOverride);
+  if (name == "rotations") return set(knobNamed(name, value, rotationNames()), o.rotations);
+  if (name == "terrain-error") {
+    auto px = knobInt(name, value, {1, 2, 4, 8});
+    if (!px) return px.error();
+    o.terrainErrorOverride = *px;
+    return engine::Ok{};
+  }
+  return engine::makeError("--panel-set " + name + ": no such knob; knobs are msaa, supersample, shadow-map, pcf, "
+                           "probe, ambient, ibl-size, skinning, skin-blend, rotations, terrain-error");
+}
+
 void SceneGame::drawUi() {
+  if (!pendingKnobs_.empty()) {
+    engine::SceneRenderOptions o = options_;
+    for (const std::string& k : pendingKnobs_) (void)parseKnob(k, o);  // checked when queued
+    pendingKnobs_.clear();
+    (void)applyOptions(o);  // a failure shows in the panel
+  }
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Trade");
@@ -249,7 +305,13 @@ void SceneGame::drawUi() {
   if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) knobs(*this);
   if (ImGui::CollapsingHeader("time", ImGuiTreeNodeFlags_DefaultOpen)) timeControls(*this);
   if (ImGui::CollapsingHeader("camera")) bookmarkControls(*this, bookmarkMessage_);
-  if (ImGui::CollapsingHeader("cost", ImGuiTreeNodeFlags_DefaultOpen)) costs(*this, history_);
+  if (ImGui::CollapsingHeader("cost", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (showTimings_) {
+      costs(*this, history_);
+    } else {
+      ImGui::TextWrapped("timings hidden (--panel-no-timings: a screenshot that is the same every run)");
+    }
+  }
   if (ImGui::CollapsingHeader("reference", ImGuiTreeNodeFlags_DefaultOpen)) {
     referenceControls(reference_);
     addToTableButton(*this, tableMessage_);

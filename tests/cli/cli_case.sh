@@ -76,6 +76,20 @@ case "$CASE" in
     expect 0 "win\.png" -- "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
     cmp egl_w.png win.png || { echo "FAIL: window and EGL frames differ"; exit 1; }
     echo "ok: identical bytes" ;;
+  window_panel)
+    # The trade panel turns two knobs through its own apply path (--panel-set, as a
+    # click on the combo does), and the whole window, panel included, is compared
+    # with its golden, which shows MSAA 4 and ambient sh in the combos and in the
+    # image. The panel's timing figures, the one thing that changes between runs,
+    # are hidden. Limits as tests/golden's: without msaa=4 the window differs by 221
+    # at most (mean 0.11), so the max catches it.
+    start_xvfb
+    expect 0 "panel\.png" -- "$BIN/demo" --frames 3 --time 0.5 --size 960x600 --panel-set msaa=4 \
+      --panel-set ambient=sh --panel-no-timings --screenshot-window --screenshot panel.png
+    "$BIN/imgdiff" panel.png "$SRC/tests/golden/window_panel.png" --max-abs 64 --max-mean 0.25 \
+      || { echo "FAIL: the window differs from tests/golden/window_panel.png"; exit 1; }
+    expect 2 "--panel-set msaa=3: expected one of 1, 2, 4, 8" -- "$BIN/demo" --frames 1 --size 64x64 --panel-set msaa=3
+    expect 2 "--panel-set fog: no such knob" -- "$BIN/demo" --frames 1 --size 64x64 --panel-set fog=1 ;;
   window_bare_xvfb)
     # A bare X server (no other client) resets when its last client disconnects. The
     # display probe and the window share one connection, so the window never meets
