@@ -303,6 +303,22 @@ std::string ambientName(Ambient ambient) {
   return "?";
 }
 
+const std::map<std::string, Shading>& shadingNames() {
+  static const std::map<std::string, Shading> names{{"classic", Shading::Classic}, {"pbr", Shading::Pbr}};
+  return names;
+}
+
+const std::map<std::string, ToneMap>& toneMapNames() {
+  static const std::map<std::string, ToneMap> names{
+      {"none", ToneMap::None}, {"reinhard", ToneMap::Reinhard}, {"aces", ToneMap::Aces}};
+  return names;
+}
+
+const std::map<std::string, OutputCurve>& outputNames() {
+  static const std::map<std::string, OutputCurve> names{{"srgb", OutputCurve::Srgb}, {"gamma2.2", OutputCurve::Gamma22}};
+  return names;
+}
+
 const std::map<std::string, Skinning>& skinningNames() {
   static const std::map<std::string, Skinning> names{{"vertex", Skinning::Vertex}, {"compute", Skinning::Compute}};
   return names;
@@ -318,7 +334,7 @@ Status readRender(const Node& n, RenderDesc& r) {
   TRY(readInt(n, "msaa", r.msaa, 1, 16));
   if (r.msaa & (r.msaa - 1)) return n.at("msaa").error("expected 1, 2, 4, 8 or 16");
   TRY(readInt(n, "supersample", r.supersample, 1, 4));
-  TRY(readEnum(n, "shading", r.shading, std::map<std::string, Shading>{{"classic", Shading::Classic}, {"pbr", Shading::Pbr}}));
+  TRY(readEnum(n, "shading", r.shading, shadingNames()));
   TRY(readInt(n, "shadow_map", r.shadowMapSize, 64, 8192));
   TRY(readEnum(n, "shadow_filter", r.shadowFilter, std::map<std::string, ShadowFilter>{{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}}));
   TRY(readInt(n, "pcf_kernel", r.pcfKernel, 1, 15));
@@ -332,8 +348,8 @@ Status readRender(const Node& n, RenderDesc& r) {
   TRY(readInt(n, "ibl_size", r.iblSize, 16, 1024));
   TRY(readEnum(n, "skinning", r.skinning, skinningNames()));
   TRY(readFloat(n, "exposure", r.exposure, 1e-6, 1e6));
-  TRY(readEnum(n, "tonemap", r.toneMap, std::map<std::string, ToneMap>{{"none", ToneMap::None}, {"reinhard", ToneMap::Reinhard}, {"aces", ToneMap::Aces}}));
-  TRY(readEnum(n, "output", r.output, std::map<std::string, OutputCurve>{{"srgb", OutputCurve::Srgb}, {"gamma2.2", OutputCurve::Gamma22}}));
+  TRY(readEnum(n, "tonemap", r.toneMap, toneMapNames()));
+  TRY(readEnum(n, "output", r.output, outputNames()));
   return Ok{};
 }
 

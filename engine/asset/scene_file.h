@@ -18,6 +18,10 @@ Result<SceneDesc> parseScene(const std::string& text, const std::string& name);
 const std::map<std::string, Ambient>& ambientNames();
 // The name of `ambient` in that map (for --describe).
 std::string ambientName(Ambient ambient);
+// render.shading's, render.tonemap's and render.output's names.
+const std::map<std::string, Shading>& shadingNames();
+const std::map<std::string, ToneMap>& toneMapNames();
+const std::map<std::string, OutputCurve>& outputNames();
 // render.skinning's and --skinning's names: vertex, compute.
 const std::map<std::string, Skinning>& skinningNames();
 std::string skinningName(Skinning skinning);

@@ -301,6 +301,10 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   render = scene.render;
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
   render.skinning = options.skinningOverride.value_or(render.skinning);
+  render.shading = options.shadingOverride.value_or(render.shading);
+  if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
+  render.toneMap = options.toneMapOverride.value_or(render.toneMap);
+  render.output = options.outputOverride.value_or(render.output);
   terrainError = options.terrainErrorOverride > 0.0 ? options.terrainErrorOverride : scene.terrain.errorPixels;
   skinModeOverride = options.skinModeOverride;
   rotations = options.rotations;
@@ -329,13 +333,13 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   pointShadows = !pointLights.empty() && scene.lights[size_t(pointLights[0])].shadows;
 
   std::vector<std::string> defines;
-  if (scene.render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
+  if (render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
   sunFarShadows = sunShadows && scene.terrain.enabled;
   if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
   if (scene.fog.enabled) defines.push_back("FOG 1");
-  if (scene.render.shading == Shading::Pbr) {
+  if (render.shading == Shading::Pbr) {
     ambient = options.ambientOverride.value_or(ambientOf(scene));
     iblSize = options.iblSizeOverride > 0 ? options.iblSizeOverride : render.iblSize;
     if (ambient == Ambient::Sh) defines.push_back("AMBIENT_SH 1");
@@ -416,7 +420,7 @@ Status SceneRenderer::Impl::makeSky() {
 // is loaded. From it the SH irradiance, the BRDF table and, for IBL, the
 // prefiltered chain; the cube itself is dropped.
 Status SceneRenderer::Impl::makeEnvironmentLighting() {
-  if (scene.render.shading == Shading::Classic || ambient == Ambient::Hemisphere) return Ok{};
+  if (render.shading == Shading::Classic || ambient == Ambient::Hemisphere) return Ok{};
   const auto start = std::chrono::steady_clock::now();
   GLint callerFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
@@ -1271,8 +1275,8 @@ std::string SceneRenderer::describe() const {
   if (s.scene.fog.enabled) out << "+fog";
   if (s.blendPass) out << " blend(sorted)";
   out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
-  out << "\nshading: " << (s.scene.render.shading == Shading::Classic ? "classic" : "pbr");
-  if (s.scene.render.shading == Shading::Pbr) {
+  out << "\nshading: " << (s.render.shading == Shading::Classic ? "classic" : "pbr");
+  if (s.render.shading == Shading::Pbr) {
     out << ", ambient " << ambientName(s.ambient);
     if (s.environmentLighting) out << " (built once in " << std::fixed << std::setprecision(1) << s.iblMilliseconds << " ms)";
   }

@@ -35,6 +35,11 @@ struct SceneRenderOptions {
   double terrainErrorOverride = 0.0;         // > 0 replaces terrain.error_pixels (the LOD target)
   // Replaces every model's skinning (lbs, dqs, none: the bind pose).
   std::optional<SkinMode> skinModeOverride;
+  // Replace render.shading, render.exposure (> 0), render.tonemap, render.output.
+  std::optional<Shading> shadingOverride;
+  float exposureOverride = 0.0f;
+  std::optional<ToneMap> toneMapOverride;
+  std::optional<OutputCurve> outputOverride;
   // How the rasterizer's poses interpolate rotation keys: slerp (exact) or nlerp.
   QuatInterpolation rotations = QuatInterpolation::Slerp;
 };

@@ -233,9 +233,20 @@ std::string SceneGame::settingName() const {
        << pick(o.shadowMapOverride, r.shadowMapSize) << " pcf"
        << pick(o.pcfKernelOverride, r.shadowFilter == engine::ShadowFilter::Hard ? 1 : r.pcfKernel) << " probe"
        << (o.reflectionProbeOverride >= 0 ? o.reflectionProbeOverride : r.reflectionProbe);
-  if (r.shading == engine::Shading::Pbr) {
+  const engine::Shading shading = o.shadingOverride.value_or(r.shading);
+  if (o.shadingOverride && *o.shadingOverride != r.shading) name << (shading == engine::Shading::Pbr ? " pbr" : " classic");
+  if (shading == engine::Shading::Pbr) {
     name << " " << engine::ambientName(o.ambientOverride.value_or(engine::ambientOf(scene))) << " ibl"
          << pick(o.iblSizeOverride, r.iblSize);
+  }
+  if (o.exposureOverride > 0.0f && o.exposureOverride != r.exposure) name << " exposure" << o.exposureOverride;
+  if (o.toneMapOverride && *o.toneMapOverride != r.toneMap) {
+    for (const auto& [n, t] : engine::toneMapNames())
+      if (t == *o.toneMapOverride) name << " tonemap-" << n;
+  }
+  if (o.outputOverride && *o.outputOverride != r.output) {
+    for (const auto& [n, c] : engine::outputNames())
+      if (c == *o.outputOverride) name << " output-" << n;
   }
   if (scene.terrain.enabled) name << " lod" << (o.terrainErrorOverride > 0.0 ? o.terrainErrorOverride : scene.terrain.errorPixels);
   if (!scene.models.empty()) {

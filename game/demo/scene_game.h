@@ -100,7 +100,8 @@ class SceneGame final : public engine::Game {
   // fails (naming the file) when there is no such bookmark.
   void startAtBookmark(int index) { startBookmark_ = index; }
   // One knob of the panel as "name=value" (msaa, supersample, shadow-map, pcf,
-  // probe, ambient, ibl-size, skinning, skin-blend, rotations, terrain-error, each
+  // probe, shading, ambient, ibl-size, exposure, tonemap, output, skinning,
+  // skin-blend, rotations, terrain-error, each
   // taking the values its combo offers) applied to `options`; an unknown name or
   // value is an error naming both.
   static engine::Status parseKnob(const std::string& assignment, engine::SceneRenderOptions& options);

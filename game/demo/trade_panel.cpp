@@ -107,6 +107,10 @@ engine::SceneRenderOptions effective(const engine::SceneRenderOptions& o, const 
   if (!e.ambientOverride) e.ambientOverride = engine::ambientOf(scene);
   if (!e.skinningOverride) e.skinningOverride = r.skinning;
   if (e.terrainErrorOverride <= 0.0) e.terrainErrorOverride = scene.terrain.errorPixels;
+  if (!e.shadingOverride) e.shadingOverride = r.shading;
+  if (e.exposureOverride <= 0.0f) e.exposureOverride = r.exposure;
+  if (!e.toneMapOverride) e.toneMapOverride = r.toneMap;
+  if (!e.outputOverride) e.outputOverride = r.output;
   return e;
 }
 
@@ -118,10 +122,16 @@ void knobs(SceneGame& game) {
   changed |= pickInt("shadow map", o.shadowMapOverride, {256, 512, 1024, 2048, 4096});
   changed |= pickInt("PCF kernel", o.pcfKernelOverride, {1, 3, 5, 7, 9});
   changed |= pickInt("probe size", o.reflectionProbeOverride, {0, 64, 128, 256, 512});
-  if (scene.render.shading == engine::Shading::Pbr) {
+  changed |= pickNamed("shading", o.shadingOverride, engine::shadingNames());
+  if (*o.shadingOverride == engine::Shading::Pbr) {
     changed |= pickNamed("ambient", o.ambientOverride, engine::ambientNames());
     changed |= pickInt("IBL size", o.iblSizeOverride, {16, 32, 64, 128, 256});
   }
+  double exposure = o.exposureOverride;
+  changed |= pickDouble("exposure", exposure, {0.25, 0.5, 1.0, 2.0, 4.0});
+  o.exposureOverride = float(exposure);
+  changed |= pickNamed("tone map", o.toneMapOverride, engine::toneMapNames());
+  changed |= pickNamed("output", o.outputOverride, engine::outputNames());
   if (scene.terrain.enabled) changed |= pickDouble("LOD target (px)", o.terrainErrorOverride, {0.5, 1.0, 2.0, 4.0, 8.0});
   if (!scene.models.empty()) {
     changed |= pickNamed("skinning", o.skinningOverride, engine::skinningNames());
@@ -273,6 +283,20 @@ engine::Status SceneGame::parseKnob(const std::string& assignment, engine::Scene
   if (name == "skinning") return set(knobNamed(name, value, engine::skinningNames()), o.skinningOverride);
   if (name == "skin-blend") return set(knobNamed(name, value, skinModeNames()), o.skinModeOverride);
   if (name == "rotations") return set(knobNamed(name, value, rotationNames()), o.rotations);
+  if (name == "shading") return set(knobNamed(name, value, engine::shadingNames()), o.shadingOverride);
+  if (name == "tonemap") return set(knobNamed(name, value, engine::toneMapNames()), o.toneMapOverride);
+  if (name == "output") return set(knobNamed(name, value, engine::outputNames()), o.outputOverride);
+  if (name == "exposure") {
+    for (double e : {0.25, 0.5, 1.0, 2.0, 4.0}) {
+      char text[16];
+      std::snprintf(text, sizeof text, "%g", e);
+      if (value == text) {
+        o.exposureOverride = float(e);
+        return engine::Ok{};
+      }
+    }
+    return engine::makeError("--panel-set exposure=" + value + ": expected one of 0.25, 0.5, 1, 2, 4");
+  }
   if (name == "terrain-error") {
     auto px = knobInt(name, value, {1, 2, 4, 8});
     if (!px) return px.error();
@@ -280,7 +304,7 @@ engine::Status SceneGame::parseKnob(const std::string& assignment, engine::Scene
     return engine::Ok{};
   }
   return engine::makeError("--panel-set " + name + ": no such knob; knobs are msaa, supersample, shadow-map, pcf, "
-                           "probe, ambient, ibl-size, skinning, skin-blend, rotations, terrain-error");
+                           "probe, shading, ambient, ibl-size, exposure, tonemap, output, skinning, skin-blend, rotations, terrain-error");
 }
 
 void SceneGame::drawUi() {

@@ -81,6 +81,16 @@ TEST_P(TradePanel, AKnobRebuildsTheRendererOverTheSameScene) {
       << game->renderer()->describe();
   EXPECT_NE(game->settingName().find("skinning-compute"), std::string::npos) << game->settingName();
   EXPECT_GT(game->renderer()->stats().verticesDeformed, 0);
+  // The scene file's own knobs, through the panel's parser: classic shading builds
+  // the CLASSIC programs, and the name says what changed.
+  for (const char* knob : {"shading=classic", "exposure=2", "tonemap=reinhard"})
+    ASSERT_TRUE(demo::SceneGame::parseKnob(knob, options).ok()) << knob;
+  EXPECT_FALSE(demo::SceneGame::parseKnob("exposure=3", options).ok());
+  ASSERT_TRUE(game->applyOptions(options).ok()) << game->lastError();
+  ASSERT_TRUE(frame(*game, *target, 0.8).ok());
+  EXPECT_NE(game->renderer()->describe().find("shading: classic"), std::string::npos) << game->renderer()->describe();
+  EXPECT_NE(game->settingName().find("classic"), std::string::npos) << game->settingName();
+  EXPECT_NE(game->settingName().find("exposure2 tonemap-reinhard"), std::string::npos) << game->settingName();
 }
 
 // An impossible knob (more samples than the GL has) and a scene file that does not
