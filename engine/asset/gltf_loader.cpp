@@ -161,9 +161,9 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 // Checked on the raw JSON, before tinygltf: a required extension changes what the
-// data means (an unknown compression's accessors would read as zeros or as
-// bytes that are not theirs). Required and unsupported: an error listing them all. Used but
-// optional: a warning each, and the model is read without them.
+// data means (an unknown compression's accessors would read as zeros or as bytes
+// that are not theirs). Required and unsupported: an error listing them all. Used
+// but optional: a warning each, and the model is read without them.
 Status checkExtensions(const nlohmann::json& doc, const std::string& path, std::vector<std::string>& warnings) {
   const auto required = unsupportedExtensions(doc, "extensionsRequired");
   if (!required.empty()) {
@@ -378,7 +378,9 @@ Result<tinygltf::Model> parseWithTinygltf(const std::vector<unsigned char>& byte
       jsonText.find("KHR_draco_mesh_compression") != std::string::npos) {
     nlohmann::json doc = nlohmann::json::parse(jsonText, nullptr, false);
     if (gltf::prepareCompressedJson(doc)) {
-      jsonText = doc.dump();
+      // parse() has checked the UTF-8, so replace never fires; it only keeps
+      // dump() from being able to throw.
+      jsonText = doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
       if (binary) stubbedGlb = withGlbJson(bytes, jsonText);
     }
   }
