@@ -14,6 +14,7 @@
 #include <tiny_gltf.h>
 
 #include "asset/gltf_accessor.h"
+#include "asset/gltf_compression.h"
 #include "asset/tangents.h"
 #include "asset/texture_transform.h"
 #include "core/log.h"
@@ -81,6 +82,25 @@ Result<std::string> glbJson(const std::vector<unsigned char>& bytes, const std::
   return std::string(reinterpret_cast<const char*>(bytes.data() + 20), static_cast<std::size_t>(jsonLength));
 }
 
+// `bytes` (a GLB checked by glbJson) with its JSON chunk replaced by `json`; the
+// chunks after it are kept as they are.
+std::vector<unsigned char> withGlbJson(const std::vector<unsigned char>& bytes, std::string json) {
+  json.append((4 - json.size() % 4) % 4, ' ');  // chunks are 4-byte aligned, JSON padded with spaces
+  const std::size_t oldJson = readU32(bytes, 12);
+  const std::size_t rest = std::min(bytes.size(), static_cast<std::size_t>(readU32(bytes, 8)));
+  const std::size_t tail = std::min(rest, 20 + ((oldJson + 3) & ~std::size_t{3}));
+  std::vector<unsigned char> out(20 + json.size() + (rest - tail));
+  auto put = [&](std::size_t at, std::uint32_t v) { std::memcpy(out.data() + at, &v, 4); };
+  std::memcpy(out.data(), bytes.data(), 8);
+  put(8, static_cast<std::uint32_t>(out.size()));
+  put(12, static_cast<std::uint32_t>(json.size()));
+  put(16, kGlbJsonChunk);
+  std::memcpy(out.data() + 20, json.data(), json.size());
+  std::copy(bytes.begin() + static_cast<std::ptrdiff_t>(tail), bytes.begin() + static_cast<std::ptrdiff_t>(rest),
+            out.begin() + static_cast<std::ptrdiff_t>(20 + json.size()));
+  return out;
+}
+
 std::string percentDecode(const std::string& s) {
   std::string out;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -114,9 +134,12 @@ bool uriStaysInFolder(const std::string& uri) {
 
 // The glTF extensions this loader implements. KHR_mesh_quantization needs nothing
 // of its own: every accessor is read with its component type and normalisation.
+// The two compressions are decoded into plain buffers after tinygltf
+// (gltf_compression.h).
 const std::set<std::string>& supportedExtensions() {
   static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength",
-                                               "KHR_texture_transform"};
+                                               "KHR_texture_transform", "KHR_draco_mesh_compression",
+                                               "EXT_meshopt_compression"};
   return supported;
 }
 
@@ -138,9 +161,9 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 // Checked on the raw JSON, before tinygltf: a required extension changes what the
-// data means (Draco's accessors have no bufferView, which tinygltf would report
-// instead). Required and unsupported: an error listing them all. Used but
-// optional: a warning each, and the model is read without them.
+// data means (an unknown compression's accessors would read as zeros or as bytes
+// that are not theirs). Required and unsupported: an error listing them all. Used
+// but optional: a warning each, and the model is read without them.
 Status checkExtensions(const nlohmann::json& doc, const std::string& path, std::vector<std::string>& warnings) {
   const auto required = unsupportedExtensions(doc, "extensionsRequired");
   if (!required.empty()) {
@@ -348,6 +371,20 @@ Result<tinygltf::Model> parseWithTinygltf(const std::vector<unsigned char>& byte
   }
   Status raw = checkRawJson(jsonText, path, out.warnings);
   if (!raw) return raw.error();
+  // Compressed models hold things tinygltf refuses; they get placeholders first
+  // (the search keeps other files from being parsed twice).
+  std::vector<unsigned char> stubbedGlb;
+  if (jsonText.find("EXT_meshopt_compression") != std::string::npos ||
+      jsonText.find("KHR_draco_mesh_compression") != std::string::npos) {
+    nlohmann::json doc = nlohmann::json::parse(jsonText, nullptr, false);
+    if (gltf::prepareCompressedJson(doc)) {
+      // parse() has checked the UTF-8, so replace never fires; it only keeps
+      // dump() from being able to throw.
+      jsonText = doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+      if (binary) stubbedGlb = withGlbJson(bytes, jsonText);
+    }
+  }
+  const std::vector<unsigned char>& glb = stubbedGlb.empty() ? bytes : stubbedGlb;
 
   tinygltf::TinyGLTF loader;
   tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
@@ -357,8 +394,8 @@ Result<tinygltf::Model> parseWithTinygltf(const std::vector<unsigned char>& byte
   loader.SetImageLoader(&tolerantImageLoader, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                                 static_cast<unsigned int>(bytes.size()),
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(),
+                                                 static_cast<unsigned int>(glb.size()),
                                                  folder.string())
                    : loader.LoadASCIIFromString(&model, &err, &warn, jsonText.c_str(),
                                                 static_cast<unsigned int>(jsonText.size()),
@@ -370,6 +407,7 @@ Result<tinygltf::Model> parseWithTinygltf(const std::vector<unsigned char>& byte
     for (std::size_t i = 1; i < lines.size(); ++i) message += "; " + lines[i];
     return makeError(path + ": " + message);
   }
+  if (Status s = gltf::decodeCompressedGeometry(model, path); !s) return s.error();
   return model;
 }
 

@@ -612,18 +612,21 @@ TEST(TextureTransform, MatrixIsTranslationRotationScale) {
 
 
 // A required extension this engine lacks is an error listing them all, checked
-// before tinygltf (which would report Draco's missing bufferViews instead); an
-// optional one is a warning naming it, and the model loads without it.
+// before tinygltf (which would report what the extension leaves out, such as a
+// compressed texture's missing source, instead); an optional one is a warning
+// naming it, and the model loads without it. The supported ones, compressions
+// included, are neither.
 TEST_F(LoaderTest, UnsupportedExtensionsRequiredAreErrorsUsedAreWarnings) {
   TestModel required;
-  required.doc["extensionsUsed"] = {"KHR_draco_mesh_compression", "KHR_mesh_quantization", "EXT_unheard_of"};
-  required.doc["extensionsRequired"] = {"KHR_draco_mesh_compression", "KHR_mesh_quantization", "EXT_unheard_of"};
-  required.doc["accessors"][0].erase("bufferView");  // as Draco leaves them
+  required.doc["extensionsUsed"] = {"KHR_texture_basisu", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
+                                    "EXT_meshopt_compression", "EXT_unheard_of"};
+  required.doc["extensionsRequired"] = required.doc["extensionsUsed"];
+  required.doc["accessors"][0].erase("bufferView");
   const std::string path = write(required);
   auto refused = loadGltf(path);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.error().message,
-            path + ": requires KHR_draco_mesh_compression, EXT_unheard_of, which this engine does not support");
+            path + ": requires KHR_texture_basisu, EXT_unheard_of, which this engine does not support");
 
   TestModel optional;
   optional.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_mesh_quantization"};

@@ -66,6 +66,10 @@ case "$CASE" in
       || { echo "FAIL: not refused within $limit KiB"; cat "$WORK/$CASE/capped.txt"; exit 1; }
     model too_many_nodes.gltf 2 "too_many_nodes\.gltf: 1048577 nodes, the limit is 1048576" ;;
   too_many_joints) model too_many_joints.glb 2 "too_many_joints\.glb: skin 0: 65537 joints, the limit is 65536" ;;
+  # Compressed geometry that does not decode: the file, the element and the
+  # extension, and the decoder's own reason.
+  draco_truncated) model draco_truncated.glb 2 "draco_truncated\.glb: mesh 0 primitive 0: KHR_draco_mesh_compression: decode failed: " ;;
+  meshopt_truncated) model meshopt_truncated.glb 2 "meshopt_truncated\.glb: bufferView 0: EXT_meshopt_compression: decode failed: meshopt error -2 " ;;
   # A texture that cannot be used is not fatal (the loader's documented rule: a
   # model without its texture is still worth showing): a warning naming the file
   # and the image, a white fallback, exit 0.

@@ -216,6 +216,28 @@ def main(out):
             "index": 0, "texCoord": 2, "extensions": {"KHR_texture_transform": {"offset": "far", "scale": [1]}}}
     case("bad_texture_settings.glb", bad_texture_settings)
 
+    # Compressed geometry cut short. Draco: a stream with a whole header (magic,
+    # version 2.2, a triangle mesh, edgebreaker) and nothing after it. Meshopt: the
+    # positions as a vertex stream of 3 x 12 bytes whose data stops after the
+    # header byte and a few more.
+    def compressed(ext):
+        def edit(m):
+            off = len(m.bin)
+            data = {"KHR_draco_mesh_compression": b"DRACO\x02\x02\x01\x01\x00\x00",
+                    "EXT_meshopt_compression": b"\xa0\x00\x00\x00\x00\x00"}[ext]
+            m.bin += data + b"\0" * (-len(data) % 4)
+            m.doc["buffers"][0]["byteLength"] = len(m.bin)
+            m.doc["extensionsUsed"] = m.doc["extensionsRequired"] = [ext]
+            if ext == "KHR_draco_mesh_compression":
+                m.doc["bufferViews"].append({"buffer": 0, "byteOffset": off, "byteLength": len(data)})
+                m.doc["meshes"][0]["primitives"][0]["extensions"] = {ext: {"bufferView": 7, "attributes": {"POSITION": 0}}}
+            else:
+                m.doc["bufferViews"][0]["extensions"] = {ext: {"buffer": 0, "byteOffset": off, "byteLength": len(data),
+                                                               "byteStride": 12, "count": 3, "mode": "ATTRIBUTES"}}
+        return edit
+    case("draco_truncated.glb", compressed("KHR_draco_mesh_compression"))
+    case("meshopt_truncated.glb", compressed("EXT_meshopt_compression"))
+
     # Scene files (the format of assets/scenes/*.json) with values of the wrong type.
     write("scene_fovy_string.json", json.dumps({"camera": {"fovy": "wide"}}))
     write("scene_models_number.json", json.dumps({"models": 5}))
