@@ -22,6 +22,9 @@ struct AccessorValues {
 };
 
 // `context` prefixes errors, e.g. "hero.glb: mesh 0 primitive 1 POSITION".
+// Bytes of one component of a glTF componentType (BYTE ... FLOAT); 0 for others.
+int componentBytes(int componentType);
+
 Result<AccessorValues> readAccessor(const tinygltf::Model& model, int index,
                                     const std::string& context);
 

@@ -13,6 +13,7 @@
 #include <meshoptimizer.h>
 
 #include "asset/draco_mesh.h"
+#include "asset/gltf_accessor.h"
 #include "asset/gltf_loader.h"
 
 // Why the loader decodes Draco itself rather than through tinygltf's
@@ -206,17 +207,6 @@ Status decodeMeshopt(tinygltf::Model& model, const std::string& file) {
 
 // ---- KHR_draco_mesh_compression -----------------------------------------------
 
-int componentBytes(int componentType) {
-  switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
-  }
-}
 
 Result<DracoMesh> decodeDracoBytes(const tinygltf::Model& model, const tinygltf::Value& ext, const std::string& where) {
   auto viewIndex = unsignedField(ext, "bufferView", std::nullopt, where);

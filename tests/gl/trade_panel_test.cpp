@@ -52,6 +52,16 @@ Status frame(demo::SceneGame& game, RenderTarget& target, double time) {
   return game.render({time, target.width(), target.height()});
 }
 
+// Waits for the reference to finish every pass (two minutes at most).
+bool finish(demo::ReferenceView& view) {
+  const auto start = std::chrono::steady_clock::now();
+  while (view.trace()->passesDone() < view.trace()->passes()) {
+    if (std::chrono::steady_clock::now() - start > std::chrono::seconds(120)) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
 }  // namespace
 
 TEST_P(TradePanel, AKnobRebuildsTheRendererOverTheSameScene) {
@@ -181,11 +191,7 @@ TEST_P(TradePanel, TheReferenceIsWhatTheTracerWrites) {
     request.settings.seed = 5;
     demo::ReferenceView view;
     ASSERT_TRUE(view.update(*scene, request).ok());
-    const auto start = std::chrono::steady_clock::now();
-    while (view.trace()->passesDone() < view.trace()->passes()) {
-      ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(120));
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    ASSERT_TRUE(finish(view));
     const Image got = view.trace()->snapshot();
     rt::RenderSettings settings = request.settings;
     settings.width = request.width;
@@ -224,11 +230,7 @@ TEST_P(TradePanel, TheReferencesNoiseEstimateIsItsError) {
   demo::ReferenceView view;
   ASSERT_TRUE(view.update(*scene, request).ok());
   EXPECT_FALSE(view.trace()->noisePsnr()) << "an estimate before two passes";
-  const auto start = std::chrono::steady_clock::now();
-  while (view.trace()->passesDone() < view.trace()->passes()) {
-    ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(120));
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  ASSERT_TRUE(finish(view));
   const auto estimate = view.trace()->noisePsnr();
   ASSERT_TRUE(estimate);
   rt::RenderSettings truth = request.settings;
