@@ -352,7 +352,12 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (render.skinning == Skinning::Compute) skinPrograms = std::make_unique<SkinPrograms>(shaderDir);
 
   if (auto s = makeSky(); !s) return s;
-  auto postProgram = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}});
+  // The one post variant these settings need (post.frag says why not uniforms).
+  std::vector<std::string> postDefines{"SUPERSAMPLE " + std::to_string(render.supersample),
+                                       "TONE_MAP " + std::to_string(int(render.toneMap))};
+  if (render.output == OutputCurve::Gamma22) postDefines.push_back("OUTPUT_GAMMA22 1");
+  auto postProgram =
+      gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}}, postDefines);
   if (!postProgram) return postProgram.error();
   post = std::move(postProgram).value();
   emptyVao = gl::VertexArray::create();
@@ -1220,9 +1225,6 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   glDisable(GL_FRAMEBUFFER_SRGB);
   post.use();
   post.set("u_exposure", render.exposure);
-  post.set("u_toneMap", int(render.toneMap));
-  post.set("u_outputCurve", render.output == OutputCurve::Gamma22 ? 1 : 0);
-  post.set("u_supersample", render.supersample);
   hdr.bind(gl::binding::kHdr);
   emptyVao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
