@@ -34,6 +34,16 @@ layout(location = 0) out vec4 o_color;
 void main() {
   vec4 base = materialBaseColor(v_uv);
   materialAlphaTest(base.a);
+#ifdef UNLIT
+  // KHR_materials_unlit: the base colour as it is, lit by nothing (fog still
+  // falls between it and the eye).
+  vec3 unlit = base.rgb;
+#ifdef FOG
+  unlit = applyFog(unlit, length(v_position), u_fog.rgb, u_fog.w);
+#endif
+  o_color = vec4(unlit, base.a);
+  return;
+#endif
   // Planes and double-sided meshes: a back face is lit as the other side (normal,
   // tangent and bitangent all flipped, which flips the perturbed normal).
   float side = gl_FrontFacing ? 1.0 : -1.0;

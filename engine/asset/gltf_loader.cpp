@@ -138,6 +138,7 @@ bool uriStaysInFolder(const std::string& uri) {
 // (gltf_compression.h).
 const std::set<std::string>& supportedExtensions() {
   static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength",
+                                               "KHR_materials_unlit",
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
                                                "EXT_meshopt_compression"};
   return supported;
@@ -719,6 +720,7 @@ class Converter {
       if (!strength) return error(strength.error().message);
       m.emissiveFactor *= *strength;
       m.doubleSided = src.doubleSided;
+      m.unlit = src.extensions.count("KHR_materials_unlit") > 0;
       m.alphaMode = src.alphaMode == "BLEND" ? AlphaMode::Blend : src.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Opaque;
       m.alphaCutoff = static_cast<float>(src.alphaCutoff);
       const bool finite = std::isfinite(m.normalScale) && std::isfinite(m.occlusionStrength) &&

@@ -121,6 +121,9 @@ struct MaterialData {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;  // MASK: fragments with alpha below it are discarded
   bool doubleSided = false;  // no back-face culling; back faces flip the normal
+  // KHR_materials_unlit: the surface shows its base colour (factor x texture x
+  // vertex colour) as it is, lit by nothing; every renderer draws it so.
+  bool unlit = false;
   std::array<TextureSlotData, kTextureSlots> textures;  // by TextureSlot
   const TextureSlotData& texture(TextureSlot slot) const { return textures[static_cast<std::size_t>(slot)]; }
   TextureSlotData& texture(TextureSlot slot) { return textures[static_cast<std::size_t>(slot)]; }

@@ -59,6 +59,7 @@ class Tracer {
     const float footprint = footprintAt(cone, *hit, v, distance);
     // The terrain's layers read the unflipped shading normal, as terrain.frag does.
     const HitMaterial m = scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1), footprint, double(hit->p.y), glm::vec3(hit->ns));
+    if (m.unlit) return depth == 0 ? scene_.fogged(m.albedo, distance) : m.albedo;
     // Surfaces are two-sided: shade with the normal that faces the viewer.
     const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
     glm::vec3 color = scene_.render().shading == Shading::Pbr ? shadePbr(*hit, m, n, v, rng, counters)

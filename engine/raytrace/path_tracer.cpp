@@ -123,6 +123,10 @@ class PathTracer {
           scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1), footprint, double(hit->p.y), glm::vec3(hit->ns));
       if (firstHit && *firstHit < 0.0f) *firstHit = float(glm::length(glm::dvec3(hit->p) - cameraPosition_));
       radiance += beta * m.emission;
+      if (m.unlit) {
+        radiance += beta * m.albedo;  // KHR_materials_unlit: its colour, and no bounce
+        break;
+      }
       // Past the last bounce a vertex only shows what it emits: the BSDF ray that
       // found it still had to be traced, for the lights MIS shares with it.
       if (depth > settings_.maxDepth) break;

@@ -184,6 +184,12 @@ Status RtScene::setSingleSided(int material, bool singleSided) {
   return Ok{};
 }
 
+Status RtScene::setUnlit(int material, bool unlit) {
+  if (auto s = checkMaterial(material); !s) return s;
+  extras_[size_t(material)].unlit = unlit;
+  return Ok{};
+}
+
 Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
   return attachTexture(material, &MaterialExtras::emissiveTexture, std::move(texture));
 }
@@ -207,7 +213,7 @@ Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
 HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns) const {
   const MaterialDesc& m = materials_[size_t(material)];
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
-                  m.metallic, m.roughness, m.emission};
+                  m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit};
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
     out.roughness *= t.y;

@@ -53,6 +53,9 @@ struct HitMaterial {
   float ambient = 0.1f, diffuse = 0.9f, specular = 0.0f, shininess = 32.0f, reflection = 0.0f;
   float metallic = 0.0f, roughness = 0.6f;
   glm::vec3 emission{0.0f};
+  // KHR_materials_unlit: the surface sends its albedo (base colour) back as it is
+  // and scatters nothing; the tracers stop there.
+  bool unlit = false;
 };
 
 class RtScene {
@@ -79,6 +82,8 @@ class RtScene {
   // glTF's single-sided materials: the rasterizer culls their back faces, so rays
   // pass through them from behind (the path tracer; shadows still fall).
   Status setSingleSided(int material, bool singleSided);
+  // KHR_materials_unlit (HitMaterial::unlit).
+  Status setUnlit(int material, bool unlit);
   bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
   // BLEND's alpha; the path tracer lets the rest through.
@@ -193,6 +198,7 @@ class RtScene {
     int emissiveTexture = -1;
     int metallicRoughnessTexture = -1;
     bool singleSided = false;
+    bool unlit = false;
     int terrain = -1;
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alpha = 1.0f;

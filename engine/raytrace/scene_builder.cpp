@@ -49,6 +49,7 @@ Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
     }
     if (auto s = scene.setMaterialAlpha(material, m.alphaMode, m.baseColorFactor.a, m.alphaCutoff); !s) return s.error();
     if (auto s = scene.setSingleSided(material, !m.doubleSided); !s) return s.error();
+    if (auto s = scene.setUnlit(material, m.unlit); !s) return s.error();
     materials.push_back(material);
   }
   return materials;

@@ -21,6 +21,7 @@ std::string ShaderVariant::describe() const {
   if (occlusion) name += "+occlusion";
   if (alphaMask) name += "+mask";
   if (uvTransform) name += "+uvtransform";
+  if (unlit) name += "+unlit";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -52,6 +53,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.alphaMask) defines.push_back("ALPHA_MASK 1");
   if (variant.morph) defines.push_back("MORPH 1");
   if (variant.uvTransform) defines.push_back("UV_TRANSFORM 1");
+  if (variant.unlit) defines.push_back("UNLIT 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -357,6 +359,10 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
   // A shadow pass needs the material only to cut out MASK holes.
   if (depthOnly) {
     v.textured = v.alphaMask && m->baseColorImage >= 0;
+  } else if (m->unlit) {
+    // Nothing but the base colour is read: no variant for the other slots.
+    v.textured = m->baseColorImage >= 0;
+    v.unlit = true;
   } else {
     v.textured = m->baseColorImage >= 0;
     v.normalMap = m->normalImage >= 0 && !prim.tangents.empty();

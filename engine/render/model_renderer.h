@@ -40,6 +40,8 @@ struct ShaderVariant {
   // Some texture of the material reads TEXCOORD_1 or has a KHR_texture_transform
   // (common/material.glsl's UV_TRANSFORM); the others sample TEXCOORD_0 as it is.
   bool uvTransform = false;
+  // KHR_materials_unlit (scene.frag's UNLIT): the base colour as it is. Last too.
+  bool unlit = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };

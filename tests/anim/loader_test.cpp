@@ -832,5 +832,21 @@ TEST_F(LoaderTest, EmissiveStrengthScalesTheEmissiveFactor) {
   }
 }
 
+// KHR_materials_unlit marks the material (supported, even when required: no
+// warning, no refusal); a material without it stays lit.
+TEST_F(LoaderTest, UnlitMaterialsAreMarked) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_unlit"};
+  m.doc["extensionsRequired"] = {"KHR_materials_unlit"};
+  m.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.5, 0.0, 1.0}}}},
+                         {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}},
+                        {{"emissiveFactor", {0.25, 0.25, 0.25}}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(model->materials[0].unlit);
+  EXPECT_FALSE(model->materials[1].unlit);
+  EXPECT_FALSE(hasWarning(*model, {"KHR_materials_unlit"})) << allWarnings(*model);
+}
+
 }  // namespace
 }  // namespace engine

@@ -24,6 +24,7 @@
 #include "asset/scene_file.h"
 #include "core/image.h"
 #include "core/linear_image.h"
+#include "raytrace/scene_builder.h"
 #include "raytrace/texture.h"
 #include "scene_game.h"
 
@@ -299,6 +300,34 @@ TEST_P(MaterialTest, UvTransformAndWrapMatchTheTracersTexture) {
   // set or wrap moves whole texels (60 levels and more apart here): the shader
   // reading set 0 measured 231, one skipping the matrix 239.
   EXPECT_LE(worst, 3) << "over " << compared << " pixels";
+}
+
+// KHR_materials_unlit: the quad shows its base colour as it is, whatever the sun
+// and the quad's angle to it (tone map none, sRGB out: 0.2, 0.5, 0.8 encode to
+// 124, 188, 231), and the Whitted and path tracers show the same colour.
+TEST_P(MaterialTest, UnlitShowsItsBaseColourUnderAnyLight) {
+  const json unlit = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.5, 0.8, 1.0}}}},
+                      {"extensions", {{"KHR_materials_unlit", json::object()}}}};
+  writeQuadModel(dir_, "unlit", unlit, {}, {{"extensionsUsed", {"KHR_materials_unlit"}}});
+  const glm::vec3 want(124.0f, 188.0f, 231.0f);
+  for (const auto& [rotation, sun] : {std::pair{glm::vec3(0.0f), 0.6f}, std::pair{glm::vec3(0, 40, 0), 3.0f}}) {
+    const fs::path scene = writeScene(dir_, "unlit_scene", "unlit", rotation, json::array(), sun);
+    const glm::vec3 raster = meanAround(render(scene), 32, 32);
+    EXPECT_LE(largestDifference(raster, want), 1.0f) << "raster " << raster.x << " " << raster.y << " " << raster.z;
+    auto desc = loadSceneFile(scene.string());
+    ASSERT_TRUE(desc.ok()) << desc.error().message;
+    for (rt::Method method : {rt::Method::Whitted, rt::Method::Path}) {
+      rt::RenderSettings settings;
+      settings.width = settings.height = 64;
+      settings.samplesPerPixel = 4;
+      settings.method = method;
+      auto traced = rt::raytraceScene(*desc, 0.0, settings);
+      ASSERT_TRUE(traced.ok()) << traced.error().message;
+      const glm::vec3 t = meanAround(traced->image, 32, 32);
+      EXPECT_LE(largestDifference(t, want), 1.0f) << (method == rt::Method::Path ? "path " : "whitted ") << t.x << " "
+                                                  << t.y << " " << t.z;
+    }
+  }
 }
 
 ENGINE_INSTANTIATE_OFFSCREEN(MaterialTest);

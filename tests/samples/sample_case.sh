@@ -16,7 +16,6 @@ mkdir -p "$WORK"
 declare -A REFUSED=(
   [ClearCoatCarPaint]=KHR_materials_clearcoat
   [IridescenceSuzanne]=KHR_materials_iridescence
-  [UnlitTest]=KHR_materials_unlit
 )
 if [ -n "${REFUSED[$NAME]:-}" ]; then
   model="$(find "$SAMPLES/$NAME" -name '*.glb' -o -name '*.gltf' | sort | head -1)"
