@@ -4,6 +4,7 @@
 // indices are in range, times sorted, weights normalised.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,21 @@ struct NodeData {
   // `weights` when the file gives them (glTF: they override the mesh's), else a
   // copy of MeshData::morphWeights; one per target, empty without targets.
   std::vector<float> morphWeights;
+  // EXT_mesh_gpu_instancing: the local transform (TRS) of each instance of `mesh`,
+  // applied after the node's world matrix (instance world = node world * this).
+  // Empty without the extension: the mesh is drawn once, at the node. Always empty
+  // on a skinned node (the loader warns and drops it: a skin places its vertices
+  // by its joints, so the node's instance transforms would have nothing to move).
+  std::vector<glm::mat4> instances;
 };
+
+// The local transforms `node`'s mesh is drawn with: its instances, or one identity
+// when it has none, so that every consumer loops the same way.
+inline std::span<const glm::mat4> meshInstances(const NodeData& node) {
+  static const glm::mat4 kOne{1.0f};
+  if (node.instances.empty()) return {&kOne, 1};
+  return node.instances;
+}
 
 struct PrimitiveData {
   std::vector<glm::vec3> positions;
