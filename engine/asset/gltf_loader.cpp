@@ -136,11 +136,13 @@ bool uriStaysInFolder(const std::string& uri) {
 // The glTF extensions this loader implements. KHR_mesh_quantization needs nothing
 // of its own: every accessor is read with its component type and normalisation.
 // The two compressions are decoded into plain buffers after tinygltf
-// (gltf_compression.h). EXT_mesh_gpu_instancing becomes NodeData::instances.
+// (gltf_compression.h). EXT_mesh_gpu_instancing becomes NodeData::instances,
+// KHR_lights_punctual ModelData::lights (placed by asset/model_lights.h).
 const std::set<std::string>& supportedExtensions() {
   static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength",
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
-                                               "EXT_meshopt_compression", "EXT_mesh_gpu_instancing"};
+                                               "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
+                                               "KHR_lights_punctual"};
   return supported;
 }
 
@@ -439,6 +441,7 @@ class Converter {
     if (Status s = convertSkins(); !s) return s;
     if (Status s = checkSkinnedMeshes(); !s) return s;
     if (Status s = convertInstancing(); !s) return s;
+    if (Status s = convertLights(); !s) return s;
     return convertAnimations();
   }
 
@@ -830,6 +833,57 @@ class Converter {
     if (!weights) return weights.error();
     mesh.morphWeights = std::move(weights).value();
     return Ok{};
+  }
+
+  // KHR_lights_punctual: the file's lights (tinygltf parses the list), then the
+  // node of each that places it.
+  Status convertLights() {
+    for (std::size_t i = 0; i < gltf_.lights.size(); ++i) {
+      auto light = convertLight(gltf_.lights[i], "light " + str(i) + " (\"" + gltf_.lights[i].name + "\")");
+      if (!light) return light.error();
+      out_.lights.push_back(std::move(light).value());
+    }
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      auto ext = gltf_.nodes[n].extensions.find("KHR_lights_punctual");
+      if (ext == gltf_.nodes[n].extensions.end()) continue;
+      const std::string where = "node " + str(n) + ": KHR_lights_punctual";
+      if (!ext->second.IsObject() || !ext->second.Has("light") || !ext->second.Get("light").IsInt())
+        return error(where + ": needs a \"light\" index");
+      const int light = ext->second.Get("light").GetNumberAsInt();
+      if (!validIndex(light, out_.lights.size()))
+        return error(where + ": light " + str(light) + " does not exist (" + str(out_.lights.size()) + " lights)");
+      out_.nodes[n].light = light;
+    }
+    return Ok{};
+  }
+
+  Result<PunctualLightData> convertLight(const tinygltf::Light& src, const std::string& where) {
+    PunctualLightData light;
+    light.name = src.name;
+    if (src.type == "directional") light.type = PunctualType::Directional;
+    else if (src.type == "point") light.type = PunctualType::Point;
+    else if (src.type == "spot") light.type = PunctualType::Spot;
+    else return error(where + ": type \"" + src.type + "\" is not directional, point or spot");
+    if (!src.color.empty()) {
+      if (src.color.size() != 3) return error(where + ": color must have 3 numbers");
+      for (int c = 0; c < 3; ++c) {
+        const double v = src.color[std::size_t(c)];
+        if (!std::isfinite(v) || v < 0.0) return error(where + ": color must be finite and >= 0");
+        light.color[c] = float(v);
+      }
+    }
+    if (!std::isfinite(src.intensity) || src.intensity < 0.0 || src.intensity > 1e30)
+      return error(where + ": intensity must be a finite number >= 0");
+    light.intensity = float(src.intensity);
+    if (!std::isfinite(src.range) || src.range < 0.0) return error(where + ": range must be a finite number >= 0");
+    light.range = float(src.range);
+    if (light.type == PunctualType::Spot) {
+      light.innerConeAngle = float(src.spot.innerConeAngle);
+      light.outerConeAngle = float(src.spot.outerConeAngle);
+      // The engine's lights have no cone: the light reaches every direction.
+      warn(where + ": a spot light; drawn as a point light, without its cone");
+    }
+    return light;
   }
 
   // EXT_mesh_gpu_instancing on every node that has it.

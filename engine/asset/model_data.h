@@ -36,6 +36,8 @@ struct NodeData {
   // on a skinned node (the loader warns and drops it: a skin places its vertices
   // by its joints, so the node's instance transforms would have nothing to move).
   std::vector<glm::mat4> instances;
+  // KHR_lights_punctual: the index into ModelData::lights this node places, -1 none.
+  int light = -1;
 };
 
 // The local transforms `node`'s mesh is drawn with: its instances, or one identity
@@ -194,6 +196,19 @@ struct AnimationData {
   float duration = 0.0f;  // largest last key time of any channel
 };
 
+// A KHR_lights_punctual light, as the file gives it; its node places it (at the
+// node's origin, shining along the node's -Z). Spot lights keep their cone here
+// though the engine draws them as point lights (asset/model_lights.h).
+enum class PunctualType { Directional, Point, Spot };
+struct PunctualLightData {
+  std::string name;
+  PunctualType type = PunctualType::Point;
+  glm::vec3 color{1.0f};   // linear RGB
+  float intensity = 1.0f;  // directional: lux (lm/m^2); point and spot: candela (lm/sr)
+  float range = 0.0f;      // 0: infinite (the engine's lights always are)
+  float innerConeAngle = 0.0f, outerConeAngle = 0.7853982f;  // spot, radians
+};
+
 struct ModelData {
   std::string path;
   std::vector<NodeData> nodes;
@@ -203,6 +218,7 @@ struct ModelData {
   std::vector<ImageData> images;
   std::vector<SkinData> skins;
   std::vector<AnimationData> animations;
+  std::vector<PunctualLightData> lights;  // KHR_lights_punctual
   std::vector<std::string> warnings;  // also logged; kept for tests and tools
 };
 

@@ -82,7 +82,12 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              // and growing toward (10, 10, 10), from the viewer's corner; one
                              // box only when the instances are not drawn.
                              {"sample_instancing", SceneKind::Sample, 0.0, 0, 0, 0,
-                              "SimpleInstancing/glTF-Binary/SimpleInstancing.glb"}};
+                              "SimpleInstancing/glTF-Binary/SimpleInstancing.glb"},
+                             // KHR_lights_punctual: the lamp lit by its own five point lights
+                             // (the rasterizer draws four) instead of the viewer's sun; the
+                             // warm and cyan lights show on the floor.
+                             {"sample_lights_lamp", SceneKind::Sample, 0.0, 0, 0, 0,
+                              "LightsPunctualLamp/glTF/LightsPunctualLamp.gltf"}};
 
 const std::string kShaders = std::string(ENGINE_SOURCE_DIR) + "/shaders";
 const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
