@@ -445,7 +445,9 @@ std::vector<BlendPrimitive> blendPrimitives(const ModelData& model, const GpuMod
     for (size_t p = 0; p < prims.size(); ++p) {
       if (!isBlend(model, prims[p].material)) continue;
       // A skinned primitive is placed by its joints, not its node; the node's
-      // place is close enough to order whole primitives.
+      // place is close enough to order whole primitives. EXT_mesh_gpu_instancing
+      // instances of a BLEND primitive are sorted as one, at the node, and drawn
+      // in the file's order (not back to front among themselves).
       const glm::dvec3 center(nodeWorlds[n] * glm::vec4(prims[p].center, 1.0f));
       out.push_back({int(n), int(p), glm::length(center)});
     }
