@@ -79,22 +79,29 @@ Result<nlohmann::json> dumpPose(const ModelData& model, int animation, double ti
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const PrimitiveData& prim = mesh.primitives[p];
       bool skinned = node.skin >= 0 && prim.influences > 0;
-      PrimitivePose pose{nodeWeights, skinned ? &built->skins[static_cast<std::size_t>(node.skin)] : nullptr, models,
-                         world(n)};
-      std::vector<glm::vec3> positions(prim.positions.size());
-      if (!posePrimitive(prim, pose, positions))
-        return makeError(model.path + ": node " + std::to_string(n) + " primitive " + std::to_string(p) +
-                         ": morphing or skinning failed");
-      // As three.js's pose.mjs writes them: the mesh's target count and the
-      // weights this instance was drawn with.
-      out["meshes"].push_back({{"node", n},
-                               {"mesh", node.mesh},
-                               {"primitive", p},
-                               {"skinned", skinned},
-                               {"morphTargets", prim.morphTargets},
-                               {"morphWeights", weightsJson(nodeWeights)},
-                               {"count", positions.size()},
-                               {"positions", positionsJson(positions)}});
+      // EXT_mesh_gpu_instancing: one entry per instance, placed by world * instance
+      // and numbered by "instance"; a node without instances has no such key.
+      const std::span<const glm::mat4> instances = meshInstances(node);
+      for (std::size_t i = 0; i < instances.size(); ++i) {
+        PrimitivePose pose{nodeWeights, skinned ? &built->skins[static_cast<std::size_t>(node.skin)] : nullptr, models,
+                           world(n) * instances[i]};
+        std::vector<glm::vec3> positions(prim.positions.size());
+        if (!posePrimitive(prim, pose, positions))
+          return makeError(model.path + ": node " + std::to_string(n) + " primitive " + std::to_string(p) +
+                           ": morphing or skinning failed");
+        // As three.js's pose.mjs writes them: the mesh's target count and the
+        // weights this instance was drawn with.
+        nlohmann::json entry{{"node", n},
+                             {"mesh", node.mesh},
+                             {"primitive", p},
+                             {"skinned", skinned},
+                             {"morphTargets", prim.morphTargets},
+                             {"morphWeights", weightsJson(nodeWeights)},
+                             {"count", positions.size()},
+                             {"positions", positionsJson(positions)}};
+        if (!node.instances.empty()) entry["instance"] = i;
+        out["meshes"].push_back(std::move(entry));
+      }
     }
   }
   return out;

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string_view>
 #include <utility>
 
@@ -135,12 +136,14 @@ bool uriStaysInFolder(const std::string& uri) {
 // The glTF extensions this loader implements. KHR_mesh_quantization needs nothing
 // of its own: every accessor is read with its component type and normalisation.
 // The two compressions are decoded into plain buffers after tinygltf
-// (gltf_compression.h).
+// (gltf_compression.h). EXT_mesh_gpu_instancing becomes NodeData::instances,
+// KHR_lights_punctual ModelData::lights (placed by asset/model_lights.h).
 const std::set<std::string>& supportedExtensions() {
   static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength",
                                                "KHR_materials_unlit",
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
-                                               "EXT_meshopt_compression"};
+                                               "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
+                                               "KHR_lights_punctual"};
   return supported;
 }
 
@@ -438,6 +441,8 @@ class Converter {
     if (Status s = resolveNodeWeights(); !s) return s;
     if (Status s = convertSkins(); !s) return s;
     if (Status s = checkSkinnedMeshes(); !s) return s;
+    if (Status s = convertInstancing(); !s) return s;
+    if (Status s = convertLights(); !s) return s;
     return convertAnimations();
   }
 
@@ -830,6 +835,140 @@ class Converter {
     if (!weights) return weights.error();
     mesh.morphWeights = std::move(weights).value();
     return Ok{};
+  }
+
+  // KHR_lights_punctual: the file's lights (tinygltf parses the list), then the
+  // node of each that places it.
+  Status convertLights() {
+    for (std::size_t i = 0; i < gltf_.lights.size(); ++i) {
+      auto light = convertLight(gltf_.lights[i], "light " + str(i) + " (\"" + gltf_.lights[i].name + "\")");
+      if (!light) return light.error();
+      out_.lights.push_back(std::move(light).value());
+    }
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      auto ext = gltf_.nodes[n].extensions.find("KHR_lights_punctual");
+      if (ext == gltf_.nodes[n].extensions.end()) continue;
+      const std::string where = "node " + str(n) + ": KHR_lights_punctual";
+      if (!ext->second.IsObject() || !ext->second.Has("light") || !ext->second.Get("light").IsInt())
+        return error(where + ": needs a \"light\" index");
+      const int light = ext->second.Get("light").GetNumberAsInt();
+      if (!validIndex(light, out_.lights.size()))
+        return error(where + ": light " + str(light) + " does not exist (" + str(out_.lights.size()) + " lights)");
+      out_.nodes[n].light = light;
+    }
+    return Ok{};
+  }
+
+  Result<PunctualLightData> convertLight(const tinygltf::Light& src, const std::string& where) {
+    PunctualLightData light;
+    light.name = src.name;
+    if (src.type == "directional") light.type = PunctualType::Directional;
+    else if (src.type == "point") light.type = PunctualType::Point;
+    else if (src.type == "spot") light.type = PunctualType::Spot;
+    else return error(where + ": type \"" + src.type + "\" is not directional, point or spot");
+    if (!src.color.empty()) {
+      if (src.color.size() != 3) return error(where + ": color must have 3 numbers");
+      for (int c = 0; c < 3; ++c) {
+        const double v = src.color[std::size_t(c)];
+        if (!std::isfinite(v) || v < 0.0) return error(where + ": color must be finite and >= 0");
+        light.color[c] = float(v);
+      }
+    }
+    if (!std::isfinite(src.intensity) || src.intensity < 0.0 || src.intensity > 1e30)
+      return error(where + ": intensity must be a finite number >= 0");
+    light.intensity = float(src.intensity);
+    if (!std::isfinite(src.range) || src.range < 0.0) return error(where + ": range must be a finite number >= 0");
+    light.range = float(src.range);
+    if (light.type == PunctualType::Spot) {
+      light.innerConeAngle = float(src.spot.innerConeAngle);
+      light.outerConeAngle = float(src.spot.outerConeAngle);
+      // The engine's lights have no cone: the light reaches every direction.
+      warn(where + ": a spot light; drawn as a point light, without its cone");
+    }
+    return light;
+  }
+
+  // EXT_mesh_gpu_instancing on every node that has it.
+  Status convertInstancing() {
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      auto ext = gltf_.nodes[n].extensions.find("EXT_mesh_gpu_instancing");
+      if (ext == gltf_.nodes[n].extensions.end()) continue;
+      if (Status s = readInstancing(ext->second, n); !s) return s;
+    }
+    return Ok{};
+  }
+
+  // One instancing attribute (TRANSLATION, ROTATION or SCALE): `components` floats
+  // per instance, or nothing when the node does not give it. The count is checked
+  // against the other attributes' by the caller.
+  Result<std::optional<AccessorValues>> instancingAttribute(const tinygltf::Value& attributes, const char* semantic,
+                                                            int components, const std::string& where) const {
+    if (!attributes.Has(semantic)) return std::optional<AccessorValues>{};
+    const tinygltf::Value& id = attributes.Get(semantic);
+    const std::string name = where + " " + semantic;
+    if (!id.IsInt()) return error(name + ": must be an accessor index");
+    // The instance limit before the values are read: a large sparse accessor costs
+    // nothing in the file but 32 bytes per component once read.
+    const int index = id.GetNumberAsInt();
+    if (validIndex(index, gltf_.accessors.size()) && gltf_.accessors[std::size_t(index)].count > kMaxNodeInstances)
+      return error(name + ": accessor " + str(index) + ": " + str(gltf_.accessors[std::size_t(index)].count) +
+                   " instances, the limit is " + str(kMaxNodeInstances));
+    auto values = readAccessor(gltf_, index, file_ + ": " + name);
+    if (!values) return values.error();
+    if (values->components != components)
+      return error(name + ": accessor " + str(id.GetNumberAsInt()) + " has " + str(values->components) +
+                   " components per element, expected " + str(components) + (components == 3 ? " (VEC3)" : " (VEC4)"));
+    for (double v : values->values)
+      if (!std::isfinite(v)) return error(name + ": accessor " + str(id.GetNumberAsInt()) + " has a NaN or infinite value");
+    return std::optional<AccessorValues>(std::move(values).value());
+  }
+
+  // The node's instances: every attribute that is present must have the same count
+  // (the extension's rule); a missing one is the identity for that part.
+  Status readInstancing(const tinygltf::Value& ext, std::size_t n) {
+    const std::string where = "node " + str(n) + ": EXT_mesh_gpu_instancing";
+    if (!ext.IsObject() || !ext.Has("attributes") || !ext.Get("attributes").IsObject())
+      return error(where + ": needs an \"attributes\" object");
+    const tinygltf::Value& attributes = ext.Get("attributes");
+    std::optional<AccessorValues> parts[3];
+    const char* semantics[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+    const int components[3] = {3, 4, 3};
+    std::size_t count = 0;
+    for (int k = 0; k < 3; ++k) {
+      auto part = instancingAttribute(attributes, semantics[k], components[k], where);
+      if (!part) return part.error();
+      parts[k] = std::move(part).value();
+      if (!parts[k]) continue;
+      if (count != 0 && parts[k]->count != count)
+        return error(where + " " + semantics[k] + ": has " + str(parts[k]->count) + " instances, the other attributes " +
+                     str(count));
+      count = parts[k]->count;
+    }
+    if (count == 0) return error(where + ": has no TRANSLATION, ROTATION or SCALE accessor");
+    NodeData& node = out_.nodes[n];
+    if (node.mesh < 0) {
+      warn(where + ": the node has no mesh; ignored");
+      return Ok{};
+    }
+    if (node.skin >= 0) {
+      // A skinned mesh is placed by its joints, not its node, so instance transforms
+      // relative to the node have nothing to move; drawn once, skinned.
+      warn(where + ": the node is skinned; drawn once, without its instances");
+      return Ok{};
+    }
+    node.instances.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) node.instances.push_back(instanceMatrix(parts, i));
+    return Ok{};
+  }
+
+  static glm::mat4 instanceMatrix(const std::optional<AccessorValues> (&parts)[3], std::size_t i) {
+    Srt srt;
+    if (parts[0]) srt.translation = glm::vec3(float(parts[0]->at(i, 0)), float(parts[0]->at(i, 1)), float(parts[0]->at(i, 2)));
+    if (parts[1])  // glTF x, y, z, w; glm's constructor takes w first
+      srt.rotation = safeNormalize(glm::quat(float(parts[1]->at(i, 3)), float(parts[1]->at(i, 0)),
+                                             float(parts[1]->at(i, 1)), float(parts[1]->at(i, 2))));
+    if (parts[2]) srt.scale = glm::vec3(float(parts[2]->at(i, 0)), float(parts[2]->at(i, 1)), float(parts[2]->at(i, 2)));
+    return toMatrix(srt);
   }
 
   // A mesh's or node's `weights`: one finite number per morph target; an absent

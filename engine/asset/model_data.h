@@ -4,6 +4,7 @@
 // indices are in range, times sorted, weights normalised.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,23 @@ struct NodeData {
   // `weights` when the file gives them (glTF: they override the mesh's), else a
   // copy of MeshData::morphWeights; one per target, empty without targets.
   std::vector<float> morphWeights;
+  // EXT_mesh_gpu_instancing: the local transform (TRS) of each instance of `mesh`,
+  // applied after the node's world matrix (instance world = node world * this).
+  // Empty without the extension: the mesh is drawn once, at the node. Always empty
+  // on a skinned node (the loader warns and drops it: a skin places its vertices
+  // by its joints, so the node's instance transforms would have nothing to move).
+  std::vector<glm::mat4> instances;
+  // KHR_lights_punctual: the index into ModelData::lights this node places, -1 none.
+  int light = -1;
 };
+
+// The local transforms `node`'s mesh is drawn with: its instances, or one identity
+// when it has none, so that every consumer loops the same way.
+inline std::span<const glm::mat4> meshInstances(const NodeData& node) {
+  static const glm::mat4 kOne{1.0f};
+  if (node.instances.empty()) return {&kOne, 1};
+  return node.instances;
+}
 
 struct PrimitiveData {
   std::vector<glm::vec3> positions;
@@ -182,6 +199,19 @@ struct AnimationData {
   float duration = 0.0f;  // largest last key time of any channel
 };
 
+// A KHR_lights_punctual light, as the file gives it; its node places it (at the
+// node's origin, shining along the node's -Z). Spot lights keep their cone here
+// though the engine draws them as point lights (asset/model_lights.h).
+enum class PunctualType { Directional, Point, Spot };
+struct PunctualLightData {
+  std::string name;
+  PunctualType type = PunctualType::Point;
+  glm::vec3 color{1.0f};   // linear RGB
+  float intensity = 1.0f;  // directional: lux (lm/m^2); point and spot: candela (lm/sr)
+  float range = 0.0f;      // 0: infinite (the engine's lights always are)
+  float innerConeAngle = 0.0f, outerConeAngle = 0.7853982f;  // spot, radians
+};
+
 struct ModelData {
   std::string path;
   std::vector<NodeData> nodes;
@@ -191,6 +221,7 @@ struct ModelData {
   std::vector<ImageData> images;
   std::vector<SkinData> skins;
   std::vector<AnimationData> animations;
+  std::vector<PunctualLightData> lights;  // KHR_lights_punctual
   std::vector<std::string> warnings;  // also logged; kept for tests and tools
 };
 

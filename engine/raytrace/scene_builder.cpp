@@ -55,10 +55,28 @@ Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
   return materials;
 }
 
+// The parts of a primitive's traced mesh that never change: material, uvs and
+// indices (a non-indexed primitive gets 0, 1, 2, ...); positions and normals sized.
+RtMesh staticMesh(const PrimitiveData& prim, std::span<const int> materials) {
+  RtMesh mesh;
+  mesh.material = prim.material >= 0 ? materials[size_t(prim.material)] : 0;
+  mesh.positions.resize(prim.positions.size());
+  if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
+  mesh.uvs = prim.uvs;
+  mesh.uvs1 = prim.uvs1;
+  if (prim.indices.empty()) {
+    for (std::uint32_t i = 0; i < std::uint32_t(prim.positions.size()); ++i) mesh.indices.push_back(i);
+  } else {
+    mesh.indices = prim.indices;
+  }
+  return mesh;
+}
+
 // One model instance of the scene, in its pose, into `meshes`, one per triangle
-// primitive: positions and normals morphed, then skinned (or moved rigidly) into
-// world space by the instance's root; material and indices are filled the first
-// time only, as they never change.
+// primitive and EXT_mesh_gpu_instancing instance of its node: positions and normals
+// morphed, then skinned (or moved rigidly by node world * instance, as the
+// rasterizer draws it) into world space by the instance's root; material and
+// indices are filled the first time only, as they never change.
 Status skinInstance(const ModelAsset& asset, std::span<const int> materials, const ModelInstance& instance,
                     std::vector<RtMesh>& meshes) {
   const ModelData& model = asset.model;
@@ -71,29 +89,19 @@ Status skinInstance(const ModelAsset& asset, std::span<const int> materials, con
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const NodeData& node = model.nodes[n];
     if (node.mesh < 0) continue;
-    const glm::mat4& world = joints[size_t(skeleton.jointOfRaw(int(n)))];
-    for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-      if (prim.mode != 4) continue;  // triangles only
-      if (first) {
-        RtMesh mesh;
-        mesh.material = prim.material >= 0 ? materials[size_t(prim.material)] : 0;
-        mesh.positions.resize(prim.positions.size());
-        if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
-        mesh.uvs = prim.uvs;
-        mesh.uvs1 = prim.uvs1;
-        if (prim.indices.empty()) {
-          for (std::uint32_t i = 0; i < std::uint32_t(prim.positions.size()); ++i) mesh.indices.push_back(i);
-        } else {
-          mesh.indices = prim.indices;
+    const glm::mat4& nodeWorld = joints[size_t(skeleton.jointOfRaw(int(n)))];
+    for (const glm::mat4& local : meshInstances(node)) {
+      for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
+        if (prim.mode != 4) continue;  // triangles only
+        if (first) meshes.push_back(staticMesh(prim, materials));
+        RtMesh& mesh = meshes[next++];
+        const bool skinned = node.skin >= 0 && prim.influences > 0;
+        const PrimitivePose pose{asset.animated.morphs.of(instance.pose.morphWeights, int(n)),
+                                 skinned ? &asset.animated.skins[size_t(node.skin)] : nullptr, joints,
+                                 nodeWorld * local, method};
+        if (!posePrimitive(prim, pose, mesh.positions, mesh.normals)) {
+          return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning failed");
         }
-        meshes.push_back(std::move(mesh));
-      }
-      RtMesh& mesh = meshes[next++];
-      const bool skinned = node.skin >= 0 && prim.influences > 0;
-      const PrimitivePose pose{asset.animated.morphs.of(instance.pose.morphWeights, int(n)),
-                               skinned ? &asset.animated.skins[size_t(node.skin)] : nullptr, joints, world, method};
-      if (!posePrimitive(prim, pose, mesh.positions, mesh.normals)) {
-        return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning failed");
       }
     }
   }

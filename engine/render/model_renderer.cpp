@@ -227,7 +227,17 @@ Status bindNodeMorphTargets(const gl::Program& pr, const GpuPrimitive& prim, con
   return Ok{};
 }
 
-// Draws primitive `p` of node `n`, with whatever blend state is set.
+// One draw of the bound vertex array: indexed or not.
+void drawMesh(const GpuPrimitive& prim, GLenum mode) {
+  if (prim.indexCount > 0) {
+    glDrawElements(mode, prim.indexCount, GL_UNSIGNED_INT, nullptr);
+  } else {
+    glDrawArrays(mode, 0, prim.vertexCount);
+  }
+}
+
+// Draws primitive `p` of node `n` (each of its instances), with whatever blend
+// state is set.
 Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu, const ModelFrame& frame,
                      size_t n, size_t p) {
   // Camera-relative rendering: the camera offset is applied in double before the
@@ -252,10 +262,6 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     pr.set("u_alphaCutoff", material->alphaCutoff);
   }
   if (variant.uvTransform) setUvTransforms(pr, *material);
-  const glm::mat4 model4 =
-      glm::mat4(skinned ? toCamera * frame.root : toCamera * glm::dmat4(frame.nodeWorlds[n]));
-  pr.set("u_model", model4);
-  pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
   // scene.vert's tiling of analytic shapes: a program may be shared with them.
   pr.set("u_uvScale", glm::vec2(1.0f));
   if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
@@ -275,11 +281,18 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   const bool twoSided = material && material->doubleSided && glIsEnabled(GL_CULL_FACE);
   if (twoSided) glDisable(GL_CULL_FACE);
   (cached ? *cached : prim.vao).bind();
-  const GLenum mode = GLenum(data.mode);
-  if (prim.indexCount > 0) {
-    glDrawElements(mode, prim.indexCount, GL_UNSIGNED_INT, nullptr);
-  } else {
-    glDrawArrays(mode, 0, prim.vertexCount);
+  // EXT_mesh_gpu_instancing: one draw per instance, each with its own u_model.
+  // Chosen over glDrawElementsInstanced with an instance-matrix buffer because
+  // every shader variant (lit, depth-only, point-shadow, skin-cached) and the
+  // sorted scene draw items then work unchanged; the cost is one draw call per
+  // instance, which is fine for the sample's 125 boxes but not for forests.
+  // Skinned nodes have no instances (the loader drops them), so they draw once.
+  const glm::dmat4 placed = skinned ? toCamera * frame.root : toCamera * glm::dmat4(frame.nodeWorlds[n]);
+  for (const glm::mat4& instance : meshInstances(node)) {
+    const glm::mat4 model4 = glm::mat4(placed * glm::dmat4(instance));
+    pr.set("u_model", model4);
+    pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
+    drawMesh(prim, GLenum(data.mode));
   }
   if (twoSided) glEnable(GL_CULL_FACE);
   if (material) unbindMaterialSamplers(variant);
@@ -438,7 +451,9 @@ std::vector<BlendPrimitive> blendPrimitives(const ModelData& model, const GpuMod
     for (size_t p = 0; p < prims.size(); ++p) {
       if (!isBlend(model, prims[p].material)) continue;
       // A skinned primitive is placed by its joints, not its node; the node's
-      // place is close enough to order whole primitives.
+      // place is close enough to order whole primitives. EXT_mesh_gpu_instancing
+      // instances of a BLEND primitive are sorted as one, at the node, and drawn
+      // in the file's order (not back to front among themselves).
       const glm::dvec3 center(nodeWorlds[n] * glm::vec4(prims[p].center, 1.0f));
       out.push_back({int(n), int(p), glm::length(center)});
     }

@@ -75,15 +75,19 @@ Status addPoseToBounds(const ModelAsset& asset, const Pose& pose, ModelAsset::Bo
     if (node.mesh < 0) continue;
     for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
       const bool skinned = node.skin >= 0 && prim.influences > 0;
-      const PrimitivePose primPose{asset.animated.morphs.of(pose.morphWeights, int(n)),
-                                   skinned ? &asset.animated.skins[size_t(node.skin)] : nullptr, pose.joints,
-                                   pose.joints[size_t(asset.animated.skeleton.jointOfRaw(int(n)))]};
-      posed.resize(prim.positions.size());
-      if (!posePrimitive(prim, primPose, posed))
-        return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning rejected its inputs");
-      for (const glm::vec3& p : posed) {
-        b.min = glm::min(b.min, p);
-        b.max = glm::max(b.max, p);
+      const glm::mat4& world = pose.joints[size_t(asset.animated.skeleton.jointOfRaw(int(n)))];
+      // Every EXT_mesh_gpu_instancing instance (world * instance), or the node once.
+      for (const glm::mat4& instance : meshInstances(node)) {
+        const PrimitivePose primPose{asset.animated.morphs.of(pose.morphWeights, int(n)),
+                                     skinned ? &asset.animated.skins[size_t(node.skin)] : nullptr, pose.joints,
+                                     world * instance};
+        posed.resize(prim.positions.size());
+        if (!posePrimitive(prim, primPose, posed))
+          return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning rejected its inputs");
+        for (const glm::vec3& p : posed) {
+          b.min = glm::min(b.min, p);
+          b.max = glm::max(b.max, p);
+        }
       }
     }
   }

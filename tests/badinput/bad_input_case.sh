@@ -69,6 +69,11 @@ case "$CASE" in
   # Compressed geometry that does not decode: the file, the element and the
   # extension, and the decoder's own reason.
   draco_truncated) model draco_truncated.glb 2 "draco_truncated\.glb: mesh 0 primitive 0: KHR_draco_mesh_compression: decode failed: " ;;
+  # Instancing attributes that do not fit: the file, the node, the extension and
+  # the attribute.
+  instancing_type) model instancing_type.glb 2 "instancing_type\.glb: node 0: EXT_mesh_gpu_instancing ROTATION: accessor 0 has 3 components per element, expected 4" ;;
+  instancing_count) model instancing_count.glb 2 "instancing_count\.glb: node 0: EXT_mesh_gpu_instancing ROTATION: has 2 instances, the other attributes 3" ;;
+  instancing_too_many) model instancing_too_many.glb 2 "instancing_too_many\.glb: node 0: EXT_mesh_gpu_instancing TRANSLATION: accessor 7: 1048577 instances, the limit is 1048576" ;;
   meshopt_truncated) model meshopt_truncated.glb 2 "meshopt_truncated\.glb: bufferView 0: EXT_meshopt_compression: decode failed: meshopt error -2 " ;;
   # A texture that cannot be used is not fatal (the loader's documented rule: a
   # model without its texture is still worth showing): a warning naming the file

@@ -77,7 +77,17 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"sample_texture_transform", SceneKind::Sample, 0.0, 0, 0, 0,
                               "TextureTransformTest/glTF/TextureTransformTest.gltf"},
                              {"sample_texture_settings", SceneKind::Sample, 0.0, 0, 0, 0,
-                              "TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb"}};
+                              "TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb"},
+                             // EXT_mesh_gpu_instancing: the 5 x 5 x 5 grid of 125 boxes, turning
+                             // and growing toward (10, 10, 10), from the viewer's corner; one
+                             // box only when the instances are not drawn.
+                             {"sample_instancing", SceneKind::Sample, 0.0, 0, 0, 0,
+                              "SimpleInstancing/glTF-Binary/SimpleInstancing.glb"},
+                             // KHR_lights_punctual: the lamp lit by its own five point lights
+                             // (the rasterizer draws four) instead of the viewer's sun; the
+                             // warm and cyan lights show on the floor.
+                             {"sample_lights_lamp", SceneKind::Sample, 0.0, 0, 0, 0,
+                              "LightsPunctualLamp/glTF/LightsPunctualLamp.gltf"}};
 
 const std::string kShaders = std::string(ENGINE_SOURCE_DIR) + "/shaders";
 const std::string kAssets = std::string(ENGINE_SOURCE_DIR) + "/assets";
@@ -91,8 +101,8 @@ std::unique_ptr<Game> makeScene(const GoldenCase& c) {
     viewer::ViewerSettings settings;
     settings.clip = -1;  // the rest pose: these models have no animation
     // The flat test boards face +z: straight at them, as Khronos's screenshots, so
-    // that they fill the frame; the cube from the viewer's usual corner.
-    if (c.scene == SceneKind::Sample && std::string(c.model).rfind("MultiUVTest", 0) != 0)
+    // that they fill the frame; the cubes from the viewer's usual corner.
+    if (c.scene == SceneKind::Sample && std::string(c.model).rfind("Texture", 0) == 0)
       settings.viewDirection = glm::dvec3(0.0, 0.0, 1.0);
     return std::make_unique<viewer::ViewerScene>(kShaders, std::move(model).value(), settings);
   }

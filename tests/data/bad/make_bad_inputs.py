@@ -238,6 +238,26 @@ def main(out):
     case("draco_truncated.glb", compressed("KHR_draco_mesh_compression"))
     case("meshopt_truncated.glb", compressed("EXT_meshopt_compression"))
 
+    # EXT_mesh_gpu_instancing on node 0 with attributes that do not fit: ROTATION
+    # naming the VEC3 positions (wrong type), and a ROTATION of 2 instances beside
+    # a TRANSLATION of 3 (counts differ).
+    def instancing(attributes):
+        def edit(m):
+            m.doc["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
+            m.doc["nodes"][0]["extensions"] = {"EXT_mesh_gpu_instancing": {"attributes": attributes}}
+        return edit
+    case("instancing_type.glb", instancing({"TRANSLATION": 0, "ROTATION": 0}))
+    case("instancing_count.glb", instancing({"TRANSLATION": 0, "ROTATION": 6}))
+
+    # One instance past kMaxNodeInstances (2^20): a sparse TRANSLATION accessor of
+    # zeros with one vec3 replaced, a few bytes in the file.
+    def too_many_instances(m):
+        instancing({"TRANSLATION": 7})(m)
+        m.doc["accessors"].append({"componentType": 5126, "count": (1 << 20) + 1, "type": "VEC3",
+                                   "sparse": {"count": 1, "indices": {"bufferView": 3, "componentType": 5123},
+                                              "values": {"bufferView": 0}}})
+    case("instancing_too_many.glb", too_many_instances)
+
     # Scene files (the format of assets/scenes/*.json) with values of the wrong type.
     write("scene_fovy_string.json", json.dumps({"camera": {"fovy": "wide"}}))
     write("scene_models_number.json", json.dumps({"models": 5}))
