@@ -247,7 +247,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   const GpuPrimitive& prim = gpu.meshes()[size_t(node.mesh)][p];
   const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[p];
   const gl::VertexArray* cached = frame.skinCache ? frame.skinCache->vertexArray(int(n), int(p)) : nullptr;
-  const bool skinned = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly).influences > 0;
+  const bool skinned = skinnedBy(node, data.influences, frame.skinMode);
   const ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly, cached != nullptr);
   const MaterialData* material = materialOf(model, prim.material);
   auto program = variants.get(variant);
@@ -361,9 +361,10 @@ void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, cons
 ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, const PrimitiveData& prim,
                                SkinMode mode, bool depthOnly, bool cached) {
   ShaderVariant v;
-  const bool skinned = node.skin >= 0 && prim.influences > 0 && mode != SkinMode::None;
-  v.influences = skinned && !cached ? prim.influences : 0;
-  v.mode = cached ? SkinMode::Linear : mode;
+  v.influences = skinnedBy(node, prim.influences, mode) && !cached ? prim.influences : 0;
+  // The blend only matters to skinning code: every static variant is one program,
+  // whichever mode (or cache) the model draws with.
+  v.mode = v.influences > 0 ? mode : SkinMode::Linear;
   v.morph = prim.morphTargets > 0 && !cached;
   v.depthOnly = depthOnly;
   const MaterialData* m = materialOf(model, prim.material);

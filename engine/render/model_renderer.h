@@ -119,6 +119,13 @@ class GpuModel {
   std::map<SamplerData, gl::Sampler> samplers_;
 };
 
+// Whether a primitive with `influences` joints per vertex, drawn by `node`, is
+// skinned in `mode` (SkinMode::None draws skins in their bind pose): the one rule
+// the variants, the draws and the skin cache share.
+inline bool skinnedBy(const NodeData& node, int influences, SkinMode mode) {
+  return node.skin >= 0 && influences > 0 && mode != SkinMode::None;
+}
+
 // The variant a primitive of `node` is drawn with (skinning mode, material
 // textures, alpha mask), for a colour pass or, with `depthOnly`, a shadow pass.
 // With `cached`, the primitive is drawn from a skin cache (render/skin_cache.h),

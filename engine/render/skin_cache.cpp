@@ -80,7 +80,7 @@ Status SkinCache::run(SkinPrograms& programs, const ModelData& model, const GpuM
                       const Entry& entry) {
   const NodeData& node = model.nodes[size_t(entry.node)];
   const GpuPrimitive& prim = gpu.meshes()[size_t(node.mesh)][size_t(entry.primitive)];
-  const bool skinned = node.skin >= 0 && prim.influences > 0 && inputs.mode != SkinMode::None;
+  const bool skinned = skinnedBy(node, prim.influences, inputs.mode);
   SkinPrograms::Variant variant{skinned ? prim.influences : 0, inputs.mode, prim.morphTargets > 0,
                                 prim.sources.normals >= 0, prim.hasTangents};
   auto program = programs.get(variant);
