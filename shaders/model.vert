@@ -9,6 +9,10 @@ layout(location = 2) in vec2 a_uv;
 layout(location = 8) in vec2 a_uv1;  // TEXCOORD_1 (common/material.glsl)
 out vec2 v_uv1;
 #endif
+#ifdef VERTEX_COLOR
+layout(location = 9) in vec4 a_color;  // COLOR_0 (common/material.glsl)
+out vec4 v_color;
+#endif
 
 #include "common/deform.glsl"
 
@@ -30,6 +34,9 @@ void main() {
   v_uv = a_uv;
 #ifdef UV_TRANSFORM
   v_uv1 = a_uv1;
+#endif
+#ifdef VERTEX_COLOR
+  v_color = a_color;
 #endif
   gl_Position = u_viewProjection * world;
 }

@@ -1034,6 +1034,7 @@ class Converter {
       if (!v) return v.error();
       prim.uvs1 = toVectors<glm::vec2>(*v);
     }
+    if (Status s = readVertexColors(src, prim, name); !s) return s;
     if (int a = attribute(src, "TANGENT"); a >= 0) {
       auto v = readFloats(a, 4, count, name + " TANGENT");
       if (!v) return v.error();
@@ -1048,6 +1049,27 @@ class Converter {
     checkUvSets(prim, name);
     addMissingTangents(prim, name);
     return readSkinAttributes(src, prim, name);
+  }
+
+  // COLOR_0: VEC3 or VEC4, float or normalized unsigned byte/short (readAccessor
+  // maps those to 0..1), one per vertex. RGB gets alpha 1. Sets past COLOR_0 are
+  // for the application, as glTF says, and are not read.
+  Status readVertexColors(const tinygltf::Primitive& src, PrimitiveData& prim, const std::string& name) {
+    const int a = attribute(src, "COLOR_0");
+    if (a < 0) return Ok{};
+    const std::string where = name + " COLOR_0";
+    if (!validIndex(a, gltf_.accessors.size())) return error(where + ": accessor " + str(a) + " does not exist");
+    const int type = gltf_.accessors[static_cast<std::size_t>(a)].type;
+    if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4) return error(where + ": must be VEC3 or VEC4");
+    const int components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+    auto v = readFloats(a, components, prim.positions.size(), where);
+    if (!v) return v.error();
+    prim.colors.resize(prim.positions.size());
+    for (std::size_t i = 0; i < prim.colors.size(); ++i) {
+      const float* c = v->data() + i * static_cast<std::size_t>(components);
+      prim.colors[i] = glm::vec4(c[0], c[1], c[2], components == 4 ? c[3] : 1.0f);
+    }
+    return Ok{};
   }
 
   // The displacements of POSITION, NORMAL and TANGENT (glTF morphs no others;

@@ -55,6 +55,9 @@ struct PrimitiveData {
   // TEXCOORD_1; empty or one per position. When a material texture asks for set 1
   // and the mesh has none, the loader warns and copies set 0 here.
   std::vector<glm::vec2> uvs1;
+  // COLOR_0, linear RGBA (RGB files get alpha 1); empty or one per position. It
+  // multiplies the base colour (alpha too, where the material is MASK or BLEND).
+  std::vector<glm::vec4> colors;
   std::vector<glm::vec4> tangents;  // empty or one per position
   std::vector<std::uint32_t> indices;  // empty for non-indexed primitives
   // Skinning: `influences` (0, 4 or 8) entries per vertex in `joints` and

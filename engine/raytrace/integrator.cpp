@@ -58,7 +58,7 @@ class Tracer {
     const float distance = float(hit->t * glm::length(ray.d));
     const float footprint = footprintAt(cone, *hit, v, distance);
     // The terrain's layers read the unflipped shading normal, as terrain.frag does.
-    const HitMaterial m = scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1), footprint, double(hit->p.y), glm::vec3(hit->ns));
+    const HitMaterial m = scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y), glm::vec3(hit->ns));
     if (m.unlit) return depth == 0 ? scene_.fogged(m.albedo, distance) : m.albedo;
     // Surfaces are two-sided: shade with the normal that faces the viewer.
     const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
@@ -87,7 +87,7 @@ class Tracer {
     T travelled = T(0);
     for (int pass = 0; hit && pass < 64; ++pass) {
       const bool back = glm::dot(hit->n, rest.d) > T(0);
-      if (scene_.surfaceOpacity(hit->material, HitUv(hit->uv, hit->uv1), 0.0f, back) > 0.0f) {
+      if (scene_.surfaceOpacity(hit->material, HitUv(hit->uv, hit->uv1, hit->color), 0.0f, back) > 0.0f) {
         hit->t += travelled;
         return hit;
       }

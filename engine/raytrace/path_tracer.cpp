@@ -112,7 +112,7 @@ class PathTracer {
       // BLEND stops a share alpha of the paths (stochastic transparency). Either way
       // the ray goes on unbent, no bounce.
       if (const float opacity =
-              scene_.surfaceOpacity(hit->material, HitUv(hit->uv, hit->uv1), footprint, glm::dot(hit->n, v) > T(0));
+              scene_.surfaceOpacity(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, glm::dot(hit->n, v) > T(0));
           opacity < 1.0f && (opacity <= 0.0f || rng.uniform() >= opacity)) {
         if (++passes > kMaxPassThrough) break;
         ray = Ray<T>{hit->spawnRay(ray.d).o, ray.d, ray.tMax - hit->t};
@@ -120,7 +120,7 @@ class PathTracer {
         continue;
       }
       const HitMaterial m =
-          scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1), footprint, double(hit->p.y), glm::vec3(hit->ns));
+          scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y), glm::vec3(hit->ns));
       if (firstHit && *firstHit < 0.0f) *firstHit = float(glm::length(glm::dvec3(hit->p) - cameraPosition_));
       radiance += beta * m.emission;
       if (m.unlit) {

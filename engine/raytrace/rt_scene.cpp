@@ -158,7 +158,7 @@ Status RtScene::setMaterialTexture(int material, RtTexture texture) {
 }
 
 glm::vec3 RtScene::baseColor(int material, const HitUv& uv, float footprint) const {
-  const glm::vec3 color = materials_[size_t(material)].color;
+  const glm::vec3 color = materials_[size_t(material)].color * glm::vec3(uv.color);
   const int texture = extras_[size_t(material)].texture;
   return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv, footprint);
 }
@@ -197,7 +197,8 @@ Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
 float RtScene::opacityAt(int material, const HitUv& uv, float footprint) const {
   const MaterialExtras& e = extras_[size_t(material)];
   if (e.alphaMode == AlphaMode::Opaque) return 1.0f;
-  const float alpha = e.alpha * (e.texture >= 0 ? textures_[size_t(e.texture)].sampleRgba(uv, footprint).a : 1.0f);
+  const float alpha =
+      e.alpha * uv.color.a * (e.texture >= 0 ? textures_[size_t(e.texture)].sampleRgba(uv, footprint).a : 1.0f);
   // MASK as scene.frag's discard: below the cutoff the surface is not there at all.
   if (e.alphaMode == AlphaMode::Mask) return alpha >= e.alphaCutoff ? 1.0f : 0.0f;
   return std::clamp(alpha, 0.0f, 1.0f);
@@ -266,6 +267,10 @@ Result<MeshId> RtScene::addMesh(RtMesh mesh) {
   }
   if (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size()) {
     return makeError(where + ": " + std::to_string(mesh.uvs1.size()) + " second-set uvs for " +
+                     std::to_string(mesh.positions.size()) + " positions");
+  }
+  if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()) {
+    return makeError(where + ": " + std::to_string(mesh.colors.size()) + " colours for " +
                      std::to_string(mesh.positions.size()) + " positions");
   }
   if (mesh.material < 0 || mesh.material >= int(materials_.size())) {
@@ -410,6 +415,10 @@ SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<
   si.uv1 = mesh.uvs1.empty()
                ? si.uv
                : float(hit.hit.b0) * mesh.uvs1[i0] + float(hit.hit.b1) * mesh.uvs1[i1] + float(hit.hit.b2) * mesh.uvs1[i2];
+  if (!mesh.colors.empty()) {
+    si.color = float(hit.hit.b0) * mesh.colors[i0] + float(hit.hit.b1) * mesh.colors[i1] +
+               float(hit.hit.b2) * mesh.colors[i2];
+  }
   si.material = mesh.material;
   return si;
 }
@@ -500,7 +509,7 @@ float RtScene::transmittance(const Ray<T>& shadowRay, const Vec3<T>* target, std
   for (int i = 0; i <= 64; ++i) {
     const std::optional<SurfaceInteraction<T>> hit = intersect(ray);
     if (!hit) return share;
-    share *= 1.0f - opacityAt(hit->material, HitUv(hit->uv, hit->uv1));
+    share *= 1.0f - opacityAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color));
     if (share <= 0.0f) return 0.0f;
     ++rays;
     ray = target ? hit->spawnRayTo(*target, T(1)) : Ray<T>{hit->spawnRay(ray.d).o, ray.d, ray.tMax - hit->t};

@@ -38,6 +38,7 @@ struct RtMesh {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;  // empty, or one per position (glTF TEXCOORD_0)
   std::vector<glm::vec2> uvs1;  // empty (hits take uvs), or one per position (TEXCOORD_1)
+  std::vector<glm::vec4> colors;  // empty (white), or one per position (COLOR_0, linear RGBA)
   std::vector<std::uint32_t> indices;  // three per triangle
   int material = 0;
   int group = 0;  // the BVH it lives in: 0 the static world, or one from addGroup()

@@ -64,12 +64,17 @@ RtMesh staticMesh(const PrimitiveData& prim, std::span<const int> materials) {
   if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
   mesh.uvs = prim.uvs;
   mesh.uvs1 = prim.uvs1;
+  mesh.colors = prim.colors;
   if (prim.indices.empty()) {
     for (std::uint32_t i = 0; i < std::uint32_t(prim.positions.size()); ++i) mesh.indices.push_back(i);
   } else {
     mesh.indices = prim.indices;
   }
   return mesh;
+}
+
+void reverseWinding(std::vector<std::uint32_t>& indices) {
+  for (std::size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
 }
 
 // One model instance of the scene, in its pose, into `meshes`, one per triangle
@@ -93,9 +98,16 @@ Status skinInstance(const ModelAsset& asset, std::span<const int> materials, con
     for (const glm::mat4& local : meshInstances(node)) {
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
         if (prim.mode != 4) continue;  // triangles only
-        if (first) meshes.push_back(staticMesh(prim, materials));
-        RtMesh& mesh = meshes[next++];
         const bool skinned = node.skin >= 0 && prim.influences > 0;
+        if (first) {
+          meshes.push_back(staticMesh(prim, materials));
+          // glTF: where the transform the rasterizer draws with mirrors (negative
+          // determinant), clockwise faces are the front. Hits take their front
+          // side from the winding, so a mirrored mesh's triangles are turned back.
+          const glm::mat4 placement = skinned ? glm::mat4(instance.world) : nodeWorld * local;
+          if (glm::determinant(glm::mat3(placement)) < 0.0f) reverseWinding(meshes.back().indices);
+        }
+        RtMesh& mesh = meshes[next++];
         const PrimitivePose pose{asset.animated.morphs.of(instance.pose.morphWeights, int(n)),
                                  skinned ? &asset.animated.skins[size_t(node.skin)] : nullptr, joints,
                                  nodeWorld * local, method};

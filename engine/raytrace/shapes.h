@@ -21,6 +21,7 @@ struct SurfaceInteraction {
   int material = 0;
   glm::vec2 uv{0.0f};  // texture coordinates, as the rasterizer interpolates them
   glm::vec2 uv1{0.0f};  // the second set (glTF TEXCOORD_1; uv where there is none)
+  glm::vec4 color{1.0f};  // glTF COLOR_0, interpolated; white where there is none
   // How fast uv changes along the surface: the square root of uv area per unit of
   // surface area (0 where nothing is mapped), to turn a ray cone's width into a
   // texture footprint.

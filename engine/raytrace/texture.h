@@ -20,12 +20,14 @@
 namespace engine::rt {
 
 // A hit's texture coordinates: glTF's TEXCOORD_0 and TEXCOORD_1 (the same where a
-// surface has only one set, as analytic shapes).
+// surface has only one set, as analytic shapes), and its vertex colour (COLOR_0,
+// white where the mesh has none), which the material's colour and alpha take.
 struct HitUv {
   glm::vec2 uv0{0.0f}, uv1{0.0f};
+  glm::vec4 color{1.0f};
   HitUv() = default;
   HitUv(glm::vec2 uv) : uv0(uv), uv1(uv) {}  // NOLINT: one set is both
-  HitUv(glm::vec2 a, glm::vec2 b) : uv0(a), uv1(b) {}
+  HitUv(glm::vec2 a, glm::vec2 b, glm::vec4 c = glm::vec4(1.0f)) : uv0(a), uv1(b), color(c) {}
 };
 
 // Which image row uv v = 0 reads: glTF textures are uploaded as they are (v = 0 is the

@@ -21,6 +21,7 @@ std::string ShaderVariant::describe() const {
   if (occlusion) name += "+occlusion";
   if (alphaMask) name += "+mask";
   if (uvTransform) name += "+uvtransform";
+  if (vertexColor) name += "+vertexcolor";
   if (unlit) name += "+unlit";
   if (depthOnly) name += "+depth";
   return name;
@@ -53,6 +54,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.alphaMask) defines.push_back("ALPHA_MASK 1");
   if (variant.morph) defines.push_back("MORPH 1");
   if (variant.uvTransform) defines.push_back("UV_TRANSFORM 1");
+  if (variant.vertexColor) defines.push_back("VERTEX_COLOR 1");
   if (variant.unlit) defines.push_back("UNLIT 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
@@ -176,6 +178,7 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
   if (!data.normals.empty()) in.normals = addBuffer(prim, data.normals);
   if (!data.uvs.empty()) in.uvs = addBuffer(prim, data.uvs);
   if (!data.uvs1.empty()) in.uvs1 = addBuffer(prim, data.uvs1);
+  if (!data.colors.empty()) in.colors = addBuffer(prim, data.colors);
   if (data.influences > 0) {
     in.joints = addBuffer(prim, data.joints);
     in.weights = addBuffer(prim, data.weights);
@@ -225,6 +228,13 @@ Status bindNodeMorphTargets(const gl::Program& pr, const GpuPrimitive& prim, con
     return makeError("node " + std::to_string(node) + ": has morph targets but the frame has no weights for it");
   bindMorphTargets(pr, prim, *frame.morphWeights, frame.morphFirst[node]);
   return Ok{};
+}
+
+// Clockwise faces front where counter-clockwise ones did, and back.
+void flipFrontFace() {
+  GLint face = GL_CCW;
+  glGetIntegerv(GL_FRONT_FACE, &face);
+  glFrontFace(face == GL_CCW ? GL_CW : GL_CCW);
 }
 
 // One draw of the bound vertex array: indexed or not.
@@ -292,7 +302,13 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     const glm::mat4 model4 = glm::mat4(placed * glm::dmat4(instance));
     pr.set("u_model", model4);
     pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
+    // glTF: a world transform with a negative determinant mirrors the mesh, which
+    // turns its counter-clockwise faces clockwise; the pass's front face is
+    // flipped for the draw (NegativeScaleTest's scale -1 row) and put back.
+    const bool mirrored = glm::determinant(glm::mat3(model4)) < 0.0f;
+    if (mirrored) flipFrontFace();
     drawMesh(prim, GLenum(data.mode));
+    if (mirrored) flipFrontFace();
   }
   if (twoSided) glEnable(GL_CULL_FACE);
   if (material) unbindMaterialSamplers(variant);
@@ -345,6 +361,10 @@ void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, cons
     vao.vertexBuffer(6, buffer(in.uvs1), sizeof(glm::vec2));
     vao.attribute(8, 6, 2, 0);
   }
+  if (in.colors >= 0) {
+    vao.vertexBuffer(7, buffer(in.colors), sizeof(glm::vec4));
+    vao.attribute(9, 7, 4, 0);
+  }
   if (in.indices >= 0) vao.indexBuffer(buffer(in.indices));
 }
 
@@ -368,11 +388,14 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
   v.morph = prim.morphTargets > 0 && !cached;
   v.depthOnly = depthOnly;
   const MaterialData* m = materialOf(model, prim.material);
+  const bool colored = !prim.colors.empty();  // COLOR_0 multiplies the base colour
+  v.vertexColor = colored && !depthOnly;
   if (!m) return v;
   v.alphaMask = m->alphaMode == AlphaMode::Mask;
   // A shadow pass needs the material only to cut out MASK holes.
   if (depthOnly) {
     v.textured = v.alphaMask && m->baseColorImage >= 0;
+    v.vertexColor = colored && v.alphaMask;
   } else if (m->unlit) {
     // Nothing but the base colour is read: no variant for the other slots.
     v.textured = m->baseColorImage >= 0;

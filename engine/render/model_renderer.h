@@ -42,6 +42,9 @@ struct ShaderVariant {
   bool uvTransform = false;
   // KHR_materials_unlit (scene.frag's UNLIT): the base colour as it is. Last too.
   bool unlit = false;
+  // The mesh's COLOR_0 multiplies the base colour (common/material.glsl's
+  // VERTEX_COLOR); shadow passes read it only to cut out MASK holes.
+  bool vertexColor = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -84,7 +87,8 @@ struct GpuPrimitive {
   // Where each source attribute is in `buffers` (-1: absent): the vertex array
   // reads them, and so does the skin cache (render/skin_cache.h).
   struct Sources {
-    int positions = -1, normals = -1, uvs = -1, uvs1 = -1, joints = -1, weights = -1, tangents = -1, indices = -1;
+    int positions = -1, normals = -1, uvs = -1, uvs1 = -1, colors = -1, joints = -1, weights = -1, tangents = -1,
+        indices = -1;
   } sources;
   glm::vec3 center{0.0f};  // of the bind-pose bounds, mesh space: sorting BLEND draws
   // Morph targets: every displacement in one storage buffer, vertex-major, one

@@ -62,7 +62,10 @@ SceneDesc viewerScene(const ModelData& model, const glm::dvec3& lo, double radiu
   scene.materials.push_back(ground);
   PrimitiveDesc plane;
   plane.type = PrimitiveType::Plane;
-  plane.point = glm::dvec3(0.0, lo.y, 0.0);
+  // A thousandth of the model's size below its lowest point: a model whose lowest
+  // part is a flat floor (TwoSidedPlane) would otherwise share the ground's depth
+  // and fight it; a gap that small is far below a pixel at the framing distance.
+  plane.point = glm::dvec3(0.0, lo.y - 1e-3 * radius, 0.0);
   plane.extent = radius * 8.0;
   plane.material = 0;
   scene.primitives.push_back(plane);

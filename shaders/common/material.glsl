@@ -7,6 +7,7 @@
 //   EMISSIVE_TEXTURE  emissive (sRGB, UNIT_EMISSIVE)
 //   OCCLUSION         ambient occlusion (linear, UNIT_OCCLUSION): R, with u_occlusionStrength
 //   ALPHA_MASK        discard below u_alphaCutoff
+//   VERTEX_COLOR      the mesh's COLOR_0 multiplies the base colour (v_color)
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
 //                     every slot reads its set (u_texCoord) through its matrix
 //                     (u_uvTransform, built in C++: asset/texture_transform.h)
@@ -45,12 +46,20 @@ layout(binding = UNIT_BASE_COLOR) uniform sampler2D u_baseColorTexture;
 #endif
 uniform vec4 u_baseColorFactor = vec4(1.0);
 
-vec4 materialBaseColor(vec2 uv) {
-#ifdef TEXTURED
-  return u_baseColorFactor * texture(u_baseColorTexture, materialUv(SLOT_BASE_COLOR, uv));
-#else
-  return u_baseColorFactor;
+#ifdef VERTEX_COLOR
+in vec4 v_color;  // COLOR_0, linear RGBA
 #endif
+
+// glTF's base colour: the factor times the texture times the vertex colour.
+vec4 materialBaseColor(vec2 uv) {
+  vec4 color = u_baseColorFactor;
+#ifdef TEXTURED
+  color *= texture(u_baseColorTexture, materialUv(SLOT_BASE_COLOR, uv));
+#endif
+#ifdef VERTEX_COLOR
+  color *= v_color;
+#endif
+  return color;
 }
 
 #ifdef ALPHA_MASK

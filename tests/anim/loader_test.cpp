@@ -200,6 +200,32 @@ TEST_F(LoaderTest, ReadsSparseAndNormalisedAccessors) {
   EXPECT_NEAR(prim.weights[4 * 2 + 0], 0.5f, 1e-6f);  // bytes (1, 1, 0, 0) / 255, normalised
 }
 
+// COLOR_0 (the base colour's multiplier): VEC4 of normalised unsigned bytes and VEC3
+// of floats (alpha 1); any other type or count names the primitive and attribute.
+TEST_F(LoaderTest, ReadsVertexColours) {
+  TestModel m;
+  m.doc["accessors"].push_back({{"bufferView", 1}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC4"}});
+  m.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 7;  // the joints' bytes
+  auto bytes = loadGltf(write(m));
+  ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+  const std::vector<glm::vec4>& c = bytes->meshes[0].primitives[0].colors;
+  ASSERT_EQ(c.size(), 3u);
+  const float one = float(1.0 / 255.0);  // as readAccessor divides, in double
+  EXPECT_EQ(c[0], glm::vec4(0.0f, one, 0.0f, 0.0f));
+  EXPECT_EQ(c[2], glm::vec4(one, one, 0.0f, 0.0f));
+
+  m.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;  // the positions, VEC3 floats
+  auto floats = loadGltf(write(m));
+  ASSERT_TRUE(floats.ok()) << floats.error().message;
+  EXPECT_EQ(floats->meshes[0].primitives[0].colors[1], glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+
+  m.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 3;  // the indices: SCALAR
+  expectError(write(m), {"mesh 0 primitive 0 COLOR_0", "must be VEC3 or VEC4"});
+  m.doc["accessors"][7]["count"] = 2;
+  m.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 7;
+  expectError(write(m), {"COLOR_0", "has 2 elements, expected 3"});
+}
+
 TEST_F(LoaderTest, InterleavedByteStride) {
   TestModel m;
   // Read POSITION x,y,z with a 12-byte stride explicitly, and weights with 16.
