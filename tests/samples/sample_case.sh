@@ -5,9 +5,16 @@
 # exit 0, write its pose (with nodes) and a non-empty image, and name no file or
 # element as an error. The warnings it prints (extensions drawn without, for
 # instance) are listed, for the note; they do not fail the case.
+# The first variant's image (glTF-Binary, else glTF) is compared with
+# tests/golden/samples/NAME.png, looked at beside Khronos's screenshot when made
+# (ENGINE_UPDATE_GOLDENS=1 writes it instead), within tests/golden's limits: the
+# images are FBO frames, the same bytes through EGL and OSMesa on the machine that
+# made them; max 64 lets an edge pixel flip on another Mesa build, mean 0.25 fails on
+# any real change of material, light or camera.
 #   sample_case.sh BIN SAMPLES NAME WORK
 set -u
 BIN="$1" SAMPLES="$2" NAME="$3" WORK="$4/$3"
+GOLDEN="$(cd "$(dirname "${BASH_SOURCE[0]}")/../golden/samples" && pwd)/$NAME.png"
 mkdir -p "$WORK"
 [ -d "$SAMPLES/$NAME" ] || { echo "$SAMPLES/$NAME missing: skipped"; exit 77; }
 # Models that require an extension the engine does not implement yet (issue 13):
@@ -50,6 +57,16 @@ for variant in glTF-Binary glTF glTF-Draco glTF-Quantized glTF-Meshopt; do
   code=$?
   [ "$code" = 0 ] || { echo "FAIL: $NAME/$variant: --offscreen exited $code"; cat "$out.view.log"; exit 1; }
   [ -s "$out.png" ] || { echo "FAIL: $NAME/$variant: no image"; exit 1; }
+  if [ "$variant" = glTF-Binary ] || [ "$variant" = glTF ]; then
+    if [ -n "${ENGINE_UPDATE_GOLDENS:-}" ]; then
+      cp "$out.png" "$GOLDEN"
+    elif [ ! -f "$GOLDEN" ]; then
+      echo "FAIL: $NAME: no golden $GOLDEN (make it with ENGINE_UPDATE_GOLDENS=1 and look at it)"; exit 1
+    else
+      "$BIN/imgdiff" "$out.png" "$GOLDEN" --max-abs 64 --max-mean 0.25 --diff "$out.diff.png" \
+        || { echo "FAIL: $NAME/$variant differs from $GOLDEN (diff: $out.diff.png)"; exit 1; }
+    fi
+  fi
   warnings="$(grep -ih "warn\|does not support" "$out.pose.log" "$out.view.log" | sort -u)"
   echo "ok: $NAME/$variant${warnings:+ (warnings below)}"
   [ -n "$warnings" ] && echo "$warnings" | sed 's/^/  /'
