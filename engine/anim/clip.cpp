@@ -1,6 +1,7 @@
 #include "anim/clip.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace engine {
@@ -57,24 +58,50 @@ Status validateMorphTrack(const MorphTrack& track, std::size_t index, const Morp
   return Ok{};
 }
 
-// The keys around `time`: first == second when the time is outside the keys and
-// the nearest end value is held.
-struct KeyPair {
-  std::size_t first = 0;
-  std::size_t second = 0;
-  float u = 0.0f;  // 0 at first, 1 at second
-  double interval = 0.0;
-};
-
-KeyPair findKeys(const std::vector<float>& times, double time) {
-  auto it = std::upper_bound(times.begin(), times.end(), time,
+// The first key after `time` in [first, last): std::upper_bound, comparing in double.
+std::size_t keyAfter(const std::vector<float>& times, double time, std::size_t first, std::size_t last) {
+  auto it = std::upper_bound(times.begin() + std::ptrdiff_t(first), times.begin() + std::ptrdiff_t(last), time,
                              [](double t, float key) { return t < static_cast<double>(key); });
-  std::size_t i = static_cast<std::size_t>(it - times.begin());
+  return static_cast<std::size_t>(it - times.begin());
+}
+
+// Keys a cursor steps over before it searches instead: forward playback at 60 Hz
+// over keys at 24-30 Hz moves by 0 or 1 key a frame.
+constexpr std::size_t kCursorSteps = 4;
+
+// The same index as keyAfter over all keys (it is unique: the first key greater
+// than `time` in a sorted array), found from the cursor's last one: a few steps
+// forward, else a search of the keys past it, or of those before it when time went
+// back.
+std::size_t keyAfter(const std::vector<float>& times, double time, KeyCursor& cursor) {
+  const std::size_t n = times.size();
+  std::size_t i = std::min<std::size_t>(cursor, n);
+  if (i > 0 && time < static_cast<double>(times[i - 1])) {
+    i = keyAfter(times, time, 0, i - 1);
+  } else {
+    const std::size_t stop = std::min(n, i + kCursorSteps);
+    while (i < stop && !(time < static_cast<double>(times[i]))) ++i;
+    if (i == stop && i < n && !(time < static_cast<double>(times[i]))) i = keyAfter(times, time, i + 1, n);
+  }
+  cursor = static_cast<KeyCursor>(i);
+  return i;
+}
+
+// The key pair around `time` given i, the first key after it.
+KeyPair keysBefore(const std::vector<float>& times, double time, std::size_t i) {
   if (i == 0) return {};
   if (i == times.size()) return {i - 1, i - 1, 0.0f, 0.0};
   // upper_bound skips equal times, so t0 < t1 and the division is safe.
   double t0 = times[i - 1], t1 = times[i];
   return {i - 1, i, static_cast<float>((time - t0) / (t1 - t0)), t1 - t0};
+}
+
+KeyPair findKeys(const std::vector<float>& times, double time) {
+  return keysBefore(times, time, keyAfter(times, time, 0, times.size()));
+}
+
+KeyPair findKeys(const std::vector<float>& times, double time, KeyCursor& cursor) {
+  return keysBefore(times, time, keyAfter(times, time, cursor));
 }
 
 // glTF cubic Hermite: p(s) = h00 v0 + h10 dt b0 + h01 v1 + h11 dt a1, tangents
@@ -128,8 +155,10 @@ std::span<const float> MorphLayout::of(std::span<const float> weights, int node)
 }
 
 Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const MorphLayout& morphs) {
+  static std::atomic<std::uint64_t> lastId{0};
   Clip clip;
   clip.name_ = raw.name;
+  clip.id_ = ++lastId;
   std::string prefix = "clip \"" + raw.name + "\": ";
   for (std::size_t i = 0; i < raw.tracks.size(); ++i) {
     if (Status s = validateTrack(raw.tracks[i], i, skeleton.jointCount()); !s)
@@ -142,6 +171,7 @@ Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const Mor
         v = glm::vec4(q.x, q.y, q.z, q.w);
       }
     clip.duration_ = std::max(clip.duration_, static_cast<double>(track.times.back()));
+    track.timeline = clip.timelineOf(track.times);
     clip.tracks_.push_back(std::move(track));
   }
   for (std::size_t i = 0; i < raw.morphTracks.size(); ++i) {
@@ -154,8 +184,9 @@ Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const Mor
   return clip;
 }
 
-glm::vec3 sampleVec3(const Track& track, double time) {
-  KeyPair keys = findKeys(track.times, time);
+namespace {
+
+glm::vec3 vec3At(const Track& track, const KeyPair& keys) {
   if (keys.first == keys.second || track.interpolation == Interpolation::Step)
     return glm::vec3(track.values[valueIndex(track, keys.first)]);
   if (track.interpolation == Interpolation::CubicSpline) return glm::vec3(hermite(track, keys));
@@ -163,8 +194,7 @@ glm::vec3 sampleVec3(const Track& track, double time) {
   return a + (b - a) * keys.u;
 }
 
-glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) {
-  KeyPair keys = findKeys(track.times, time);
+glm::quat quatAt(const Track& track, const KeyPair& keys, QuatInterpolation method) {
   if (keys.first == keys.second || track.interpolation == Interpolation::Step)
     return safeNormalize(toQuat(track.values[valueIndex(track, keys.first)]));
   if (track.interpolation == Interpolation::CubicSpline) return hermiteQuat(track, keys);
@@ -172,8 +202,7 @@ glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) 
   return method == QuatInterpolation::Nlerp ? nlerp(a, b, keys.u) : slerp(a, b, keys.u);
 }
 
-void sampleWeights(const MorphTrack& track, double time, std::span<float> out) {
-  const KeyPair keys = findKeys(track.times, time);
+void weightsAt(const MorphTrack& track, const KeyPair& keys, std::span<float> out) {
   const std::size_t n = static_cast<std::size_t>(track.targets);
   // The block of key k's values: after its in-tangents for CubicSpline.
   auto values = [&](std::size_t key) {
@@ -196,12 +225,82 @@ void sampleWeights(const MorphTrack& track, double time, std::span<float> out) {
     out[i] = h.value0 * v0[i] + h.outTangent0 * b0[i] + h.value1 * v1[i] + h.inTangent1 * a1[i];
 }
 
-void applyTrack(const Track& track, double time, Srt& srt, QuatInterpolation method) {
+void applyAt(const Track& track, const KeyPair& keys, Srt& srt, QuatInterpolation method) {
   switch (track.path) {
-    case AnimPath::Translation: srt.translation = sampleVec3(track, time); break;
-    case AnimPath::Rotation: srt.rotation = sampleQuat(track, time, method); break;
-    case AnimPath::Scale: srt.scale = sampleVec3(track, time); break;
+    case AnimPath::Translation: srt.translation = vec3At(track, keys); break;
+    case AnimPath::Rotation: srt.rotation = quatAt(track, keys, method); break;
+    case AnimPath::Scale: srt.scale = vec3At(track, keys); break;
   }
+}
+
+}  // namespace
+
+int Clip::timelineOf(const std::vector<float>& times) {
+  auto it = std::find(timelines_.begin(), timelines_.end(), times);
+  if (it == timelines_.end()) it = timelines_.insert(it, times);
+  return static_cast<int>(it - timelines_.begin());
+}
+
+void SamplingContext::bind(const Clip& clip) {
+  if (clip_ == clip.id() && timelines_.size() == clip.timelines().size() && arcs_.size() == clip.tracks().size() &&
+      morphTracks_.size() == clip.morphTracks().size())
+    return;
+  clip_ = clip.id();
+  timelines_.assign(clip.timelines().size(), 0);
+  keys_.resize(clip.timelines().size());
+  arcs_.assign(clip.tracks().size(), Arc{});
+  morphTracks_.assign(clip.morphTracks().size(), 0);
+}
+
+namespace {
+
+// A LINEAR rotation track's slerp between `keys`, its arc computed once per key pair.
+glm::quat slerpCached(const Track& track, const KeyPair& keys, SamplingContext::Arc& cache) {
+  const glm::quat a = toQuat(track.values[keys.first]);
+  if (cache.second != keys.second) cache = {keys.second, slerpArc(a, toQuat(track.values[keys.second]))};
+  return slerpAt(a, cache.arc, keys.u);
+}
+
+}  // namespace
+
+void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInterpolation method,
+                  SamplingContext& context) {
+  context.bind(clip);
+  const std::span<const std::vector<float>> timelines = clip.timelines();
+  const std::span<KeyCursor> cursors = context.timelineCursors();
+  const std::span<KeyPair> keys = context.timelineKeys();
+  for (std::size_t t = 0; t < timelines.size(); ++t) keys[t] = findKeys(timelines[t], time, cursors[t]);
+  const std::span<const Track> tracks = clip.tracks();
+  const std::span<SamplingContext::Arc> arcs = context.arcs();
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const Track& track = tracks[i];
+    const KeyPair& k = keys[static_cast<std::size_t>(track.timeline)];
+    Srt& srt = output[static_cast<std::size_t>(track.joint)];
+    const bool slerps = track.path == AnimPath::Rotation && track.interpolation == Interpolation::Linear &&
+                        method == QuatInterpolation::Slerp && k.first != k.second;
+    if (slerps) {
+      srt.rotation = slerpCached(track, k, arcs[i]);
+    } else {
+      applyAt(track, k, srt, method);
+    }
+  }
+}
+
+glm::vec3 sampleVec3(const Track& track, double time) { return vec3At(track, findKeys(track.times, time)); }
+
+glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) {
+  return quatAt(track, findKeys(track.times, time), method);
+}
+
+void sampleWeights(const MorphTrack& track, double time, std::span<float> out) {
+  weightsAt(track, findKeys(track.times, time), out);
+}
+void sampleWeights(const MorphTrack& track, double time, std::span<float> out, KeyCursor& cursor) {
+  weightsAt(track, findKeys(track.times, time, cursor), out);
+}
+
+void applyTrack(const Track& track, double time, Srt& srt, QuatInterpolation method) {
+  applyAt(track, findKeys(track.times, time), srt, method);
 }
 
 }  // namespace engine

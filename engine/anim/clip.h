@@ -1,5 +1,6 @@
 #pragma once
 // Keyframed animation of a skeleton's local transforms, and its sampling.
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@ struct Track {
   Interpolation interpolation = Interpolation::Linear;
   std::vector<float> times;
   std::vector<glm::vec4> values;
+  int timeline = -1;  // set by Clip::build: the index of `times` in Clip::timelines()
 };
 
 // The morph target weights of one mesh node: `targets` weights per key (three
@@ -71,19 +73,37 @@ class Clip {
   double duration() const { return duration_; }
   std::span<const Track> tracks() const { return tracks_; }
   std::span<const MorphTrack> morphTracks() const { return morphTracks_; }
+  // The distinct key times of the tracks: glTF exporters give most channels of an
+  // animation one input accessor, so a cursor per timeline finds the keys of many
+  // tracks at once.
+  std::span<const std::vector<float>> timelines() const { return timelines_; }
+  // Unique to each built clip (copies share it, having the same keys): what a
+  // SamplingContext recognises its clip by, as an address can be reused.
+  std::uint64_t id() const { return id_; }
 
  private:
   std::string name_;
+  std::uint64_t id_ = 0;
   double duration_ = 0.0;
+  int timelineOf(const std::vector<float>& times);  // adds `times` when new
+  std::vector<std::vector<float>> timelines_;
   std::vector<Track> tracks_;
   std::vector<MorphTrack> morphTracks_;
 };
 
-// Value of a track at clip-local `time`: the first value before the first key,
-// the last after the last key; O(log keys).
 // How LINEAR rotation keys are interpolated: slerp is exact (constant angular
 // speed); nlerp is the cheaper shortcut whose error the benchmarks measure.
 enum class QuatInterpolation { Slerp, Nlerp };
+
+// Where a track found its keys last time: the index of the first key after the
+// time it sampled (0 to start with). Sampling with a cursor gives exactly the
+// result of sampling without one, whatever the cursor holds; a time a little past
+// the last one finds its keys in a step or two instead of a binary search.
+using KeyCursor = std::uint32_t;
+
+// Value of a track at clip-local `time`: the first value before the first key,
+// the last after the last key; O(log keys), or with a cursor O(1) for a time at
+// most a few keys past the cursor's (later ones and earlier ones search).
 
 glm::vec3 sampleVec3(const Track& track, double time);
 // Rotations take the shortest arc between two keys, CUBICSPLINE ones included (the
@@ -94,6 +114,51 @@ glm::quat sampleQuat(const Track& track, double time,
 // Writes the track's `targets` weights at `time` into `out` (out.size() must be
 // track.targets), held like sampleVec3 outside the keys.
 void sampleWeights(const MorphTrack& track, double time, std::span<float> out);
+void sampleWeights(const MorphTrack& track, double time, std::span<float> out, KeyCursor& cursor);
+
+// The keys around a time: first == second outside the keys, where the nearest end
+// value is held.
+struct KeyPair {
+  std::size_t first = 0;
+  std::size_t second = 0;
+  float u = 0.0f;  // 0 at first, 1 at second
+  double interval = 0.0;
+};
+
+// What one character's playback of one clip keeps between frames (ozz's
+// SamplingJob::Context): a key cursor per timeline and per morph track, and the
+// slerp arc of each rotation track's current key pair. Owned by the caller, one per
+// character instance and clip it plays; forward playback then finds its keys in
+// O(1) amortised and computes each arc once per key pair; seeks back or far ahead
+// search. Results never depend on what it holds: a context used with another clip
+// is reset to it (the only time it allocates: when the clip needs more room than
+// any before).
+class SamplingContext {
+ public:
+  // Resets the context to `clip` unless it already serves it.
+  void bind(const Clip& clip);
+  std::span<KeyCursor> timelineCursors() { return timelines_; }
+  std::span<KeyPair> timelineKeys() { return keys_; }
+  std::span<KeyCursor> morphCursors() { return morphTracks_; }
+  // Per track: the arc of a rotation track's key pair, valid while `second` is
+  // the key pair's second key (0 never is: it is no LINEAR key pair's second).
+  struct Arc {
+    std::size_t second = 0;
+    SlerpArc arc;
+  };
+  std::span<Arc> arcs() { return arcs_; }
+
+ private:
+  std::uint64_t clip_ = 0;  // Clip::id(); 0 is no clip's
+  std::vector<KeyCursor> timelines_, morphTracks_;
+  std::vector<KeyPair> keys_;
+  std::vector<Arc> arcs_;
+};
+
+// Writes every track of `clip` at `time` into `output` (indexed by joint), the
+// same values as applyTrack of each track, finding keys through `context`.
+void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInterpolation method,
+                  SamplingContext& context);
 
 // Writes the track's value at `time` into the matching part of `srt`.
 void applyTrack(const Track& track, double time, Srt& srt,

@@ -117,8 +117,18 @@ bool MorphSamplingJob::validate() const {
 bool MorphSamplingJob::run() const {
   if (!validate()) return false;
   std::copy(restWeights.begin(), restWeights.end(), output.begin());
-  for (const MorphTrack& track : clip->morphTracks())
-    sampleWeights(track, time, output.subspan(static_cast<std::size_t>(track.first), static_cast<std::size_t>(track.targets)));
+  const std::span<const MorphTrack> tracks = clip->morphTracks();
+  if (context) context->bind(*clip);
+  const std::span<KeyCursor> cursors = context ? context->morphCursors() : std::span<KeyCursor>{};
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const MorphTrack& track = tracks[i];
+    const auto out = output.subspan(static_cast<std::size_t>(track.first), static_cast<std::size_t>(track.targets));
+    if (context) {
+      sampleWeights(track, time, out, cursors[i]);
+    } else {
+      sampleWeights(track, time, out);
+    }
+  }
   return true;
 }
 
@@ -171,8 +181,12 @@ bool SamplingJob::validate() const {
 bool SamplingJob::run() const {
   if (!validate()) return false;
   std::copy(restPose.begin(), restPose.end(), output.begin());
-  for (const Track& track : clip->tracks())
-    applyTrack(track, time, output[static_cast<std::size_t>(track.joint)], rotations);
+  const std::span<const Track> tracks = clip->tracks();
+  if (context == nullptr) {
+    for (const Track& track : tracks) applyTrack(track, time, output[static_cast<std::size_t>(track.joint)], rotations);
+    return true;
+  }
+  sampleTracks(*clip, time, output, rotations, *context);
   return true;
 }
 
