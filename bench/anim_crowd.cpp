@@ -14,7 +14,7 @@
 // primitive in ns per vertex.
 // Usage: anim_crowd --model M.glb [--clip NAME|INDEX] [--label L] [--chars 1000]
 //                   [--path cursor|reference] [--rotations slerp|nlerp]
-//                   [--runs 5] [--blocks 30] [--skin]
+//                   [--runs 5] [--blocks 30] [--skin] [--frames N]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -34,7 +34,7 @@ namespace {
 
 struct Options {
   std::string model, clip, label = "model", path = "cursor", rotations = "slerp";
-  int chars = 1000, runs = 5, blocks = 30;
+  int chars = 1000, runs = 5, blocks = 30, frames = 0;
   bool skin = false;
 };
 
@@ -149,6 +149,17 @@ void measureAnim(Crowd& crowd, const Options& o) {
   }
 }
 
+// --frames N: N forward frames, untimed, a fixed amount of work for `perf stat`
+// (cycles in user mode vary less than time on a loaded machine).
+void playFrames(Crowd& crowd, const Options& o) {
+  makeCharacters(crowd, o.chars);
+  for (int f = 0; f < o.frames; ++f)
+    for (Character& c : crowd.chars) {
+      sample(crowd, c, nextTime(crowd, c, false));
+      toModel(crowd, c);
+    }
+}
+
 // LBS of every skinned primitive (positions + normals), the pose of character 0.
 void measureSkinning(const ModelData& data, const AnimatedModel& animated, Crowd& crowd, const Options& o) {
   makeCharacters(crowd, 1);
@@ -198,10 +209,11 @@ Options parse(int argc, char** argv) {
     else if (k == "--chars") o.chars = std::atoi(v.c_str());
     else if (k == "--runs") o.runs = std::atoi(v.c_str());
     else if (k == "--blocks") o.blocks = std::atoi(v.c_str());
+    else if (k == "--frames") o.frames = std::atoi(v.c_str());
     else fail("unknown option " + k);
   }
   if (o.model.empty()) fail("usage: anim_crowd --model M.glb [--clip C] [--label L] [--chars N] [--path cursor|reference] "
-                            "[--rotations slerp|nlerp] [--runs R] [--blocks B] [--skin]");
+                            "[--rotations slerp|nlerp] [--runs R] [--blocks B] [--skin] [--frames N]");
   if (o.path != "cursor" && o.path != "reference") fail("--path is cursor or reference, not " + o.path);
   if (o.rotations != "slerp" && o.rotations != "nlerp") fail("--rotations is slerp or nlerp, not " + o.rotations);
   if (o.chars < 1 || o.runs < 1 || o.blocks < 1) fail("--chars, --runs and --blocks must be at least 1");
@@ -230,6 +242,7 @@ int main(int argc, char** argv) {
   for (double& t : crowd.randomTimes) t = u(rng);
   std::printf("INFO label=%s joints=%d tracks=%zu duration_s=%.4f\n", o.label.c_str(), animated->skeleton.jointCount(),
               crowd.clip->tracks().size(), crowd.clip->duration());
+  if (o.frames > 0) return playFrames(crowd, o), 0;
   measureAnim(crowd, o);
   if (o.skin) measureSkinning(*data, *animated, crowd, o);
   return 0;

@@ -1,5 +1,7 @@
 #include "anim/clip.h"
 
+#include "anim/quat_batch.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -174,6 +176,7 @@ Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const Mor
     track.timeline = clip.timelineOf(track.times);
     clip.tracks_.push_back(std::move(track));
   }
+  clip.groupTracks();
   for (std::size_t i = 0; i < raw.morphTracks.size(); ++i) {
     if (Status s = validateMorphTrack(raw.morphTracks[i], i, morphs); !s) return makeError(prefix + s.error().message);
     MorphTrack track = raw.morphTracks[i];
@@ -235,6 +238,23 @@ void applyAt(const Track& track, const KeyPair& keys, Srt& srt, QuatInterpolatio
 
 }  // namespace
 
+void Clip::groupTracks() {
+  for (const Track& track : tracks_) jointsDriven_ = std::max(jointsDriven_, static_cast<std::size_t>(track.joint) + 1);
+  for (std::size_t i = 0; i < tracks_.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (tracks_[i].joint == tracks_[j].joint && tracks_[i].path == tracks_[j].path) return;
+  grouped_ = true;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    const Track& t = tracks_[i];
+    if (t.interpolation == Interpolation::Linear) {
+      linear_[static_cast<int>(t.path)].push_back(
+          {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(t.timeline), static_cast<std::uint32_t>(t.joint)});
+    } else {
+      others_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+}
+
 int Clip::timelineOf(const std::vector<float>& times) {
   auto it = std::find(timelines_.begin(), timelines_.end(), times);
   if (it == timelines_.end()) it = timelines_.insert(it, times);
@@ -242,23 +262,53 @@ int Clip::timelineOf(const std::vector<float>& times) {
 }
 
 void SamplingContext::bind(const Clip& clip) {
-  if (clip_ == clip.id() && timelines_.size() == clip.timelines().size() && arcs_.size() == clip.tracks().size() &&
+  if (clip_ == clip.id() && timelines_.size() == clip.timelines().size() &&
+      arcs_.size() == clip.linearRotations().size() &&
       morphTracks_.size() == clip.morphTracks().size())
     return;
   clip_ = clip.id();
   timelines_.assign(clip.timelines().size(), 0);
   keys_.resize(clip.timelines().size());
-  arcs_.assign(clip.tracks().size(), Arc{});
+  arcs_.assign(clip.linearRotations().size(), Arc{});
   morphTracks_.assign(clip.morphTracks().size(), 0);
 }
 
 namespace {
 
-// A LINEAR rotation track's slerp between `keys`, its arc computed once per key pair.
-glm::quat slerpCached(const Track& track, const KeyPair& keys, SamplingContext::Arc& cache) {
-  const glm::quat a = toQuat(track.values[keys.first]);
-  if (cache.second != keys.second) cache = {keys.second, slerpArc(a, toQuat(track.values[keys.second]))};
-  return slerpAt(a, cache.arc, keys.u);
+// Queues a LINEAR rotation track between two keys into `batch`: slerp with its arc
+// computed once per key pair (slerpAt's weights), or nlerp (whose flip the batch
+// does).
+void queueRotation(const Track& track, const KeyPair& keys, QuatInterpolation method, SamplingContext::Arc& cache,
+                   QuatBatch& batch, glm::quat& out) {
+  const glm::vec4& a = track.values[keys.first];
+  const float t = keys.u;
+  if (method == QuatInterpolation::Nlerp) {
+    batch.add(a, toQuat(track.values[keys.second]), 1.0f - t, t, out);
+    return;
+  }
+  if (cache.second != keys.second) cache = {keys.second, slerpArc(toQuat(a), toQuat(track.values[keys.second]))};
+  const SlerpArc& arc = cache.arc;
+  if (arc.nlerp) {
+    batch.add(a, arc.b, 1.0f - t, t, out);
+  } else {
+    batch.add(a, arc.b, std::sin((1.0f - t) * arc.theta) * arc.invSin, std::sin(t * arc.theta) * arc.invSin, out);
+  }
+}
+
+// LINEAR translations or scales: the key held outside the keys, else a lerp.
+void lerpChannels(std::span<const Clip::Channel> channels, std::span<const Track> tracks,
+                  std::span<const KeyPair> keys, std::span<Srt> output, glm::vec3 Srt::*part) {
+  for (const Clip::Channel& c : channels) {
+    const KeyPair& k = keys[c.timeline];
+    const glm::vec4* values = tracks[c.track].values.data();
+    const glm::vec3 a(values[k.first]);
+    if (k.first == k.second) {
+      output[c.joint].*part = a;
+    } else {
+      const glm::vec3 b(values[k.second]);
+      output[c.joint].*part = a + (b - a) * k.u;
+    }
+  }
 }
 
 }  // namespace
@@ -271,19 +321,29 @@ void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInte
   const std::span<KeyPair> keys = context.timelineKeys();
   for (std::size_t t = 0; t < timelines.size(); ++t) keys[t] = findKeys(timelines[t], time, cursors[t]);
   const std::span<const Track> tracks = clip.tracks();
+  if (!clip.grouped()) {
+    for (const Track& track : tracks)
+      applyAt(track, keys[static_cast<std::size_t>(track.timeline)], output[static_cast<std::size_t>(track.joint)], method);
+    return;
+  }
+  lerpChannels(clip.linearTranslations(), tracks, keys, output, &Srt::translation);
+  lerpChannels(clip.linearScales(), tracks, keys, output, &Srt::scale);
+  const std::span<const Clip::Channel> rotations = clip.linearRotations();
   const std::span<SamplingContext::Arc> arcs = context.arcs();
-  for (std::size_t i = 0; i < tracks.size(); ++i) {
-    const Track& track = tracks[i];
-    const KeyPair& k = keys[static_cast<std::size_t>(track.timeline)];
-    Srt& srt = output[static_cast<std::size_t>(track.joint)];
-    const bool slerps = track.path == AnimPath::Rotation && track.interpolation == Interpolation::Linear &&
-                        method == QuatInterpolation::Slerp && k.first != k.second;
-    if (slerps) {
-      srt.rotation = slerpCached(track, k, arcs[i]);
+  QuatBatch batch;
+  for (std::size_t r = 0; r < rotations.size(); ++r) {
+    const Clip::Channel& c = rotations[r];
+    const KeyPair& k = keys[c.timeline];
+    if (k.first == k.second) {
+      output[c.joint].rotation = quatAt(tracks[c.track], k, method);
     } else {
-      applyAt(track, k, srt, method);
+      queueRotation(tracks[c.track], k, method, arcs[r], batch, output[c.joint].rotation);
     }
   }
+  batch.flush();
+  for (const std::uint32_t i : clip.otherTracks())
+    applyAt(tracks[i], keys[static_cast<std::size_t>(tracks[i].timeline)], output[static_cast<std::size_t>(tracks[i].joint)],
+            method);
 }
 
 glm::vec3 sampleVec3(const Track& track, double time) { return vec3At(track, findKeys(track.times, time)); }

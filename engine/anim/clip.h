@@ -80,10 +80,32 @@ class Clip {
   // Unique to each built clip (copies share it, having the same keys): what a
   // SamplingContext recognises its clip by, as an address can be reused.
   std::uint64_t id() const { return id_; }
+  // The tracks as sampleTracks walks them, grouped so that each loop is one kind:
+  // LINEAR translations, scales and rotations, and the rest (STEP, CUBICSPLINE)
+  // by index. Empty when two tracks drive the same part of one joint (glTF
+  // forbids it): such a clip is sampled track by track, in order, as the last
+  // track must win.
+  struct Channel {
+    std::uint32_t track;     // index in tracks()
+    std::uint32_t timeline;  // the track's
+    std::uint32_t joint;     // the track's
+  };
+  std::span<const Channel> linearTranslations() const { return linear_[0]; }
+  std::span<const Channel> linearRotations() const { return linear_[1]; }
+  std::span<const Channel> linearScales() const { return linear_[2]; }
+  std::span<const std::uint32_t> otherTracks() const { return others_; }
+  bool grouped() const { return grouped_; }
+  // 1 + the largest joint a track drives (0 without tracks).
+  std::size_t jointsDriven() const { return jointsDriven_; }
 
  private:
   std::string name_;
   std::uint64_t id_ = 0;
+  void groupTracks();
+  std::vector<Channel> linear_[3];  // by AnimPath
+  std::vector<std::uint32_t> others_;
+  bool grouped_ = false;
+  std::size_t jointsDriven_ = 0;
   double duration_ = 0.0;
   int timelineOf(const std::vector<float>& times);  // adds `times` when new
   std::vector<std::vector<float>> timelines_;
@@ -140,8 +162,8 @@ class SamplingContext {
   std::span<KeyCursor> timelineCursors() { return timelines_; }
   std::span<KeyPair> timelineKeys() { return keys_; }
   std::span<KeyCursor> morphCursors() { return morphTracks_; }
-  // Per track: the arc of a rotation track's key pair, valid while `second` is
-  // the key pair's second key (0 never is: it is no LINEAR key pair's second).
+  // Per Clip::linearRotations() entry: the arc of its current key pair, valid
+  // while `second` is the pair's second key (0 never is: no pair's second).
   struct Arc {
     std::size_t second = 0;
     SlerpArc arc;

@@ -172,10 +172,8 @@ bool MorphJob::run() const {
 }
 
 bool SamplingJob::validate() const {
-  if (clip == nullptr || !std::isfinite(time) || output.size() != restPose.size()) return false;
-  for (const Track& track : clip->tracks())
-    if (track.joint < 0 || static_cast<std::size_t>(track.joint) >= output.size()) return false;
-  return true;
+  return clip != nullptr && std::isfinite(time) && output.size() == restPose.size() &&
+         clip->jointsDriven() <= output.size();
 }
 
 bool SamplingJob::run() const {
@@ -231,10 +229,8 @@ bool LocalToModelJob::validate() const {
 
 bool LocalToModelJob::run() const {
   if (!validate()) return false;
-  for (std::size_t i = 0; i < parents.size(); ++i) {
-    glm::mat4 local = toMatrix(locals[i]);
-    models[i] = parents[i] < 0 ? root * local : models[static_cast<std::size_t>(parents[i])] * local;
-  }
+  for (std::size_t i = 0; i < parents.size(); ++i)
+    models[i] = (parents[i] < 0 ? root : models[static_cast<std::size_t>(parents[i])]) * toMatrix(locals[i]);
   return true;
 }
 
