@@ -247,8 +247,12 @@ void Clip::groupTracks() {
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     const Track& t = tracks_[i];
     if (t.interpolation == Interpolation::Linear) {
-      linear_[static_cast<int>(t.path)].push_back(
-          {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(t.timeline), static_cast<std::uint32_t>(t.joint)});
+      linear_[static_cast<int>(t.path)].push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(t.timeline),
+                                                   static_cast<std::uint32_t>(t.joint),
+                                                   static_cast<std::uint32_t>(arcs_.size())});
+      if (t.path == AnimPath::Rotation)
+        for (std::size_t k = 0; k + 1 < t.values.size(); ++k)
+          arcs_.push_back(slerpArc(toQuat(t.values[k]), toQuat(t.values[k + 1])));
     } else {
       others_.push_back(static_cast<std::uint32_t>(i));
     }
@@ -263,32 +267,25 @@ int Clip::timelineOf(const std::vector<float>& times) {
 
 void SamplingContext::bind(const Clip& clip) {
   if (clip_ == clip.id() && timelines_.size() == clip.timelines().size() &&
-      arcs_.size() == clip.linearRotations().size() &&
       morphTracks_.size() == clip.morphTracks().size())
     return;
   clip_ = clip.id();
   timelines_.assign(clip.timelines().size(), 0);
   keys_.resize(clip.timelines().size());
-  arcs_.assign(clip.linearRotations().size(), Arc{});
   morphTracks_.assign(clip.morphTracks().size(), 0);
 }
 
 namespace {
 
-// Queues a LINEAR rotation track between two keys into `batch`: slerp with its arc
-// computed once per key pair (slerpAt's weights), or nlerp (whose flip the batch
-// does).
-void queueRotation(const Track& track, const KeyPair& keys, QuatInterpolation method, SamplingContext::Arc& cache,
+// Queues a LINEAR rotation track between two keys into `batch`: slerp through the
+// pair's arc (slerpAt's weights), or nlerp (whose flip the batch does).
+void queueRotation(const Track& track, const KeyPair& keys, QuatInterpolation method, const SlerpArc& arc,
                    QuatBatch& batch, glm::quat& out) {
   const glm::vec4& a = track.values[keys.first];
   const float t = keys.u;
   if (method == QuatInterpolation::Nlerp) {
     batch.add(a, toQuat(track.values[keys.second]), 1.0f - t, t, out);
-    return;
-  }
-  if (cache.second != keys.second) cache = {keys.second, slerpArc(toQuat(a), toQuat(track.values[keys.second]))};
-  const SlerpArc& arc = cache.arc;
-  if (arc.nlerp) {
+  } else if (arc.nlerp) {
     batch.add(a, arc.b, 1.0f - t, t, out);
   } else {
     batch.add(a, arc.b, std::sin((1.0f - t) * arc.theta) * arc.invSin, std::sin(t * arc.theta) * arc.invSin, out);
@@ -329,15 +326,14 @@ void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInte
   lerpChannels(clip.linearTranslations(), tracks, keys, output, &Srt::translation);
   lerpChannels(clip.linearScales(), tracks, keys, output, &Srt::scale);
   const std::span<const Clip::Channel> rotations = clip.linearRotations();
-  const std::span<SamplingContext::Arc> arcs = context.arcs();
+  const std::span<const SlerpArc> arcs = clip.slerpArcs();
   QuatBatch batch;
-  for (std::size_t r = 0; r < rotations.size(); ++r) {
-    const Clip::Channel& c = rotations[r];
+  for (const Clip::Channel& c : rotations) {
     const KeyPair& k = keys[c.timeline];
     if (k.first == k.second) {
       output[c.joint].rotation = quatAt(tracks[c.track], k, method);
     } else {
-      queueRotation(tracks[c.track], k, method, arcs[r], batch, output[c.joint].rotation);
+      queueRotation(tracks[c.track], k, method, arcs[c.arcs + k.first], batch, output[c.joint].rotation);
     }
   }
   batch.flush();

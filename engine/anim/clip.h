@@ -89,11 +89,15 @@ class Clip {
     std::uint32_t track;     // index in tracks()
     std::uint32_t timeline;  // the track's
     std::uint32_t joint;     // the track's
+    std::uint32_t arcs;      // rotations: where its key pairs' arcs start in slerpArcs()
   };
   std::span<const Channel> linearTranslations() const { return linear_[0]; }
   std::span<const Channel> linearRotations() const { return linear_[1]; }
   std::span<const Channel> linearScales() const { return linear_[2]; }
   std::span<const std::uint32_t> otherTracks() const { return others_; }
+  // slerpArc of each pair of consecutive keys of each LINEAR rotation, computed
+  // once here: playback then pays no atan2 (arc k of a channel: keys k and k+1).
+  std::span<const SlerpArc> slerpArcs() const { return arcs_; }
   bool grouped() const { return grouped_; }
   // 1 + the largest joint a track drives (0 without tracks).
   std::size_t jointsDriven() const { return jointsDriven_; }
@@ -104,6 +108,7 @@ class Clip {
   void groupTracks();
   std::vector<Channel> linear_[3];  // by AnimPath
   std::vector<std::uint32_t> others_;
+  std::vector<SlerpArc> arcs_;
   bool grouped_ = false;
   std::size_t jointsDriven_ = 0;
   double duration_ = 0.0;
@@ -148,13 +153,11 @@ struct KeyPair {
 };
 
 // What one character's playback of one clip keeps between frames (ozz's
-// SamplingJob::Context): a key cursor per timeline and per morph track, and the
-// slerp arc of each rotation track's current key pair. Owned by the caller, one per
-// character instance and clip it plays; forward playback then finds its keys in
-// O(1) amortised and computes each arc once per key pair; seeks back or far ahead
-// search. Results never depend on what it holds: a context used with another clip
-// is reset to it (the only time it allocates: when the clip needs more room than
-// any before).
+// SamplingJob::Context): a key cursor per timeline and per morph track. Owned by
+// the caller, one per character instance and clip it plays; forward playback then
+// finds its keys in O(1) amortised; seeks back or far ahead search. Results never
+// depend on what it holds: a context used with another clip is reset to it (the
+// only time it allocates: when the clip needs more room than any before).
 class SamplingContext {
  public:
   // Resets the context to `clip` unless it already serves it.
@@ -162,19 +165,11 @@ class SamplingContext {
   std::span<KeyCursor> timelineCursors() { return timelines_; }
   std::span<KeyPair> timelineKeys() { return keys_; }
   std::span<KeyCursor> morphCursors() { return morphTracks_; }
-  // Per Clip::linearRotations() entry: the arc of its current key pair, valid
-  // while `second` is the pair's second key (0 never is: no pair's second).
-  struct Arc {
-    std::size_t second = 0;
-    SlerpArc arc;
-  };
-  std::span<Arc> arcs() { return arcs_; }
 
  private:
   std::uint64_t clip_ = 0;  // Clip::id(); 0 is no clip's
   std::vector<KeyCursor> timelines_, morphTracks_;
   std::vector<KeyPair> keys_;
-  std::vector<Arc> arcs_;
 };
 
 // Writes every track of `clip` at `time` into `output` (indexed by joint), the
