@@ -1,4 +1,5 @@
-// SamplingContext (key cursors per timeline, slerp arcs per key pair) against the
+// SamplingContext (key cursors per timeline) and the grouped, batched sampling it
+// takes (Clip::linearRotations, slerp arcs per key pair, QuatBatch) against the
 // search from scratch that SamplingJob and MorphSamplingJob do without one: every
 // output bit must match, for any sequence of times.
 #include <gtest/gtest.h>
@@ -152,8 +153,8 @@ TEST(SamplingContext, MatchesTheSearchWhenTracksShareATarget) {
   }
 }
 
-// One context handed clips in turn at the same time is reset to each, its cached
-// arcs included (both clips' key pairs have the same indices).
+// One context handed clips in turn at the same time follows each (both clips'
+// cursors sit at the same key indices).
 TEST(SamplingContext, FollowsAChangeOfClip) {
   const Fixture a(1), b(2);  // same layout, different keys
   const std::vector<double> times = {0.3, 0.31, 1.2};
