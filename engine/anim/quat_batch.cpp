@@ -41,6 +41,7 @@ __m128 slerpSin4(__m128 x) {
 // Lanes with invSin != 0 take slerpSin(x) * invSin, the others x as it is.
 __m128 weights(__m128 x, __m128 invSin) {
   const __m128 slerps = _mm_cmpneq_ps(invSin, _mm_setzero_ps());
+  if (_mm_movemask_ps(slerps) == 0) return x;  // nlerp: no sines to compute
   return _mm_or_ps(_mm_and_ps(slerps, _mm_mul_ps(slerpSin4(x), invSin)), _mm_andnot_ps(slerps, x));
 }
 
