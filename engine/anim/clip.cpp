@@ -288,7 +288,7 @@ void queueRotation(const Track& track, const KeyPair& keys, QuatInterpolation me
   } else if (arc.nlerp) {
     batch.add(a, arc.b, 1.0f - t, t, out);
   } else {
-    batch.addSlerp(a, arc.b, (1.0f - t) * arc.theta, t * arc.theta, arc.invSin, out);
+    batch.add(a, arc.b, std::sin((1.0f - t) * arc.theta) * arc.invSin, std::sin(t * arc.theta) * arc.invSin, out);
   }
 }
 

@@ -1,13 +1,12 @@
 #include "anim/quat_batch.h"
 
 #include <cstddef>
-#include <initializer_list>
 #include <limits>
 
 #include "core/math.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <xmmintrin.h>
 #endif
 
 namespace engine {
@@ -21,30 +20,6 @@ __m128 dot4(__m128 ax, __m128 ay, __m128 az, __m128 aw, __m128 bx, __m128 by, __
                     _mm_add_ps(_mm_mul_ps(ay, by), _mm_mul_ps(az, bz)));
 }
 
-// slerpSin of four floats: the same double operations as the scalar one, two
-// lanes per register.
-__m128d slerpSin2(__m128d d) {
-  const __m128d d2 = _mm_mul_pd(d, d);
-  __m128d p = _mm_set1_pd(-7.647163731819816e-13);
-  for (double c : {1.6059043836821613e-10, -2.505210838544172e-08, 2.755731922398589e-06, -1.984126984126984e-04,
-                   8.333333333333333e-03, -1.6666666666666666e-01})
-    p = _mm_add_pd(_mm_mul_pd(p, d2), _mm_set1_pd(c));
-  return _mm_add_pd(d, _mm_mul_pd(_mm_mul_pd(d, d2), p));
-}
-
-__m128 slerpSin4(__m128 x) {
-  const __m128 lo = _mm_cvtpd_ps(slerpSin2(_mm_cvtps_pd(x)));
-  const __m128 hi = _mm_cvtpd_ps(slerpSin2(_mm_cvtps_pd(_mm_movehl_ps(x, x))));
-  return _mm_movelh_ps(lo, hi);
-}
-
-// Lanes with invSin != 0 take slerpSin(x) * invSin, the others x as it is.
-__m128 weights(__m128 x, __m128 invSin) {
-  const __m128 slerps = _mm_cmpneq_ps(invSin, _mm_setzero_ps());
-  if (_mm_movemask_ps(slerps) == 0) return x;  // nlerp: no sines to compute
-  return _mm_or_ps(_mm_and_ps(slerps, _mm_mul_ps(slerpSin4(x), invSin)), _mm_andnot_ps(slerps, x));
-}
-
 }  // namespace
 
 void QuatBatch::flush() {
@@ -56,9 +31,7 @@ void QuatBatch::flush() {
   const __m128 flip = _mm_and_ps(_mm_cmplt_ps(dot4(ax, ay, az, aw, bx, by, bz, bw), _mm_setzero_ps()),
                                  _mm_set1_ps(-0.0f));
   bx = _mm_xor_ps(bx, flip), by = _mm_xor_ps(by, flip), bz = _mm_xor_ps(bz, flip), bw = _mm_xor_ps(bw, flip);
-  const __m128 invSin = _mm_setr_ps(invSin_[0], invSin_[1], invSin_[2], invSin_[3]);
-  const __m128 wa = weights(_mm_setr_ps(xa_[0], xa_[1], xa_[2], xa_[3]), invSin);
-  const __m128 wb = weights(_mm_setr_ps(xb_[0], xb_[1], xb_[2], xb_[3]), invSin);
+  const __m128 wa = _mm_setr_ps(wa_[0], wa_[1], wa_[2], wa_[3]), wb = _mm_setr_ps(wb_[0], wb_[1], wb_[2], wb_[3]);
   const __m128 qx = _mm_add_ps(_mm_mul_ps(ax, wa), _mm_mul_ps(bx, wb));
   const __m128 qy = _mm_add_ps(_mm_mul_ps(ay, wa), _mm_mul_ps(by, wb));
   const __m128 qz = _mm_add_ps(_mm_mul_ps(az, wa), _mm_mul_ps(bz, wb));
@@ -84,9 +57,7 @@ void QuatBatch::flush() {
     const glm::quat a(a_[i].w, a_[i].x, a_[i].y, a_[i].z);
     glm::quat b(b_[i].w, b_[i].x, b_[i].y, b_[i].z);
     if (glm::dot(a, b) < 0.0f) b = -b;
-    const bool slerps = invSin_[i] != 0.0f;
-    const float wa = slerps ? slerpSin(xa_[i]) * invSin_[i] : xa_[i], wb = slerps ? slerpSin(xb_[i]) * invSin_[i] : xb_[i];
-    *out_[i] = safeNormalize(a * wa + b * wb);
+    *out_[i] = safeNormalize(a * wa_[i] + b * wb_[i]);
   }
   count_ = 0;
 }

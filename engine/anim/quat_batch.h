@@ -14,31 +14,21 @@ class QuatBatch {
   // hemisphere (as nlerp does; a no-op for a slerp arc's b, which is flipped
   // already). Writes the queue when it holds four.
   void add(const glm::vec4& a, const glm::quat& b, float wa, float wb, glm::quat& out) {
-    queue(a, b, wa, wb, 0.0f, out);
-  }
-  // The same with slerpAt's weights wa = slerpSin(xa) * invSin, wb likewise, the
-  // sines computed four lanes at a time.
-  void addSlerp(const glm::vec4& a, const glm::quat& b, float xa, float xb, float invSin, glm::quat& out) {
-    queue(a, b, xa, xb, invSin, out);
+    const int i = count_++;
+    a_[i] = a;
+    b_[i] = glm::vec4(b.x, b.y, b.z, b.w);
+    wa_[i] = wa, wb_[i] = wb;
+    out_[i] = &out;
+    if (count_ == 4) flush();
   }
   // Writes what is queued.
   void flush();
 
  private:
-  // invSin 0 marks a lane whose weights are given (slerp's is never 0).
-  void queue(const glm::vec4& a, const glm::quat& b, float xa, float xb, float invSin, glm::quat& out) {
-    const int i = count_++;
-    a_[i] = a;
-    b_[i] = glm::vec4(b.x, b.y, b.z, b.w);
-    xa_[i] = xa, xb_[i] = xb, invSin_[i] = invSin;
-    out_[i] = &out;
-    if (count_ == 4) flush();
-  }
-
   // Whole quaternions (x, y, z, w), transposed to SoA in registers: loading lanes
   // stored one float at a time would stall on store forwarding.
   alignas(16) glm::vec4 a_[4] = {}, b_[4] = {};
-  float xa_[4] = {}, xb_[4] = {}, invSin_[4] = {};
+  float wa_[4] = {}, wb_[4] = {};
   glm::quat* out_[4] = {};
   int count_ = 0;
 };

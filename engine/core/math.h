@@ -108,29 +108,10 @@ inline SlerpArc slerpArc(const glm::quat& a, glm::quat b) {
   return {b, theta, invSin, false};
 }
 
-// sin for slerp's weights, whose angles lie in [0, pi/2] (theta <= pi/2 after the
-// flip, times t and 1 - t in [0, 1]): the odd Taylor polynomial to x^15 in double,
-// within 7e-12 of sin there (the next term, (pi/2)^17 / 17!), so that rounded to
-// float it is the correctly rounded sin except for arguments within 7e-12 of a
-// rounding boundary, where it is 1 ulp off (libm's sinf is no closer). It is plain
-// arithmetic, not a libm call, so QuatBatch evaluates it four lanes wide with the
-// same bits (SlerpSinMatchesTheCorrectlyRoundedSin holds it to that).
-inline float slerpSin(float x) {
-  const double d = x, d2 = d * d;
-  double p = -7.647163731819816e-13;  // -1/15!
-  p = p * d2 + 1.6059043836821613e-10;
-  p = p * d2 + -2.505210838544172e-08;
-  p = p * d2 + 2.755731922398589e-06;
-  p = p * d2 + -1.984126984126984e-04;
-  p = p * d2 + 8.333333333333333e-03;
-  p = p * d2 + -1.6666666666666666e-01;  // -1/3!
-  return static_cast<float>(d + d * d2 * p);
-}
-
 inline glm::quat slerpAt(const glm::quat& a, const SlerpArc& arc, float t) {
   if (arc.nlerp) return safeNormalize(a * (1.0f - t) + arc.b * t);
-  return safeNormalize(a * (slerpSin((1.0f - t) * arc.theta) * arc.invSin) +
-                       arc.b * (slerpSin(t * arc.theta) * arc.invSin));
+  return safeNormalize(a * (std::sin((1.0f - t) * arc.theta) * arc.invSin) +
+                       arc.b * (std::sin(t * arc.theta) * arc.invSin));
 }
 
 inline glm::quat slerp(const glm::quat& a, const glm::quat& b, float t) { return slerpAt(a, slerpArc(a, b), t); }

@@ -17,24 +17,6 @@ float angleBetween(const glm::quat& a, glm::quat b) {
   return 4.0f * std::atan2(glm::length(a - b), glm::length(a + b));
 }
 
-// slerp's sine (a polynomial, so that four lanes give the scalar bits) against the
-// correctly rounded sin over 2^21 arguments spread over [0, 1.7] (slerp's reach
-// [0, pi/2] and past it): at most 1 ulp off, and off at all only next to a rounding
-// boundary (the polynomial is within 3e-11 of sin there): 49 arguments here, where
-// glibc's sinf, which slerp called before, misses 25013 (1.2%).
-TEST(Slerp, SlerpSinMatchesTheCorrectlyRoundedSin) {
-  int off = 0;
-  for (int i = 0; i <= (1 << 21); ++i) {
-    const float x = 1.7f * float(i) / float(1 << 21);
-    const float expected = static_cast<float>(std::sin(double(x)));
-    const float got = slerpSin(x);
-    if (got == expected) continue;
-    ++off;
-    ASSERT_LE(std::abs(got - expected), std::nextafter(expected, 2.0f) - expected) << "x = " << x;
-  }
-  EXPECT_LE(off, 200);  // 1e-4 of the arguments
-}
-
 TEST(Slerp, IdenticalQuaternionsGiveTheSameRotation) {
   glm::quat q = glm::angleAxis(0.7f, glm::normalize(glm::vec3(1, 2, 3)));
   for (float t : {0.0f, 0.3f, 1.0f}) {
