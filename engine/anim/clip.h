@@ -103,17 +103,18 @@ class Clip {
   std::size_t jointsDriven() const { return jointsDriven_; }
 
  private:
+  int timelineOf(const std::vector<float>& times);  // adds `times` when new
+  void groupTracks();
+
   std::string name_;
   std::uint64_t id_ = 0;
-  void groupTracks();
+  double duration_ = 0.0;
+  std::vector<std::vector<float>> timelines_;
   std::vector<Channel> linear_[3];  // by AnimPath
   std::vector<std::uint32_t> others_;
   std::vector<SlerpArc> arcs_;
   bool grouped_ = false;
   std::size_t jointsDriven_ = 0;
-  double duration_ = 0.0;
-  int timelineOf(const std::vector<float>& times);  // adds `times` when new
-  std::vector<std::vector<float>> timelines_;
   std::vector<Track> tracks_;
   std::vector<MorphTrack> morphTracks_;
 };
@@ -122,16 +123,16 @@ class Clip {
 // speed); nlerp is the cheaper shortcut whose error the benchmarks measure.
 enum class QuatInterpolation { Slerp, Nlerp };
 
-// Where a track found its keys last time: the index of the first key after the
-// time it sampled (0 to start with). Sampling with a cursor gives exactly the
-// result of sampling without one, whatever the cursor holds; a time a little past
-// the last one finds its keys in a step or two instead of a binary search.
+// Where a timeline found its keys last time: the index of the first key after
+// the time it sampled (0 to start with). Sampling with a cursor gives exactly the
+// result of sampling without one, whatever the cursor holds; a time a few keys
+// past the last one finds its keys in a step or two instead of a binary search,
+// an earlier one or a later one searches.
 using KeyCursor = std::uint32_t;
 
 // Value of a track at clip-local `time`: the first value before the first key,
-// the last after the last key; O(log keys), or with a cursor O(1) for a time at
-// most a few keys past the cursor's (later ones and earlier ones search).
-
+// the last after the last key; O(log keys) (sampleTracks with a SamplingContext
+// finds the keys in O(1) during playback).
 glm::vec3 sampleVec3(const Track& track, double time);
 // Rotations take the shortest arc between two keys, CUBICSPLINE ones included (the
 // second key's value and in-tangent are negated into the first's hemisphere).
