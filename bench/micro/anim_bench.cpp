@@ -57,11 +57,12 @@ void BM_CharacterPose(benchmark::State& state) {
   std::vector<glm::mat4> models(kJoints), palette(kJoints), inverseBinds(kJoints, glm::mat4(1.0f));
   std::vector<int> joints(kJoints);
   for (int j = 0; j < kJoints; ++j) joints[static_cast<std::size_t>(j)] = j;
+  engine::SamplingContext context;  // the player's way: key cursors kept between frames
   double t = 0.0;
   auto start = std::chrono::steady_clock::now();
   for (auto _ : state) {
     t = std::fmod(t + 1.0 / 60.0, clip.duration());
-    if (!engine::SamplingJob{&clip, t, skeleton.restPose(), locals}.run() ||
+    if (!engine::SamplingJob{&clip, t, skeleton.restPose(), locals, engine::QuatInterpolation::Slerp, &context}.run() ||
         !engine::LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), models}.run() ||
         !engine::SkinningPaletteJob{models, joints, inverseBinds, palette}.run()) {
       state.SkipWithError("a job rejected its inputs");

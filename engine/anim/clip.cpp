@@ -1,6 +1,9 @@
 #include "anim/clip.h"
 
+#include "anim/quat_batch.h"
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace engine {
@@ -57,24 +60,50 @@ Status validateMorphTrack(const MorphTrack& track, std::size_t index, const Morp
   return Ok{};
 }
 
-// The keys around `time`: first == second when the time is outside the keys and
-// the nearest end value is held.
-struct KeyPair {
-  std::size_t first = 0;
-  std::size_t second = 0;
-  float u = 0.0f;  // 0 at first, 1 at second
-  double interval = 0.0;
-};
-
-KeyPair findKeys(const std::vector<float>& times, double time) {
-  auto it = std::upper_bound(times.begin(), times.end(), time,
+// The first key after `time` in [first, last): std::upper_bound, comparing in double.
+std::size_t keyAfter(const std::vector<float>& times, double time, std::size_t first, std::size_t last) {
+  auto it = std::upper_bound(times.begin() + std::ptrdiff_t(first), times.begin() + std::ptrdiff_t(last), time,
                              [](double t, float key) { return t < static_cast<double>(key); });
-  std::size_t i = static_cast<std::size_t>(it - times.begin());
+  return static_cast<std::size_t>(it - times.begin());
+}
+
+// Keys a cursor steps over before it searches instead: forward playback at 60 Hz
+// over keys at 24-30 Hz moves by 0 or 1 key a frame.
+constexpr std::size_t kCursorSteps = 4;
+
+// The same index as keyAfter over all keys (it is unique: the first key greater
+// than `time` in a sorted array), found from the cursor's last one: a few steps
+// forward, else a search of the keys past it, or of those before it when time went
+// back.
+std::size_t keyAfter(const std::vector<float>& times, double time, KeyCursor& cursor) {
+  const std::size_t n = times.size();
+  std::size_t i = std::min<std::size_t>(cursor, n);
+  if (i > 0 && time < static_cast<double>(times[i - 1])) {
+    i = keyAfter(times, time, 0, i - 1);
+  } else {
+    const std::size_t stop = std::min(n, i + kCursorSteps);
+    while (i < stop && !(time < static_cast<double>(times[i]))) ++i;
+    if (i == stop && i < n && !(time < static_cast<double>(times[i]))) i = keyAfter(times, time, i + 1, n);
+  }
+  cursor = static_cast<KeyCursor>(i);
+  return i;
+}
+
+// The key pair around `time` given i, the first key after it.
+KeyPair keysBefore(const std::vector<float>& times, double time, std::size_t i) {
   if (i == 0) return {};
   if (i == times.size()) return {i - 1, i - 1, 0.0f, 0.0};
   // upper_bound skips equal times, so t0 < t1 and the division is safe.
   double t0 = times[i - 1], t1 = times[i];
   return {i - 1, i, static_cast<float>((time - t0) / (t1 - t0)), t1 - t0};
+}
+
+KeyPair findKeys(const std::vector<float>& times, double time) {
+  return keysBefore(times, time, keyAfter(times, time, 0, times.size()));
+}
+
+KeyPair findKeys(const std::vector<float>& times, double time, KeyCursor& cursor) {
+  return keysBefore(times, time, keyAfter(times, time, cursor));
 }
 
 // glTF cubic Hermite: p(s) = h00 v0 + h10 dt b0 + h01 v1 + h11 dt a1, tangents
@@ -128,8 +157,10 @@ std::span<const float> MorphLayout::of(std::span<const float> weights, int node)
 }
 
 Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const MorphLayout& morphs) {
+  static std::atomic<std::uint64_t> lastId{0};
   Clip clip;
   clip.name_ = raw.name;
+  clip.id_ = ++lastId;
   std::string prefix = "clip \"" + raw.name + "\": ";
   for (std::size_t i = 0; i < raw.tracks.size(); ++i) {
     if (Status s = validateTrack(raw.tracks[i], i, skeleton.jointCount()); !s)
@@ -142,8 +173,10 @@ Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const Mor
         v = glm::vec4(q.x, q.y, q.z, q.w);
       }
     clip.duration_ = std::max(clip.duration_, static_cast<double>(track.times.back()));
+    track.timeline = clip.timelineOf(track.times);
     clip.tracks_.push_back(std::move(track));
   }
+  clip.groupTracks();
   for (std::size_t i = 0; i < raw.morphTracks.size(); ++i) {
     if (Status s = validateMorphTrack(raw.morphTracks[i], i, morphs); !s) return makeError(prefix + s.error().message);
     MorphTrack track = raw.morphTracks[i];
@@ -154,8 +187,9 @@ Result<Clip> Clip::build(const RawClip& raw, const Skeleton& skeleton, const Mor
   return clip;
 }
 
-glm::vec3 sampleVec3(const Track& track, double time) {
-  KeyPair keys = findKeys(track.times, time);
+namespace {
+
+glm::vec3 vec3At(const Track& track, const KeyPair& keys) {
   if (keys.first == keys.second || track.interpolation == Interpolation::Step)
     return glm::vec3(track.values[valueIndex(track, keys.first)]);
   if (track.interpolation == Interpolation::CubicSpline) return glm::vec3(hermite(track, keys));
@@ -163,8 +197,7 @@ glm::vec3 sampleVec3(const Track& track, double time) {
   return a + (b - a) * keys.u;
 }
 
-glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) {
-  KeyPair keys = findKeys(track.times, time);
+glm::quat quatAt(const Track& track, const KeyPair& keys, QuatInterpolation method) {
   if (keys.first == keys.second || track.interpolation == Interpolation::Step)
     return safeNormalize(toQuat(track.values[valueIndex(track, keys.first)]));
   if (track.interpolation == Interpolation::CubicSpline) return hermiteQuat(track, keys);
@@ -172,8 +205,7 @@ glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) 
   return method == QuatInterpolation::Nlerp ? nlerp(a, b, keys.u) : slerp(a, b, keys.u);
 }
 
-void sampleWeights(const MorphTrack& track, double time, std::span<float> out) {
-  const KeyPair keys = findKeys(track.times, time);
+void weightsAt(const MorphTrack& track, const KeyPair& keys, std::span<float> out) {
   const std::size_t n = static_cast<std::size_t>(track.targets);
   // The block of key k's values: after its in-tangents for CubicSpline.
   auto values = [&](std::size_t key) {
@@ -196,12 +228,135 @@ void sampleWeights(const MorphTrack& track, double time, std::span<float> out) {
     out[i] = h.value0 * v0[i] + h.outTangent0 * b0[i] + h.value1 * v1[i] + h.inTangent1 * a1[i];
 }
 
-void applyTrack(const Track& track, double time, Srt& srt, QuatInterpolation method) {
+void applyAt(const Track& track, const KeyPair& keys, Srt& srt, QuatInterpolation method) {
   switch (track.path) {
-    case AnimPath::Translation: srt.translation = sampleVec3(track, time); break;
-    case AnimPath::Rotation: srt.rotation = sampleQuat(track, time, method); break;
-    case AnimPath::Scale: srt.scale = sampleVec3(track, time); break;
+    case AnimPath::Translation: srt.translation = vec3At(track, keys); break;
+    case AnimPath::Rotation: srt.rotation = quatAt(track, keys, method); break;
+    case AnimPath::Scale: srt.scale = vec3At(track, keys); break;
   }
+}
+
+}  // namespace
+
+void Clip::groupTracks() {
+  for (const Track& track : tracks_) jointsDriven_ = std::max(jointsDriven_, static_cast<std::size_t>(track.joint) + 1);
+  for (std::size_t i = 0; i < tracks_.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (tracks_[i].joint == tracks_[j].joint && tracks_[i].path == tracks_[j].path) return;
+  grouped_ = true;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    const Track& t = tracks_[i];
+    if (t.interpolation == Interpolation::Linear) {
+      linear_[static_cast<int>(t.path)].push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(t.timeline),
+                                                   static_cast<std::uint32_t>(t.joint),
+                                                   static_cast<std::uint32_t>(arcs_.size())});
+      if (t.path == AnimPath::Rotation)
+        for (std::size_t k = 0; k + 1 < t.values.size(); ++k)
+          arcs_.push_back(slerpArc(toQuat(t.values[k]), toQuat(t.values[k + 1])));
+    } else {
+      others_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+}
+
+int Clip::timelineOf(const std::vector<float>& times) {
+  auto it = std::find(timelines_.begin(), timelines_.end(), times);
+  if (it == timelines_.end()) it = timelines_.insert(it, times);
+  return static_cast<int>(it - timelines_.begin());
+}
+
+void SamplingContext::bind(const Clip& clip) {
+  if (clip_ == clip.id() && timelines_.size() == clip.timelines().size() &&
+      morphTracks_.size() == clip.morphTracks().size())
+    return;
+  clip_ = clip.id();
+  timelines_.assign(clip.timelines().size(), 0);
+  keys_.resize(clip.timelines().size());
+  morphTracks_.assign(clip.morphTracks().size(), 0);
+}
+
+namespace {
+
+// Queues a LINEAR rotation track between two keys into `batch`: slerp through the
+// pair's arc (slerpAt's weights), or nlerp (whose flip the batch does).
+void queueRotation(const Track& track, const KeyPair& keys, QuatInterpolation method, const SlerpArc& arc,
+                   QuatBatch& batch, glm::quat& out) {
+  const glm::vec4& a = track.values[keys.first];
+  const float t = keys.u;
+  if (method == QuatInterpolation::Nlerp) {
+    batch.add(a, toQuat(track.values[keys.second]), 1.0f - t, t, out);
+  } else if (arc.nlerp) {
+    batch.add(a, arc.b, 1.0f - t, t, out);
+  } else {
+    batch.add(a, arc.b, std::sin((1.0f - t) * arc.theta) * arc.invSin, std::sin(t * arc.theta) * arc.invSin, out);
+  }
+}
+
+// LINEAR translations or scales: the key held outside the keys, else a lerp.
+void lerpChannels(std::span<const Clip::Channel> channels, std::span<const Track> tracks,
+                  std::span<const KeyPair> keys, std::span<Srt> output, glm::vec3 Srt::*part) {
+  for (const Clip::Channel& c : channels) {
+    const KeyPair& k = keys[c.timeline];
+    const glm::vec4* values = tracks[c.track].values.data();
+    const glm::vec3 a(values[k.first]);
+    if (k.first == k.second) {
+      output[c.joint].*part = a;
+    } else {
+      const glm::vec3 b(values[k.second]);
+      output[c.joint].*part = a + (b - a) * k.u;
+    }
+  }
+}
+
+}  // namespace
+
+void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInterpolation method,
+                  SamplingContext& context) {
+  context.bind(clip);
+  const std::span<const std::vector<float>> timelines = clip.timelines();
+  const std::span<KeyCursor> cursors = context.timelineCursors();
+  const std::span<KeyPair> keys = context.timelineKeys();
+  for (std::size_t t = 0; t < timelines.size(); ++t) keys[t] = findKeys(timelines[t], time, cursors[t]);
+  const std::span<const Track> tracks = clip.tracks();
+  if (!clip.grouped()) {
+    for (const Track& track : tracks)
+      applyAt(track, keys[static_cast<std::size_t>(track.timeline)], output[static_cast<std::size_t>(track.joint)], method);
+    return;
+  }
+  lerpChannels(clip.linearTranslations(), tracks, keys, output, &Srt::translation);
+  lerpChannels(clip.linearScales(), tracks, keys, output, &Srt::scale);
+  const std::span<const Clip::Channel> rotations = clip.linearRotations();
+  const std::span<const SlerpArc> arcs = clip.slerpArcs();
+  QuatBatch batch;
+  for (const Clip::Channel& c : rotations) {
+    const KeyPair& k = keys[c.timeline];
+    if (k.first == k.second) {
+      output[c.joint].rotation = quatAt(tracks[c.track], k, method);
+    } else {
+      queueRotation(tracks[c.track], k, method, arcs[c.arcs + k.first], batch, output[c.joint].rotation);
+    }
+  }
+  batch.flush();
+  for (const std::uint32_t i : clip.otherTracks())
+    applyAt(tracks[i], keys[static_cast<std::size_t>(tracks[i].timeline)], output[static_cast<std::size_t>(tracks[i].joint)],
+            method);
+}
+
+glm::vec3 sampleVec3(const Track& track, double time) { return vec3At(track, findKeys(track.times, time)); }
+
+glm::quat sampleQuat(const Track& track, double time, QuatInterpolation method) {
+  return quatAt(track, findKeys(track.times, time), method);
+}
+
+void sampleWeights(const MorphTrack& track, double time, std::span<float> out) {
+  weightsAt(track, findKeys(track.times, time), out);
+}
+void sampleWeights(const MorphTrack& track, double time, std::span<float> out, KeyCursor& cursor) {
+  weightsAt(track, findKeys(track.times, time, cursor), out);
+}
+
+void applyTrack(const Track& track, double time, Srt& srt, QuatInterpolation method) {
+  applyAt(track, findKeys(track.times, time), srt, method);
 }
 
 }  // namespace engine

@@ -1,5 +1,6 @@
 #pragma once
 // Keyframed animation of a skeleton's local transforms, and its sampling.
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@ struct Track {
   Interpolation interpolation = Interpolation::Linear;
   std::vector<float> times;
   std::vector<glm::vec4> values;
+  int timeline = -1;  // set by Clip::build: the index of `times` in Clip::timelines()
 };
 
 // The morph target weights of one mesh node: `targets` weights per key (three
@@ -71,20 +73,66 @@ class Clip {
   double duration() const { return duration_; }
   std::span<const Track> tracks() const { return tracks_; }
   std::span<const MorphTrack> morphTracks() const { return morphTracks_; }
+  // The distinct key times of the tracks: glTF exporters give most channels of an
+  // animation one input accessor, so a cursor per timeline finds the keys of many
+  // tracks at once.
+  std::span<const std::vector<float>> timelines() const { return timelines_; }
+  // Unique to each built clip (copies share it, having the same keys): what a
+  // SamplingContext recognises its clip by, as an address can be reused.
+  std::uint64_t id() const { return id_; }
+  // The tracks as sampleTracks walks them, grouped so that each loop is one kind:
+  // LINEAR translations, scales and rotations, and the rest (STEP, CUBICSPLINE)
+  // by index. Empty when two tracks drive the same part of one joint (glTF
+  // forbids it): such a clip is sampled track by track, in order, as the last
+  // track must win.
+  struct Channel {
+    std::uint32_t track;     // index in tracks()
+    std::uint32_t timeline;  // the track's
+    std::uint32_t joint;     // the track's
+    std::uint32_t arcs;      // rotations: where its key pairs' arcs start in slerpArcs()
+  };
+  std::span<const Channel> linearTranslations() const { return linear_[0]; }
+  std::span<const Channel> linearRotations() const { return linear_[1]; }
+  std::span<const Channel> linearScales() const { return linear_[2]; }
+  std::span<const std::uint32_t> otherTracks() const { return others_; }
+  // slerpArc of each pair of consecutive keys of each LINEAR rotation, computed
+  // once here: playback then pays no atan2 (arc k of a channel: keys k and k+1).
+  std::span<const SlerpArc> slerpArcs() const { return arcs_; }
+  bool grouped() const { return grouped_; }
+  // 1 + the largest joint a track drives (0 without tracks).
+  std::size_t jointsDriven() const { return jointsDriven_; }
 
  private:
+  int timelineOf(const std::vector<float>& times);  // adds `times` when new
+  void groupTracks();
+
   std::string name_;
+  std::uint64_t id_ = 0;
   double duration_ = 0.0;
+  std::vector<std::vector<float>> timelines_;
+  std::vector<Channel> linear_[3];  // by AnimPath
+  std::vector<std::uint32_t> others_;
+  std::vector<SlerpArc> arcs_;
+  bool grouped_ = false;
+  std::size_t jointsDriven_ = 0;
   std::vector<Track> tracks_;
   std::vector<MorphTrack> morphTracks_;
 };
 
-// Value of a track at clip-local `time`: the first value before the first key,
-// the last after the last key; O(log keys).
 // How LINEAR rotation keys are interpolated: slerp is exact (constant angular
 // speed); nlerp is the cheaper shortcut whose error the benchmarks measure.
 enum class QuatInterpolation { Slerp, Nlerp };
 
+// Where a timeline found its keys last time: the index of the first key after
+// the time it sampled (0 to start with). Sampling with a cursor gives exactly the
+// result of sampling without one, whatever the cursor holds; a time a few keys
+// past the last one finds its keys in a step or two instead of a binary search,
+// an earlier one or a later one searches.
+using KeyCursor = std::uint32_t;
+
+// Value of a track at clip-local `time`: the first value before the first key,
+// the last after the last key; O(log keys) (sampleTracks with a SamplingContext
+// finds the keys in O(1) during playback).
 glm::vec3 sampleVec3(const Track& track, double time);
 // Rotations take the shortest arc between two keys, CUBICSPLINE ones included (the
 // second key's value and in-tangent are negated into the first's hemisphere).
@@ -94,6 +142,41 @@ glm::quat sampleQuat(const Track& track, double time,
 // Writes the track's `targets` weights at `time` into `out` (out.size() must be
 // track.targets), held like sampleVec3 outside the keys.
 void sampleWeights(const MorphTrack& track, double time, std::span<float> out);
+void sampleWeights(const MorphTrack& track, double time, std::span<float> out, KeyCursor& cursor);
+
+// The keys around a time: first == second outside the keys, where the nearest end
+// value is held.
+struct KeyPair {
+  std::size_t first = 0;
+  std::size_t second = 0;
+  float u = 0.0f;  // 0 at first, 1 at second
+  double interval = 0.0;
+};
+
+// What one character's playback of one clip keeps between frames (ozz's
+// SamplingJob::Context): a key cursor per timeline and per morph track. Owned by
+// the caller, one per character instance and clip it plays; forward playback then
+// finds its keys in O(1) amortised; seeks back or far ahead search. Results never
+// depend on what it holds: a context used with another clip is reset to it (the
+// only time it allocates: when the clip needs more room than any before).
+class SamplingContext {
+ public:
+  // Resets the context to `clip` unless it already serves it.
+  void bind(const Clip& clip);
+  std::span<KeyCursor> timelineCursors() { return timelines_; }
+  std::span<KeyPair> timelineKeys() { return keys_; }
+  std::span<KeyCursor> morphCursors() { return morphTracks_; }
+
+ private:
+  std::uint64_t clip_ = 0;  // Clip::id(); 0 is no clip's
+  std::vector<KeyCursor> timelines_, morphTracks_;
+  std::vector<KeyPair> keys_;
+};
+
+// Writes every track of `clip` at `time` into `output` (indexed by joint), the
+// same values as applyTrack of each track, finding keys through `context`.
+void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInterpolation method,
+                  SamplingContext& context);
 
 // Writes the track's value at `time` into the matching part of `srt`.
 void applyTrack(const Track& track, double time, Srt& srt,

@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 namespace engine {
 namespace {
@@ -61,6 +66,66 @@ void skinDualQuat(const SkinningJob& job) {
   }
 }
 
+#if defined(__SSE2__)
+// toMatrix of four joints at once, one joint per SSE lane (SoA), then each
+// parent * local product with glm's operations in glm's order (a column sums its
+// four terms left to right): the bits of parent * toMatrix(local), without a 4x4
+// local matrix built per joint in scalar code.
+class LocalMatrices4 {
+ public:
+  explicit LocalMatrices4(const Srt* srt) {
+    static_assert(sizeof(Srt) == 40 && offsetof(Srt, rotation) == 12 && offsetof(Srt, translation) == 28);
+    static_assert(offsetof(glm::quat, x) == 0 && offsetof(glm::quat, w) == 12);
+    // Each load stays inside its Srt: the scale with rotation.x, the translation
+    // after rotation.w.
+    __m128 sx = _mm_loadu_ps(&srt[0].scale.x), sy = _mm_loadu_ps(&srt[1].scale.x);
+    __m128 sz = _mm_loadu_ps(&srt[2].scale.x), s3 = _mm_loadu_ps(&srt[3].scale.x);
+    _MM_TRANSPOSE4_PS(sx, sy, sz, s3);
+    __m128 qx = _mm_loadu_ps(&srt[0].rotation.x), qy = _mm_loadu_ps(&srt[1].rotation.x);
+    __m128 qz = _mm_loadu_ps(&srt[2].rotation.x), qw = _mm_loadu_ps(&srt[3].rotation.x);
+    _MM_TRANSPOSE4_PS(qx, qy, qz, qw);
+    __m128 t0 = _mm_loadu_ps(&srt[0].rotation.w), tx = _mm_loadu_ps(&srt[1].rotation.w);
+    __m128 ty = _mm_loadu_ps(&srt[2].rotation.w), tz = _mm_loadu_ps(&srt[3].rotation.w);
+    _MM_TRANSPOSE4_PS(t0, tx, ty, tz);
+    // glm::mat3_cast, lane by lane.
+    const __m128 one = _mm_set1_ps(1.0f), two = _mm_set1_ps(2.0f);
+    const __m128 qxx = _mm_mul_ps(qx, qx), qyy = _mm_mul_ps(qy, qy), qzz = _mm_mul_ps(qz, qz);
+    const __m128 qxz = _mm_mul_ps(qx, qz), qxy = _mm_mul_ps(qx, qy), qyz = _mm_mul_ps(qy, qz);
+    const __m128 qwx = _mm_mul_ps(qw, qx), qwy = _mm_mul_ps(qw, qy), qwz = _mm_mul_ps(qw, qz);
+    // toMatrix: column c is rotation column c times scale c.
+    store(0, _mm_mul_ps(_mm_sub_ps(one, _mm_mul_ps(two, _mm_add_ps(qyy, qzz))), sx));
+    store(1, _mm_mul_ps(_mm_mul_ps(two, _mm_add_ps(qxy, qwz)), sx));
+    store(2, _mm_mul_ps(_mm_mul_ps(two, _mm_sub_ps(qxz, qwy)), sx));
+    store(3, _mm_mul_ps(_mm_mul_ps(two, _mm_sub_ps(qxy, qwz)), sy));
+    store(4, _mm_mul_ps(_mm_sub_ps(one, _mm_mul_ps(two, _mm_add_ps(qxx, qzz))), sy));
+    store(5, _mm_mul_ps(_mm_mul_ps(two, _mm_add_ps(qyz, qwx)), sy));
+    store(6, _mm_mul_ps(_mm_mul_ps(two, _mm_add_ps(qxz, qwy)), sz));
+    store(7, _mm_mul_ps(_mm_mul_ps(two, _mm_sub_ps(qyz, qwx)), sz));
+    store(8, _mm_mul_ps(_mm_sub_ps(one, _mm_mul_ps(two, _mm_add_ps(qxx, qyy))), sz));
+    store(9, tx), store(10, ty), store(11, tz);
+  }
+
+  // out = parent * (lane `j`'s local matrix).
+  void times(const glm::mat4& parent, std::size_t j, glm::mat4& out) const {
+    const __m128 p0 = _mm_loadu_ps(&parent[0][0]), p1 = _mm_loadu_ps(&parent[1][0]);
+    const __m128 p2 = _mm_loadu_ps(&parent[2][0]), p3 = _mm_loadu_ps(&parent[3][0]);
+    const auto column = [&](int first, float w) {
+      __m128 c = _mm_add_ps(_mm_mul_ps(p0, _mm_set1_ps(m_[first][j])), _mm_mul_ps(p1, _mm_set1_ps(m_[first + 1][j])));
+      c = _mm_add_ps(c, _mm_mul_ps(p2, _mm_set1_ps(m_[first + 2][j])));
+      return _mm_add_ps(c, _mm_mul_ps(p3, _mm_set1_ps(w)));
+    };
+    _mm_storeu_ps(&out[0][0], column(0, 0.0f));
+    _mm_storeu_ps(&out[1][0], column(3, 0.0f));
+    _mm_storeu_ps(&out[2][0], column(6, 0.0f));
+    _mm_storeu_ps(&out[3][0], column(9, 1.0f));
+  }
+
+ private:
+  void store(int element, __m128 lanes) { _mm_store_ps(m_[element], lanes); }
+  alignas(16) float m_[12][4];  // the 3x4 local matrices, column-major, element-major
+};
+#endif
+
 // The layers of either blending job fit when each has one entry per output
 // (`entries` of the layer) and a finite weight >= 0.
 template <typename Layer, typename Entries>
@@ -117,8 +182,18 @@ bool MorphSamplingJob::validate() const {
 bool MorphSamplingJob::run() const {
   if (!validate()) return false;
   std::copy(restWeights.begin(), restWeights.end(), output.begin());
-  for (const MorphTrack& track : clip->morphTracks())
-    sampleWeights(track, time, output.subspan(static_cast<std::size_t>(track.first), static_cast<std::size_t>(track.targets)));
+  const std::span<const MorphTrack> tracks = clip->morphTracks();
+  if (context) context->bind(*clip);
+  const std::span<KeyCursor> cursors = context ? context->morphCursors() : std::span<KeyCursor>{};
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const MorphTrack& track = tracks[i];
+    const auto out = output.subspan(static_cast<std::size_t>(track.first), static_cast<std::size_t>(track.targets));
+    if (context) {
+      sampleWeights(track, time, out, cursors[i]);
+    } else {
+      sampleWeights(track, time, out);
+    }
+  }
   return true;
 }
 
@@ -162,17 +237,19 @@ bool MorphJob::run() const {
 }
 
 bool SamplingJob::validate() const {
-  if (clip == nullptr || !std::isfinite(time) || output.size() != restPose.size()) return false;
-  for (const Track& track : clip->tracks())
-    if (track.joint < 0 || static_cast<std::size_t>(track.joint) >= output.size()) return false;
-  return true;
+  return clip != nullptr && std::isfinite(time) && output.size() == restPose.size() &&
+         clip->jointsDriven() <= output.size();
 }
 
 bool SamplingJob::run() const {
   if (!validate()) return false;
   std::copy(restPose.begin(), restPose.end(), output.begin());
-  for (const Track& track : clip->tracks())
-    applyTrack(track, time, output[static_cast<std::size_t>(track.joint)], rotations);
+  const std::span<const Track> tracks = clip->tracks();
+  if (context == nullptr) {
+    for (const Track& track : tracks) applyTrack(track, time, output[static_cast<std::size_t>(track.joint)], rotations);
+    return true;
+  }
+  sampleTracks(*clip, time, output, rotations, *context);
   return true;
 }
 
@@ -217,10 +294,16 @@ bool LocalToModelJob::validate() const {
 
 bool LocalToModelJob::run() const {
   if (!validate()) return false;
-  for (std::size_t i = 0; i < parents.size(); ++i) {
-    glm::mat4 local = toMatrix(locals[i]);
-    models[i] = parents[i] < 0 ? root * local : models[static_cast<std::size_t>(parents[i])] * local;
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  for (; i + 4 <= parents.size(); i += 4) {
+    const LocalMatrices4 local(&locals[i]);
+    for (std::size_t j = 0; j < 4; ++j)
+      local.times(parents[i + j] < 0 ? root : models[static_cast<std::size_t>(parents[i + j])], j, models[i + j]);
   }
+#endif
+  for (; i < parents.size(); ++i)
+    models[i] = (parents[i] < 0 ? root : models[static_cast<std::size_t>(parents[i])]) * toMatrix(locals[i]);
   return true;
 }
 

@@ -31,6 +31,9 @@ struct SamplingJob {
   std::span<Srt> output;
   // Slerp is exact; nlerp is the shortcut whose error bench/ measures.
   QuatInterpolation rotations = QuatInterpolation::Slerp;
+  // Optional: the cursors of this character's playback of `clip`; the same pose
+  // with or without.
+  SamplingContext* context = nullptr;
 
   bool validate() const;
   [[nodiscard]] bool run() const;
@@ -62,6 +65,7 @@ struct MorphSamplingJob {
   double time = 0.0;
   std::span<const float> restWeights;
   std::span<float> output;
+  SamplingContext* context = nullptr;  // optional, as SamplingJob's
 
   bool validate() const;
   [[nodiscard]] bool run() const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "anim/jobs.h"
 
@@ -38,9 +39,16 @@ Player::Player(const Skeleton& skeleton, std::span<const float> restMorphWeights
       currentWeights_(restMorphWeights.size()),
       previousWeights_(restMorphWeights.size()) {}
 
+void Player::start(Layer& layer, const Clip& clip, LoopMode mode) {
+  layer.clip = &clip;
+  layer.mode = mode;
+  layer.time = 0.0;
+  layer.context.bind(clip);
+}
+
 void Player::play(const Clip& clip, LoopMode mode) {
-  current_ = {&clip, mode, 0.0};
-  previous_ = {};
+  start(current_, clip, mode);
+  previous_.clip = nullptr;
   fadeSeconds_ = fadeElapsed_ = 0.0;
 }
 
@@ -49,8 +57,8 @@ void Player::crossFade(const Clip& clip, double seconds, LoopMode mode) {
     play(clip, mode);
     return;
   }
-  previous_ = current_;
-  current_ = {&clip, mode, 0.0};
+  std::swap(previous_, current_);
+  start(current_, clip, mode);
   fadeSeconds_ = seconds;
   fadeElapsed_ = 0.0;
 }
@@ -61,7 +69,7 @@ void Player::update(double dt) {
   if (previous_.clip == nullptr) return;
   previous_.time += dt * speed_;
   fadeElapsed_ += std::abs(dt);
-  if (fadeElapsed_ >= fadeSeconds_) previous_ = {};
+  if (fadeElapsed_ >= fadeSeconds_) previous_.clip = nullptr;
 }
 
 double Player::localTime() const {
@@ -78,10 +86,12 @@ bool Player::evaluate(std::span<Srt> locals, std::span<float> morphWeights) {
   if (current_.clip == nullptr || locals.size() != currentPose_.size()) return false;
   if (!morphWeights.empty() && !evaluateMorphs(morphWeights)) return false;
   SamplingJob sample{current_.clip, localTime(), skeleton_->restPose(), locals};
+  sample.context = &current_.context;
   if (previous_.clip == nullptr) return sample.run();
   sample.output = currentPose_;
   SamplingJob before{previous_.clip, wrapTime(previous_.time, previous_.clip->duration(), previous_.mode),
                      skeleton_->restPose(), previousPose_};
+  before.context = &previous_.context;
   if (!sample.run() || !before.run()) return false;
   float w = fadeWeight();
   std::array<BlendingJob::Layer, 2> layers{{{previousPose_, 1.0f - w}, {currentPose_, w}}};
@@ -92,11 +102,11 @@ bool Player::evaluate(std::span<Srt> locals, std::span<float> morphWeights) {
 // The same cross-fade as the pose, on the morph weights.
 bool Player::evaluateMorphs(std::span<float> weights) {
   if (weights.size() != restWeights_.size()) return false;
-  MorphSamplingJob sample{current_.clip, localTime(), restWeights_, weights};
+  MorphSamplingJob sample{current_.clip, localTime(), restWeights_, weights, &current_.context};
   if (previous_.clip == nullptr) return sample.run();
   sample.output = currentWeights_;
   MorphSamplingJob before{previous_.clip, wrapTime(previous_.time, previous_.clip->duration(), previous_.mode),
-                          restWeights_, previousWeights_};
+                          restWeights_, previousWeights_, &previous_.context};
   if (!sample.run() || !before.run()) return false;
   const float w = fadeWeight();
   std::array<MorphBlendingJob::Layer, 2> layers{{{previousWeights_, 1.0f - w}, {currentWeights_, w}}};

@@ -28,7 +28,8 @@ double wrapTime(double time, double duration, LoopMode mode);
 class Player {
  public:
   // Allocates the scratch poses (and morph weights, laid out like
-  // `restMorphWeights`) once; evaluate() never allocates.
+  // `restMorphWeights`) once; evaluate() never allocates (play and crossFade size
+  // the clip's sampling context).
   explicit Player(const Skeleton& skeleton, std::span<const float> restMorphWeights = {});
 
   // Starts `clip` at time 0 at once, cancelling any fade.
@@ -54,11 +55,15 @@ class Player {
   bool evaluate(std::span<Srt> locals, std::span<float> morphWeights = {});
 
  private:
+  // A clip playing, with its key cursors (kept with the layer when a fade moves
+  // it from current to previous, so neither restarts its search).
   struct Layer {
     const Clip* clip = nullptr;
     LoopMode mode = LoopMode::Repeat;
     double time = 0.0;
+    SamplingContext context;
   };
+  void start(Layer& layer, const Clip& clip, LoopMode mode);
 
   const Skeleton* skeleton_;
   Layer current_;

@@ -88,15 +88,33 @@ inline constexpr float kSlerpNlerpBelow = 1e-3f;
 // which saves a sin. The result is renormalised so that keys a little off unit
 // length still give a rotation; a NaN key fails the threshold test and becomes
 // identity through nlerp's safeNormalize.
-inline glm::quat slerp(const glm::quat& a, glm::quat b, float t) {
+// slerp is split in two so that a caller interpolating many times between the same
+// two keys (animation playback) computes the arc, with its atan2, once per key pair:
+// slerpArc(a, b) depends on the keys only, slerpAt on the arc and t. slerp is the
+// two in a row, so the three give bit-identical results.
+struct SlerpArc {
+  glm::quat b{1.0f, 0.0f, 0.0f, 0.0f};  // the second key, in the first's hemisphere
+  float theta = 0.0f, invSin = 0.0f;
+  bool nlerp = true;  // below kSlerpNlerpBelow
+};
+
+inline SlerpArc slerpArc(const glm::quat& a, glm::quat b) {
   if (glm::dot(a, b) < 0.0f) b = -b;
   float minus2 = glm::dot(a - b, a - b), plus2 = glm::dot(a + b, a + b);
-  if (!(minus2 >= kSlerpNlerpBelow * kSlerpNlerpBelow)) return safeNormalize(a * (1.0f - t) + b * t);
+  if (!(minus2 >= kSlerpNlerpBelow * kSlerpNlerpBelow)) return {b, 0.0f, 0.0f, true};
   float minus = std::sqrt(minus2), plus = std::sqrt(plus2);
   float theta = 2.0f * std::atan2(minus, plus);
   float invSin = (minus2 + plus2) / (2.0f * minus * plus);
-  return safeNormalize(a * (std::sin((1.0f - t) * theta) * invSin) + b * (std::sin(t * theta) * invSin));
+  return {b, theta, invSin, false};
 }
+
+inline glm::quat slerpAt(const glm::quat& a, const SlerpArc& arc, float t) {
+  if (arc.nlerp) return safeNormalize(a * (1.0f - t) + arc.b * t);
+  return safeNormalize(a * (std::sin((1.0f - t) * arc.theta) * arc.invSin) +
+                       arc.b * (std::sin(t * arc.theta) * arc.invSin));
+}
+
+inline glm::quat slerp(const glm::quat& a, const glm::quat& b, float t) { return slerpAt(a, slerpArc(a, b), t); }
 
 // Dual quaternion: real part = rotation, dual part = 0.5 * translation * rotation.
 // Blending these instead of matrices (DQS) keeps the skin's volume at twisted
