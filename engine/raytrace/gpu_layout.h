@@ -1,0 +1,78 @@
+#pragma once
+// The CPU tracer's scene as flat arrays for a GPU traversal (shaders/rt/), GL-free:
+// the very BVH8 the CPU built, not a second tree. Each group's nodes, Triangle4
+// leaves and leaf-slot -> triangle table are concatenated, their child references
+// rebased into the shared arrays; a group becomes an instance (its root reference
+// and bounds, tested first as RtScene::intersect does). Triangles get one global id,
+// group by group in BVH order (a group's triangle i is first(group) + i). The structs
+// are std430 layouts, written to shader storage buffers as they are.
+//
+// Why 8 wide, as the CPU has it: a node is 12 vec4 loads of boxes (two halves of four
+// children per slab row) and one test of eight children, the ray's stack grows by at
+// most seven per level over a tree a third as deep as a BVH2, and the layout is the
+// CPU's byte for byte, so a refit on the CPU is a plain re-upload. README.md,
+// "GPU ray tracing", has the measured comparison.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/rt_scene.h"
+
+namespace engine::rt {
+
+struct GpuNode {
+  // box[2 * row + half]: Bvh::Node::box[row] (min x, y, z, max x, y, z) for
+  // children 4 * half .. 4 * half + 3.
+  glm::vec4 box[12];
+  glm::uvec4 child[2];  // Bvh references (leaf bit, count, block), rebased
+};
+static_assert(sizeof(GpuNode) == 224);
+
+struct GpuLeaf {
+  glm::vec4 p[9];  // p[3 * vertex + axis][lane]: Bvh::Triangle4 as it is
+};
+static_assert(sizeof(GpuLeaf) == 144);
+
+struct GpuInstance {
+  glm::vec4 boundsMin;  // the group's BVH bounds
+  glm::vec4 boundsMax;
+  glm::uvec4 root;      // x: the root reference, rebased
+};
+
+struct GpuSphere {
+  glm::vec4 centerRadius;
+  glm::ivec4 material;  // x
+};
+
+struct GpuPlane {
+  glm::vec4 normalD;      // dot(normal, p) = d
+  glm::vec4 pointExtent;  // the square the rasterizer draws: centre, half size (0: unbounded)
+  glm::vec4 axisU;        // xyz; w: the material, as a float
+  glm::vec4 axisV;
+};
+
+// What shading a triangle hit needs beyond the leaf's positions.
+struct GpuTriangle {
+  glm::vec4 n[3];  // vertex normals; n[0].w the material, n[1].w 1 when the mesh has normals
+};
+
+struct GpuSceneLayout {
+  std::vector<GpuNode> nodes;
+  std::vector<GpuLeaf> leaves;
+  std::vector<std::uint32_t> order;  // 4 per leaf: the lane's global triangle id, or Bvh::kNoChild
+  std::vector<GpuInstance> instances;
+  std::vector<GpuSphere> spheres;
+  std::vector<GpuPlane> planes;
+  std::vector<GpuTriangle> triangles;  // by global id
+  std::vector<std::uint32_t> firstTriangle;  // per group: its first global id
+  int depth = 0;  // levels of 8-wide nodes on the deepest path, leaves included
+
+  // The most entries a traversal stack holds: seven per level (Bvh::kStackSize's rule).
+  int stackSize() const { return (Bvh::kWidth - 1) * depth + 1; }
+};
+
+// The scene's groups (already built) and analytic shapes, flattened.
+GpuSceneLayout flattenScene(const RtScene& scene);
+
+}  // namespace engine::rt

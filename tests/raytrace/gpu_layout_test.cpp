@@ -1,0 +1,156 @@
+// raytrace/gpu_layout.h: the flattened BVH8 is the CPU's tree. A small traversal of
+// the flat arrays (what shaders/rt/trace.glsl does, in C++ with the CPU's own box
+// and triangle tests) finds the CPU's closest hits, distance for distance, over
+// random rays and rays aimed exactly at shared vertices and edges.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+
+#include "../support/rt_queries.h"
+#include "raytrace/gpu_layout.h"
+
+namespace rt = engine::rt;
+using engine::test::ReferenceHit;
+
+namespace {
+
+rt::Bounds3f childBox(const rt::GpuNode& node, int k) {
+  rt::Bounds3f b;
+  for (int axis = 0; axis < 3; ++axis) {
+    b.min[axis] = node.box[2 * axis + k / 4][k % 4];
+    b.max[axis] = node.box[2 * (3 + axis) + k / 4][k % 4];
+  }
+  return b;
+}
+
+glm::vec3 leafVertex(const rt::GpuLeaf& leaf, int v, int lane) {
+  return {leaf.p[3 * v][lane], leaf.p[3 * v + 1][lane], leaf.p[3 * v + 2][lane]};
+}
+
+// Depth first over the flat arrays from `root`, every child whose box the ray enters
+// before the nearest hit; the nearest triangle hit shortens ray.tMax. Returns the
+// deepest the stack got.
+int traverseFlat(const rt::GpuSceneLayout& layout, std::uint32_t root, rt::Ray<float>& ray, ReferenceHit& best) {
+  const rt::BoundsRay<float> boxes(ray);
+  std::vector<std::uint32_t> stack{root};
+  int deepest = 1;
+  while (!stack.empty()) {
+    const std::uint32_t ref = stack.back();
+    stack.pop_back();
+    if (!rt::Bvh::isLeaf(ref)) {
+      const rt::GpuNode& node = layout.nodes[ref];
+      for (int k = 0; k < rt::Bvh::kWidth; ++k) {
+        const std::uint32_t child = node.child[k / 4][k % 4];
+        if (child != rt::Bvh::kNoChild && boxes.hits(childBox(node, k), ray)) stack.push_back(child);
+      }
+      deepest = std::max(deepest, int(stack.size()));
+      continue;
+    }
+    const std::uint32_t leaf = rt::Bvh::leafIndex(ref);
+    for (std::uint32_t lane = 0; lane < rt::Bvh::leafCount(ref); ++lane) {
+      const rt::GpuLeaf& l = layout.leaves[leaf];
+      if (auto hit = rt::intersectTriangle(ray, leafVertex(l, 0, int(lane)), leafVertex(l, 1, int(lane)), leafVertex(l, 2, int(lane)))) {
+        ray.tMax = hit->t;
+        best = {3, layout.order[4 * leaf + lane], hit->t};
+      }
+    }
+  }
+  return deepest;
+}
+
+// Within two ulps. The triangle test compares t against the nearest hit so far as
+// tScaled against tMax * det, which rounds: of two triangles meeting where the ray
+// hits (a shared vertex or edge), whose t differ in the last bit, the one visited
+// last may win. Which is visited last is the traversal's order, not the tree's.
+bool nearlyEqual(float a, float b) { return std::abs(a - b) <= 2.0f * std::numeric_limits<float>::epsilon() * std::abs(b); }
+
+// Whether triangle `id` of the layout is hit at distance t (nearlyEqual): of two
+// triangles that meet where the ray hits, either is the right answer.
+bool hitsAt(const rt::GpuSceneLayout& layout, std::uint32_t id, const rt::Ray<float>& ray, float t) {
+  const auto slot = std::size_t(std::find(layout.order.begin(), layout.order.end(), id) - layout.order.begin());
+  const rt::GpuLeaf& l = layout.leaves[slot / 4];
+  const int lane = int(slot % 4);
+  rt::Ray<float> longer = ray;
+  longer.tMax = std::numeric_limits<float>::infinity();
+  auto hit = rt::intersectTriangle(longer, leafVertex(l, 0, lane), leafVertex(l, 1, lane), leafVertex(l, 2, lane));
+  return hit && nearlyEqual(hit->t, t);
+}
+
+TEST(GpuLayout, FlatTraversalFindsTheCpuBvhsClosestHits) {
+  const rt::RtScene scene = engine::test::meshScene();
+  const rt::GpuSceneLayout layout = rt::flattenScene(scene);
+  ASSERT_EQ(layout.instances.size(), 2u) << "the empty group is left out";
+  ASSERT_EQ(layout.triangles.size(), scene.triangleCount());
+  ASSERT_EQ(layout.order.size(), 4 * layout.leaves.size());
+  const std::vector<rt::Ray<float>> rays = engine::test::queryRays(4000, 7.0f, 5);
+  int triangleHits = 0, mismatches = 0, ties = 0, deepest = 0;
+  for (const rt::Ray<float>& ray : rays) {
+    const ReferenceHit expected = engine::test::cpuClosestHit(scene, layout, ray);
+    // The shapes' part is the CPU's own code; the triangles come from the flat arrays.
+    rt::Ray<float> shortened = ray;
+    ReferenceHit actual;
+    for (std::size_t i = 0; i < scene.floatSpheres().size(); ++i) {
+      if (auto t = scene.floatSpheres()[i].intersect(shortened)) actual = {1, std::uint32_t(i), shortened.tMax = *t};
+    }
+    if (auto t = scene.floatPlanes()[0].intersect(shortened)) actual = {2, 0, shortened.tMax = *t};
+    for (const rt::GpuInstance& instance : layout.instances) {
+      rt::Bounds3f bounds{glm::vec3(instance.boundsMin), glm::vec3(instance.boundsMax)};
+      if (rt::BoundsRay<float>(shortened).hits(bounds, shortened)) {
+        deepest = std::max(deepest, traverseFlat(layout, instance.root.x, shortened, actual));
+      }
+    }
+    triangleHits += expected.kind == 3 ? 1 : 0;
+    // Exactly the CPU's hit, or (a tie) another triangle at the same point.
+    const bool exact = actual.kind == expected.kind && actual.index == expected.index && actual.t == expected.t;
+    const bool tie = !exact && actual.kind == 3 && expected.kind == 3 && nearlyEqual(actual.t, expected.t) &&
+                     hitsAt(layout, actual.index, ray, actual.t);
+    ties += tie ? 1 : 0;
+    mismatches += exact || tie ? 0 : 1;
+    // And RtScene::intersect itself agrees with the reference it is compared with.
+    const auto si = scene.intersect(ray);
+    ASSERT_EQ(bool(si), expected.kind != 0);
+    if (si) {
+      ASSERT_EQ(si->t, expected.t);
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << "of " << rays.size() << " rays";
+  EXPECT_GT(triangleHits, int(rays.size()) / 3);
+  // The depth-first reference pushes all eight children at once; the GPU's stack,
+  // sorted and popped per child, holds at most seven per level plus one.
+  EXPECT_LE(deepest, layout.stackSize());
+  std::printf("gpu layout: %zu rays, %d triangle hits, %d ties at shared edges, %zu nodes, %zu leaves, depth %d\n",
+              rays.size(), triangleHits, ties, layout.nodes.size(), layout.leaves.size(), layout.depth);
+}
+
+// The rebased references point into the shared arrays: every interior child is a
+// node after its parent's group start, every leaf block exists, and each triangle
+// has exactly one slot.
+TEST(GpuLayout, ReferencesStayInsideTheSharedArrays) {
+  const rt::RtScene scene = engine::test::meshScene();
+  const rt::GpuSceneLayout layout = rt::flattenScene(scene);
+  std::vector<int> slots(layout.triangles.size(), 0);
+  for (std::uint32_t id : layout.order) {
+    if (id == rt::Bvh::kNoChild) continue;
+    ASSERT_LT(id, slots.size());
+    ++slots[id];
+  }
+  EXPECT_EQ(std::count(slots.begin(), slots.end(), 1), std::ptrdiff_t(slots.size()));
+  for (const rt::GpuNode& node : layout.nodes) {
+    for (int k = 0; k < rt::Bvh::kWidth; ++k) {
+      const std::uint32_t ref = node.child[k / 4][k % 4];
+      if (ref == rt::Bvh::kNoChild) continue;
+      if (rt::Bvh::isLeaf(ref)) {
+        EXPECT_LT(rt::Bvh::leafIndex(ref), layout.leaves.size());
+      } else {
+        EXPECT_LT(ref, layout.nodes.size());
+      }
+    }
+  }
+  EXPECT_EQ(layout.firstTriangle.size(), 3u);
+  EXPECT_EQ(layout.firstTriangle[1], scene.bvh(0).triangleCount());
+}
+
+}  // namespace
