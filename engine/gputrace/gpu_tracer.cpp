@@ -191,6 +191,7 @@ Result<rt::RenderResult> GpuTracer::render(const rt::RenderSettings& settings) c
   glUniform2i(p.location("u_size"), w, h);
   glUniform2i(p.location("u_strata"), strata.x, strata.y);
   p.set("u_spp", spp);
+  p.set("u_maxDepth", maxDepth);
   p.set("u_shadowSamples", settings.shadowSamples);
   p.set("u_lightCount", int(scene.lights().size()));
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);

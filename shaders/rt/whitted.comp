@@ -35,6 +35,7 @@ uniform int u_lightCount;
 uniform ivec2 u_size;
 uniform ivec2 u_strata;  // detail::strataFor(spp)
 uniform int u_spp;
+uniform int u_maxDepth;  // RT_MAX_DEPTH, which sizes the arrays
 uniform int u_shadowSamples;
 uniform int u_pbr;       // Shading::Pbr
 uniform uvec2 u_seed;    // RenderSettings::seed, low and high words
@@ -193,49 +194,44 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
 
 // ---- Lights (Tracer::sampleLight, areaVisibility) ----
 
-float visible(vec3 o, vec3 d, float tMax) {
-  ++shadowRays;
-  return rtAnyHit(o, d, tMax) ? 0.0 : 1.0;
-}
+// llvmpipe inlines every call, and a traversal is long: each query has one call site
+// (a shadow ray here, a closest hit in Li), or compiling the kernel takes minutes.
 
-// A shadow ray to `target`: d = target - o, tMax 1 (spawnRayTo).
-float visibleTo(Surface s, vec3 target) {
-  vec3 o = offsetRayOrigin(s, target - s.p);
-  return visible(o, target - o, 1.0);
-}
-
-// The light's radiance at the point, the direction to it, and its visibility.
+// The light's radiance at the point, the direction to it, and its visibility: the
+// sun one ray along its direction, a point one ray to it (tMax 1 on d = target - o,
+// spawnRayTo), an area light N x N stratified jittered points on its rectangle.
 vec3 sampleLight(Surface s, RtLight light, inout Pcg32 rng, out vec3 wi, out float visibility) {
   vec3 radiance = light.radiance.xyz;
-  visibility = 1.0;
-  bool shadows = light.typeShadowsFalloff.y != 0;
-  if (light.typeShadowsFalloff.x == 0) {
+  int type = light.typeShadowsFalloff.x;
+  if (type == 0) {
     wi = rtNormalize(light.direction.xyz);
-    if (shadows) visibility = visible(offsetRayOrigin(s, wi), wi, rtInfinity());
-  } else if (light.typeShadowsFalloff.x == 1) {
-    vec3 target = light.position.xyz;
-    precise vec3 toLight = target - s.p;
+  } else if (type == 1) {
+    precise vec3 toLight = light.position.xyz - s.p;
     precise float dist2 = rtDot(toLight, toLight);
     wi = toLight / sqrt(dist2);
     if (light.typeShadowsFalloff.z != 0) radiance /= dist2;
-    if (shadows) visibility = visibleTo(s, target);
   } else {
-    vec3 center = light.position.xyz;
-    wi = rtNormalize(center - s.p);
-    if (shadows) {
-      int n = max(1, u_shadowSamples);
-      float seen = 0.0;
-      for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-          precise float u = (float(i) + pcgUniform(rng)) / float(n) - 0.5;
-          precise float w = (float(j) + pcgUniform(rng)) / float(n) - 0.5;
-          precise vec3 target = center + u * light.edgeU.xyz + w * light.edgeV.xyz;
-          seen += visibleTo(s, target);
-        }
-      }
-      visibility = seen / float(n * n);
-    }
+    wi = rtNormalize(light.position.xyz - s.p);
   }
+  visibility = 1.0;
+  if (light.typeShadowsFalloff.y == 0) return radiance;
+  int n = type == 2 ? max(1, u_shadowSamples) : 1;
+  float seen = 0.0;
+  for (int k = 0; k < n * n; ++k) {
+    vec3 target = light.position.xyz;
+    if (type == 2) {
+      precise float u = (float(k % n) + pcgUniform(rng)) / float(n) - 0.5;
+      precise float w = (float(k / n) + pcgUniform(rng)) / float(n) - 0.5;
+      precise vec3 t = light.position.xyz + u * light.edgeU.xyz + w * light.edgeV.xyz;
+      target = t;
+    }
+    vec3 toward = type == 0 ? wi : target - s.p;
+    vec3 o = offsetRayOrigin(s, toward);
+    vec3 d = type == 0 ? wi : target - o;
+    ++shadowRays;
+    seen += rtAnyHit(o, d, type == 0 ? rtInfinity() : 1.0) ? 0.0 : 1.0;
+  }
+  visibility = type == 2 ? seen / float(n * n) : seen;
   return radiance;
 }
 
@@ -289,7 +285,9 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng) {
   float weight[RT_MAX_DEPTH + 1];
   int bounces = 0;
   float firstDistance = -1.0;
-  for (int depth = 0; depth <= RT_MAX_DEPTH; ++depth) {
+  // The bound is a uniform: a constant one lets the compiler unroll the loop, and
+  // with it six copies of the traversal.
+  for (int depth = 0; depth <= u_maxDepth; ++depth) {
     bounces = depth + 1;
     weight[depth] = 0.0;
     RtHit hit = rtClosestHit(o, d, tMax);
@@ -309,7 +307,7 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng) {
     vec3 n = rtDot(s.n, v) > 0.0 ? -s.ns : s.ns;
     own[depth] = shade(s, m, n, v, rng) + m.emission.xyz;
     float reflection = m.diffuseSpecularShininessReflection.w;
-    if (!(reflection > 0.0 && depth < RT_MAX_DEPTH)) break;
+    if (!(reflection > 0.0 && depth < u_maxDepth)) break;
     precise float c1 = -rtDot(n, v);
     precise vec3 r = v + 2.0 * c1 * n;
     ++reflectionRays;
@@ -346,24 +344,22 @@ void main() {
   if (pixel.x >= u_size.x || pixel.y >= u_size.y) return;
   Pcg32 rng = pcgForPixel(pixel.x, pixel.y);
   vec3 o = vec3(u_cameraPosition);
-  vec3 color;
-  float tMax;
-  if (u_spp <= 1) {
-    vec3 d = primaryRay(double(pixel.x) + 0.5lf, double(pixel.y) + 0.5lf, tMax);
-    color = Li(o, d, tMax, rng);
-  } else {
-    vec3 sum = vec3(0.0);
-    for (int j = 0; j < u_strata.y; ++j) {
-      for (int i = 0; i < u_strata.x; ++i) {
-        double px = double(pixel.x) + (double(i) + double(pcgUniform(rng))) / double(u_strata.x);
-        double py = double(pixel.y) + (double(j) + double(pcgUniform(rng))) / double(u_strata.y);
-        vec3 d = primaryRay(px, py, tMax);
-        sum += Li(o, d, tMax, rng);
-      }
+  // One sample at the pixel's centre, or strata with a jittered point each.
+  bool jitter = u_spp > 1;
+  ivec2 strata = jitter ? u_strata : ivec2(1);
+  vec3 sum = vec3(0.0);
+  for (int k = 0; k < strata.x * strata.y; ++k) {
+    double px = double(pixel.x) + 0.5lf, py = double(pixel.y) + 0.5lf;
+    if (jitter) {
+      px = double(pixel.x) + (double(k % strata.x) + double(pcgUniform(rng))) / double(strata.x);
+      py = double(pixel.y) + (double(k / strata.x) + double(pcgUniform(rng))) / double(strata.y);
     }
-    color = sum / float(u_spp);
+    float tMax;
+    vec3 d = primaryRay(px, py, tMax);
+    vec3 c = Li(o, d, tMax, rng);
+    sum = jitter ? sum + c : c;
   }
-  pixels[pixel.y * u_size.x + pixel.x] = vec4(color, 1.0);
+  pixels[pixel.y * u_size.x + pixel.x] = vec4(jitter ? sum / float(u_spp) : sum, 1.0);
   atomicAdd(rayCounters[0], primaryRays);
   atomicAdd(rayCounters[1], shadowRays);
   atomicAdd(rayCounters[2], reflectionRays);
