@@ -30,8 +30,8 @@ std::string floatDefine(const char* name, float value) {
 }
 
 // The constants trace.glsl takes from the C++ compiler (see there).
-std::vector<std::string> traceDefines(int stackSize) {
-  return {"RT_STACK_SIZE " + std::to_string(stackSize),
+std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout) {
+  return {"RT_WIDTH " + std::to_string(layout.width), "RT_STACK_SIZE " + std::to_string(layout.stackSize()),
           floatDefine("RT_GAMMA2", rt::gamma<float>(2)),
           floatDefine("RT_GAMMA3", rt::gamma<float>(3)),
           floatDefine("RT_GAMMA5", rt::gamma<float>(5)),
@@ -114,13 +114,13 @@ GpuTracer::GpuTracer(GpuTracer&&) noexcept = default;
 GpuTracer& GpuTracer::operator=(GpuTracer&&) noexcept = default;
 GpuTracer::~GpuTracer() = default;
 
-Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string& shaderDir) {
+Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string& shaderDir, int width) {
   GpuTracer tracer;
   State& s = *tracer.state_;
   s.scene = &scene;
   s.shaderDir = shaderDir;
-  s.layout = rt::flattenScene(scene);
-  s.nodes = storage(s.layout.nodes);
+  s.layout = rt::flattenScene(scene, width);
+  s.nodes = s.layout.width == 4 ? storage(s.layout.nodes4) : storage(s.layout.nodes);
   s.leaves = storage(s.layout.leaves);
   s.order = storage(s.layout.order);
   s.instances = storage(s.layout.instances);
@@ -129,7 +129,7 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   s.triangles = storage(s.layout.triangles);
   s.materials = storage(materialsOf(scene));
   s.lights = storage(lightsOf(scene));
-  auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, traceDefines(s.layout.stackSize()));
+  auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, traceDefines(s.layout));
   if (!hits) return hits.error();
   s.hits = std::move(hits).value();
   return tracer;
@@ -158,7 +158,7 @@ Result<rt::RenderResult> GpuTracer::render(const rt::RenderSettings& settings) c
   const int maxDepth = std::max(0, settings.maxDepth);
   auto found = s.whitted.find(maxDepth);
   if (found == s.whitted.end()) {
-    std::vector<std::string> defines = traceDefines(s.layout.stackSize());
+    std::vector<std::string> defines = traceDefines(s.layout);
     defines.push_back("RT_MAX_DEPTH " + std::to_string(maxDepth));
     auto program = gl::Program::build(s.shaderDir, {{GL_COMPUTE_SHADER, "rt/whitted.comp"}}, defines);
     if (!program) return program.error();

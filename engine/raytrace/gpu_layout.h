@@ -7,11 +7,13 @@
 // group by group in BVH order (a group's triangle i is first(group) + i). The structs
 // are std430 layouts, written to shader storage buffers as they are.
 //
-// Why 8 wide, as the CPU has it: a node is 12 vec4 loads of boxes (two halves of four
-// children per slab row) and one test of eight children, the ray's stack grows by at
-// most seven per level over a tree a third as deep as a BVH2, and the layout is the
-// CPU's byte for byte, so a refit on the CPU is a plain re-upload. README.md,
-// "GPU ray tracing", has the measured comparison.
+// Two widths, both from the CPU's tree. Eight, as the CPU has it: a node is 12 vec4
+// loads of boxes (two halves of four children per slab row) and one test of eight
+// children, over a tree a third as deep as a BVH2. Four: each CPU node of more than
+// four children becomes a 4-wide node whose first slots hold pairs of adjacent
+// children (siblings in the builder's binary tree, as the collapse keeps its
+// left-to-right order) under their joint box; half the loads per node, up to twice
+// the levels. README.md, "GPU ray tracing", has the measured comparison.
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +30,13 @@ struct GpuNode {
   glm::uvec4 child[2];  // Bvh references (leaf bit, count, block), rebased
 };
 static_assert(sizeof(GpuNode) == 224);
+
+// The 4-wide node: box[row] for children 0-3.
+struct GpuNode4 {
+  glm::vec4 box[6];
+  glm::uvec4 child;
+};
+static_assert(sizeof(GpuNode4) == 112);
 
 struct GpuLeaf {
   glm::vec4 p[9];  // p[3 * vertex + axis][lane]: Bvh::Triangle4 as it is
@@ -58,7 +67,9 @@ struct GpuTriangle {
 };
 
 struct GpuSceneLayout {
+  int width = 8;  // 8: nodes holds the tree; 4: nodes4 does
   std::vector<GpuNode> nodes;
+  std::vector<GpuNode4> nodes4;
   std::vector<GpuLeaf> leaves;
   std::vector<std::uint32_t> order;  // 4 per leaf: the lane's global triangle id, or Bvh::kNoChild
   std::vector<GpuInstance> instances;
@@ -66,13 +77,13 @@ struct GpuSceneLayout {
   std::vector<GpuPlane> planes;
   std::vector<GpuTriangle> triangles;  // by global id
   std::vector<std::uint32_t> firstTriangle;  // per group: its first global id
-  int depth = 0;  // levels of 8-wide nodes on the deepest path, leaves included
+  int depth = 0;  // levels of nodes on the deepest path, leaves included
 
-  // The most entries a traversal stack holds: seven per level (Bvh::kStackSize's rule).
-  int stackSize() const { return (Bvh::kWidth - 1) * depth + 1; }
+  // The most entries a traversal stack holds: width - 1 per level (Bvh::kStackSize's rule).
+  int stackSize() const { return (width - 1) * depth + 1; }
 };
 
-// The scene's groups (already built) and analytic shapes, flattened.
-GpuSceneLayout flattenScene(const RtScene& scene);
+// The scene's groups (already built) and analytic shapes, flattened; `width` 8 or 4.
+GpuSceneLayout flattenScene(const RtScene& scene, int width = 8);
 
 }  // namespace engine::rt

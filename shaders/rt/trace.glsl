@@ -5,13 +5,17 @@
 // a multiply and an add, as the CPU build does not (-ffp-contract=off): the
 // watertight triangle test needs both triangles at an edge to round the same way.
 //
-// The program is built with RT_STACK_SIZE (GpuSceneLayout::stackSize()) and pbrt's
+// The program is built with RT_WIDTH (8 or 4: the node layout, GpuSceneLayout::width),
+// RT_STACK_SIZE (GpuSceneLayout::stackSize()) and pbrt's
 // gamma(n) in float as RT_GAMMA2 .. RT_GAMMA8 and RT_WIDEN = 1 + 2 gamma(3), computed
 // by the C++ compiler, so that no GPU division rounds them differently.
 
+// Four children per vec4: one side for a 4-wide node, two for an 8-wide one.
+#define RT_SIDES (RT_WIDTH / 4)
+
 struct RtNode {
-  vec4 box[12];  // box[2 * row + side]: row min x, y, z, max x, y, z of children 4 side .. 4 side + 3
-  uvec4 child[2];
+  vec4 box[6 * RT_SIDES];  // box[RT_SIDES * row + side]: row min x, y, z, max x, y, z of children 4 side .. 4 side + 3
+  uvec4 child[RT_SIDES];
 };
 struct RtLeaf {
   vec4 p[9];  // p[3 * vertex + axis][lane]
@@ -219,8 +223,8 @@ bvec4 rtBoxes4(RtBoxRay r, RtNode node, int side, float tMax, out vec4 tEntry) {
   precise vec4 t0 = vec4(-rtInfinity());
   precise vec4 t1 = vec4(rtInfinity());
   for (int axis = 0; axis < 3; ++axis) {
-    precise vec4 n = (node.box[2 * r.nearRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
-    precise vec4 f = (node.box[2 * r.farRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
+    precise vec4 n = (node.box[RT_SIDES * r.nearRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
+    precise vec4 f = (node.box[RT_SIDES * r.farRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
     // NaN (a ray in a slab's plane) keeps the interval, as the CPU's max and min do.
     t0 = mix(max(n, t0), t0, isnan(n));
     t1 = mix(min(f, t1), t1, isnan(f));
@@ -260,16 +264,15 @@ bool rtTraverse(uint root, vec3 o, vec3 d, bool anyHit, inout RtHit hit) {
     bool popNext = false;
     while ((ref & RT_LEAF_BIT) == 0u) {
       RtNode node = rtNodes[ref];
-      vec4 tLo, tHi;
-      bvec4 hitLo = rtBoxes4(boxRay, node, 0, hit.t, tLo);
-      bvec4 hitHi = rtBoxes4(boxRay, node, 1, hit.t, tHi);
+      vec4 tEntry[RT_SIDES];
+      bvec4 hits[RT_SIDES];
+      for (int side = 0; side < RT_SIDES; ++side) hits[side] = rtBoxes4(boxRay, node, side, hit.t, tEntry[side]);
       // Every child hit, pushed sorted with the nearest on top (ties: lower slot on
       // top), then the top popped: Embree's order, as the CPU's.
       int base = top;
-      for (int k = 0; k < 8; ++k) {
-        bool h = k < 4 ? hitLo[k] : hitHi[k - 4];
-        if (!h) continue;
-        float tk = k < 4 ? tLo[k] : tHi[k - 4];
+      for (int k = 0; k < RT_WIDTH; ++k) {
+        if (!hits[k / 4][k % 4]) continue;
+        float tk = tEntry[k / 4][k % 4];
         int at = top++;
         for (; at > base && stackT[at - 1] <= tk; --at) {
           stackRef[at] = stackRef[at - 1];

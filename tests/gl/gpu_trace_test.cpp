@@ -45,9 +45,9 @@ struct Agreement {
   float worstT = 0.0f;
 };
 
-Agreement compare(const rt::RtScene& scene, const std::vector<rt::Ray<float>>& rays) {
+Agreement compare(const rt::RtScene& scene, const std::vector<rt::Ray<float>>& rays, int width = 8) {
   const rt::GpuSceneLayout layout = rt::flattenScene(scene);
-  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
+  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir(), width);
   EXPECT_TRUE(tracer) << tracer.error().message;
   if (!tracer) return {};
   const std::vector<gpurt::RayAnswer> answers = tracer->trace(queriesOf(rays));
@@ -76,14 +76,18 @@ Agreement compare(const rt::RtScene& scene, const std::vector<rt::Ray<float>>& r
 class GpuTrace : public GlTest {};
 ENGINE_INSTANTIATE_OFFSCREEN(GpuTrace);
 
+// Both layouts: the CPU's 8-wide nodes, and the 4-wide tree made from them.
 TEST_P(GpuTrace, HitsEqualTheCpuBvhsOnAMeshScene) {
   const rt::RtScene scene = test::meshScene();
-  const Agreement a = compare(scene, test::queryRays(4000, 7.0f, 9));
-  EXPECT_EQ(a.mismatches, 0) << "of " << a.rays;
-  EXPECT_EQ(a.anyMismatches, 0);
-  EXPECT_GT(a.hits, a.rays / 2);
-  std::printf("gpu trace, mesh scene: %d rays, %d hits, %d ties at shared edges, worst relative t %.3g\n", a.rays, a.hits,
-              a.ties, double(a.worstT));
+  for (const int width : {8, 4}) {
+    SCOPED_TRACE(width);
+    const Agreement a = compare(scene, test::queryRays(4000, 7.0f, 9), width);
+    EXPECT_EQ(a.mismatches, 0) << "of " << a.rays;
+    EXPECT_EQ(a.anyMismatches, 0);
+    EXPECT_GT(a.hits, a.rays / 2);
+    std::printf("gpu trace, mesh scene, %d wide: %d rays, %d hits, %d ties at shared edges, worst relative t %.3g\n", width,
+                a.rays, a.hits, a.ties, double(a.worstT));
+  }
 }
 
 // The course room: spheres and planes, rays from inside it in every direction.

@@ -26,6 +26,25 @@ rt::Bounds3f childBox(const rt::GpuNode& node, int k) {
   return b;
 }
 
+rt::Bounds3f childBox(const rt::GpuNode4& node, int k) {
+  rt::Bounds3f b;
+  for (int axis = 0; axis < 3; ++axis) {
+    b.min[axis] = node.box[axis][k];
+    b.max[axis] = node.box[3 + axis][k];
+  }
+  return b;
+}
+
+// A node's children of either width: (reference, box) for slot k.
+std::uint32_t childRef(const rt::GpuSceneLayout& layout, std::uint32_t node, int k, rt::Bounds3f& box) {
+  if (layout.width == 4) {
+    box = childBox(layout.nodes4[node], k);
+    return layout.nodes4[node].child[k];
+  }
+  box = childBox(layout.nodes[node], k);
+  return layout.nodes[node].child[k / 4][k % 4];
+}
+
 glm::vec3 leafVertex(const rt::GpuLeaf& leaf, int v, int lane) {
   return {leaf.p[3 * v][lane], leaf.p[3 * v + 1][lane], leaf.p[3 * v + 2][lane]};
 }
@@ -41,10 +60,10 @@ int traverseFlat(const rt::GpuSceneLayout& layout, std::uint32_t root, rt::Ray<f
     const std::uint32_t ref = stack.back();
     stack.pop_back();
     if (!rt::Bvh::isLeaf(ref)) {
-      const rt::GpuNode& node = layout.nodes[ref];
-      for (int k = 0; k < rt::Bvh::kWidth; ++k) {
-        const std::uint32_t child = node.child[k / 4][k % 4];
-        if (child != rt::Bvh::kNoChild && boxes.hits(childBox(node, k), ray)) stack.push_back(child);
+      for (int k = 0; k < layout.width; ++k) {
+        rt::Bounds3f box;
+        const std::uint32_t child = childRef(layout, ref, k, box);
+        if (child != rt::Bvh::kNoChild && boxes.hits(box, ray)) stack.push_back(child);
       }
       deepest = std::max(deepest, int(stack.size()));
       continue;
@@ -79,9 +98,13 @@ bool hitsAt(const rt::GpuSceneLayout& layout, std::uint32_t id, const rt::Ray<fl
   return hit && nearlyEqual(hit->t, t);
 }
 
-TEST(GpuLayout, FlatTraversalFindsTheCpuBvhsClosestHits) {
+class GpuLayout : public ::testing::TestWithParam<int> {};
+INSTANTIATE_TEST_SUITE_P(Width, GpuLayout, ::testing::Values(8, 4));
+
+TEST_P(GpuLayout, FlatTraversalFindsTheCpuBvhsClosestHits) {
   const rt::RtScene scene = engine::test::meshScene();
-  const rt::GpuSceneLayout layout = rt::flattenScene(scene);
+  const rt::GpuSceneLayout layout = rt::flattenScene(scene, GetParam());
+  ASSERT_EQ(layout.width == 4 ? layout.nodes4.empty() : layout.nodes.empty(), false);
   ASSERT_EQ(layout.instances.size(), 2u) << "the empty group is left out";
   ASSERT_EQ(layout.triangles.size(), scene.triangleCount());
   ASSERT_EQ(layout.order.size(), 4 * layout.leaves.size());
@@ -121,16 +144,17 @@ TEST(GpuLayout, FlatTraversalFindsTheCpuBvhsClosestHits) {
   // The depth-first reference pushes all eight children at once; the GPU's stack,
   // sorted and popped per child, holds at most seven per level plus one.
   EXPECT_LE(deepest, layout.stackSize());
-  std::printf("gpu layout: %zu rays, %d triangle hits, %d ties at shared edges, %zu nodes, %zu leaves, depth %d\n",
-              rays.size(), triangleHits, ties, layout.nodes.size(), layout.leaves.size(), layout.depth);
+  std::printf("gpu layout %d wide: %zu rays, %d triangle hits, %d ties at shared edges, %zu nodes, %zu leaves, depth %d\n",
+              layout.width, rays.size(), triangleHits, ties, layout.width == 4 ? layout.nodes4.size() : layout.nodes.size(),
+              layout.leaves.size(), layout.depth);
 }
 
 // The rebased references point into the shared arrays: every interior child is a
 // node after its parent's group start, every leaf block exists, and each triangle
 // has exactly one slot.
-TEST(GpuLayout, ReferencesStayInsideTheSharedArrays) {
+TEST_P(GpuLayout, ReferencesStayInsideTheSharedArrays) {
   const rt::RtScene scene = engine::test::meshScene();
-  const rt::GpuSceneLayout layout = rt::flattenScene(scene);
+  const rt::GpuSceneLayout layout = rt::flattenScene(scene, GetParam());
   std::vector<int> slots(layout.triangles.size(), 0);
   for (std::uint32_t id : layout.order) {
     if (id == rt::Bvh::kNoChild) continue;
@@ -138,14 +162,17 @@ TEST(GpuLayout, ReferencesStayInsideTheSharedArrays) {
     ++slots[id];
   }
   EXPECT_EQ(std::count(slots.begin(), slots.end(), 1), std::ptrdiff_t(slots.size()));
-  for (const rt::GpuNode& node : layout.nodes) {
-    for (int k = 0; k < rt::Bvh::kWidth; ++k) {
-      const std::uint32_t ref = node.child[k / 4][k % 4];
+  const std::size_t nodes = layout.width == 4 ? layout.nodes4.size() : layout.nodes.size();
+  for (std::uint32_t n = 0; n < nodes; ++n) {
+    for (int k = 0; k < layout.width; ++k) {
+      rt::Bounds3f box;
+      const std::uint32_t ref = childRef(layout, n, k, box);
       if (ref == rt::Bvh::kNoChild) continue;
       if (rt::Bvh::isLeaf(ref)) {
         EXPECT_LT(rt::Bvh::leafIndex(ref), layout.leaves.size());
       } else {
-        EXPECT_LT(ref, layout.nodes.size());
+        EXPECT_GT(ref, n) << "children follow their parent";
+        EXPECT_LT(ref, nodes);
       }
     }
   }
