@@ -6,7 +6,8 @@
 //    the driver's compile of the kernel, is reported apart and left out.
 //  - Ray queries on a triangle scene (--queries, default demo.json: terrain and
 //    characters): the camera's primary rays, closest hit and any hit each, through
-//    RtScene on every core and through GpuTracer::trace (upload and read-back included).
+//    RtScene on every core and through GpuTracer::trace (upload and read-back
+//    included) with both GPU layouts, the CPU's 8-wide nodes and the 4-wide ones.
 // Medians of --runs runs, and the ratio GPU / CPU.
 //
 //   build/bin/gpu_trace [--runs N] [--size WxH] [--spp N] [--offscreen egl|osmesa]
@@ -100,10 +101,13 @@ engine::Status benchQueries(const std::string& path, const Options& o, int width
       queries.push_back({glm::vec4(r.o, r.tMax), glm::vec4(r.d, 0.0f)});
     }
   }
-  auto tracer = engine::gpurt::GpuTracer::create(*scene, shaderDir);
+  auto tracer = engine::gpurt::GpuTracer::create(*scene, shaderDir, 8);
   if (!tracer) return tracer.error();
-  (void)tracer->trace(queries);  // the compile
-  std::vector<double> cpu, gpu;
+  auto tracer4 = engine::gpurt::GpuTracer::create(*scene, shaderDir, 4);
+  if (!tracer4) return tracer4.error();
+  (void)tracer->trace(queries);  // the compiles
+  (void)tracer4->trace(queries);
+  std::vector<double> cpu, gpu, gpu4;
   std::vector<int> hit(rays.size());
   for (int i = 0; i < o.runs; ++i) {
     auto start = Clock::now();
@@ -113,12 +117,16 @@ engine::Status benchQueries(const std::string& path, const Options& o, int width
     });
     cpu.push_back(2.0 * double(rays.size()) / std::chrono::duration<double>(Clock::now() - start).count() / 1e6);
     start = Clock::now();
-    const auto answers = tracer->trace(queries);
+    (void)tracer->trace(queries);
     gpu.push_back(2.0 * double(rays.size()) / std::chrono::duration<double>(Clock::now() - start).count() / 1e6);
+    start = Clock::now();
+    (void)tracer4->trace(queries);
+    gpu4.push_back(2.0 * double(rays.size()) / std::chrono::duration<double>(Clock::now() - start).count() / 1e6);
   }
-  const double cpuM = median(cpu), gpuM = median(gpu);
-  std::printf("queries %s %dx%d: %zu triangles, %zu closest + any-hit pairs; CPU %.2f Mrays/s, GPU %.2f Mrays/s, GPU / CPU %.2f\n",
-              path.c_str(), width, height, scene->triangleCount(), rays.size(), cpuM, gpuM, gpuM / cpuM);
+  const double cpuM = median(cpu), gpuM = median(gpu), gpu4M = median(gpu4);
+  std::printf("queries %s %dx%d: %zu triangles, %zu closest + any-hit pairs; CPU %.2f Mrays/s, GPU BVH8 %.2f Mrays/s "
+              "(GPU / CPU %.2f), GPU BVH4 %.2f Mrays/s (BVH4 / BVH8 %.2f)\n",
+              path.c_str(), width, height, scene->triangleCount(), rays.size(), cpuM, gpuM, gpuM / cpuM, gpu4M, gpu4M / gpuM);
   return engine::Ok{};
 }
 
