@@ -65,8 +65,8 @@ Agreement compare(const rt::RtScene& scene, const std::vector<rt::Ray<float>>& r
     if (cpu.kind == 0) continue;
     const float error = std::abs(gpu.t - cpu.t) / cpu.t;
     a.worstT = std::max(a.worstT, error);
-    // Two triangles meeting where the ray hits: either may win (gpu_layout_test.cpp).
-    const bool tie = cpu.kind == 3 && gpu.index != cpu.index && error <= kRelativeT;
+    // Two triangles meeting where the ray hits: either may win (rt_queries.h, hitsAt).
+    const bool tie = cpu.kind == 3 && gpu.index != cpu.index && error <= kRelativeT && test::hitsAt(layout, gpu.index, rays[i], gpu.t);
     a.ties += tie ? 1 : 0;
     if (error > kRelativeT || (gpu.index != cpu.index && !tie)) ++a.mismatches;
   }

@@ -13,6 +13,9 @@
 #include "raytrace/gpu_layout.h"
 
 namespace rt = engine::rt;
+using engine::test::hitsAt;
+using engine::test::leafVertex;
+using engine::test::nearlyEqual;
 using engine::test::ReferenceHit;
 
 namespace {
@@ -45,10 +48,6 @@ std::uint32_t childRef(const rt::GpuSceneLayout& layout, std::uint32_t node, int
   return layout.nodes[node].child[k / 4][k % 4];
 }
 
-glm::vec3 leafVertex(const rt::GpuLeaf& leaf, int v, int lane) {
-  return {leaf.p[3 * v][lane], leaf.p[3 * v + 1][lane], leaf.p[3 * v + 2][lane]};
-}
-
 // Depth first over the flat arrays from `root`, every child whose box the ray enters
 // before the nearest hit; the nearest triangle hit shortens ray.tMax. Returns the
 // deepest the stack got.
@@ -78,24 +77,6 @@ int traverseFlat(const rt::GpuSceneLayout& layout, std::uint32_t root, rt::Ray<f
     }
   }
   return deepest;
-}
-
-// Within two ulps. The triangle test compares t against the nearest hit so far as
-// tScaled against tMax * det, which rounds: of two triangles meeting where the ray
-// hits (a shared vertex or edge), whose t differ in the last bit, the one visited
-// last may win. Which is visited last is the traversal's order, not the tree's.
-bool nearlyEqual(float a, float b) { return std::abs(a - b) <= 2.0f * std::numeric_limits<float>::epsilon() * std::abs(b); }
-
-// Whether triangle `id` of the layout is hit at distance t (nearlyEqual): of two
-// triangles that meet where the ray hits, either is the right answer.
-bool hitsAt(const rt::GpuSceneLayout& layout, std::uint32_t id, const rt::Ray<float>& ray, float t) {
-  const auto slot = std::size_t(std::find(layout.order.begin(), layout.order.end(), id) - layout.order.begin());
-  const rt::GpuLeaf& l = layout.leaves[slot / 4];
-  const int lane = int(slot % 4);
-  rt::Ray<float> longer = ray;
-  longer.tMax = std::numeric_limits<float>::infinity();
-  auto hit = rt::intersectTriangle(longer, leafVertex(l, 0, lane), leafVertex(l, 1, lane), leafVertex(l, 2, lane));
-  return hit && nearlyEqual(hit->t, t);
 }
 
 class GpuLayout : public ::testing::TestWithParam<int> {};

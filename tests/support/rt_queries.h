@@ -3,7 +3,9 @@
 // twin; tests/gl/gpu_trace_test.cpp, the GPU): a two-level mesh scene, rays that
 // include ones aimed exactly at shared vertices and edges, and the CPU's closest hit
 // with the id the GPU layout gives it (RtScene::intersect's order of shapes).
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <vector>
@@ -114,6 +116,31 @@ inline ReferenceHit cpuClosestHit(const rt::RtScene& scene, const rt::GpuSceneLa
     if (auto hit = scene.bvh(g).intersect(ray)) best = {3, layout.firstTriangle[std::size_t(g)] + hit->triangle, ray.tMax = hit->hit.t};
   }
   return best;
+}
+
+inline glm::vec3 leafVertex(const rt::GpuLeaf& leaf, int v, int lane) {
+  return {leaf.p[3 * v][lane], leaf.p[3 * v + 1][lane], leaf.p[3 * v + 2][lane]};
+}
+
+// Within two ulps. The triangle test compares t against the nearest hit so far as
+// tScaled against tMax * det, which rounds: of two triangles meeting where the ray
+// hits (a shared vertex or edge), whose t differ in the last bit, the one visited
+// last may win. Which is visited last is the traversal's order, not the tree's.
+inline bool nearlyEqual(float a, float b) {
+  return std::abs(a - b) <= 2.0f * std::numeric_limits<float>::epsilon() * std::abs(b);
+}
+
+// Whether triangle `id` of the layout is hit at distance t (nearlyEqual): of two
+// triangles that meet where the ray hits, either is the right answer.
+inline bool hitsAt(const rt::GpuSceneLayout& layout, std::uint32_t id, const rt::Ray<float>& ray, float t) {
+  const auto slot = std::size_t(std::find(layout.order.begin(), layout.order.end(), id) - layout.order.begin());
+  if (slot >= layout.order.size()) return false;
+  const rt::GpuLeaf& l = layout.leaves[slot / 4];
+  const int lane = int(slot % 4);
+  rt::Ray<float> longer = ray;
+  longer.tMax = std::numeric_limits<float>::infinity();
+  auto hit = rt::intersectTriangle(longer, leafVertex(l, 0, lane), leafVertex(l, 1, lane), leafVertex(l, 2, lane));
+  return hit && nearlyEqual(hit->t, t);
 }
 
 }  // namespace engine::test
