@@ -146,6 +146,10 @@ rt::RtScene roomWithMeshes() {
   rt::RtScene scene = std::move(built).value();
   const rt::RtScene pointLit = cornell("cornell.json");
   for (const LightDesc& light : pointLit.lights()) scene.addLight(light);
+  LightDesc sun;  // through the open front, onto the floor near the camera
+  sun.direction = glm::normalize(glm::dvec3(0.2, 0.5, -1.0));
+  sun.intensity = 0.5f;
+  scene.addLight(sun);
   rt::RtMesh patch;
   constexpr int kSide = 12;
   for (int j = 0; j <= kSide; ++j) {
@@ -171,10 +175,11 @@ rt::RtScene roomWithMeshes() {
 }
 
 // The same image as the CPU's Whitted tracer at 160 x 90: the room above with its
-// area light (2 x 2 jittered shadow rays), point light, mirror sphere, box and
+// area light (2 x 2 jittered shadow rays), point light, sun, mirror sphere, box and
 // smooth patch, two jittered samples per pixel (the per-pixel random streams must
-// agree). One render per backend: llvmpipe compiles the kernel in 3-5 s without a
-// shader cache.
+// agree); in the course's classic shading on a black background, then in PBR with
+// fog and the gradient sky (its sun disk) seen in the mirror. One tracer per
+// backend: llvmpipe compiles the kernel in 3-5 s without a shader cache.
 // The GPU's sqrt and division may round differently from the CPU's (GLSL allows a
 // few ulps), which moves a hit or a shadow ray's end in the last bits: that changes a
 // pixel visibly only where a ray grazes a silhouette or a shadow ray grazes an
@@ -182,7 +187,7 @@ rt::RtScene roomWithMeshes() {
 // hundredth of an 8-bit level), and at most 0.5 % of the pixels (72) more than one
 // level off. llvmpipe rounds as the CPU does: errors of 1e-7 and no pixel off.
 TEST_P(GpuWhitted, RendersTheCpusImageOfTheRoom) {
-  const rt::RtScene scene = roomWithMeshes();
+  rt::RtScene scene = roomWithMeshes();
   ASSERT_GT(scene.triangleCount(), 12u);
   rt::RenderSettings settings;
   settings.width = 160;
@@ -192,17 +197,27 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTheRoom) {
   ASSERT_EQ(gpurt::unsupported(scene, settings), "");
   auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
   ASSERT_TRUE(tracer) << tracer.error().message;
-  auto gpu = tracer->render(settings);
-  ASSERT_TRUE(gpu) << gpu.error().message;
-  const rt::RenderResult cpu = rt::Integrator(scene, settings).render();
-  EXPECT_EQ(gpu->rays.primary, cpu.rays.primary);
-  EXPECT_NEAR(double(gpu->rays.shadow), double(cpu.rays.shadow), 0.001 * double(cpu.rays.shadow));
-  EXPECT_NEAR(double(gpu->rays.reflection), double(cpu.rays.reflection), 0.001 * double(cpu.rays.reflection));
-  const ImageAgreement a = compareImages(cpu.image, gpu->image, scene.render());
-  EXPECT_LE(a.meanError, 1e-4);
-  EXPECT_LE(a.differingPixels, 72);
-  std::printf("gpu whitted, the room: mean error %.3g, max %.3g, %d pixels off by more than one level (%.2f s)\n",
-              a.meanError, double(a.maxError), a.differingPixels, gpu->seconds);
+  for (const bool pbr : {false, true}) {
+    SCOPED_TRACE(pbr ? "pbr, fog, sky" : "classic");
+    if (pbr) {
+      RenderDesc render = scene.render();
+      render.shading = Shading::Pbr;
+      scene.setRender(render);
+      scene.setFog(FogDesc{true, 0.08f, glm::vec3(0.5f, 0.6f, 0.7f)});
+      scene.setSky(SkyDesc{});
+    }
+    auto gpu = tracer->render(settings);
+    ASSERT_TRUE(gpu) << gpu.error().message;
+    const rt::RenderResult cpu = rt::Integrator(scene, settings).render();
+    EXPECT_EQ(gpu->rays.primary, cpu.rays.primary);
+    EXPECT_NEAR(double(gpu->rays.shadow), double(cpu.rays.shadow), 0.001 * double(cpu.rays.shadow));
+    EXPECT_NEAR(double(gpu->rays.reflection), double(cpu.rays.reflection), 0.001 * double(cpu.rays.reflection));
+    const ImageAgreement a = compareImages(cpu.image, gpu->image, scene.render());
+    EXPECT_LE(a.meanError, 1e-4);
+    EXPECT_LE(a.differingPixels, 72);
+    std::printf("gpu whitted, the room, %s: mean error %.3g, max %.3g, %d pixels off by more than one level (%.2f s)\n",
+                pbr ? "pbr" : "classic", a.meanError, double(a.maxError), a.differingPixels, gpu->seconds);
+  }
 }
 
 }  // namespace
