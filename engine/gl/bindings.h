@@ -46,12 +46,25 @@ inline constexpr unsigned kSkinJoints = 6;
 inline constexpr unsigned kSkinWeights = 7;
 inline constexpr unsigned kSkinOutput = 8;
 inline constexpr unsigned kFrameBlock = 0;
+// The GPU ray tracer (shaders/rt/): the flattened scene (raytrace/gpu_layout.h),
+// its materials and lights, and what a kernel reads and writes.
+inline constexpr unsigned kRtNodes = 0;
+inline constexpr unsigned kRtLeaves = 1;
+inline constexpr unsigned kRtOrder = 2;
+inline constexpr unsigned kRtInstances = 3;
+inline constexpr unsigned kRtSpheres = 4;
+inline constexpr unsigned kRtPlanes = 5;
+inline constexpr unsigned kRtTriangles = 6;
+inline constexpr unsigned kRtMaterials = 7;
+inline constexpr unsigned kRtLights = 8;
+inline constexpr unsigned kRtInput = 9;
+inline constexpr unsigned kRtOutput = 10;
 
 struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 27> kDefines{{
+inline constexpr std::array<Define, 38> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -79,6 +92,17 @@ inline constexpr std::array<Define, 27> kDefines{{
     {"BUFFER_SKIN_WEIGHTS", kSkinWeights},
     {"BUFFER_SKIN_OUTPUT", kSkinOutput},
     {"BLOCK_FRAME", kFrameBlock},
+    {"BUFFER_RT_NODES", kRtNodes},
+    {"BUFFER_RT_LEAVES", kRtLeaves},
+    {"BUFFER_RT_ORDER", kRtOrder},
+    {"BUFFER_RT_INSTANCES", kRtInstances},
+    {"BUFFER_RT_SPHERES", kRtSpheres},
+    {"BUFFER_RT_PLANES", kRtPlanes},
+    {"BUFFER_RT_TRIANGLES", kRtTriangles},
+    {"BUFFER_RT_MATERIALS", kRtMaterials},
+    {"BUFFER_RT_LIGHTS", kRtLights},
+    {"BUFFER_RT_INPUT", kRtInput},
+    {"BUFFER_RT_OUTPUT", kRtOutput},
 }};
 
 }  // namespace engine::gl::binding

@@ -90,13 +90,15 @@ class Bvh {
   static constexpr int kMaxSahDepth = 48;
   static constexpr int kStackSize = (kWidth - 1) * (kMaxSahDepth + 28) + 1;
 
-  // What the traversal reads.
+  // What the traversal reads; also what raytrace/gpu_layout.h flattens for the GPU.
   struct View {
     const Node* nodes;
     const Triangle4* leaves;
     const std::uint32_t* order;
     std::uint32_t root;
   };
+  View view() const { return View{nodes_.data(), leaves_.data(), order_.data(), root_}; }
+  std::size_t leafCount() const { return leaves_.size(); }  // Triangle4 blocks
 
   // The instruction set of float traversal: the best the CPU has unless set otherwise
   // (tests and benchmarks run both). setIsa(kAvx2) on a CPU without AVX2 is ignored.
@@ -105,7 +107,6 @@ class Bvh {
   static void setIsa(Isa isa);
 
  private:
-  View view() const { return View{nodes_.data(), leaves_.data(), order_.data(), root_}; }
   // Both queries: the traversal for this CPU and precision.
   template <typename T, bool kAnyHit>
   bool trace(const Ray<T>& ray, BvhHit<T>& hit) const;

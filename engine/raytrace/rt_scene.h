@@ -98,6 +98,13 @@ class RtScene {
   bool hasTransparency() const { return transparent_; }
   // Whether any material is single-sided (rays may pass its back faces).
   bool hasSingleSided() const { return singleSided_; }
+  // Whether any material reads a texture (base colour, emissive, metallic-roughness)
+  // or the terrain's layers.
+  bool hasTextures() const {
+    return std::any_of(extras_.begin(), extras_.end(), [](const MaterialExtras& e) {
+      return e.texture >= 0 || e.emissiveTexture >= 0 || e.metallicRoughnessTexture >= 0 || e.terrain >= 0;
+    });
+  }
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
   // and specular come from `layers` at each hit's uv, height and shading normal.
   Status setTerrainMaterial(int material, RtTerrainMaterial layers);
@@ -171,6 +178,20 @@ class RtScene {
   int groupCount() const { return int(groups_.size()); }
   const Bvh& bvh(int group = 0) const { return groups_[std::size_t(group)].bvh; }
   std::size_t triangleCount() const;
+  // What raytrace/gpu_layout.h flattens for the GPU: the float shapes, each plane's
+  // square (onPlaneSquare), and which mesh each of a group's triangles comes from
+  // (the BVH's triangle index is its place in its group, meshes in group order).
+  const std::vector<Sphere<float>>& floatSpheres() const { return spheresF_; }
+  const std::vector<Plane<float>>& floatPlanes() const { return planesF_; }
+  struct PlaneSquare {
+    glm::dvec3 point{0.0}, axisU{1, 0, 0}, axisV{0, 0, 1};
+    double extent = 0.0;  // 0: unbounded
+  };
+  const PlaneSquare& planeSquare(std::size_t plane) const { return planeUvs_[plane]; }
+  const std::vector<std::uint32_t>& groupTriangleMeshes(int group) const {
+    return groups_[std::size_t(group)].triangleMesh;
+  }
+  std::uint32_t meshFirstTriangle(MeshId mesh) const { return meshFirstTriangle_[std::size_t(mesh)]; }
   std::size_t sphereCount() const { return spheresF_.size(); }
   std::size_t planeCount() const { return planesF_.size(); }
 
@@ -213,10 +234,7 @@ class RtScene {
   // Per plane, its square and what its texture coordinates need: the rasterizer
   // draws it as a square of half size `extent` (0: unbounded) rotated from +y to its
   // normal, with uv = (local + extent) * texture scale along that square's x and z.
-  struct PlaneUv {
-    glm::dvec3 point{0.0}, axisU{1, 0, 0}, axisV{0, 0, 1};
-    double extent = 0.0;
-  };
+  using PlaneUv = PlaneSquare;
   std::vector<PlaneUv> planeUvs_;
   // The sun whose disk the gradient sky draws: the last sun light, as the
   // integrator chose it before the environment existed.

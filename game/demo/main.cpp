@@ -11,6 +11,7 @@
 
 #include "app/cli.h"
 #include "asset/scene_file.h"
+#include "gpu_raytrace.h"
 #include "raytrace/progress_bar.h"
 #include "raytrace/scene_builder.h"
 #include "raytrace_game.h"
@@ -26,29 +27,33 @@ int fail(int code, const std::string& message) {
 
 struct RaytraceOptions {
   std::string precision = "float";
+  std::string device = "cpu";
   engine::rt::RenderSettings settings;
 };
 
-// Offscreen ray tracing needs no GL context: trace, encode, write.
+// Offscreen ray tracing needs no GL context on the CPU: trace, encode, write. On the
+// GPU (--device gpu) it opens an offscreen one.
 int runRaytraceOffscreen(const engine::SceneDesc& scene, const engine::CommonOptions& options,
-                         engine::rt::RenderSettings settings) {
+                         engine::rt::RenderSettings settings, bool gpu) {
   engine::rt::ProgressBar bar;
   settings.progress = [&bar](const engine::rt::RenderProgress& p) { return bar.update(p); };
-  auto run = engine::rt::raytraceScene(scene, options.run.time.value_or(0.0), settings);
+  const double time = options.run.time.value_or(0.0);
+  auto run = gpu ? demo::gpuRaytraceScene(scene, time, settings, engine::chosenBackend(options), options.shaderDir)
+                 : engine::rt::raytraceScene(scene, time, settings);
   if (!run) return fail(engine::kExitBadInput, run.error().message);
   if (auto s = engine::writePng(options.run.screenshot, run->image); !s) return fail(engine::kExitBadInput, s.error().message);
   const auto& r = run->result.rays;
   const double mrays = run->result.seconds > 0.0 ? double(r.total()) / run->result.seconds / 1e6 : 0.0;
-  std::fprintf(stderr, "%s %dx%d, spp %d: %.3f s, %.2f Mrays/s (%llu primary, %llu shadow, %llu %s); "
+  std::fprintf(stderr, "%s%s %dx%d, spp %d: %.3f s, %.2f Mrays/s (%llu primary, %llu shadow, %llu %s); "
                "%d meshes, %d triangles, BVH %.1f ms\n",
-               settings.method == engine::rt::Method::Path ? "path traced" : "ray traced", settings.width,
+               settings.method == engine::rt::Method::Path ? "path traced" : "ray traced", gpu ? " on the GPU" : "", settings.width,
                settings.height, settings.samplesPerPixel, run->result.seconds, mrays, (unsigned long long)r.primary,
                (unsigned long long)r.shadow, (unsigned long long)r.reflection,
                settings.method == engine::rt::Method::Path ? "bounce" : "reflection",
                run->build.meshes, run->build.triangles, run->build.bvhSeconds * 1e3);
   if (!options.run.benchFile.empty()) {
     const bool path = settings.method == engine::rt::Method::Path;
-    nlohmann::json j = {{"mode", path ? "pathtrace" : "raytrace"}, {"seconds", run->result.seconds}, {"mrays_per_second", mrays},
+    nlohmann::json j = {{"mode", path ? "pathtrace" : "raytrace"}, {"device", gpu ? "gpu" : "cpu"}, {"seconds", run->result.seconds}, {"mrays_per_second", mrays},
                         {"rays", {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection}}},
                         {"width", settings.width}, {"height", settings.height}, {"spp", settings.samplesPerPixel},
                         {"shadow_samples", settings.shadowSamples}, {"threads", settings.threads},
@@ -151,6 +156,10 @@ int main(int argc, char** argv) {
   app.add_option("--seed", rt.settings.seed, "Ray tracing: random seed")->capture_default_str();
   app.add_option("--rt-precision", rt.precision, "Ray tracing: float or double")
       ->check(CLI::IsMember({"float", "double"}))->capture_default_str();
+  app.add_option("--device", rt.device,
+                 "Ray tracing: cpu, or gpu (raytrace --offscreen only: the Whitted tracer in a compute shader, "
+                 "through the --offscreen backend)")
+      ->check(CLI::IsMember({"cpu", "gpu"}))->capture_default_str();
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
 
   if (options.checkDisplay) return engine::displayAvailable() ? 0 : 1;
@@ -187,7 +196,9 @@ int main(int argc, char** argv) {
     rt.settings.width = options.run.width;
     rt.settings.height = options.run.height;
     rt.settings.precision = rt.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;
-    if (offscreen) return runRaytraceOffscreen(*scene, options, rt.settings);
+    const bool gpu = rt.device == "gpu";
+    if (gpu && !offscreen) return fail(engine::kExitBadInput, "--device gpu: only with --offscreen for now");
+    if (offscreen) return runRaytraceOffscreen(*scene, options, rt.settings, gpu);
     if (!engine::displayAvailable()) return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
     demo::RaytraceGame game(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings);
     if (auto status = engine::runWindow(game, options.run); !status) return fail(engine::kExitBadInput, status.error().message);

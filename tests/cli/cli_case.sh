@@ -282,6 +282,18 @@ PY
     rm -f rt.png
     expect 0 "Mrays/s" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --offscreen --size 64x48 --screenshot rt.png
     [ -s rt.png ] || { echo "FAIL: no image"; exit 1; } ;;
+  raytrace_gpu)
+    # The GPU Whitted tracer draws the CPU's image of the room (the same PNG bytes on
+    # llvmpipe, which rounds as the CPU does), and refuses what it cannot draw yet.
+    rm -f rtc.png rtg.png
+    expect 0 "Mrays/s" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --offscreen --size 64x48 --screenshot rtc.png
+    expect 0 "ray traced on the GPU 64x48" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --device gpu \
+      --offscreen --size 64x48 --screenshot rtg.png
+    cmp -s rtc.png rtg.png || { echo "FAIL: the GPU's image differs from the CPU's"; exit 1; }
+    expect 2 "--device gpu: textures are not supported yet" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" \
+      --mode raytrace --device gpu --offscreen --size 64x48 --screenshot rtg.png
+    expect 2 "--device gpu: the path tracer is not supported yet" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" \
+      --mode pathtrace --device gpu --offscreen --size 64x48 --screenshot rtg.png ;;
   pathtrace_offscreen)
     rm -f pt.png pt.json
     expect 0 "path traced 64x48, spp 4" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode pathtrace --offscreen \

@@ -1,0 +1,64 @@
+#pragma once
+// The CPU tracer's scene traced on the GPU in GL 4.5 compute shaders (shaders/rt/):
+// the scene flattened by raytrace/gpu_layout.h into shader storage buffers, ray
+// queries (closest and any hit, what the tests compare with the CPU's), and the
+// Whitted integrator of raytrace/integrator.h. Above both raytrace/ (which never
+// touches GL) and gl/; needs a current GL 4.5 context.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/result.h"
+#include "raytrace/integrator.h"
+#include "raytrace/rt_scene.h"
+
+namespace engine::gpurt {
+
+// A ray for trace(): origin and tMax, direction.
+struct RayQuery {
+  glm::vec4 originTMax;
+  glm::vec4 direction;
+};
+
+enum class HitKind : std::int32_t { None = 0, Sphere = 1, Plane = 2, Triangle = 3 };
+
+struct RayAnswer {
+  float t;        // the closest hit's, or tMax
+  HitKind kind;
+  std::uint32_t index;   // the sphere, the plane, or the triangle's global id (GpuSceneLayout)
+  std::uint32_t anyHit;  // 1 when the any-hit query found something
+};
+static_assert(sizeof(RayAnswer) == 16);
+
+// Why the GPU Whitted tracer cannot draw this scene with these settings yet, as the
+// one line a command line prints after "--device gpu: "; empty when it can.
+std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings);
+
+class GpuTracer {
+ public:
+  // Flattens and uploads the scene (it must stay unchanged while this lives) and
+  // builds the programs; errors are shader compile errors. `width`: the BVH layout,
+  // 8 or 4 wide (raytrace/gpu_layout.h); 4 traced twice as fast on llvmpipe.
+  static Result<GpuTracer> create(const rt::RtScene& scene, const std::string& shaderDir, int width = 4);
+
+  // Each ray's closest hit and any hit.
+  std::vector<RayAnswer> trace(std::span<const RayQuery> rays) const;
+  // The image Integrator(scene, settings).render() makes (Whitted only: check
+  // unsupported() first). `seconds` is the GPU's time, the upload excluded.
+  Result<rt::RenderResult> render(const rt::RenderSettings& settings) const;
+
+  GpuTracer(GpuTracer&&) noexcept;
+  GpuTracer& operator=(GpuTracer&&) noexcept;
+  ~GpuTracer();
+
+ private:
+  GpuTracer();
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace engine::gpurt

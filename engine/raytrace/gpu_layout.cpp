@@ -1,0 +1,173 @@
+#include "raytrace/gpu_layout.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace engine::rt {
+namespace {
+
+// A group's reference moved into the shared arrays: interior nodes by nodeBase,
+// leaves' Triangle4 blocks by leafBase; the count bits and kNoChild stay.
+std::uint32_t rebase(std::uint32_t ref, std::uint32_t nodeBase, std::uint32_t leafBase) {
+  if (ref == Bvh::kNoChild) return ref;
+  if (!Bvh::isLeaf(ref)) return ref + nodeBase;
+  return Bvh::leafRef(Bvh::leafIndex(ref) + leafBase, Bvh::leafCount(ref));
+}
+
+// Levels of nodes below `ref`, counting the leaf: what bounds a traversal's stack.
+int levels(const Bvh::View& view, std::uint32_t ref) {
+  if (ref == Bvh::kNoChild || Bvh::isLeaf(ref)) return 1;
+  int deepest = 0;
+  for (std::uint32_t child : view.nodes[ref].child) deepest = std::max(deepest, levels(view, child));
+  return 1 + deepest;
+}
+
+// The 4-wide tree made from a group's 8-wide one, depth first (a parent before its
+// children, as the CPU's).
+class Narrower {
+ public:
+  Narrower(const Bvh::View& view, std::uint32_t leafBase, std::vector<GpuNode4>& out)
+      : view_(view), leafBase_(leafBase), out_(out) {}
+
+  // The 4-wide reference for a CPU reference; its levels below go to depth.
+  std::uint32_t convert(std::uint32_t ref, int& depth) {
+    depth = 1;
+    if (ref == Bvh::kNoChild || Bvh::isLeaf(ref)) return rebase(ref, 0, leafBase_);
+    const Bvh::Node& node = view_.nodes[ref];
+    std::vector<int> kids;
+    for (int k = 0; k < Bvh::kWidth; ++k) {
+      if (node.child[k] != Bvh::kNoChild) kids.push_back(k);
+    }
+    // Past four children, the first ones pair up, neighbours with neighbours.
+    const int pairs = std::max(0, int(kids.size()) - 4);
+    const auto index = std::uint32_t(out_.size());
+    out_.push_back(empty());
+    int slot = 0;
+    for (std::size_t i = 0; i < kids.size(); ++slot) {
+      int below = 0;
+      Bounds3f box = childBox(node, kids[i]);
+      std::uint32_t child;
+      if (slot < pairs) {
+        box.extend(childBox(node, kids[i + 1]));
+        child = pair(node, kids[i], kids[i + 1], below);
+        i += 2;
+      } else {
+        child = convert(node.child[kids[i]], below);
+        i += 1;
+      }
+      set(out_[index], slot, box, child);
+      depth = std::max(depth, 1 + below);
+    }
+    return index;
+  }
+
+ private:
+  static GpuNode4 empty() {
+    GpuNode4 n;
+    for (int row = 0; row < 6; ++row) n.box[row] = glm::vec4(row < 3 ? 1.0f : -1.0f) * std::numeric_limits<float>::infinity();
+    n.child = glm::uvec4(Bvh::kNoChild);
+    return n;
+  }
+  static Bounds3f childBox(const Bvh::Node& node, int k) {
+    Bounds3f b;
+    for (int axis = 0; axis < 3; ++axis) {
+      b.min[axis] = node.box[axis][k];
+      b.max[axis] = node.box[3 + axis][k];
+    }
+    return b;
+  }
+  static void set(GpuNode4& n, int slot, const Bounds3f& b, std::uint32_t child) {
+    for (int axis = 0; axis < 3; ++axis) {
+      n.box[axis][slot] = b.min[axis];
+      n.box[3 + axis][slot] = b.max[axis];
+    }
+    n.child[slot] = child;
+  }
+  // Two children of a CPU node under a 4-wide node of their own.
+  std::uint32_t pair(const Bvh::Node& node, int a, int b, int& depth) {
+    const auto index = std::uint32_t(out_.size());
+    out_.push_back(empty());
+    depth = 1;
+    int slot = 0;
+    for (const int k : {a, b}) {
+      int below = 0;
+      const std::uint32_t child = convert(node.child[k], below);
+      set(out_[index], slot++, childBox(node, k), child);
+      depth = std::max(depth, 1 + below);
+    }
+    return index;
+  }
+
+  const Bvh::View& view_;
+  std::uint32_t leafBase_;
+  std::vector<GpuNode4>& out_;
+};
+
+void appendGroup(const RtScene& scene, int group, GpuSceneLayout& out) {
+  const Bvh& bvh = scene.bvh(group);
+  const Bvh::View view = bvh.view();
+  const auto nodeBase = std::uint32_t(out.nodes.size());
+  const auto leafBase = std::uint32_t(out.leaves.size());
+  const auto triangleBase = std::uint32_t(out.triangles.size());
+  out.firstTriangle.push_back(triangleBase);
+  for (std::size_t i = 0; i < bvh.nodeCount() && out.width == 8; ++i) {
+    const Bvh::Node& node = view.nodes[i];
+    GpuNode& g = out.nodes.emplace_back();
+    for (int row = 0; row < 6; ++row) {
+      for (int half = 0; half < 2; ++half) {
+        g.box[2 * row + half] = glm::vec4(node.box[row][4 * half], node.box[row][4 * half + 1],
+                                          node.box[row][4 * half + 2], node.box[row][4 * half + 3]);
+      }
+    }
+    for (int k = 0; k < Bvh::kWidth; ++k) g.child[k / 4][k % 4] = rebase(node.child[k], nodeBase, leafBase);
+  }
+  for (std::size_t i = 0; i < bvh.leafCount(); ++i) {
+    const Bvh::Triangle4& leaf = view.leaves[i];
+    GpuLeaf& g = out.leaves.emplace_back();
+    for (int v = 0; v < 3; ++v) {
+      for (int axis = 0; axis < 3; ++axis) {
+        g.p[3 * v + axis] = glm::vec4(leaf.p[v][axis][0], leaf.p[v][axis][1], leaf.p[v][axis][2], leaf.p[v][axis][3]);
+      }
+    }
+    for (int lane = 0; lane < 4; ++lane) {
+      const std::uint32_t local = view.order[4 * i + std::size_t(lane)];
+      out.order.push_back(local == Bvh::kNoChild ? local : triangleBase + local);
+    }
+  }
+  const std::vector<std::uint32_t>& meshOf = scene.groupTriangleMeshes(group);
+  for (std::size_t t = 0; t < meshOf.size(); ++t) {
+    const RtMesh& mesh = scene.meshes()[meshOf[t]];
+    const std::size_t first = 3 * (t - scene.meshFirstTriangle(MeshId(meshOf[t])));
+    GpuTriangle& g = out.triangles.emplace_back();
+    for (int v = 0; v < 3 && !mesh.normals.empty(); ++v) g.n[v] = glm::vec4(mesh.normals[mesh.indices[first + std::size_t(v)]], 0.0f);
+    g.n[0].w = float(mesh.material);
+    g.n[1].w = mesh.normals.empty() ? 0.0f : 1.0f;
+  }
+  if (bvh.empty()) return;
+  const Bounds3f b = bvh.bounds();
+  std::uint32_t root = rebase(view.root, nodeBase, leafBase);
+  int depth = levels(view, view.root);
+  if (out.width == 4) root = Narrower(view, leafBase, out.nodes4).convert(view.root, depth);
+  out.instances.push_back(GpuInstance{glm::vec4(b.min, 0.0f), glm::vec4(b.max, 0.0f), glm::uvec4(root, 0, 0, 0)});
+  out.depth = std::max(out.depth, depth);
+}
+
+}  // namespace
+
+GpuSceneLayout flattenScene(const RtScene& scene, int width) {
+  GpuSceneLayout out;
+  out.width = width == 4 ? 4 : 8;
+  for (int g = 0; g < scene.groupCount(); ++g) appendGroup(scene, g, out);
+  for (const Sphere<float>& s : scene.floatSpheres()) {
+    out.spheres.push_back(GpuSphere{glm::vec4(s.center, s.radius), glm::ivec4(s.material, 0, 0, 0)});
+  }
+  for (std::size_t i = 0; i < scene.floatPlanes().size(); ++i) {
+    const Plane<float>& p = scene.floatPlanes()[i];
+    const RtScene::PlaneSquare& q = scene.planeSquare(i);
+    out.planes.push_back(GpuPlane{glm::vec4(p.normal, p.d), glm::vec4(glm::vec3(q.point), float(q.extent)),
+                                  glm::vec4(glm::vec3(q.axisU), float(p.material)), glm::vec4(glm::vec3(q.axisV), 0.0f)});
+  }
+  return out;
+}
+
+}  // namespace engine::rt

@@ -1,0 +1,20 @@
+#pragma once
+// `demo --mode raytrace --device gpu --offscreen`: the scene built as the CPU tracer
+// builds it, traced by the GPU Whitted integrator (engine/gputrace) on an offscreen
+// context, tone mapped by the CPU's own code.
+#include <string>
+
+#include "app/cli.h"
+#include "asset/scene_desc.h"
+#include "core/result.h"
+#include "raytrace/scene_builder.h"
+
+namespace demo {
+
+// Errors: "--device gpu: textures are not supported yet" and the like for what the
+// GPU path cannot draw, or a context or shader failure.
+engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc& scene, double time,
+                                                         const engine::rt::RenderSettings& settings,
+                                                         engine::Backend backend, const std::string& shaderDir);
+
+}  // namespace demo

@@ -1,0 +1,223 @@
+// The GPU tracer (engine/gputrace, shaders/rt/) against its CPU twin, through EGL and
+// OSMesa: ray queries on the flattened BVH8 find the CPU BVH's closest hits and any
+// hits, and the Whitted integrator renders the CPU's image of the course room.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "../support/gl_test.h"
+#include "../support/rt_queries.h"
+#include "asset/scene_file.h"
+#include "gputrace/gpu_tracer.h"
+#include "raytrace/integrator.h"
+#include "raytrace/tone_map.h"
+
+using namespace engine;
+using engine::test::GlTest;
+
+namespace {
+
+rt::RtScene cornell(const std::string& file = "cornell.json") {
+  auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + file);
+  EXPECT_TRUE(desc) << desc.error().message;
+  auto scene = rt::RtScene::fromSceneDesc(*desc);
+  EXPECT_TRUE(scene) << scene.error().message;
+  return std::move(scene).value();
+}
+
+std::vector<gpurt::RayQuery> queriesOf(const std::vector<rt::Ray<float>>& rays) {
+  std::vector<gpurt::RayQuery> out;
+  for (const rt::Ray<float>& r : rays) out.push_back(gpurt::RayQuery{glm::vec4(r.o, r.tMax), glm::vec4(r.d, 0.0f)});
+  return out;
+}
+
+// The GPU's t may differ from the CPU's by its own rounding of division and square
+// root (GLSL allows 2.5 ulps for a division, more for sqrt), through a few
+// operations: 1e-5 relative is some 80 ulps, far below any distance between two
+// different surfaces a ray could hit instead, which would show as a different id.
+constexpr float kRelativeT = 1e-5f;
+
+struct Agreement {
+  int rays = 0, hits = 0, mismatches = 0, anyMismatches = 0, ties = 0;
+  float worstT = 0.0f;
+};
+
+Agreement compare(const rt::RtScene& scene, const std::vector<rt::Ray<float>>& rays, int width = 8) {
+  const rt::GpuSceneLayout layout = rt::flattenScene(scene);
+  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir(), width);
+  EXPECT_TRUE(tracer) << tracer.error().message;
+  if (!tracer) return {};
+  const std::vector<gpurt::RayAnswer> answers = tracer->trace(queriesOf(rays));
+  Agreement a;
+  a.rays = int(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const test::ReferenceHit cpu = test::cpuClosestHit(scene, layout, rays[i]);
+    const gpurt::RayAnswer& gpu = answers[i];
+    a.hits += cpu.kind != 0 ? 1 : 0;
+    if (bool(gpu.anyHit) != scene.intersectAny(rays[i])) ++a.anyMismatches;
+    if (int(gpu.kind) != cpu.kind) {
+      ++a.mismatches;
+      continue;
+    }
+    if (cpu.kind == 0) continue;
+    const float error = std::abs(gpu.t - cpu.t) / cpu.t;
+    a.worstT = std::max(a.worstT, error);
+    // Two triangles meeting where the ray hits: either may win (rt_queries.h, hitsAt).
+    const bool tie = cpu.kind == 3 && gpu.index != cpu.index && error <= kRelativeT && test::hitsAt(layout, gpu.index, rays[i], gpu.t);
+    a.ties += tie ? 1 : 0;
+    if (error > kRelativeT || (gpu.index != cpu.index && !tie)) ++a.mismatches;
+  }
+  return a;
+}
+
+class GpuTrace : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(GpuTrace);
+
+// Both layouts: the CPU's 8-wide nodes, and the 4-wide tree made from them.
+TEST_P(GpuTrace, HitsEqualTheCpuBvhsOnAMeshScene) {
+  const rt::RtScene scene = test::meshScene();
+  for (const int width : {8, 4}) {
+    SCOPED_TRACE(width);
+    const Agreement a = compare(scene, test::queryRays(4000, 7.0f, 9), width);
+    EXPECT_EQ(a.mismatches, 0) << "of " << a.rays;
+    EXPECT_EQ(a.anyMismatches, 0);
+    EXPECT_GT(a.hits, a.rays / 2);
+    std::printf("gpu trace, mesh scene, %d wide: %d rays, %d hits, %d ties at shared edges, worst relative t %.3g\n", width,
+                a.rays, a.hits, a.ties, double(a.worstT));
+  }
+}
+
+// The course room: spheres and planes, rays from inside it in every direction.
+TEST_P(GpuTrace, HitsEqualTheCpusInTheCornellRoom) {
+  const rt::RtScene scene = cornell();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> x(-2.4f, 2.4f), y(0.1f, 2.9f), z(-2.9f, 4.9f), dir(-1.0f, 1.0f);
+  std::vector<rt::Ray<float>> rays;
+  for (int i = 0; i < 4000; ++i) rays.push_back(rt::Ray<float>{{x(rng), y(rng), z(rng)}, {dir(rng), dir(rng), dir(rng)}});
+  const Agreement a = compare(scene, rays);
+  EXPECT_EQ(a.mismatches, 0) << "of " << a.rays;
+  EXPECT_EQ(a.anyMismatches, 0);
+  std::printf("gpu trace, cornell: %d rays, %d hits, worst relative t %.3g\n", a.rays, a.hits, double(a.worstT));
+}
+
+struct ImageAgreement {
+  double meanError = 0.0;  // mean absolute difference of linear channels
+  float maxError = 0.0f;
+  int differingPixels = 0;  // some 8-bit channel off by more than one level
+};
+
+ImageAgreement compareImages(const rt::Framebuffer& cpu, const rt::Framebuffer& gpu, const RenderDesc& render) {
+  ImageAgreement a;
+  const Image cpu8 = rt::toImage(cpu, render), gpu8 = rt::toImage(gpu, render);
+  for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
+    bool differs = false;
+    for (int c = 0; c < 3; ++c) {
+      const float e = std::abs(cpu.pixels[i][c] - gpu.pixels[i][c]);
+      a.meanError += double(e);
+      a.maxError = std::max(a.maxError, e);
+      differs |= std::abs(int(cpu8.pixels[4 * i + std::size_t(c)]) - int(gpu8.pixels[4 * i + std::size_t(c)])) > 1;
+    }
+    a.differingPixels += differs ? 1 : 0;
+  }
+  a.meanError /= double(3 * cpu.pixels.size());
+  return a;
+}
+
+class GpuWhitted : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(GpuWhitted);
+
+// The room of cornell_soft.json with triangles in it: a box on the floor (12 flat
+// triangles, through the scene file) and, in a BVH group of its own, a smooth bumpy
+// patch with vertex normals on the left wall; and the point light of cornell.json.
+rt::RtScene roomWithMeshes() {
+  auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell_soft.json");
+  EXPECT_TRUE(desc) << desc.error().message;
+  PrimitiveDesc box;
+  box.type = PrimitiveType::Box;
+  box.min = {-0.4, 0.0, 0.6};
+  box.max = {0.3, 0.5, 1.1};
+  box.material = 5;
+  desc->primitives.push_back(box);
+  auto built = rt::RtScene::fromSceneDesc(*desc);
+  EXPECT_TRUE(built) << built.error().message;
+  rt::RtScene scene = std::move(built).value();
+  const rt::RtScene pointLit = cornell("cornell.json");
+  for (const LightDesc& light : pointLit.lights()) scene.addLight(light);
+  LightDesc sun;  // through the open front, onto the floor near the camera
+  sun.direction = glm::normalize(glm::dvec3(0.2, 0.5, -1.0));
+  sun.intensity = 0.5f;
+  scene.addLight(sun);
+  rt::RtMesh patch;
+  constexpr int kSide = 12;
+  for (int j = 0; j <= kSide; ++j) {
+    for (int i = 0; i <= kSide; ++i) {
+      const float u = float(i) / kSide, v = float(j) / kSide;
+      const float bump = 0.15f * std::sin(6.0f * u) * std::sin(5.0f * v);
+      patch.positions.emplace_back(-2.2f + bump, 0.6f + 1.6f * v, 1.8f + 2.2f * u);
+      patch.normals.push_back(glm::normalize(glm::vec3(1.0f, -0.75f * std::sin(6.0f * u) * std::cos(5.0f * v),
+                                                       -0.9f * std::cos(6.0f * u) * std::sin(5.0f * v))));
+    }
+  }
+  for (int j = 0; j < kSide; ++j) {
+    for (int i = 0; i < kSide; ++i) {
+      const auto a = std::uint32_t(j * (kSide + 1) + i), b = a + 1, c = a + kSide + 1, d = c + 1;
+      patch.indices.insert(patch.indices.end(), {a, d, b, a, c, d});  // facing +x, as the normals
+    }
+  }
+  patch.material = 0;
+  patch.group = scene.addGroup();
+  EXPECT_TRUE(scene.addMesh(std::move(patch)));
+  scene.build();
+  return scene;
+}
+
+// The same image as the CPU's Whitted tracer at 160 x 90: the room above with its
+// area light (2 x 2 jittered shadow rays), point light, sun, mirror sphere, box and
+// smooth patch, two jittered samples per pixel (the per-pixel random streams must
+// agree); in the course's classic shading on a black background, then in PBR with
+// fog and the gradient sky (its sun disk) seen in the mirror. One tracer per
+// backend: llvmpipe compiles the kernel in 3-5 s without a shader cache.
+// The GPU's sqrt and division may round differently from the CPU's (GLSL allows a
+// few ulps), which moves a hit or a shadow ray's end in the last bits: that changes a
+// pixel visibly only where a ray grazes a silhouette or a shadow ray grazes an
+// occluder, a few pixels along edges. Hence: mean linear error below 1e-4 (a
+// hundredth of an 8-bit level), and at most 0.5 % of the pixels (72) more than one
+// level off. llvmpipe rounds as the CPU does: errors of 1e-7 and no pixel off.
+TEST_P(GpuWhitted, RendersTheCpusImageOfTheRoom) {
+  rt::RtScene scene = roomWithMeshes();
+  ASSERT_GT(scene.triangleCount(), 12u);
+  rt::RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.samplesPerPixel = 2;
+  settings.shadowSamples = 2;
+  ASSERT_EQ(gpurt::unsupported(scene, settings), "");
+  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
+  ASSERT_TRUE(tracer) << tracer.error().message;
+  for (const bool pbr : {false, true}) {
+    SCOPED_TRACE(pbr ? "pbr, fog, sky" : "classic");
+    if (pbr) {
+      RenderDesc render = scene.render();
+      render.shading = Shading::Pbr;
+      scene.setRender(render);
+      scene.setFog(FogDesc{true, 0.08f, glm::vec3(0.5f, 0.6f, 0.7f)});
+      scene.setSky(SkyDesc{});
+    }
+    auto gpu = tracer->render(settings);
+    ASSERT_TRUE(gpu) << gpu.error().message;
+    const rt::RenderResult cpu = rt::Integrator(scene, settings).render();
+    EXPECT_EQ(gpu->rays.primary, cpu.rays.primary);
+    EXPECT_NEAR(double(gpu->rays.shadow), double(cpu.rays.shadow), 0.001 * double(cpu.rays.shadow));
+    EXPECT_NEAR(double(gpu->rays.reflection), double(cpu.rays.reflection), 0.001 * double(cpu.rays.reflection));
+    const ImageAgreement a = compareImages(cpu.image, gpu->image, scene.render());
+    EXPECT_LE(a.meanError, 1e-4);
+    EXPECT_LE(a.differingPixels, 72);
+    std::printf("gpu whitted, the room, %s: mean error %.3g, max %.3g, %d pixels off by more than one level (%.2f s)\n",
+                pbr ? "pbr" : "classic", a.meanError, double(a.maxError), a.differingPixels, gpu->seconds);
+  }
+}
+
+}  // namespace
