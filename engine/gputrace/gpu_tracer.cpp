@@ -84,6 +84,9 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
   if (scene.hasTransparency()) return "alpha (MASK, BLEND) is not supported yet";
   if (scene.hasSingleSided()) return "single-sided materials are not supported yet";
   if (scene.environment().hasImage()) return "image skies are not supported yet";
+  const auto& meshes = scene.meshes();
+  if (std::any_of(meshes.begin(), meshes.end(), [](const rt::RtMesh& m) { return !m.colors.empty(); }))
+    return "vertex colours (COLOR_0) are not supported yet";
   return {};
 }
 
