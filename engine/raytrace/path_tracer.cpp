@@ -138,7 +138,7 @@ class PathTracer {
       const Bsdf bsdf = scene_.render().shading == Shading::Pbr ? Bsdf::metallicRoughness(m, ns, wo)
                                                                  : Bsdf::classic(m, ns, wo);
       if (bsdf.hasDiffuseOrGlossy()) radiance += beta * directLight(*hit, bsdf, ng, rng, counters);
-      const glm::vec2 u(rng.uniform(), rng.uniform());
+      const glm::vec2 u = rng.uniform2();
       const std::optional<BsdfSample> s = bsdf.sample(u, rng.uniform());
       // A direction under the geometric surface would leak light through it.
       if (!s || glm::dot(s->wi, ng) <= 0.0f) break;
@@ -210,12 +210,12 @@ class PathTracer {
                         RayCounters& counters) const {
     glm::vec3 sum(0.0f);
     for (const PathLight& l : lights_) {
-      const glm::vec2 u(rng.uniform(), rng.uniform());
+      const glm::vec2 u = rng.uniform2();
       LightSample<T> ls;
       if (sampleLight(si, l, u, ls)) sum += shade(si, ls, l.shadows, bsdf, ng, counters);
     }
     if (!env_.black()) {
-      const glm::vec2 u(rng.uniform(), rng.uniform());
+      const glm::vec2 u = rng.uniform2();
       LightSample<T> ls;
       ls.wi = env_.sample(u, &ls.pdf);
       if (ls.pdf > 0.0f) {

@@ -827,7 +827,7 @@ TEST_F(LoaderTest, TooManyMorphDisplacements) {
   m.doc["accessors"].push_back({{"componentType", 5126}, {"count", vertices}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {0, 0, 0}}});
   json prim = {{"attributes", {{"POSITION", 8}}}, {"targets", json::array()}};
   for (int t = 0; t < 9; ++t) prim["targets"].push_back({{"POSITION", 8}});
-  m.doc["meshes"][0]["primitives"] = {prim};
+  m.doc["meshes"][0]["primitives"] = json::array({prim});  // not {prim}: clang reads that as a copy of prim
   m.doc["meshes"][0].erase("weights");
   m.doc["nodes"][0].erase("skin");
   m.doc["animations"][0]["channels"].erase(1);
