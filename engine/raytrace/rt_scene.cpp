@@ -44,6 +44,19 @@ glm::vec2 sphereUv(const glm::dvec3& n) {
   return glm::vec2(float(phi / (2.0 * glm::pi<double>())), float(theta / glm::pi<double>()));
 }
 
+// A per-vertex attribute is absent (empty) or has one value per position.
+Status checkPerVertex(std::size_t values, std::size_t positions, const std::string& where, const char* what) {
+  if (values == 0 || values == positions) return Ok{};
+  return makeError(where + ": " + std::to_string(values) + " " + what + " for " + std::to_string(positions) +
+                   " positions");
+}
+
+// A per-vertex attribute at a triangle hit, weighted by its barycentrics in float.
+template <typename V, typename Hit>
+V atHit(const std::vector<V>& values, const Hit& hit, std::uint32_t i0, std::uint32_t i1, std::uint32_t i2) {
+  return float(hit.b0) * values[i0] + float(hit.b1) * values[i1] + float(hit.b2) * values[i2];
+}
+
 }  // namespace
 
 RtScene::RtScene() {
@@ -147,7 +160,7 @@ Status RtScene::checkMaterial(int material) const {
 
 // Stores the texture and points the material's `slot` at it.
 Status RtScene::attachTexture(int material, int MaterialExtras::*slot, RtTexture texture) {
-  if (auto s = checkMaterial(material); !s) return s;
+  if (auto s = checkMaterial(material); !s) return s.error();
   extras_[size_t(material)].*slot = int(textures_.size());
   textures_.push_back(std::move(texture));
   return Ok{};
@@ -164,7 +177,7 @@ glm::vec3 RtScene::baseColor(int material, const HitUv& uv, float footprint) con
 }
 
 Status RtScene::setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff) {
-  if (auto s = checkMaterial(material); !s) return s;
+  if (auto s = checkMaterial(material); !s) return s.error();
   MaterialExtras& e = extras_[size_t(material)];
   e.alphaMode = mode;
   e.alpha = factor;
@@ -178,14 +191,14 @@ Status RtScene::setMetallicRoughnessTexture(int material, RtTexture texture) {
 }
 
 Status RtScene::setSingleSided(int material, bool singleSided) {
-  if (auto s = checkMaterial(material); !s) return s;
+  if (auto s = checkMaterial(material); !s) return s.error();
   extras_[size_t(material)].singleSided = singleSided;
   if (singleSided) singleSided_ = true;
   return Ok{};
 }
 
 Status RtScene::setUnlit(int material, bool unlit) {
-  if (auto s = checkMaterial(material); !s) return s;
+  if (auto s = checkMaterial(material); !s) return s.error();
   extras_[size_t(material)].unlit = unlit;
   return Ok{};
 }
@@ -205,7 +218,7 @@ float RtScene::opacityAt(int material, const HitUv& uv, float footprint) const {
 }
 
 Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
-  if (auto s = checkMaterial(material); !s) return s;
+  if (auto s = checkMaterial(material); !s) return s.error();
   extras_[size_t(material)].terrain = int(terrains_.size());
   terrains_.push_back(std::move(layers));
   return Ok{};
@@ -257,22 +270,10 @@ Result<MeshId> RtScene::addMesh(RtMesh mesh) {
   for (std::uint32_t i : mesh.indices) {
     if (i >= mesh.positions.size()) return makeError(where + ": index " + std::to_string(i) + " out of range");
   }
-  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
-    return makeError(where + ": " + std::to_string(mesh.normals.size()) + " normals for " +
-                     std::to_string(mesh.positions.size()) + " positions");
-  }
-  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
-    return makeError(where + ": " + std::to_string(mesh.uvs.size()) + " uvs for " +
-                     std::to_string(mesh.positions.size()) + " positions");
-  }
-  if (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size()) {
-    return makeError(where + ": " + std::to_string(mesh.uvs1.size()) + " second-set uvs for " +
-                     std::to_string(mesh.positions.size()) + " positions");
-  }
-  if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()) {
-    return makeError(where + ": " + std::to_string(mesh.colors.size()) + " colours for " +
-                     std::to_string(mesh.positions.size()) + " positions");
-  }
+  if (auto s = checkPerVertex(mesh.normals.size(), mesh.positions.size(), where, "normals"); !s) return s.error();
+  if (auto s = checkPerVertex(mesh.uvs.size(), mesh.positions.size(), where, "uvs"); !s) return s.error();
+  if (auto s = checkPerVertex(mesh.uvs1.size(), mesh.positions.size(), where, "second-set uvs"); !s) return s.error();
+  if (auto s = checkPerVertex(mesh.colors.size(), mesh.positions.size(), where, "colours"); !s) return s.error();
   if (mesh.material < 0 || mesh.material >= int(materials_.size())) {
     return makeError(where + ": material " + std::to_string(mesh.material) + " out of range");
   }
@@ -406,19 +407,14 @@ SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<
     if (len > T(0)) si.ns = ns / len;
   }
   if (!mesh.uvs.empty()) {
-    si.uv = float(hit.hit.b0) * mesh.uvs[i0] + float(hit.hit.b1) * mesh.uvs[i1] + float(hit.hit.b2) * mesh.uvs[i2];
+    si.uv = atHit(mesh.uvs, hit.hit, i0, i1, i2);
     const glm::vec2 du = mesh.uvs[i1] - mesh.uvs[i0], dv = mesh.uvs[i2] - mesh.uvs[i0];
     const float uvArea = std::abs(du.x * dv.y - du.y * dv.x);
     const float area = glm::length(glm::cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]));
     si.uvPerMetre = area > 0.0f ? std::sqrt(uvArea / area) : 0.0f;
   }
-  si.uv1 = mesh.uvs1.empty()
-               ? si.uv
-               : float(hit.hit.b0) * mesh.uvs1[i0] + float(hit.hit.b1) * mesh.uvs1[i1] + float(hit.hit.b2) * mesh.uvs1[i2];
-  if (!mesh.colors.empty()) {
-    si.color = float(hit.hit.b0) * mesh.colors[i0] + float(hit.hit.b1) * mesh.colors[i1] +
-               float(hit.hit.b2) * mesh.colors[i2];
-  }
+  si.uv1 = mesh.uvs1.empty() ? si.uv : atHit(mesh.uvs1, hit.hit, i0, i1, i2);
+  if (!mesh.colors.empty()) si.color = atHit(mesh.colors, hit.hit, i0, i1, i2);
   si.material = mesh.material;
   return si;
 }
