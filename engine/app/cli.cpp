@@ -1,5 +1,6 @@
 #include "app/cli.h"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

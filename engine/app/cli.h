@@ -2,11 +2,17 @@
 // Command-line pieces every program shares (demo, viewer): the run options
 // (--offscreen, --size, --time, --dt, --frames, --screenshot, --msaa, --bench), parsed
 // with CLI11, and the checks that turn bad values into one clear line and exit 2.
-#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 
 #include "app/runner.h"
+
+// Forward-declared: CLI11 is header-only and costs about 7 s of compile per file that
+// includes it, so only the files that build an App (the programs' mains, cli.cpp)
+// include <CLI/CLI.hpp>.
+namespace CLI {
+class App;
+}
 
 namespace engine {
 

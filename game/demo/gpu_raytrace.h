@@ -4,7 +4,7 @@
 // context, tone mapped by the CPU's own code.
 #include <string>
 
-#include "app/cli.h"
+#include "app/runner.h"
 #include "asset/scene_desc.h"
 #include "core/result.h"
 #include "raytrace/scene_builder.h"

@@ -1,6 +1,7 @@
 // demo: the engine's showcase. Draws a scene file (assets/scenes/demo.json by
 // default) in a window; with --offscreen it renders N frames at a fixed step
 // through EGL or OSMesa and writes the last one to a PNG.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <limits>

@@ -2,6 +2,7 @@
 // panel (clips, play/pause, scrub, speed, loop, skeleton, bind pose, LBS/DQS);
 // offscreen to a PNG; or, with --dump-pose, writes the pose at --time as JSON in
 // the format of the conformance reference poses.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

@@ -23,6 +23,7 @@
 
 #include "asset/draco_mesh.h"
 #include "asset/gltf_loader.h"
+#include "../support/files.h"
 
 extern "C" void stbi_image_free(void* pixels);  // stb_image.h, without its implementation macros
 
@@ -33,11 +34,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const std::string kSamples = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
-
-std::vector<unsigned char> readBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
-}
 
 // ---- geometry of a whole model, in world space ----------------------------------
 
@@ -138,7 +134,7 @@ void expectSameGeometry(const Geometry& quantized, const Geometry& reference, do
 // primitive of a .gltf (model units), as the stream itself records it.
 double dracoPositionStep(const fs::path& gltf) {
   const json doc = json::parse(std::ifstream(gltf));
-  const auto bin = readBytes(gltf.parent_path() / doc["buffers"][0]["uri"].get<std::string>());
+  const auto bin = test::readBytes(gltf.parent_path() / doc["buffers"][0]["uri"].get<std::string>());
   double step = 0.0;
   for (const auto& mesh : doc["meshes"])
     for (const auto& prim : mesh["primitives"]) {
@@ -212,7 +208,7 @@ class DracoCorruptTest : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     doc_ = json::parse(std::ifstream(source_ / "Box.gltf"));
-    bin_ = readBytes(source_ / "Box.bin");
+    bin_ = test::readBytes(source_ / "Box.bin");
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string write() {

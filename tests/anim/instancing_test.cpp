@@ -17,6 +17,7 @@
 
 #include "anim/pose_dump.h"
 #include "asset/gltf_loader.h"
+#include "../support/files.h"
 
 namespace engine {
 namespace {
@@ -26,11 +27,6 @@ using nlohmann::json;
 
 const std::string kSample =
     std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/SimpleInstancing/glTF-Binary/SimpleInstancing.glb";
-
-std::vector<unsigned char> readBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
-}
 
 std::uint32_t u32(const std::vector<unsigned char>& b, std::size_t at) {
   std::uint32_t v = 0;
@@ -92,7 +88,7 @@ TEST_F(SimpleInstancing, HasTheReadmes125InstancesWithTheirTransforms) {
   ASSERT_EQ(node.instances.size(), 125u);  // README: "causes 125 instances to be rendered"
   for (const std::string& w : model->warnings) ADD_FAILURE() << "warning: " << w;
 
-  const Glb glb(readBytes(kSample));
+  const Glb glb(test::readBytes(kSample));
   const json& attributes = glb.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
   std::set<std::tuple<float, float, float>> grid;
   for (std::size_t i = 0; i < 125; ++i) {
@@ -136,7 +132,7 @@ TEST_F(SimpleInstancing, PoseDumpWritesEachInstanceAsAMesh) {
 
 // The sample with one edit to its JSON, loaded from memory as `name`.
 Result<ModelData> edited(const std::string& name, const std::function<void(json&)>& edit) {
-  Glb glb(readBytes(kSample));
+  Glb glb(test::readBytes(kSample));
   edit(glb.doc);
   const auto bytes = glb.bytes();
   return loadGltfFromMemory(bytes, name);

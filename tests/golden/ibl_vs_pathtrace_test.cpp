@@ -19,7 +19,7 @@ using namespace engine;
 
 namespace {
 
-constexpr int kWidth = 240, kHeight = 160;
+constexpr int kIblWidth = 240, kIblHeight = 160;
 
 constexpr const char* kScene = R"({
   "camera": {"position": [0, 1, 6], "target": [0, 1, 0], "fovy": 40},
@@ -34,14 +34,14 @@ constexpr const char* kScene = R"({
 Image rasterized(const SceneDesc& scene, Ambient ambient) {
   SceneRenderOptions options;
   options.ambientOverride = ambient;
-  return test::rasterizedWith(scene, options, kWidth, kHeight);
+  return test::rasterizedWith(scene, options, kIblWidth, kIblHeight);
 }
 
 Image pathTraced(const SceneDesc& scene) {
   rt::RenderSettings settings;
   settings.method = rt::Method::Path;
-  settings.width = kWidth;
-  settings.height = kHeight;
+  settings.width = kIblWidth;
+  settings.height = kIblHeight;
   settings.samplesPerPixel = 256;
   settings.maxDepth = 16;
   auto traced = rt::raytraceScene(scene, 0.0, settings);
@@ -53,10 +53,10 @@ Image pathTraced(const SceneDesc& scene) {
 // corner rays all hit (silhouettes are antialiased differently by the two).
 std::vector<bool> sphereInterior(const SceneDesc& scene) {
   const CameraDesc& c = scene.camera;
-  const double yScale = std::tan(glm::radians(c.fovyDegrees) * 0.5), xScale = yScale * kWidth / kHeight;
+  const double yScale = std::tan(glm::radians(c.fovyDegrees) * 0.5), xScale = yScale * kIblWidth / kIblHeight;
   const glm::dvec3 right = c.right(), up = glm::normalize(glm::cross(right, c.forward));
   auto hits = [&](double x, double y) {
-    const double px = (2.0 * x / kWidth - 1.0) * xScale, py = -(2.0 * y / kHeight - 1.0) * yScale;
+    const double px = (2.0 * x / kIblWidth - 1.0) * xScale, py = -(2.0 * y / kIblHeight - 1.0) * yScale;
     const glm::dvec3 d = glm::normalize(right * px + up * py + c.forward);
     for (const PrimitiveDesc& p : scene.primitives) {
       const glm::dvec3 oc = c.position - p.center;
@@ -65,10 +65,10 @@ std::vector<bool> sphereInterior(const SceneDesc& scene) {
     }
     return false;
   };
-  std::vector<bool> mask(size_t(kWidth * kHeight));
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x)
-      mask[size_t(y * kWidth + x)] = hits(x + 0.5, y + 0.5) && hits(x - 0.5, y - 0.5) && hits(x + 1.5, y - 0.5) &&
+  std::vector<bool> mask(size_t(kIblWidth * kIblHeight));
+  for (int y = 0; y < kIblHeight; ++y)
+    for (int x = 0; x < kIblWidth; ++x)
+      mask[size_t(y * kIblWidth + x)] = hits(x + 0.5, y + 0.5) && hits(x - 0.5, y - 0.5) && hits(x + 1.5, y - 0.5) &&
                                      hits(x - 0.5, y + 1.5) && hits(x + 1.5, y + 1.5);
   return mask;
 }
