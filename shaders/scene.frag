@@ -4,7 +4,8 @@
 // (glTF metallic-roughness, GGX) with its ambient (AMBIENT_SH or AMBIENT_IBL, else
 // the hemisphere; common/shading.glsl), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
 // material inputs of common/material.glsl (TEXTURED, NORMAL_MAP, MR_TEXTURE,
-// EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK). Alpha goes out with the colour: BLEND
+// EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK) and glTF's dielectric layers
+// (MATERIAL_LAYERS). Alpha goes out with the colour: BLEND
 // materials are drawn with blending on, in linear HDR.
 #include "common/frame.glsl"
 #include "common/shading.glsl"
@@ -54,6 +55,9 @@ void main() {
 #endif
   n *= side;
   geometric *= side;  // for the shadow lookups (common/direct_light.glsl)
+#ifdef MATERIAL_LAYERS
+  g_clearcoatNormal = geometric;  // the coat is smooth: it has no normal map of its own yet
+#endif
   vec3 toEye = normalize(-v_position);
   vec2 mr = materialMetallicRoughness(u_metallic, u_roughness, v_uv);
   Surface s = Surface(base.rgb, n, toEye, v_position, mr.x, mr.y, u_ambient, u_diffuse,

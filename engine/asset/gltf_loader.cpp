@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -140,7 +142,8 @@ bool uriStaysInFolder(const std::string& uri) {
 // KHR_lights_punctual ModelData::lights (placed by asset/model_lights.h).
 const std::set<std::string>& supportedExtensions() {
   static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength",
-                                               "KHR_materials_unlit",
+                                               "KHR_materials_unlit", "KHR_materials_ior",
+                                               "KHR_materials_specular", "KHR_materials_clearcoat",
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
                                                "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
                                                "KHR_lights_punctual"};
@@ -426,6 +429,74 @@ Result<float> emissiveStrength(const tinygltf::Material& material, const std::st
     return makeError(name + ": KHR_materials_emissive_strength: emissiveStrength must be a finite number >= 0");
   }
   return static_cast<float>(strength);
+}
+
+// One number of a material extension: `fallback` when absent, an error naming the
+// material, the extension and the key when it is not a number inside [lo, hi].
+Result<float> extensionNumber(const tinygltf::Value& ext, const char* key, float fallback, double lo, double hi,
+                              const std::string& where) {
+  if (!ext.Has(key)) return fallback;
+  const tinygltf::Value& value = ext.Get(key);
+  const double v = value.IsNumber() ? value.GetNumberAsDouble() : std::nan("");
+  if (!(v >= lo && v <= hi)) {
+    char range[64];
+    std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+    return makeError(where + ": " + key + " must be a number in " + range);
+  }
+  return static_cast<float>(v);
+}
+
+// The texture keys of a layer extension that this engine does not read yet: one
+// warning each, and the factor alone is drawn.
+void warnUnreadTextures(const tinygltf::Value& ext, std::initializer_list<const char*> keys, const std::string& where,
+                        std::vector<std::string>& warnings) {
+  for (const char* key : keys) {
+    if (ext.Has(key)) warnings.push_back(where + ": " + key + " is not read yet; drawn with the factor alone");
+  }
+}
+
+// KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat.
+Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const std::string& name,
+                                      std::vector<std::string>& warnings) {
+  MaterialLayers layers;
+  auto has = [&](const char* ext) { return material.extensions.find(ext) != material.extensions.end(); };
+  if (has("KHR_materials_ior")) {
+    const tinygltf::Value& ext = material.extensions.at("KHR_materials_ior");
+    // glTF allows 0 besides [1, inf): it reads as a perfect mirror (f0 = 1).
+    auto ior = extensionNumber(ext, "ior", 1.5f, 0.0, 1e6, name + ": KHR_materials_ior");
+    if (!ior) return ior.error();
+    if (*ior > 0.0f && *ior < 1.0f) return makeError(name + ": KHR_materials_ior: ior must be 0 or at least 1");
+    layers.ior = *ior;
+  }
+  if (has("KHR_materials_specular")) {
+    const tinygltf::Value& ext = material.extensions.at("KHR_materials_specular");
+    const std::string where = name + ": KHR_materials_specular";
+    auto weight = extensionNumber(ext, "specularFactor", 1.0f, 0.0, 1.0, where);
+    if (!weight) return weight.error();
+    layers.specular = *weight;
+    if (ext.Has("specularColorFactor")) {
+      const tinygltf::Value& c = ext.Get("specularColorFactor");
+      const bool ok = c.IsArray() && c.ArrayLen() == 3 && c.Get(0).IsNumber() && c.Get(1).IsNumber() && c.Get(2).IsNumber();
+      if (ok) layers.specularColor = glm::vec3(c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble());
+      if (!ok || !(glm::all(glm::greaterThanEqual(layers.specularColor, glm::vec3(0.0f))) &&
+                   glm::all(glm::lessThan(layers.specularColor, glm::vec3(1e6f))))) {
+        return makeError(where + ": specularColorFactor must be three numbers >= 0");
+      }
+    }
+    warnUnreadTextures(ext, {"specularTexture", "specularColorTexture"}, where, warnings);
+  }
+  if (has("KHR_materials_clearcoat")) {
+    const tinygltf::Value& ext = material.extensions.at("KHR_materials_clearcoat");
+    const std::string where = name + ": KHR_materials_clearcoat";
+    auto coat = extensionNumber(ext, "clearcoatFactor", 0.0f, 0.0, 1.0, where);
+    if (!coat) return coat.error();
+    auto roughness = extensionNumber(ext, "clearcoatRoughnessFactor", 0.0f, 0.0, 1.0, where);
+    if (!roughness) return roughness.error();
+    layers.clearcoat = *coat;
+    layers.clearcoatRoughness = *roughness;
+    warnUnreadTextures(ext, {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}, where, warnings);
+  }
+  return layers;
 }
 
 class Converter {
@@ -726,6 +797,11 @@ class Converter {
       m.emissiveFactor *= *strength;
       m.doubleSided = src.doubleSided;
       m.unlit = src.extensions.count("KHR_materials_unlit") > 0;
+      std::vector<std::string> layerWarnings;
+      auto layers = materialLayers(src, name, layerWarnings);
+      if (!layers) return error(layers.error().message);
+      for (const std::string& w : layerWarnings) warn(w);
+      m.layers = *layers;
       m.alphaMode = src.alphaMode == "BLEND" ? AlphaMode::Blend : src.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Opaque;
       m.alphaCutoff = static_cast<float>(src.alphaCutoff);
       const bool finite = std::isfinite(m.normalScale) && std::isfinite(m.occlusionStrength) &&

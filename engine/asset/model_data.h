@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "asset/material_layers.h"
 #include "core/image.h"
 #include "core/keyframe.h"
 
@@ -144,6 +145,8 @@ struct MaterialData {
   // KHR_materials_unlit: the surface shows its base colour (factor x texture x
   // vertex colour) as it is, lit by nothing; every renderer draws it so.
   bool unlit = false;
+  // KHR_materials_ior, _specular, _clearcoat (factors; their textures are not read).
+  MaterialLayers layers;
   std::array<TextureSlotData, kTextureSlots> textures;  // by TextureSlot
   const TextureSlotData& texture(TextureSlot slot) const { return textures[static_cast<std::size_t>(slot)]; }
   TextureSlotData& texture(TextureSlot slot) { return textures[static_cast<std::size_t>(slot)]; }

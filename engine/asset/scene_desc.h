@@ -10,6 +10,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "asset/material_layers.h"
+
 namespace engine {
 
 struct CameraDesc {
@@ -58,6 +60,9 @@ struct MaterialDesc {
   // Radiance the surface emits, in the units of a light's colour * intensity. Both
   // renderers add it; to the path tracer the surface is a light its paths can reach.
   glm::vec3 emission{0.0f};
+  // Metallic-roughness only: glTF's ior, specular and clear coat (set from glTF
+  // materials; scene files do not have them yet).
+  MaterialLayers layers;
   std::string texture;      // "" | "checker" | an image path (relative to the scene)
   float textureScale = 1.0f;
 };

@@ -87,6 +87,9 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
   const auto& meshes = scene.meshes();
   if (std::any_of(meshes.begin(), meshes.end(), [](const rt::RtMesh& m) { return !m.colors.empty(); }))
     return "vertex colours (COLOR_0) are not supported yet";
+  const auto& materials = scene.materials();
+  if (std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return !m.layers.isDefault(); }))
+    return "ior, specular and clear coat (KHR_materials_ior, _specular, _clearcoat) are not supported yet";
   return {};
 }
 

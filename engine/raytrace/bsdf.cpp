@@ -27,11 +27,20 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
   Bsdf b(Model::MetallicRoughness, m, n, wo);
   b.alpha_ = brdf::ggxAlpha(m.roughness);
   const float cosO = std::clamp(b.woLocal_.z, 0.0f, 1.0f);
-  const float specular = mean(brdf::schlickFresnel(brdf::metallicF0(m.albedo, m.metallic), cosO));
+  const glm::vec3 f0 = glm::mix(m.dielectricF0, m.albedo, m.metallic);
+  const float f90 = m.dielectricF90 + (1.0f - m.dielectricF90) * m.metallic;
+  const float specular = mean(brdf::schlickFresnel90(f0, f90, cosO));
   const float diffuse = mean(m.albedo) * (1.0f - m.metallic) * (1.0f - specular);
   // Kept inside [0.1, 0.9] while both lobes exist: a lobe never sampled would leave its
   // light to the light samples alone, and MIS could not weigh it.
   b.pSpecular_ = diffuse > 0.0f ? std::clamp(specular / (specular + diffuse), 0.1f, 0.9f) : 1.0f;
+  if (m.clearcoat > 0.0f) {
+    // The coat reflects clearcoat Fc toward the eye and passes the rest to the base.
+    const float coat = m.clearcoat * brdf::schlickFresnel(glm::vec3(0.04f), cosO).x;
+    const float base = (1.0f - coat) * (specular + diffuse);
+    b.alphaCoat_ = brdf::ggxAlpha(m.clearcoatRoughness);
+    b.pCoat_ = base > 0.0f ? std::clamp(coat / (coat + base), 0.1f, 0.9f) : 1.0f;
+  }
   return b;
 }
 
@@ -45,15 +54,18 @@ glm::vec3 Bsdf::f(const glm::vec3& wi) const {
         brdf::classicReflected(frame_.n, wo_, wi, m_.albedo, m_.diffuse, m_.specular, m_.shininess);
     return reflected / (brdf::BRDF_PI * cosI);
   }
-  return brdf::metallicRoughnessBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness);
+  return brdf::layeredBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness, m_.dielectricF0,
+                           m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness);
 }
 
 float Bsdf::pdf(const glm::vec3& wi) const {
   const glm::vec3 wiLocal = frame_.toLocal(wi);
   if (wiLocal.z <= 0.0f || woLocal_.z <= 0.0f) return 0.0f;
   if (model_ == Model::Classic) return (1.0f - pMirror_) * cosineHemispherePdf(wiLocal.z);
-  return pSpecular_ * ggxReflectionPdf(woLocal_, wiLocal, alpha_) +
-         (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
+  const float base = pSpecular_ * ggxReflectionPdf(woLocal_, wiLocal, alpha_) +
+                     (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
+  if (pCoat_ <= 0.0f) return base;
+  return pCoat_ * ggxReflectionPdf(woLocal_, wiLocal, alphaCoat_) + (1.0f - pCoat_) * base;
 }
 
 std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
@@ -67,7 +79,10 @@ std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
   }
   if (model_ == Model::Classic && m_.specular <= 0.0f) return lambertSample(u);
   glm::vec3 wiLocal;
-  if (model_ == Model::MetallicRoughness && uLobe < pSpecular_) {
+  if (model_ == Model::MetallicRoughness && uLobe < pCoat_) {
+    wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alphaCoat_, u));
+  } else if (model_ == Model::MetallicRoughness && (uLobe - pCoat_) / (1.0f - pCoat_) < pSpecular_) {
+    // The base's share, uLobe rescaled past the coat's (unchanged without a coat).
     wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alpha_, u));
   } else {
     wiLocal = sampleCosineHemisphere(u);

@@ -6,8 +6,10 @@
 // its shadeLight multiplies a light by) are the BRDF, drawn with cosine-weighted
 // directions; `reflection` is a perfect mirror of that weight, untinted, as in the
 // Whitted tracer. Its `ambient` has no place here: indirect light replaces it.
-// METALLIC-ROUGHNESS: brdf.glsl's Lambert + GGX, drawn by a mix of cosine-weighted
-// directions and GGX visible normals, the mix following the lobes' Fresnel weights.
+// METALLIC-ROUGHNESS: brdf.glsl's Lambert + GGX (layeredBrdf, with glTF's ior,
+// specular and clear coat), drawn by a mix of cosine-weighted directions and GGX
+// visible normals of the base and of the coat, the mix following the lobes' Fresnel
+// weights. The coat's normal is the shading normal: the tracers read no normal maps.
 #include <optional>
 
 #include <glm/glm.hpp>
@@ -52,7 +54,9 @@ class Bsdf {
   glm::vec3 woLocal_;   // in frame_
   float alpha_ = 1.0f;  // GGX, metallic-roughness only
   float pMirror_ = 0.0f;    // classic: the mirror's share of the samples
-  float pSpecular_ = 0.0f;  // metallic-roughness: the GGX lobe's share
+  float pSpecular_ = 0.0f;  // metallic-roughness: the GGX lobe's share of the base's samples
+  float pCoat_ = 0.0f;      // metallic-roughness: the clear coat's share of all samples
+  float alphaCoat_ = 1.0f;
 };
 
 }  // namespace engine::rt

@@ -131,13 +131,15 @@ class Tracer {
       const glm::vec3 l(ls.wi);
       const float nDotL = glm::dot(nf, l);
       if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
-      const glm::vec3 f = brdf::metallicRoughnessBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness);
+      const glm::vec3 f = brdf::layeredBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness, m.dielectricF0,
+                                            m.dielectricF90, nf, m.clearcoat, m.clearcoatRoughness);
       color += ls.radiance * ls.visibility * brdf::brdfLightFactor(f, nDotL);
     }
     // The same hemisphere ambient as the rasterizer's shadeAmbient.
     const glm::vec3 ambientLight = glm::mix(scene_.ambientGround(), scene_.ambientSky(), 0.5f + 0.5f * nf.y);
-    const glm::vec3 f0 = brdf::metallicF0(m.albedo, m.metallic);
-    return color + ambientLight * (m.albedo * (1.0f - m.metallic) + f0 * (1.0f - m.roughness) * 0.5f);
+    return color + ambientLight * brdf::hemisphereAmbient(m.albedo, m.metallic, m.roughness, m.dielectricF0,
+                                                          glm::max(glm::dot(nf, toEye), 1e-4f), m.clearcoat,
+                                                          m.clearcoatRoughness);
   }
 
   LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,

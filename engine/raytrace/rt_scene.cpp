@@ -227,7 +227,9 @@ Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
 HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns) const {
   const MaterialDesc& m = materials_[size_t(material)];
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
-                  m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit};
+                  m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit,
+                  m.layers.dielectricF0(), m.layers.dielectricF90(), m.layers.clearcoat,
+                  m.layers.clearcoatRoughness};
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
     out.roughness *= t.y;

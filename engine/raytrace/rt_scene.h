@@ -57,6 +57,12 @@ struct HitMaterial {
   // KHR_materials_unlit: the surface sends its albedo (base colour) back as it is
   // and scatters nothing; the tracers stop there.
   bool unlit = false;
+  // Metallic-roughness: the dielectric's f0 and f90 and the clear coat
+  // (asset/material_layers.h; layeredBrdf in core/brdf.h).
+  glm::vec3 dielectricF0{0.04f};
+  float dielectricF90 = 1.0f;
+  float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
+  bool layered() const { return clearcoat > 0.0f || dielectricF90 != 1.0f || dielectricF0 != glm::vec3(0.04f); }
 };
 
 class RtScene {

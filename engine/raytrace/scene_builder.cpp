@@ -27,6 +27,7 @@ Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
     desc.roughness = m.roughnessFactor;
     desc.specular = 0.5f * (1.0f - m.roughnessFactor);
     desc.emission = m.emissiveFactor;
+    desc.layers = m.layers;
     const int material = scene.addMaterial(desc);
     // Each slot's image with its sampler's wrap, uv set and KHR_texture_transform.
     auto slotTexture = [&](TextureSlot slot, TextureEncoding encoding) {

@@ -23,6 +23,7 @@ std::string ShaderVariant::describe() const {
   if (uvTransform) name += "+uvtransform";
   if (vertexColor) name += "+vertexcolor";
   if (unlit) name += "+unlit";
+  if (layers) name += "+layers";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -56,6 +57,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.uvTransform) defines.push_back("UV_TRANSFORM 1");
   if (variant.vertexColor) defines.push_back("VERTEX_COLOR 1");
   if (variant.unlit) defines.push_back("UNLIT 1");
+  if (variant.layers) defines.push_back("MATERIAL_LAYERS 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -88,6 +90,12 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
   pr.set("u_shininess", 32.0f);
   pr.set("u_reflection", 0.0f);
   if (!material) return;
+  if (!material->layers.isDefault()) {
+    pr.set("u_dielectricF0", material->layers.dielectricF0());
+    pr.set("u_dielectricF90", material->layers.dielectricF90());
+    pr.set("u_clearcoat", material->layers.clearcoat);
+    pr.set("u_clearcoatRoughness", material->layers.clearcoatRoughness);
+  }
   pr.set("u_normalScale", material->normalScale);
   pr.set("u_occlusionStrength", material->occlusionStrength);
   pr.set("u_alphaCutoff", material->alphaCutoff);
@@ -406,6 +414,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.metallicRoughnessTexture = m->metallicRoughnessImage >= 0;
     v.emissiveTexture = m->emissiveImage >= 0;
     v.occlusion = m->occlusionImage >= 0;
+    v.layers = !m->layers.isDefault();
   }
   const auto sampled = sampledSlots(v);
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();

@@ -45,6 +45,9 @@ struct ShaderVariant {
   // The mesh's COLOR_0 multiplies the base colour (common/material.glsl's
   // VERTEX_COLOR); shadow passes read it only to cut out MASK holes.
   bool vertexColor = false;
+  // KHR_materials_ior, _specular or _clearcoat away from their defaults: the layered
+  // BRDF (common/shading.glsl's MATERIAL_LAYERS). Last as well.
+  bool layers = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };

@@ -62,6 +62,14 @@ BRDF_INLINE vec3 schlickFresnel(vec3 f0, float vDotH) {
   return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
 }
 
+// The same with a grazing reflectance f90 below 1 (KHR_materials_specular). With
+// f90 = 1 it is schlickFresnel to the last bit.
+BRDF_INLINE vec3 schlickFresnel90(vec3 f0, float f90, float vDotH) {
+  float m = clamp(1.0f - vDotH, 0.0f, 1.0f);
+  float m2 = m * m;
+  return f0 + (vec3(f90) - f0) * (m2 * m2 * m);
+}
+
 // The roughness a GGX lobe is drawn with: squared, and kept off zero, where the
 // distribution becomes a delta that no light sample can hit.
 BRDF_INLINE float ggxAlpha(float roughness) { return max(roughness * roughness, 1e-3f); }
@@ -81,6 +89,58 @@ BRDF_INLINE vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, 
   vec3 specular = fresnel * (ggxDistribution(n, h, alpha) * smithVisibility(nDotL, nDotV, alpha));
   vec3 diffuse = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) / BRDF_PI);
   return diffuse + specular;
+}
+
+// The same BRDF with glTF's dielectric layers (KHR_materials_ior, _specular,
+// _clearcoat), as the Khronos Sample Viewer draws them:
+// - the dielectric reflects dielectricF0 at normal incidence and dielectricF90 at
+//   grazing angles (0.04 and 1 without the extensions; asset/material_layers.h
+//   computes them from ior and the specular weight and colour);
+// - a clear coat of weight `clearcoat`, a GGX lobe of ior 1.5 (f0 0.04) along its own
+//   normal nc, lies over that base, which loses what the coat reflects toward the
+//   eye: f = base (1 - clearcoat Fc(nc.v)) + clearcoat Fc(v.h) D V.
+// With dielectricF0 = 0.04, dielectricF90 = 1 and no coat it equals
+// metallicRoughnessBrdf (tests/gl/brdf_test.cpp).
+BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness,
+                             vec3 dielectricF0, float dielectricF90, vec3 nc, float clearcoat,
+                             float clearcoatRoughness) {
+  vec3 base = vec3(0.0f);
+  float nDotL = dot(n, l);
+  if (nDotL > 0.0f) {
+    vec3 h = normalize(l + toEye);
+    float nDotV = max(dot(n, toEye), 1e-4f);
+    float vDotH = max(dot(toEye, h), 0.0f);
+    float alpha = ggxAlpha(roughness);
+    vec3 f0 = mix(dielectricF0, albedo, metallic);
+    float f90 = dielectricF90 + (1.0f - dielectricF90) * metallic;
+    vec3 fresnel = schlickFresnel90(f0, f90, vDotH);
+    vec3 specular = fresnel * (ggxDistribution(n, h, alpha) * smithVisibility(nDotL, nDotV, alpha));
+    base = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) / BRDF_PI) + specular;
+  }
+  if (clearcoat <= 0.0f) return base;
+  float ncDotV = max(dot(nc, toEye), 1e-4f);
+  vec3 coat = vec3(0.0f);
+  float ncDotL = dot(nc, l);
+  if (ncDotL > 0.0f) {
+    vec3 hc = normalize(l + toEye);
+    float alphaC = ggxAlpha(clearcoatRoughness);
+    coat = schlickFresnel(vec3(0.04f), max(dot(toEye, hc), 0.0f)) *
+           (ggxDistribution(nc, hc, alphaC) * smithVisibility(ncDotL, ncDotV, alphaC));
+  }
+  float attenuation = 1.0f - clearcoat * schlickFresnel(vec3(0.04f), ncDotV).x;
+  return base * attenuation + coat * clearcoat;
+}
+
+// The cheapest ambient's share of a sky colour (render.ambient "hemisphere"): the
+// diffuse colour, a guess at the specular's, and the coat's the same way over the
+// base it dims. Not physical: the path tracer and the IBL ambient replace it.
+BRDF_INLINE vec3 hemisphereAmbient(vec3 albedo, float metallic, float roughness, vec3 dielectricF0, float nDotV,
+                                   float clearcoat, float clearcoatRoughness) {
+  vec3 f0 = mix(dielectricF0, albedo, metallic);
+  vec3 base = albedo * (1.0f - metallic) + f0 * (1.0f - roughness) * 0.5f;
+  if (clearcoat <= 0.0f) return base;
+  float coat = clearcoat * schlickFresnel(vec3(0.04f), nDotV).x;
+  return base * (1.0f - coat) + vec3(clearcoat * 0.04f * (1.0f - clearcoatRoughness) * 0.5f);
 }
 
 // What a light of radiance 1 arriving along l reflects through a BRDF value f:

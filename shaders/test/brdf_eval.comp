@@ -12,6 +12,9 @@ struct Case {
   vec4 albedo;     // xyz
   vec4 params;     // metallic, roughness, diffuse, specular
   vec4 shininess;  // x
+  vec4 dielectric; // xyz dielectricF0, w dielectricF90
+  vec4 coat;       // clearcoat, clearcoat roughness
+  vec4 nc;         // xyz: the coat's normal
 };
 
 struct Result {
@@ -19,6 +22,8 @@ struct Result {
   vec4 classic;            // xyz
   vec4 terms;              // ggxDistribution, smithVisibility, ggxAlpha
   vec4 fresnel;            // xyz
+  vec4 layered;            // xyz
+  vec4 hemisphere;         // xyz
 };
 
 layout(std430, binding = 0) readonly buffer Cases { Case cases[]; };
@@ -39,5 +44,9 @@ void main() {
   r.terms = vec4(ggxDistribution(n, h, alpha),
                  smithVisibility(max(dot(n, l), 0.0), max(dot(n, v), 1e-4), alpha), alpha, 0.0);
   r.fresnel = vec4(schlickFresnel(metallicF0(c.albedo.xyz, metallic), max(dot(v, h), 0.0)), 0.0);
+  r.layered = vec4(layeredBrdf(n, v, l, c.albedo.xyz, metallic, roughness, c.dielectric.xyz, c.dielectric.w, c.nc.xyz,
+                               c.coat.x, c.coat.y), 0.0);
+  r.hemisphere = vec4(hemisphereAmbient(c.albedo.xyz, metallic, roughness, c.dielectric.xyz,
+                                        max(dot(c.nc.xyz, v), 1e-4), c.coat.x, c.coat.y), 0.0);
   results[i] = r;
 }

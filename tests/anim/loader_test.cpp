@@ -655,11 +655,11 @@ TEST_F(LoaderTest, UnsupportedExtensionsRequiredAreErrorsUsedAreWarnings) {
             path + ": requires KHR_texture_basisu, EXT_unheard_of, which this engine does not support");
 
   TestModel optional;
-  optional.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_mesh_quantization"};
+  optional.doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_mesh_quantization"};
   optional.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
   auto model = loadGltf(write(optional));
   ASSERT_TRUE(model.ok()) << model.error().message;
-  EXPECT_TRUE(hasWarning(*model, {"uses KHR_materials_clearcoat, which this engine does not support; drawn without it"}))
+  EXPECT_TRUE(hasWarning(*model, {"uses KHR_materials_sheen, which this engine does not support; drawn without it"}))
       << allWarnings(*model);
   EXPECT_FALSE(hasWarning(*model, {"KHR_mesh_quantization"})) << allWarnings(*model);
 }
@@ -872,6 +872,65 @@ TEST_F(LoaderTest, UnlitMaterialsAreMarked) {
   EXPECT_TRUE(model->materials[0].unlit);
   EXPECT_FALSE(model->materials[1].unlit);
   EXPECT_FALSE(hasWarning(*model, {"KHR_materials_unlit"})) << allWarnings(*model);
+}
+
+}  // namespace
+}  // namespace engine
+
+namespace engine {
+namespace {
+
+// KHR_materials_ior, _specular and _clearcoat become MaterialLayers (supported: no
+// warning for the extensions); their textures are warned about by name; a value out
+// of its range is an error naming the material, the extension and the key.
+TEST_F(LoaderTest, ReadsTheDielectricLayers) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat"};
+  m.doc["materials"] = {
+      {{"extensions",
+        {{"KHR_materials_ior", {{"ior", 1.33}}},
+         {"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 2.0}}}},
+         {"KHR_materials_clearcoat",
+          {{"clearcoatFactor", 0.75}, {"clearcoatRoughnessFactor", 0.25}, {"clearcoatTexture", {{"index", 0}}}}}}}},
+      {{"emissiveFactor", {0.25, 0.25, 0.25}}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const MaterialLayers& l = model->materials[0].layers;
+  EXPECT_FLOAT_EQ(l.ior, 1.33f);
+  EXPECT_FLOAT_EQ(l.specular, 0.5f);
+  EXPECT_EQ(l.specularColor, glm::vec3(1.0f, 0.5f, 2.0f));
+  EXPECT_FLOAT_EQ(l.clearcoat, 0.75f);
+  EXPECT_FLOAT_EQ(l.clearcoatRoughness, 0.25f);
+  // f0 = ((1.33 - 1) / 2.33)^2 = 0.02006 per channel, tinted, at most 1, times 0.5.
+  const double r2 = std::pow(0.33 / 2.33, 2.0);
+  EXPECT_NEAR(l.dielectricF0().x, r2 * 0.5, 1e-7);
+  EXPECT_NEAR(l.dielectricF0().y, r2 * 0.25, 1e-7);
+  EXPECT_NEAR(l.dielectricF0().z, r2, 1e-7);
+  EXPECT_FLOAT_EQ(l.dielectricF90(), 0.5f);
+  EXPECT_FALSE(l.isDefault());
+  // The second material has none: exactly the plain model's 0.04.
+  EXPECT_TRUE(model->materials[1].layers.isDefault());
+  EXPECT_EQ(model->materials[1].layers.dielectricF0(), glm::vec3(0.04f));
+  EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"material 0", "KHR_materials_clearcoat", "clearcoatTexture", "not read"}))
+      << allWarnings(*model);
+
+  const std::tuple<const char*, const char*, nlohmann::json> bad[] = {
+      {"KHR_materials_ior", "ior", 0.5},
+      {"KHR_materials_ior", "ior", "glass"},
+      {"KHR_materials_specular", "specularFactor", 1.5},
+      {"KHR_materials_specular", "specularColorFactor", {1.0, -1.0, 0.0}},
+      {"KHR_materials_clearcoat", "clearcoatFactor", -0.1},
+      {"KHR_materials_clearcoat", "clearcoatRoughnessFactor", "smooth"},
+  };
+  for (const auto& [extension, key, value] : bad) {
+    TestModel broken = m;
+    broken.doc["materials"][0]["extensions"][extension][key] = value;
+    auto refused = loadGltf(write(broken));
+    ASSERT_FALSE(refused.ok()) << extension << " " << key << " " << value.dump();
+    EXPECT_NE(refused.error().message.find(std::string("material 0") + ": " + extension + ": " + key), std::string::npos)
+        << refused.error().message;
+  }
 }
 
 }  // namespace

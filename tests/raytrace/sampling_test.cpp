@@ -18,7 +18,7 @@ namespace {
 
 // Every chi-square case of this file; the Sidak correction keeps the chance that any
 // of them fails by bad luck at 1 %.
-constexpr int kChiSquareCases = 1 + 3 + 12 + 8 + 3 + 2;
+constexpr int kChiSquareCases = 1 + 3 + 12 + 8 + 3 + 2 + 4;
 const double kSignificance = chi2::sidak(0.01, kChiSquareCases);
 
 void expectPasses(const chi2::Result& r) {
@@ -101,6 +101,33 @@ TEST(ChiSquare, MetallicRoughnessBsdf) {
   }
 }
 
+// glTF's layers (KHR_materials_ior, _specular, _clearcoat): the coat's GGX lobe joins
+// the mixture, and the base's lobes keep their share of the rest.
+engine::rt::HitMaterial layered(float metallic, float roughness, glm::vec3 f0, float f90, float coat, float coatRoughness) {
+  engine::rt::HitMaterial m = material(glm::vec3(0.9f, 0.6f, 0.3f), metallic, roughness);
+  m.dielectricF0 = f0;
+  m.dielectricF90 = f90;
+  m.clearcoat = coat;
+  m.clearcoatRoughness = coatRoughness;
+  return m;
+}
+
+TEST(ChiSquare, LayeredBsdf) {
+  const glm::vec3 n(0.0f, 0.0f, 1.0f);
+  const engine::rt::HitMaterial cases[] = {
+      layered(1.0f, 0.6f, glm::vec3(0.04f), 1.0f, 1.0f, 0.15f),          // a coated metal
+      layered(0.0f, 0.5f, glm::vec3(0.0f), 0.0f, 0.5f, 0.5f),            // no specular under a half coat
+      layered(0.0f, 0.3f, glm::vec3(0.02f, 0.015f, 0.01f), 0.6f, 0.0f, 0.0f),  // ior 1.33, tinted, weight 0.6
+      layered(0.0f, 0.9f, glm::vec3(0.04f), 1.0f, 0.3f, 0.05f),          // a thin smooth coat on a rough base
+  };
+  for (const auto& m : cases) {
+    for (const float theta : {65.0f}) {
+      SCOPED_TRACE(testing::Message() << "coat " << m.clearcoat << ", f90 " << m.dielectricF90 << ", theta_o " << theta);
+      expectBsdfSamplesItsPdf(rt::Bsdf::metallicRoughness(m, n, fromTheta(theta)));
+    }
+  }
+}
+
 TEST(ChiSquare, ClassicBsdfWithoutItsMirror) {
   const glm::vec3 n(0.0f, 0.0f, 1.0f);
   for (const float reflection : {0.0f, 0.5f, 0.8f}) {
@@ -140,17 +167,20 @@ TEST(ChiSquare, EnvironmentLight) {
 }
 
 // The share of light from wo that the BSDF reflects, estimated with 16k samples.
-double directionalAlbedo(float metallic, float roughness, float cosTheta, std::mt19937& rng) {
+double directionalAlbedo(const engine::rt::HitMaterial& m, float cosTheta, std::mt19937& rng) {
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
   const glm::vec3 wo(std::sqrt(1.0f - cosTheta * cosTheta), 0.0f, cosTheta);
-  const rt::Bsdf bsdf =
-      rt::Bsdf::metallicRoughness(material(glm::vec3(1.0f), metallic, roughness), glm::vec3(0.0f, 0.0f, 1.0f), wo);
+  const rt::Bsdf bsdf = rt::Bsdf::metallicRoughness(m, glm::vec3(0.0f, 0.0f, 1.0f), wo);
   double sum = 0.0;
   constexpr int kSamples = 16384;
   for (int i = 0; i < kSamples; ++i) {
     if (const auto s = bsdf.sample(glm::vec2(uniform(rng), uniform(rng)), uniform(rng))) sum += double(s->weight.x);
   }
   return sum / kSamples;
+}
+
+double directionalAlbedo(float metallic, float roughness, float cosTheta, std::mt19937& rng) {
+  return directionalAlbedo(material(glm::vec3(1.0f), metallic, roughness), cosTheta, rng);
 }
 
 // GGX (a white metal: the specular lobe alone, Fresnel 1) never reflects more than
@@ -190,6 +220,25 @@ TEST(Energy, GltfDielectricGainsAtMostFourPercentOverTheHemisphere) {
     }
     EXPECT_LE(hemispherical / weights, 1.045) << "roughness " << roughness;
     EXPECT_GT(hemispherical / weights, 0.9) << "roughness " << roughness;
+  }
+}
+
+// A clear coat over a white metal (the base reflects everything it receives) takes
+// from the base what its own Fresnel reflects: the stack never reflects more than
+// 1 % over what it receives, at any roughness of either layer or any angle.
+TEST(Energy, ClearCoatNeverAddsEnergy) {
+  std::mt19937 rng(17);
+  for (const float base : {0.0f, 0.5f, 1.0f}) {
+    for (int r = 0; r <= 10; r += 2) {
+      for (int a = 0; a <= 10; ++a) {
+        const float coatRoughness = float(r) / 10.0f, cosTheta = std::max(0.02f, float(a) / 10.0f);
+        engine::rt::HitMaterial m = material(glm::vec3(1.0f), 1.0f, base);
+        m.clearcoat = 1.0f;
+        m.clearcoatRoughness = coatRoughness;
+        EXPECT_LE(directionalAlbedo(m, cosTheta, rng), 1.01)
+            << "base roughness " << base << ", coat roughness " << coatRoughness << ", cos " << cosTheta;
+      }
+    }
   }
 }
 

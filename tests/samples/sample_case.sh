@@ -21,7 +21,6 @@ mkdir -p "$WORK"
 # the viewer must refuse them as it says, exit 2 and the extension named. When one
 # is implemented its case fails here, and its line goes.
 declare -A REFUSED=(
-  [ClearCoatCarPaint]=KHR_materials_clearcoat
   [IridescenceSuzanne]=KHR_materials_iridescence
 )
 if [ -n "${REFUSED[$NAME]:-}" ]; then

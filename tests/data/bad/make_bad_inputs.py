@@ -216,6 +216,14 @@ def main(out):
             "index": 0, "texCoord": 2, "extensions": {"KHR_texture_transform": {"offset": "far", "scale": [1]}}}
     case("bad_texture_settings.glb", bad_texture_settings)
 
+    # KHR_materials_clearcoat with a coat weight past 1 (the ior and specular keys
+    # go through the same check).
+    def bad_clearcoat(m):
+        m.doc["extensionsUsed"] = ["KHR_materials_clearcoat"]
+        m.doc["materials"] = [{"name": "paint", "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 2.5}}}]
+        m.doc["meshes"][0]["primitives"][0]["material"] = 0
+    case("bad_clearcoat.glb", bad_clearcoat)
+
     # Compressed geometry cut short. Draco: a stream with a whole header (magic,
     # version 2.2, a triangle mesh, edgebreaker) and nothing after it. Meshopt: the
     # positions as a vertex stream of 3 x 12 bytes whose data stops after the

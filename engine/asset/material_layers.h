@@ -1,0 +1,34 @@
+#pragma once
+// glTF's dielectric layers over the metallic-roughness base: KHR_materials_ior,
+// KHR_materials_specular and KHR_materials_clearcoat, as factors. Every renderer
+// evaluates them through layeredBrdf (shaders/common/brdf.glsl); a material whose
+// layers are the defaults draws exactly as plain metallic-roughness.
+#include <algorithm>
+
+#include <glm/glm.hpp>
+
+namespace engine {
+
+struct MaterialLayers {
+  float ior = 1.5f;               // KHR_materials_ior
+  float specular = 1.0f;          // KHR_materials_specular: specularFactor
+  glm::vec3 specularColor{1.0f};  // specularColorFactor, linear
+  float clearcoat = 0.0f;         // KHR_materials_clearcoat: clearcoatFactor
+  float clearcoatRoughness = 0.0f;
+
+  bool isDefault() const {
+    return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && clearcoat == 0.0f;
+  }
+  // The dielectric's reflectance at normal incidence: ((ior - 1) / (ior + 1))^2 times
+  // the specular colour (each channel at most 1), times the specular weight. Worked
+  // in double, so that ior 1.5 gives the very float 0.04f of metallicF0.
+  glm::vec3 dielectricF0() const {
+    const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
+    const glm::dvec3 f0 = glm::min(glm::dvec3(r * r) * glm::dvec3(specularColor), glm::dvec3(1.0)) * double(specular);
+    return glm::vec3(f0);
+  }
+  // ... and at grazing angles: the specular weight.
+  float dielectricF90() const { return specular; }
+};
+
+}  // namespace engine
