@@ -56,7 +56,8 @@ void main() {
   n *= side;
   geometric *= side;  // for the shadow lookups (common/direct_light.glsl)
 #ifdef MATERIAL_LAYERS
-  g_clearcoatNormal = geometric;  // the coat is smooth: it has no normal map of its own yet
+  materialLayers(v_uv);
+  g_clearcoatNormal = geometric;  // the coat's own normal map is not read yet
 #endif
   vec3 toEye = normalize(-v_position);
   vec2 mr = materialMetallicRoughness(u_metallic, u_roughness, v_uv);

@@ -483,7 +483,6 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
         return makeError(where + ": specularColorFactor must be three numbers >= 0");
       }
     }
-    warnUnreadTextures(ext, {"specularTexture", "specularColorTexture"}, where, warnings);
   }
   if (has("KHR_materials_clearcoat")) {
     const tinygltf::Value& ext = material.extensions.at("KHR_materials_clearcoat");
@@ -494,7 +493,7 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
     if (!roughness) return roughness.error();
     layers.clearcoat = *coat;
     layers.clearcoatRoughness = *roughness;
-    warnUnreadTextures(ext, {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}, where, warnings);
+    warnUnreadTextures(ext, {"clearcoatNormalTexture"}, where, warnings);
   }
   return layers;
 }
@@ -697,6 +696,49 @@ class Converter {
     return source;
   }
 
+  // A textureInfo inside a material extension, which tinygltf leaves as JSON.
+  struct ExtensionTextureInfo {
+    int index = -1;
+    int texCoord = 0;
+    tinygltf::ExtensionMap extensions;
+  };
+  static ExtensionTextureInfo extensionTextureInfo(const tinygltf::Value& v) {
+    ExtensionTextureInfo info;
+    if (!v.IsObject()) return info;
+    if (v.Has("index") && v.Get("index").IsNumber()) info.index = v.Get("index").GetNumberAsInt();
+    if (v.Has("texCoord") && v.Get("texCoord").IsNumber()) info.texCoord = v.Get("texCoord").GetNumberAsInt();
+    if (v.Has("extensions") && v.Get("extensions").IsObject()) {
+      const tinygltf::Value& ext = v.Get("extensions");
+      for (const std::string& key : ext.Keys()) info.extensions[key] = ext.Get(key);
+    }
+    return info;
+  }
+
+  // The textures of KHR_materials_specular and _clearcoat (the coat's normal map
+  // aside), each with its uv set, transform and sampler as the core slots have them.
+  void readLayerTextures(const tinygltf::Material& src, const std::string& name, MaterialData& m) {
+    struct Key {
+      const char* extension;
+      const char* key;
+      TextureSlot slot;
+    };
+    static const Key kKeys[] = {{"KHR_materials_specular", "specularTexture", TextureSlot::Specular},
+                                {"KHR_materials_specular", "specularColorTexture", TextureSlot::SpecularColor},
+                                {"KHR_materials_clearcoat", "clearcoatTexture", TextureSlot::Clearcoat},
+                                {"KHR_materials_clearcoat", "clearcoatRoughnessTexture", TextureSlot::ClearcoatRoughness}};
+    for (const Key& k : kKeys) {
+      auto ext = src.extensions.find(k.extension);
+      if (ext == src.extensions.end() || !ext->second.Has(k.key)) continue;
+      const ExtensionTextureInfo info = extensionTextureInfo(ext->second.Get(k.key));
+      if (info.index < 0) {
+        warn(name + ": " + k.extension + ": " + k.key + " has no texture index; drawn without it");
+        continue;
+      }
+      const std::string slotName = std::string(k.extension) + ": " + k.key;
+      m.layerImages[std::size_t(k.slot) - kFirstLayerSlot] = textureImage(info, name, slotName.c_str(), m.texture(k.slot));
+    }
+  }
+
   // KHR_texture_transform on one textureInfo: offset, rotation, scale (each
   // defaulted when absent or malformed, with a warning for the latter) and the
   // texCoord that overrides the textureInfo's.
@@ -802,6 +844,7 @@ class Converter {
       if (!layers) return error(layers.error().message);
       for (const std::string& w : layerWarnings) warn(w);
       m.layers = *layers;
+      readLayerTextures(src, name, m);
       m.alphaMode = src.alphaMode == "BLEND" ? AlphaMode::Blend : src.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Opaque;
       m.alphaCutoff = static_cast<float>(src.alphaCutoff);
       const bool finite = std::isfinite(m.normalScale) && std::isfinite(m.occlusionStrength) &&
@@ -837,9 +880,10 @@ class Converter {
   // (copied into uvs1, so that every renderer finds the set it asks for).
   void checkUvSets(PrimitiveData& prim, const std::string& name) {
     if (prim.material < 0 || !prim.uvs1.empty()) return;
-    static const char* const kSlotNames[kTextureSlots] = {"baseColorTexture", "normalTexture",
-                                                          "metallicRoughnessTexture", "emissiveTexture",
-                                                          "occlusionTexture"};
+    static const char* const kSlotNames[kTextureSlots] = {
+        "baseColorTexture",  "normalTexture",        "metallicRoughnessTexture", "emissiveTexture",
+        "occlusionTexture",  "specularTexture",      "specularColorTexture",     "clearcoatTexture",
+        "clearcoatRoughnessTexture"};
     const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
     const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
     bool needed = false;

@@ -1,6 +1,7 @@
 #pragma once
 // glTF's dielectric layers over the metallic-roughness base: KHR_materials_ior,
-// KHR_materials_specular and KHR_materials_clearcoat, as factors. Every renderer
+// KHR_materials_specular and KHR_materials_clearcoat, their factors (the textures
+// are MaterialData's slots past Occlusion). Every renderer
 // evaluates them through layeredBrdf (shaders/common/brdf.glsl); a material whose
 // layers are the defaults draws exactly as plain metallic-roughness.
 #include <algorithm>
@@ -22,10 +23,17 @@ struct MaterialLayers {
   // The dielectric's reflectance at normal incidence: ((ior - 1) / (ior + 1))^2 times
   // the specular colour (each channel at most 1), times the specular weight. Worked
   // in double, so that ior 1.5 gives the very float 0.04f of metallicF0.
-  glm::vec3 dielectricF0() const {
+  glm::vec3 dielectricF0() const { return dielectricF0(specularColor, specular); }
+  // The same with the colour and weight at a point (their textures applied).
+  glm::vec3 dielectricF0(glm::vec3 color, float weight) const {
     const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
-    const glm::dvec3 f0 = glm::min(glm::dvec3(r * r) * glm::dvec3(specularColor), glm::dvec3(1.0)) * double(specular);
+    const glm::dvec3 f0 = glm::min(glm::dvec3(r * r) * glm::dvec3(color), glm::dvec3(1.0)) * double(weight);
     return glm::vec3(f0);
+  }
+  // ((ior - 1) / (ior + 1))^2 alone, for the shaders that tint it per pixel.
+  float iorF0() const {
+    const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
+    return float(r * r);
   }
   // ... and at grazing angles: the specular weight.
   float dielectricF90() const { return specular; }

@@ -110,8 +110,26 @@ struct SamplerData {
 };
 
 // The material texture slots, in the order of MaterialData::textures.
-enum class TextureSlot { BaseColor, Normal, MetallicRoughness, Emissive, Occlusion };
-inline constexpr int kTextureSlots = 5;
+// The last four are glTF's dielectric layers' (asset/material_layers.h):
+// KHR_materials_specular's specularTexture (A) and specularColorTexture (RGB, sRGB),
+// KHR_materials_clearcoat's clearcoatTexture (R) and clearcoatRoughnessTexture (G).
+enum class TextureSlot {
+  BaseColor,
+  Normal,
+  MetallicRoughness,
+  Emissive,
+  Occlusion,
+  Specular,
+  SpecularColor,
+  Clearcoat,
+  ClearcoatRoughness
+};
+inline constexpr int kTextureSlots = 9;
+inline constexpr int kFirstLayerSlot = 5;  // Specular
+// Colour slots hold sRGB-encoded images; the others linear data.
+inline bool isSrgbSlot(TextureSlot slot) {
+  return slot == TextureSlot::BaseColor || slot == TextureSlot::Emissive || slot == TextureSlot::SpecularColor;
+}
 
 // How one slot reads its texture: which uv set, KHR_texture_transform's matrix
 // (asset/texture_transform.h; identity without the extension) and the sampler.
@@ -145,8 +163,17 @@ struct MaterialData {
   // KHR_materials_unlit: the surface shows its base colour (factor x texture x
   // vertex colour) as it is, lit by nothing; every renderer draws it so.
   bool unlit = false;
-  // KHR_materials_ior, _specular, _clearcoat (factors; their textures are not read).
+  // KHR_materials_ior, _specular, _clearcoat: the factors, and their textures'
+  // images (-1 none; the slots past Occlusion).
   MaterialLayers layers;
+  std::array<int, kTextureSlots - kFirstLayerSlot> layerImages{-1, -1, -1, -1};
+  bool hasLayerTextures() const {
+    for (int image : layerImages)
+      if (image >= 0) return true;
+    return false;
+  }
+  // Whether the layered BRDF is needed at all (else plain metallic-roughness).
+  bool layered() const { return !layers.isDefault() || hasLayerTextures(); }
   std::array<TextureSlotData, kTextureSlots> textures;  // by TextureSlot
   const TextureSlotData& texture(TextureSlot slot) const { return textures[static_cast<std::size_t>(slot)]; }
   TextureSlotData& texture(TextureSlot slot) { return textures[static_cast<std::size_t>(slot)]; }
@@ -158,6 +185,10 @@ struct MaterialData {
       case TextureSlot::MetallicRoughness: return metallicRoughnessImage;
       case TextureSlot::Emissive: return emissiveImage;
       case TextureSlot::Occlusion: return occlusionImage;
+      case TextureSlot::Specular:
+      case TextureSlot::SpecularColor:
+      case TextureSlot::Clearcoat:
+      case TextureSlot::ClearcoatRoughness: return layerImages[std::size_t(slot) - kFirstLayerSlot];
     }
     return -1;
   }

@@ -16,6 +16,11 @@ inline constexpr unsigned kNormal = 1;
 inline constexpr unsigned kMetallicRoughness = 2;
 inline constexpr unsigned kEmissive = 3;
 inline constexpr unsigned kOcclusion = 6;
+// glTF's layer textures (KHR_materials_specular, _clearcoat).
+inline constexpr unsigned kSpecular = 12;
+inline constexpr unsigned kSpecularColor = 13;
+inline constexpr unsigned kClearcoat = 14;
+inline constexpr unsigned kClearcoatRoughness = 15;
 // Shadow maps (common/shadows.glsl).
 inline constexpr unsigned kSunShadow = 4;
 inline constexpr unsigned kPointShadow = 5;
@@ -64,12 +69,16 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 38> kDefines{{
+inline constexpr std::array<Define, 42> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
     {"UNIT_EMISSIVE", kEmissive},
     {"UNIT_OCCLUSION", kOcclusion},
+    {"UNIT_SPECULAR", kSpecular},
+    {"UNIT_SPECULAR_COLOR", kSpecularColor},
+    {"UNIT_CLEARCOAT", kClearcoat},
+    {"UNIT_CLEARCOAT_ROUGHNESS", kClearcoatRoughness},
     {"UNIT_SUN_SHADOW", kSunShadow},
     {"UNIT_POINT_SHADOW", kPointShadow},
     {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},

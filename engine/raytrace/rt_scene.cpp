@@ -203,6 +203,34 @@ Status RtScene::setUnlit(int material, bool unlit) {
   return Ok{};
 }
 
+Status RtScene::setLayerTexture(int material, TextureSlot slot, RtTexture texture) {
+  if (auto s = checkMaterial(material); !s) return s.error();
+  if (int(slot) < kFirstLayerSlot || int(slot) >= kTextureSlots) return makeError("not a layer texture slot");
+  extras_[size_t(material)].layerTextures[size_t(slot) - kFirstLayerSlot] = int(textures_.size());
+  textures_.push_back(std::move(texture));
+  return Ok{};
+}
+
+// glTF's layer textures at a hit, applied to `out`'s dielectric f0 and f90 and coat.
+void RtScene::applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const {
+  const auto& t = extras_[size_t(material)].layerTextures;
+  auto at = [&](TextureSlot slot) -> const RtTexture* {
+    const int i = t[size_t(slot) - kFirstLayerSlot];
+    return i >= 0 ? &textures_[size_t(i)] : nullptr;
+  };
+  const MaterialLayers& layers = materials_[size_t(material)].layers;
+  const RtTexture* specular = at(TextureSlot::Specular);
+  const RtTexture* specularColor = at(TextureSlot::SpecularColor);
+  if (specular || specularColor) {
+    const float weight = layers.specular * (specular ? specular->sampleRgba(uv, footprint).a : 1.0f);
+    const glm::vec3 color = layers.specularColor * (specularColor ? specularColor->sample(uv, footprint) : glm::vec3(1.0f));
+    out.dielectricF0 = layers.dielectricF0(color, weight);
+    out.dielectricF90 = weight;
+  }
+  if (const RtTexture* coat = at(TextureSlot::Clearcoat)) out.clearcoat *= coat->sample(uv, footprint).x;
+  if (const RtTexture* rough = at(TextureSlot::ClearcoatRoughness)) out.clearcoatRoughness *= rough->sample(uv, footprint).y;
+}
+
 Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
   return attachTexture(material, &MaterialExtras::emissiveTexture, std::move(texture));
 }
@@ -238,6 +266,7 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
   if (const int emissive = extras_[size_t(material)].emissiveTexture; emissive >= 0) {
     out.emission *= textures_[size_t(emissive)].sample(uv, footprint);
   }
+  if (extras_[size_t(material)].hasLayerTextures()) applyLayerTextures(material, uv, footprint, out);
   if (const int terrain = extras_[size_t(material)].terrain; terrain >= 0) {
     const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv.uv0, footprint, y, ns.y);
     out.albedo *= layers.albedo;

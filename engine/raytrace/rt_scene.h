@@ -11,6 +11,7 @@
 // never touches the terrain's. A linear top level suits the few groups a scene has
 // (the demo: 5); hundreds of instances would want a BVH over the groups.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -91,6 +92,10 @@ class RtScene {
   Status setSingleSided(int material, bool singleSided);
   // KHR_materials_unlit (HitMaterial::unlit).
   Status setUnlit(int material, bool unlit);
+  // One of glTF's layer textures (`slot` Specular .. ClearcoatRoughness): they scale
+  // the material's MaterialLayers at each hit (specular by A, its colour by RGB, the
+  // coat by R, its roughness by G).
+  Status setLayerTexture(int material, TextureSlot slot, RtTexture texture);
   bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
   // BLEND's alpha; the path tracer lets the rest through.
@@ -108,7 +113,8 @@ class RtScene {
   // or the terrain's layers.
   bool hasTextures() const {
     return std::any_of(extras_.begin(), extras_.end(), [](const MaterialExtras& e) {
-      return e.texture >= 0 || e.emissiveTexture >= 0 || e.metallicRoughnessTexture >= 0 || e.terrain >= 0;
+      return e.texture >= 0 || e.emissiveTexture >= 0 || e.metallicRoughnessTexture >= 0 || e.terrain >= 0 ||
+             e.hasLayerTextures();
     });
   }
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
@@ -214,6 +220,7 @@ class RtScene {
   Status checkMaterial(int material) const;  // an error naming it when out of range
   struct MaterialExtras;
   Status attachTexture(int material, int MaterialExtras::*slot, RtTexture texture);
+  void applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const;
   void gatherTriangles(int group);
 
   CameraDesc camera_;
@@ -225,6 +232,10 @@ class RtScene {
     int texture = -1;
     int emissiveTexture = -1;
     int metallicRoughnessTexture = -1;
+    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1};
+    bool hasLayerTextures() const {
+      return std::any_of(layerTextures.begin(), layerTextures.end(), [](int t) { return t >= 0; });
+    }
     bool singleSided = false;
     bool unlit = false;
     int terrain = -1;

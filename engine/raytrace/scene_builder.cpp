@@ -48,6 +48,12 @@ Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
       auto mr = slotTexture(TextureSlot::MetallicRoughness, TextureEncoding::Linear);
       if (auto s = scene.setMetallicRoughnessTexture(material, std::move(mr)); !s) return s.error();
     }
+    for (int slot = kFirstLayerSlot; slot < kTextureSlots; ++slot) {
+      if (m.image(TextureSlot(slot)) < 0) continue;
+      const TextureEncoding encoding = isSrgbSlot(TextureSlot(slot)) ? TextureEncoding::Srgb : TextureEncoding::Linear;
+      if (auto s = scene.setLayerTexture(material, TextureSlot(slot), slotTexture(TextureSlot(slot), encoding)); !s)
+        return s.error();
+    }
     if (auto s = scene.setMaterialAlpha(material, m.alphaMode, m.baseColorFactor.a, m.alphaCutoff); !s) return s.error();
     if (auto s = scene.setSingleSided(material, !m.doubleSided); !s) return s.error();
     if (auto s = scene.setUnlit(material, m.unlit); !s) return s.error();

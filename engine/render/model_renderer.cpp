@@ -24,6 +24,7 @@ std::string ShaderVariant::describe() const {
   if (vertexColor) name += "+vertexcolor";
   if (unlit) name += "+unlit";
   if (layers) name += "+layers";
+  if (layerTextures) name += "+layertextures";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -58,6 +59,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.vertexColor) defines.push_back("VERTEX_COLOR 1");
   if (variant.unlit) defines.push_back("UNLIT 1");
   if (variant.layers) defines.push_back("MATERIAL_LAYERS 1");
+  if (variant.layerTextures) defines.push_back("LAYER_TEXTURES 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -90,11 +92,13 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
   pr.set("u_shininess", 32.0f);
   pr.set("u_reflection", 0.0f);
   if (!material) return;
-  if (!material->layers.isDefault()) {
-    pr.set("u_dielectricF0", material->layers.dielectricF0());
-    pr.set("u_dielectricF90", material->layers.dielectricF90());
-    pr.set("u_clearcoat", material->layers.clearcoat);
-    pr.set("u_clearcoatRoughness", material->layers.clearcoatRoughness);
+  if (material->layered()) {
+    const MaterialLayers& l = material->layers;
+    pr.set("u_iorF0", l.iorF0());
+    pr.set("u_specularWeight", l.specular);
+    pr.set("u_specularColor", l.specularColor);
+    pr.set("u_clearcoat", l.clearcoat);
+    pr.set("u_clearcoatRoughness", l.clearcoatRoughness);
   }
   pr.set("u_normalScale", material->normalScale);
   pr.set("u_occlusionStrength", material->occlusionStrength);
@@ -103,10 +107,12 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
 
 // Each slot's uv set and KHR_texture_transform matrix, for UV_TRANSFORM variants.
 void setUvTransforms(const gl::Program& pr, const MaterialData& m) {
-  static constexpr const char* kTransforms[kTextureSlots] = {"u_uvTransform[0]", "u_uvTransform[1]", "u_uvTransform[2]",
-                                                             "u_uvTransform[3]", "u_uvTransform[4]"};
+  static constexpr const char* kTransforms[kTextureSlots] = {
+      "u_uvTransform[0]", "u_uvTransform[1]", "u_uvTransform[2]", "u_uvTransform[3]", "u_uvTransform[4]",
+      "u_uvTransform[5]", "u_uvTransform[6]", "u_uvTransform[7]", "u_uvTransform[8]"};
   static constexpr const char* kTexCoords[kTextureSlots] = {"u_texCoord[0]", "u_texCoord[1]", "u_texCoord[2]",
-                                                            "u_texCoord[3]", "u_texCoord[4]"};
+                                                            "u_texCoord[3]", "u_texCoord[4]", "u_texCoord[5]",
+                                                            "u_texCoord[6]", "u_texCoord[7]", "u_texCoord[8]"};
   for (int i = 0; i < kTextureSlots; ++i) {
     pr.set(kTransforms[i], m.textures[size_t(i)].uvTransform);
     pr.set(kTexCoords[i], m.textures[size_t(i)].texCoord);
@@ -114,31 +120,43 @@ void setUvTransforms(const gl::Program& pr, const MaterialData& m) {
 }
 
 // Texture units of common/material.glsl (gl/bindings.h), by TextureSlot.
-constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor, gl::binding::kNormal,
+constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor,       gl::binding::kNormal,
                                               gl::binding::kMetallicRoughness, gl::binding::kEmissive,
-                                              gl::binding::kOcclusion};
+                                              gl::binding::kOcclusion,         gl::binding::kSpecular,
+                                              gl::binding::kSpecularColor,     gl::binding::kClearcoat,
+                                              gl::binding::kClearcoatRoughness};
 
-// Which slots the variant samples.
-std::array<bool, kTextureSlots> sampledSlots(const ShaderVariant& v) {
-  return {v.textured, v.normalMap, v.metallicRoughnessTexture, v.emissiveTexture, v.occlusion};
+// Which slots the variant samples: the layer textures the material has, in a
+// +layertextures variant (common/material.glsl's u_layerTextures says which).
+std::array<bool, kTextureSlots> sampledSlots(const ShaderVariant& v, const MaterialData& m) {
+  std::array<bool, kTextureSlots> sampled{v.textured, v.normalMap, v.metallicRoughnessTexture, v.emissiveTexture,
+                                          v.occlusion};
+  for (int i = kFirstLayerSlot; i < kTextureSlots; ++i) sampled[size_t(i)] = v.layerTextures && m.image(TextureSlot(i)) >= 0;
+  return sampled;
+}
+
+// Bit i - kFirstLayerSlot: layer slot i has a texture (common/material.glsl).
+int layerTextureMask(const MaterialData& m) {
+  int mask = 0;
+  for (int i = kFirstLayerSlot; i < kTextureSlots; ++i) mask |= m.image(TextureSlot(i)) >= 0 ? 1 << (i - kFirstLayerSlot) : 0;
+  return mask;
 }
 
 // Binds each sampled slot's image (colour slots as sRGB) and its glTF sampler.
 void bindMaterialTextures(const GpuModel& gpu, const MaterialData& m, const ShaderVariant& v) {
-  const auto sampled = sampledSlots(v);
+  const auto sampled = sampledSlots(v, m);
   for (int i = 0; i < kTextureSlots; ++i) {
     if (!sampled[size_t(i)]) continue;
     const TextureSlot slot = TextureSlot(i);
-    const bool srgb = slot == TextureSlot::BaseColor || slot == TextureSlot::Emissive;
-    gpu.image(m.image(slot), srgb).bind(kSlotUnits[i]);
+    gpu.image(m.image(slot), isSrgbSlot(slot)).bind(kSlotUnits[i]);
     gpu.sampler(m.textures[size_t(i)].sampler).bind(kSlotUnits[i]);
   }
 }
 
 // The units' own texture parameters again, for whatever draws next (the scene's
 // shapes and terrain bind textures on the same units without samplers).
-void unbindMaterialSamplers(const ShaderVariant& v) {
-  const auto sampled = sampledSlots(v);
+void unbindMaterialSamplers(const ShaderVariant& v, const MaterialData& m) {
+  const auto sampled = sampledSlots(v, m);
   for (int i = 0; i < kTextureSlots; ++i)
     if (sampled[size_t(i)]) gl::Sampler::unbind(kSlotUnits[i]);
 }
@@ -280,6 +298,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     pr.set("u_alphaCutoff", material->alphaCutoff);
   }
   if (variant.uvTransform) setUvTransforms(pr, *material);
+  if (variant.layerTextures) pr.set("u_layerTextures", layerTextureMask(*material));
   // scene.vert's tiling of analytic shapes: a program may be shared with them.
   pr.set("u_uvScale", glm::vec2(1.0f));
   if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
@@ -319,7 +338,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     if (mirrored) flipFrontFace();
   }
   if (twoSided) glEnable(GL_CULL_FACE);
-  if (material) unbindMaterialSamplers(variant);
+  if (material) unbindMaterialSamplers(variant, *material);
   return Ok{};
 }
 
@@ -414,9 +433,10 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.metallicRoughnessTexture = m->metallicRoughnessImage >= 0;
     v.emissiveTexture = m->emissiveImage >= 0;
     v.occlusion = m->occlusionImage >= 0;
-    v.layers = !m->layers.isDefault();
+    v.layers = m->layered();
+    v.layerTextures = m->hasLayerTextures();
   }
-  const auto sampled = sampledSlots(v);
+  const auto sampled = sampledSlots(v, *m);
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();
   return v;
 }
@@ -433,11 +453,7 @@ Result<GpuModel> GpuModel::upload(const ModelData& model) {
     if (image >= 0 && image < int(used.size())) used[size_t(image)] = 1;
   };
   for (const MaterialData& m : model.materials) {
-    use(srgb, m.baseColorImage);
-    use(srgb, m.emissiveImage);
-    use(linear, m.normalImage);
-    use(linear, m.metallicRoughnessImage);
-    use(linear, m.occlusionImage);
+    for (int i = 0; i < kTextureSlots; ++i) use(isSrgbSlot(TextureSlot(i)) ? srgb : linear, m.image(TextureSlot(i)));
   }
   gpu.srgbImages_.resize(model.images.size());
   gpu.linearImages_.resize(model.images.size());

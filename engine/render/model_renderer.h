@@ -48,6 +48,7 @@ struct ShaderVariant {
   // KHR_materials_ior, _specular or _clearcoat away from their defaults: the layered
   // BRDF (common/shading.glsl's MATERIAL_LAYERS). Last as well.
   bool layers = false;
+  bool layerTextures = false;  // some of them has a texture (LAYER_TEXTURES)
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };

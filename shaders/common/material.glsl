@@ -8,6 +8,8 @@
 //   OCCLUSION         ambient occlusion (linear, UNIT_OCCLUSION): R, with u_occlusionStrength
 //   ALPHA_MASK        discard below u_alphaCutoff
 //   VERTEX_COLOR      the mesh's COLOR_0 multiplies the base colour (v_color)
+//   MATERIAL_LAYERS   glTF's ior, specular and clear coat (common/shading.glsl), and
+//   LAYER_TEXTURES    their textures (UNIT_SPECULAR ..., u_layerTextures says which)
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
 //                     every slot reads its set (u_texCoord) through its matrix
 //                     (u_uvTransform, built in C++: asset/texture_transform.h)
@@ -25,11 +27,15 @@ const int SLOT_NORMAL = 1;
 const int SLOT_METALLIC_ROUGHNESS = 2;
 const int SLOT_EMISSIVE = 3;
 const int SLOT_OCCLUSION = 4;
+const int SLOT_SPECULAR = 5;
+const int SLOT_SPECULAR_COLOR = 6;
+const int SLOT_CLEARCOAT = 7;
+const int SLOT_CLEARCOAT_ROUGHNESS = 8;
 
 #ifdef UV_TRANSFORM
 in vec2 v_uv1;  // TEXCOORD_1 (set 0 where the mesh has none)
-uniform mat3 u_uvTransform[5];
-uniform int u_texCoord[5];
+uniform mat3 u_uvTransform[9];
+uniform int u_texCoord[9];
 #endif
 
 // The uv that `slot` samples at, from the fragment's TEXCOORD_0 `uv`.
@@ -134,3 +140,39 @@ float materialOcclusion(vec2 uv) {
   return 1.0;
 #endif
 }
+
+#ifdef MATERIAL_LAYERS
+// KHR_materials_ior, _specular, _clearcoat: the factors, times their textures where
+// the material has them, into common/shading.glsl's g_ values for this fragment.
+uniform float u_iorF0;          // ((ior - 1) / (ior + 1))^2
+uniform float u_specularWeight;
+uniform vec3 u_specularColor;
+uniform float u_clearcoat;
+uniform float u_clearcoatRoughness;
+#ifdef LAYER_TEXTURES
+layout(binding = UNIT_SPECULAR) uniform sampler2D u_specularTexture;              // A
+layout(binding = UNIT_SPECULAR_COLOR) uniform sampler2D u_specularColorTexture;   // RGB, sRGB
+layout(binding = UNIT_CLEARCOAT) uniform sampler2D u_clearcoatTexture;            // R
+layout(binding = UNIT_CLEARCOAT_ROUGHNESS) uniform sampler2D u_clearcoatRoughnessTexture;  // G
+uniform int u_layerTextures;  // bit (slot - SLOT_SPECULAR): the slot has a texture
+
+bool hasLayerTexture(int slot) { return (u_layerTextures & (1 << (slot - SLOT_SPECULAR))) != 0; }
+#endif
+
+void materialLayers(vec2 uv) {
+  float weight = u_specularWeight;
+  vec3 color = u_specularColor;
+  g_clearcoat = u_clearcoat;
+  g_clearcoatRoughness = u_clearcoatRoughness;
+#ifdef LAYER_TEXTURES
+  if (hasLayerTexture(SLOT_SPECULAR)) weight *= texture(u_specularTexture, materialUv(SLOT_SPECULAR, uv)).a;
+  if (hasLayerTexture(SLOT_SPECULAR_COLOR))
+    color *= texture(u_specularColorTexture, materialUv(SLOT_SPECULAR_COLOR, uv)).rgb;
+  if (hasLayerTexture(SLOT_CLEARCOAT)) g_clearcoat *= texture(u_clearcoatTexture, materialUv(SLOT_CLEARCOAT, uv)).r;
+  if (hasLayerTexture(SLOT_CLEARCOAT_ROUGHNESS))
+    g_clearcoatRoughness *= texture(u_clearcoatRoughnessTexture, materialUv(SLOT_CLEARCOAT_ROUGHNESS, uv)).g;
+#endif
+  g_dielectricF0 = min(vec3(u_iorF0) * color, vec3(1.0)) * weight;
+  g_dielectricF90 = weight;
+}
+#endif

@@ -23,12 +23,13 @@ const float PI = BRDF_PI;
 #ifdef MATERIAL_LAYERS
 // glTF's ior, specular and clear coat (asset/material_layers.h), for the PBR model
 // only: layeredBrdf in place of metallicRoughnessBrdf, and the coat's reflection in
-// the ambient. Materials without them never build this variant.
-uniform vec3 u_dielectricF0;
-uniform float u_dielectricF90;
-uniform float u_clearcoat;
-uniform float u_clearcoatRoughness;
-vec3 g_clearcoatNormal;  // set by the fragment shader before shading: the coat's normal
+// the ambient. Materials without them never build this variant. The fragment
+// shader sets these before shading (common/material.glsl's materialLayers).
+vec3 g_dielectricF0;
+float g_dielectricF90;
+float g_clearcoat;
+float g_clearcoatRoughness;
+vec3 g_clearcoatNormal;
 #endif
 
 #ifdef CLASSIC
@@ -76,8 +77,8 @@ vec3 shadeAmbient(Surface s) {
   float nDotV = max(dot(s.n, s.toEye), 1e-4);
   vec3 table = texture(u_splitSum, vec2(nDotV, s.roughness)).rgb;
 #ifdef MATERIAL_LAYERS
-  vec3 f0 = mix(u_dielectricF0, s.albedo, s.metallic);
-  float f90 = u_dielectricF90 + (1.0 - u_dielectricF90) * s.metallic;
+  vec3 f0 = mix(g_dielectricF0, s.albedo, s.metallic);
+  float f90 = g_dielectricF90 + (1.0 - g_dielectricF90) * s.metallic;
 #else
   vec3 f0 = metallicF0(s.albedo, s.metallic);
 #endif
@@ -85,14 +86,14 @@ vec3 shadeAmbient(Surface s) {
   vec3 radiance = ambientRadiance(reflect(-s.toEye, s.n), s.roughness);
 #ifdef MATERIAL_LAYERS
   vec3 color = diffuse + radiance * (f0 * table.x + vec3(f90 * table.y));
-  if (u_clearcoat <= 0.0) return color;
+  if (g_clearcoat <= 0.0) return color;
   // The coat (f0 0.04) by the same split sum along its own normal, over the base it dims.
   vec3 nc = g_clearcoatNormal;
   float ncDotV = max(dot(nc, s.toEye), 1e-4);
-  vec3 coatTable = texture(u_splitSum, vec2(ncDotV, u_clearcoatRoughness)).rgb;
-  float coat = u_clearcoat * schlickFresnel(vec3(0.04), ncDotV).x;
-  vec3 coatRadiance = ambientRadiance(reflect(-s.toEye, nc), u_clearcoatRoughness);
-  return color * (1.0 - coat) + u_clearcoat * coatRadiance * (0.04 * coatTable.x + coatTable.y);
+  vec3 coatTable = texture(u_splitSum, vec2(ncDotV, g_clearcoatRoughness)).rgb;
+  float coat = g_clearcoat * schlickFresnel(vec3(0.04), ncDotV).x;
+  vec3 coatRadiance = ambientRadiance(reflect(-s.toEye, nc), g_clearcoatRoughness);
+  return color * (1.0 - coat) + g_clearcoat * coatRadiance * (0.04 * coatTable.x + coatTable.y);
 #else
   return diffuse + radiance * (f0 * table.x + vec3(table.y));
 #endif
@@ -104,8 +105,8 @@ vec3 shadeAmbient(Surface s) {
   vec3 sky = mix(u_ambientGround.rgb, u_ambientSky.rgb, 0.5 + 0.5 * s.n.y);
 #ifdef MATERIAL_LAYERS
   float ncDotV = max(dot(g_clearcoatNormal, s.toEye), 1e-4);
-  return sky * hemisphereAmbient(s.albedo, s.metallic, s.roughness, u_dielectricF0, ncDotV, u_clearcoat,
-                                 u_clearcoatRoughness);
+  return sky * hemisphereAmbient(s.albedo, s.metallic, s.roughness, g_dielectricF0, ncDotV, g_clearcoat,
+                                 g_clearcoatRoughness);
 #else
   vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
   vec3 f0 = metallicF0(s.albedo, s.metallic);
@@ -119,8 +120,8 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
   float nDotL = dot(s.n, l);
   if (nDotL <= 0.0 || visibility <= 0.0) return vec3(0.0);
 #ifdef MATERIAL_LAYERS
-  vec3 f = layeredBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness, u_dielectricF0, u_dielectricF90,
-                       g_clearcoatNormal, u_clearcoat, u_clearcoatRoughness);
+  vec3 f = layeredBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness, g_dielectricF0, g_dielectricF90,
+                       g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness);
 #else
   vec3 f = metallicRoughnessBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness);
 #endif

@@ -891,8 +891,16 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
         {{"KHR_materials_ior", {{"ior", 1.33}}},
          {"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 2.0}}}},
          {"KHR_materials_clearcoat",
-          {{"clearcoatFactor", 0.75}, {"clearcoatRoughnessFactor", 0.25}, {"clearcoatTexture", {{"index", 0}}}}}}}},
+          {{"clearcoatFactor", 0.75},
+           {"clearcoatRoughnessFactor", 0.25},
+           {"clearcoatTexture", {{"index", 0}}},
+           {"clearcoatRoughnessTexture", {{"index", 7}}},
+           {"clearcoatNormalTexture", {{"index", 0}}}}}}}},
       {{"emissiveFactor", {0.25, 0.25, 0.25}}}};
+  m.doc["materials"][0]["extensions"]["KHR_materials_specular"]["specularColorTexture"] = {
+      {"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 3.0}}}}}}};
+  m.doc["images"] = {{{"uri", "missing.png"}}};  // white, with its own warning
+  m.doc["textures"] = {{{"source", 0}}};
   auto model = loadGltf(write(m));
   ASSERT_TRUE(model.ok()) << model.error().message;
   const MaterialLayers& l = model->materials[0].layers;
@@ -912,7 +920,21 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
   EXPECT_TRUE(model->materials[1].layers.isDefault());
   EXPECT_EQ(model->materials[1].layers.dielectricF0(), glm::vec3(0.04f));
   EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
-  EXPECT_TRUE(hasWarning(*model, {"material 0", "KHR_materials_clearcoat", "clearcoatTexture", "not read"}))
+  // The layer textures are slots of their own, with their uv transforms; a texture
+  // index that does not exist is dropped with a warning, as for the core slots; the
+  // coat's normal map is not read.
+  const MaterialData& mat = model->materials[0];
+  EXPECT_EQ(mat.image(TextureSlot::Clearcoat), 0);
+  EXPECT_EQ(mat.image(TextureSlot::SpecularColor), 0);
+  EXPECT_EQ(mat.image(TextureSlot::ClearcoatRoughness), -1);
+  EXPECT_EQ(mat.image(TextureSlot::Specular), -1);
+  EXPECT_TRUE(mat.hasLayerTextures());
+  EXPECT_TRUE(mat.layered());
+  EXPECT_FLOAT_EQ(mat.texture(TextureSlot::SpecularColor).uvTransform[0][0], 2.0f);
+  EXPECT_FLOAT_EQ(mat.texture(TextureSlot::SpecularColor).uvTransform[1][1], 3.0f);
+  EXPECT_TRUE(hasWarning(*model, {"material 0", "KHR_materials_clearcoat: clearcoatRoughnessTexture 7 does not exist"}))
+      << allWarnings(*model);
+  EXPECT_TRUE(hasWarning(*model, {"material 0", "KHR_materials_clearcoat", "clearcoatNormalTexture", "not read"}))
       << allWarnings(*model);
 
   const std::tuple<const char*, const char*, nlohmann::json> bad[] = {
