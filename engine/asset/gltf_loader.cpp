@@ -7,7 +7,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -446,18 +445,8 @@ Result<float> extensionNumber(const tinygltf::Value& ext, const char* key, float
   return static_cast<float>(v);
 }
 
-// The texture keys of a layer extension that this engine does not read yet: one
-// warning each, and the factor alone is drawn.
-void warnUnreadTextures(const tinygltf::Value& ext, std::initializer_list<const char*> keys, const std::string& where,
-                        std::vector<std::string>& warnings) {
-  for (const char* key : keys) {
-    if (ext.Has(key)) warnings.push_back(where + ": " + key + " is not read yet; drawn with the factor alone");
-  }
-}
-
 // KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat.
-Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const std::string& name,
-                                      std::vector<std::string>& warnings) {
+Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const std::string& name) {
   MaterialLayers layers;
   auto has = [&](const char* ext) { return material.extensions.find(ext) != material.extensions.end(); };
   if (has("KHR_materials_ior")) {
@@ -493,7 +482,6 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
     if (!roughness) return roughness.error();
     layers.clearcoat = *coat;
     layers.clearcoatRoughness = *roughness;
-    warnUnreadTextures(ext, {"clearcoatNormalTexture"}, where, warnings);
   }
   return layers;
 }
@@ -714,9 +702,14 @@ class Converter {
     return info;
   }
 
-  // The textures of KHR_materials_specular and _clearcoat (the coat's normal map
-  // aside), each with its uv set, transform and sampler as the core slots have them.
+  // The textures of KHR_materials_specular and _clearcoat, each with its uv set,
+  // transform and sampler as the core slots have them. The coat's normal map is not
+  // read: a warning, and the coat keeps the surface's normal.
   void readLayerTextures(const tinygltf::Material& src, const std::string& name, MaterialData& m) {
+    if (auto coat = src.extensions.find("KHR_materials_clearcoat");
+        coat != src.extensions.end() && coat->second.Has("clearcoatNormalTexture")) {
+      warn(name + ": KHR_materials_clearcoat: clearcoatNormalTexture is not read yet; drawn with the factor alone");
+    }
     struct Key {
       const char* extension;
       const char* key;
@@ -839,10 +832,8 @@ class Converter {
       m.emissiveFactor *= *strength;
       m.doubleSided = src.doubleSided;
       m.unlit = src.extensions.count("KHR_materials_unlit") > 0;
-      std::vector<std::string> layerWarnings;
-      auto layers = materialLayers(src, name, layerWarnings);
+      auto layers = materialLayers(src, name);
       if (!layers) return error(layers.error().message);
-      for (const std::string& w : layerWarnings) warn(w);
       m.layers = *layers;
       readLayerTextures(src, name, m);
       m.alphaMode = src.alphaMode == "BLEND" ? AlphaMode::Blend : src.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Opaque;

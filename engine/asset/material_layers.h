@@ -4,8 +4,6 @@
 // are MaterialData's slots past Occlusion). Every renderer
 // evaluates them through layeredBrdf (shaders/common/brdf.glsl); a material whose
 // layers are the defaults draws exactly as plain metallic-roughness.
-#include <algorithm>
-
 #include <glm/glm.hpp>
 
 namespace engine {
@@ -26,17 +24,19 @@ struct MaterialLayers {
   glm::vec3 dielectricF0() const { return dielectricF0(specularColor, specular); }
   // The same with the colour and weight at a point (their textures applied).
   glm::vec3 dielectricF0(glm::vec3 color, float weight) const {
-    const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
-    const glm::dvec3 f0 = glm::min(glm::dvec3(r * r) * glm::dvec3(color), glm::dvec3(1.0)) * double(weight);
+    const glm::dvec3 f0 = glm::min(glm::dvec3(reflectance()) * glm::dvec3(color), glm::dvec3(1.0)) * double(weight);
     return glm::vec3(f0);
   }
   // ((ior - 1) / (ior + 1))^2 alone, for the shaders that tint it per pixel.
-  float iorF0() const {
-    const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
-    return float(r * r);
-  }
+  float iorF0() const { return float(reflectance()); }
   // ... and at grazing angles: the specular weight.
   float dielectricF90() const { return specular; }
+
+ private:
+  double reflectance() const {
+    const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
+    return r * r;
+  }
 };
 
 }  // namespace engine

@@ -147,7 +147,7 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
 
 int RtScene::addMaterial(const MaterialDesc& material) {
   materials_.push_back(material);
-  extras_.emplace_back();
+  extras_.emplace_back().dielectricF0 = material.layers.dielectricF0();
   return int(materials_.size() - 1);
 }
 
@@ -256,7 +256,7 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
   const MaterialDesc& m = materials_[size_t(material)];
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
                   m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit,
-                  m.layers.dielectricF0(), m.layers.dielectricF90(), m.layers.clearcoat,
+                  extras_[size_t(material)].dielectricF0, m.layers.dielectricF90(), m.layers.clearcoat,
                   m.layers.clearcoatRoughness};
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);

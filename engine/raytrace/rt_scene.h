@@ -63,7 +63,6 @@ struct HitMaterial {
   glm::vec3 dielectricF0{0.04f};
   float dielectricF90 = 1.0f;
   float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
-  bool layered() const { return clearcoat > 0.0f || dielectricF90 != 1.0f || dielectricF0 != glm::vec3(0.04f); }
 };
 
 class RtScene {
@@ -233,6 +232,8 @@ class RtScene {
     int emissiveTexture = -1;
     int metallicRoughnessTexture = -1;
     std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1};
+    // MaterialDesc::layers' dielectric f0 (worked in double), once per material, not per hit.
+    glm::vec3 dielectricF0{0.04f};
     bool hasLayerTextures() const {
       return std::any_of(layerTextures.begin(), layerTextures.end(), [](int t) { return t >= 0; });
     }
