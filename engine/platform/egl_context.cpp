@@ -21,6 +21,7 @@ std::string eglErrorText(const char* what) {
 void* eglProc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
 
 EGLDisplay openDisplay() {
+  keepGlDriverMapped();
   auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!getPlatformDisplay) return EGL_NO_DISPLAY;

@@ -1,6 +1,9 @@
 #include "platform/gl_context.h"
 
+#include <dlfcn.h>
 #include <glad/gl.h>
+
+#include <cstdlib>
 
 #include "gl/object.h"
 #include "platform/backends.h"
@@ -53,6 +56,14 @@ Status GlContext::loadGl(void* (*getProc)(const char*), std::string_view backend
   renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
   return Ok{};
+}
+
+void keepGlDriverMapped() {
+  static const bool kept = [] {
+    const char* path = std::getenv("ENGINE_KEEP_GL_DRIVER");
+    return path && *path && dlopen(path, RTLD_NOW | RTLD_NODELETE) != nullptr;
+  }();
+  (void)kept;
 }
 
 Result<std::unique_ptr<GlContext>> createContext(Backend backend, const ContextOptions& options) {

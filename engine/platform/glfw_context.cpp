@@ -30,6 +30,7 @@ std::string gInitError;
 
 bool glfwReady() {
   static const bool ready = [] {
+    keepGlDriverMapped();
     if (!glfwInit()) {
       gInitError = lastGlfwError();
       return false;
