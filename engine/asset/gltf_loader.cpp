@@ -143,6 +143,7 @@ const std::set<std::string>& supportedExtensions() {
   static const std::set<std::string> supported{"KHR_mesh_quantization", "KHR_materials_emissive_strength",
                                                "KHR_materials_unlit", "KHR_materials_ior",
                                                "KHR_materials_specular", "KHR_materials_clearcoat",
+                                               "KHR_materials_transmission", "KHR_materials_volume",
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
                                                "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
                                                "KHR_lights_punctual"};
@@ -445,7 +446,30 @@ Result<float> extensionNumber(const tinygltf::Value& ext, const char* key, float
   return static_cast<float>(v);
 }
 
-// KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat.
+// KHR_materials_volume: thickness and Beer-Lambert's attenuation.
+Status readVolume(const tinygltf::Value& ext, const std::string& name, MaterialLayers& layers) {
+  const std::string where = name + ": KHR_materials_volume";
+  auto thickness = extensionNumber(ext, "thicknessFactor", 0.0f, 0.0, 1e30, where);
+  if (!thickness) return thickness.error();
+  // Absent means infinite (nothing absorbed), which MaterialLayers writes as 0.
+  auto distance = extensionNumber(ext, "attenuationDistance", 0.0f, 0.0, 1e30, where);
+  if (!distance) return distance.error();
+  if (ext.Has("attenuationDistance") && !(*distance > 0.0f)) return makeError(where + ": attenuationDistance must be > 0");
+  layers.thickness = *thickness;
+  layers.attenuationDistance = *distance;
+  if (ext.Has("attenuationColor")) {
+    const tinygltf::Value& c = ext.Get("attenuationColor");
+    const bool ok = c.IsArray() && c.ArrayLen() == 3 && c.Get(0).IsNumber() && c.Get(1).IsNumber() && c.Get(2).IsNumber();
+    if (ok) layers.attenuationColor = glm::vec3(c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble());
+    if (!ok || !(glm::all(glm::greaterThanEqual(layers.attenuationColor, glm::vec3(0.0f))) &&
+                 glm::all(glm::lessThanEqual(layers.attenuationColor, glm::vec3(1.0f))))) {
+      return makeError(where + ": attenuationColor must be three numbers in [0, 1]");
+    }
+  }
+  return Ok{};
+}
+
+// KHR_materials_ior, _specular, _clearcoat, _transmission and _volume.
 Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const std::string& name) {
   MaterialLayers layers;
   auto has = [&](const char* ext) { return material.extensions.find(ext) != material.extensions.end(); };
@@ -482,6 +506,15 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
     if (!roughness) return roughness.error();
     layers.clearcoat = *coat;
     layers.clearcoatRoughness = *roughness;
+  }
+  if (has("KHR_materials_transmission")) {
+    auto transmission = extensionNumber(material.extensions.at("KHR_materials_transmission"), "transmissionFactor",
+                                        0.0f, 0.0, 1.0, name + ": KHR_materials_transmission");
+    if (!transmission) return transmission.error();
+    layers.transmission = *transmission;
+  }
+  if (has("KHR_materials_volume")) {
+    if (auto status = readVolume(material.extensions.at("KHR_materials_volume"), name, layers); !status) return status.error();
   }
   return layers;
 }
@@ -702,7 +735,7 @@ class Converter {
     return info;
   }
 
-  // The textures of KHR_materials_specular and _clearcoat, each with its uv set,
+  // The textures of KHR_materials_specular, _clearcoat, _transmission and _volume, each with its uv set,
   // transform and sampler as the core slots have them. The coat's normal map is not
   // read: a warning, and the coat keeps the surface's normal.
   void readLayerTextures(const tinygltf::Material& src, const std::string& name, MaterialData& m) {
@@ -718,7 +751,9 @@ class Converter {
     static const Key kKeys[] = {{"KHR_materials_specular", "specularTexture", TextureSlot::Specular},
                                 {"KHR_materials_specular", "specularColorTexture", TextureSlot::SpecularColor},
                                 {"KHR_materials_clearcoat", "clearcoatTexture", TextureSlot::Clearcoat},
-                                {"KHR_materials_clearcoat", "clearcoatRoughnessTexture", TextureSlot::ClearcoatRoughness}};
+                                {"KHR_materials_clearcoat", "clearcoatRoughnessTexture", TextureSlot::ClearcoatRoughness},
+                                {"KHR_materials_transmission", "transmissionTexture", TextureSlot::Transmission},
+                                {"KHR_materials_volume", "thicknessTexture", TextureSlot::Thickness}};
     for (const Key& k : kKeys) {
       auto ext = src.extensions.find(k.extension);
       if (ext == src.extensions.end() || !ext->second.Has(k.key)) continue;
@@ -874,7 +909,7 @@ class Converter {
     static const char* const kSlotNames[kTextureSlots] = {
         "baseColorTexture",  "normalTexture",        "metallicRoughnessTexture", "emissiveTexture",
         "occlusionTexture",  "specularTexture",      "specularColorTexture",     "clearcoatTexture",
-        "clearcoatRoughnessTexture"};
+        "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture"};
     const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
     const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
     bool needed = false;

@@ -1,7 +1,8 @@
 #pragma once
 // glTF's dielectric layers over the metallic-roughness base: KHR_materials_ior,
-// KHR_materials_specular and KHR_materials_clearcoat, their factors (the textures
-// are MaterialData's slots past Occlusion). Every renderer
+// KHR_materials_specular and KHR_materials_clearcoat, and the light that passes
+// through the dielectric, KHR_materials_transmission and KHR_materials_volume:
+// their factors (the textures are MaterialData's slots past Occlusion). Every renderer
 // evaluates them through layeredBrdf (shaders/common/brdf.glsl); a material whose
 // layers are the defaults draws exactly as plain metallic-roughness.
 #include <glm/glm.hpp>
@@ -14,10 +15,22 @@ struct MaterialLayers {
   glm::vec3 specularColor{1.0f};  // specularColorFactor, linear
   float clearcoat = 0.0f;         // KHR_materials_clearcoat: clearcoatFactor
   float clearcoatRoughness = 0.0f;
+  // KHR_materials_transmission: the share of the dielectric's diffuse lobe that is
+  // transmitted through the surface instead (metals transmit nothing).
+  float transmission = 0.0f;
+  // KHR_materials_volume: the thickness of the volume under the surface, in the
+  // mesh's units (0: thin-walled, the light leaves unbent), and Beer-Lambert's
+  // absorption: white light turns attenuationColor after attenuationDistance
+  // (0 = infinite, nothing absorbed).
+  float thickness = 0.0f;
+  float attenuationDistance = 0.0f;
+  glm::vec3 attenuationColor{1.0f};
 
   bool isDefault() const {
-    return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && clearcoat == 0.0f;
+    return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && clearcoat == 0.0f &&
+           transmission == 0.0f;
   }
+  bool transmissive() const { return transmission > 0.0f; }
   // The dielectric's reflectance at normal incidence: ((ior - 1) / (ior + 1))^2 times
   // the specular colour (each channel at most 1), times the specular weight. Worked
   // in double, so that ior 1.5 gives the very float 0.04f of metallicF0.

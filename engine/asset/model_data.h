@@ -110,9 +110,11 @@ struct SamplerData {
 };
 
 // The material texture slots, in the order of MaterialData::textures.
-// The last four are glTF's dielectric layers' (asset/material_layers.h):
+// The last six are glTF's dielectric layers' (asset/material_layers.h):
 // KHR_materials_specular's specularTexture (A) and specularColorTexture (RGB, sRGB),
-// KHR_materials_clearcoat's clearcoatTexture (R) and clearcoatRoughnessTexture (G).
+// KHR_materials_clearcoat's clearcoatTexture (R) and clearcoatRoughnessTexture (G),
+// KHR_materials_transmission's transmissionTexture (R), KHR_materials_volume's
+// thicknessTexture (G).
 enum class TextureSlot {
   BaseColor,
   Normal,
@@ -122,9 +124,11 @@ enum class TextureSlot {
   Specular,
   SpecularColor,
   Clearcoat,
-  ClearcoatRoughness
+  ClearcoatRoughness,
+  Transmission,
+  Thickness
 };
-inline constexpr int kTextureSlots = 9;
+inline constexpr int kTextureSlots = 11;
 inline constexpr int kFirstLayerSlot = 5;  // Specular
 // Colour slots hold sRGB-encoded images; the others linear data.
 inline bool isSrgbSlot(TextureSlot slot) {
@@ -163,10 +167,10 @@ struct MaterialData {
   // KHR_materials_unlit: the surface shows its base colour (factor x texture x
   // vertex colour) as it is, lit by nothing; every renderer draws it so.
   bool unlit = false;
-  // KHR_materials_ior, _specular, _clearcoat: the factors, and their textures'
+  // KHR_materials_ior, _specular, _clearcoat, _transmission, _volume: the factors, and their textures'
   // images (-1 none; the slots past Occlusion).
   MaterialLayers layers;
-  std::array<int, kTextureSlots - kFirstLayerSlot> layerImages{-1, -1, -1, -1};
+  std::array<int, kTextureSlots - kFirstLayerSlot> layerImages{-1, -1, -1, -1, -1, -1};
   bool hasLayerTextures() const {
     for (int image : layerImages)
       if (image >= 0) return true;
@@ -188,7 +192,9 @@ struct MaterialData {
       case TextureSlot::Specular:
       case TextureSlot::SpecularColor:
       case TextureSlot::Clearcoat:
-      case TextureSlot::ClearcoatRoughness: return layerImages[std::size_t(slot) - kFirstLayerSlot];
+      case TextureSlot::ClearcoatRoughness:
+      case TextureSlot::Transmission:
+      case TextureSlot::Thickness: return layerImages[std::size_t(slot) - kFirstLayerSlot];
     }
     return -1;
   }

@@ -16,11 +16,16 @@ inline constexpr unsigned kNormal = 1;
 inline constexpr unsigned kMetallicRoughness = 2;
 inline constexpr unsigned kEmissive = 3;
 inline constexpr unsigned kOcclusion = 6;
-// glTF's layer textures (KHR_materials_specular, _clearcoat).
+// glTF's layer textures (KHR_materials_specular, _clearcoat, _transmission, _volume).
 inline constexpr unsigned kSpecular = 12;
 inline constexpr unsigned kSpecularColor = 13;
 inline constexpr unsigned kClearcoat = 14;
 inline constexpr unsigned kClearcoatRoughness = 15;
+inline constexpr unsigned kTransmission = 16;  // KHR_materials_transmission, _volume
+inline constexpr unsigned kThickness = 17;
+// The opaque pass's colour, mipmapped, that transmissive surfaces refract
+// (scene.frag's TRANSMISSION).
+inline constexpr unsigned kTransmissionSource = 18;
 // Shadow maps (common/shadows.glsl).
 inline constexpr unsigned kSunShadow = 4;
 inline constexpr unsigned kPointShadow = 5;
@@ -69,7 +74,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 42> kDefines{{
+inline constexpr std::array<Define, 45> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -79,6 +84,9 @@ inline constexpr std::array<Define, 42> kDefines{{
     {"UNIT_SPECULAR_COLOR", kSpecularColor},
     {"UNIT_CLEARCOAT", kClearcoat},
     {"UNIT_CLEARCOAT_ROUGHNESS", kClearcoatRoughness},
+    {"UNIT_TRANSMISSION", kTransmission},
+    {"UNIT_THICKNESS", kThickness},
+    {"UNIT_TRANSMISSION_SOURCE", kTransmissionSource},
     {"UNIT_SUN_SHADOW", kSunShadow},
     {"UNIT_POINT_SHADOW", kPointShadow},
     {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},

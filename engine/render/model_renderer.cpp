@@ -108,11 +108,12 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
 // Each slot's uv set and KHR_texture_transform matrix, for UV_TRANSFORM variants.
 void setUvTransforms(const gl::Program& pr, const MaterialData& m) {
   static constexpr const char* kTransforms[kTextureSlots] = {
-      "u_uvTransform[0]", "u_uvTransform[1]", "u_uvTransform[2]", "u_uvTransform[3]", "u_uvTransform[4]",
-      "u_uvTransform[5]", "u_uvTransform[6]", "u_uvTransform[7]", "u_uvTransform[8]"};
-  static constexpr const char* kTexCoords[kTextureSlots] = {"u_texCoord[0]", "u_texCoord[1]", "u_texCoord[2]",
-                                                            "u_texCoord[3]", "u_texCoord[4]", "u_texCoord[5]",
-                                                            "u_texCoord[6]", "u_texCoord[7]", "u_texCoord[8]"};
+      "u_uvTransform[0]", "u_uvTransform[1]", "u_uvTransform[2]", "u_uvTransform[3]",
+      "u_uvTransform[4]", "u_uvTransform[5]", "u_uvTransform[6]", "u_uvTransform[7]",
+      "u_uvTransform[8]", "u_uvTransform[9]", "u_uvTransform[10]"};
+  static constexpr const char* kTexCoords[kTextureSlots] = {
+      "u_texCoord[0]", "u_texCoord[1]", "u_texCoord[2]", "u_texCoord[3]", "u_texCoord[4]", "u_texCoord[5]",
+      "u_texCoord[6]", "u_texCoord[7]", "u_texCoord[8]", "u_texCoord[9]", "u_texCoord[10]"};
   for (int i = 0; i < kTextureSlots; ++i) {
     pr.set(kTransforms[i], m.textures[size_t(i)].uvTransform);
     pr.set(kTexCoords[i], m.textures[size_t(i)].texCoord);
@@ -124,7 +125,8 @@ constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor,       gl:
                                               gl::binding::kMetallicRoughness, gl::binding::kEmissive,
                                               gl::binding::kOcclusion,         gl::binding::kSpecular,
                                               gl::binding::kSpecularColor,     gl::binding::kClearcoat,
-                                              gl::binding::kClearcoatRoughness};
+                                              gl::binding::kClearcoatRoughness, gl::binding::kTransmission,
+                                              gl::binding::kThickness};
 
 // Which slots the variant samples: the layer textures the material has, in a
 // +layertextures variant (common/material.glsl's u_layerTextures says which).

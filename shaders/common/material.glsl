@@ -31,11 +31,13 @@ const int SLOT_SPECULAR = 5;
 const int SLOT_SPECULAR_COLOR = 6;
 const int SLOT_CLEARCOAT = 7;
 const int SLOT_CLEARCOAT_ROUGHNESS = 8;
+const int SLOT_TRANSMISSION = 9;
+const int SLOT_THICKNESS = 10;
 
 #ifdef UV_TRANSFORM
 in vec2 v_uv1;  // TEXCOORD_1 (set 0 where the mesh has none)
-uniform mat3 u_uvTransform[9];
-uniform int u_texCoord[9];
+uniform mat3 u_uvTransform[11];
+uniform int u_texCoord[11];
 #endif
 
 // The uv that `slot` samples at, from the fragment's TEXCOORD_0 `uv`.

@@ -955,5 +955,62 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
   }
 }
 
+// KHR_materials_transmission and KHR_materials_volume: the factors, the two
+// textures as slots of their own, absent attenuationDistance meaning "none
+// absorbed" (0), and each key's range checked with the material named.
+TEST_F(LoaderTest, ReadsTransmissionAndVolume) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+  m.doc["materials"] = {
+      {{"extensions",
+        {{"KHR_materials_transmission", {{"transmissionFactor", 0.8}, {"transmissionTexture", {{"index", 0}}}}},
+         {"KHR_materials_volume",
+          {{"thicknessFactor", 0.25},
+           {"thicknessTexture", {{"index", 0}, {"texCoord", 1}}},
+           {"attenuationDistance", 2.0},
+           {"attenuationColor", {0.9, 0.5, 0.1}}}}}}},
+      {{"extensions", {{"KHR_materials_transmission", json::object()}, {"KHR_materials_volume", json::object()}}}}};
+  m.doc["images"] = {{{"uri", "missing.png"}}};
+  m.doc["textures"] = {{{"source", 0}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const MaterialLayers& l = model->materials[0].layers;
+  EXPECT_FLOAT_EQ(l.transmission, 0.8f);
+  EXPECT_FLOAT_EQ(l.thickness, 0.25f);
+  EXPECT_FLOAT_EQ(l.attenuationDistance, 2.0f);
+  EXPECT_EQ(l.attenuationColor, glm::vec3(0.9f, 0.5f, 0.1f));
+  EXPECT_TRUE(l.transmissive());
+  EXPECT_FALSE(l.isDefault());
+  const MaterialData& mat = model->materials[0];
+  EXPECT_EQ(mat.image(TextureSlot::Transmission), 0);
+  EXPECT_EQ(mat.image(TextureSlot::Thickness), 0);
+  EXPECT_EQ(mat.texture(TextureSlot::Thickness).texCoord, 1);
+  // The defaults: nothing transmitted, thin-walled, nothing absorbed.
+  const MaterialLayers& d = model->materials[1].layers;
+  EXPECT_FALSE(d.transmissive());
+  EXPECT_EQ(d.thickness, 0.0f);
+  EXPECT_EQ(d.attenuationDistance, 0.0f);
+  EXPECT_EQ(d.attenuationColor, glm::vec3(1.0f));
+  EXPECT_TRUE(d.isDefault());
+  EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
+
+  const std::tuple<const char*, const char*, nlohmann::json> bad[] = {
+      {"KHR_materials_transmission", "transmissionFactor", 1.5},
+      {"KHR_materials_transmission", "transmissionFactor", "clear"},
+      {"KHR_materials_volume", "thicknessFactor", -1.0},
+      {"KHR_materials_volume", "attenuationDistance", 0.0},
+      {"KHR_materials_volume", "attenuationColor", {1.0, 2.0, 0.0}},
+      {"KHR_materials_volume", "attenuationColor", {1.0, 1.0}},
+  };
+  for (const auto& [extension, key, value] : bad) {
+    TestModel broken = m;
+    broken.doc["materials"][0]["extensions"][extension][key] = value;
+    auto refused = loadGltf(write(broken));
+    ASSERT_FALSE(refused.ok()) << extension << " " << key << " " << value.dump();
+    EXPECT_NE(refused.error().message.find(std::string("material 0") + ": " + extension + ": " + key), std::string::npos)
+        << refused.error().message;
+  }
+}
+
 }  // namespace
 }  // namespace engine

@@ -224,6 +224,16 @@ def main(out):
         m.doc["meshes"][0]["primitives"][0]["material"] = 0
     case("bad_clearcoat.glb", bad_clearcoat)
 
+    # KHR_materials_volume with an attenuation colour past 1 (a medium that would
+    # add light); the other volume and transmission keys go through the same checks.
+    def bad_volume(m):
+        m.doc["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_volume"]
+        m.doc["materials"] = [{"name": "glass", "extensions": {
+            "KHR_materials_transmission": {"transmissionFactor": 1.0},
+            "KHR_materials_volume": {"thicknessFactor": 0.1, "attenuationColor": [1.0, 1.5, 1.0]}}}]
+        m.doc["meshes"][0]["primitives"][0]["material"] = 0
+    case("bad_volume.glb", bad_volume)
+
     # Compressed geometry cut short. Draco: a stream with a whole header (magic,
     # version 2.2, a triangle mesh, edgebreaker) and nothing after it. Meshopt: the
     # positions as a vertex stream of 3 x 12 bytes whose data stops after the
