@@ -5,7 +5,7 @@
 // the hemisphere; common/shading.glsl), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
 // material inputs of common/material.glsl (TEXTURED, NORMAL_MAP, MR_TEXTURE,
 // EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK) and glTF's dielectric layers
-// (MATERIAL_LAYERS). Alpha goes out with the colour: BLEND
+// (MATERIAL_LAYERS), with transmission (TRANSMISSION). Alpha goes out with the colour: BLEND
 // materials are drawn with blending on, in linear HDR.
 #include "common/frame.glsl"
 #include "common/shading.glsl"
@@ -13,6 +13,9 @@
 #include "common/material.glsl"
 #include "common/direct_light.glsl"
 #include "common/fog.glsl"
+#ifdef TRANSMISSION
+#include "common/transmission.glsl"
+#endif
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -66,6 +69,9 @@ void main() {
   vec3 color = materialEmissive(u_emissive, v_uv) + shadeAmbient(s) * materialOcclusion(v_uv);
   color += shadeDirectLight(s, geometric);
   color += reflectedEnvironment(s);
+#ifdef TRANSMISSION
+  color += transmittedLight(s);
+#endif
 #ifdef FOG
   color = applyFog(color, length(v_position), u_fog.rgb, u_fog.w);
 #endif

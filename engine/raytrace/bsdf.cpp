@@ -23,14 +23,15 @@ Bsdf Bsdf::classic(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo
   return b;
 }
 
-Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo) {
+Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo, bool entering) {
   Bsdf b(Model::MetallicRoughness, m, n, wo);
+  b.entering_ = entering;
   b.alpha_ = brdf::ggxAlpha(m.roughness);
   const float cosO = std::clamp(b.woLocal_.z, 0.0f, 1.0f);
   const glm::vec3 f0 = glm::mix(m.dielectricF0, m.albedo, m.metallic);
   const float f90 = m.dielectricF90 + (1.0f - m.dielectricF90) * m.metallic;
   const float specular = mean(brdf::schlickFresnel90(f0, f90, cosO));
-  const float diffuse = mean(m.albedo) * (1.0f - m.metallic) * (1.0f - specular);
+  const float diffuse = mean(m.albedo) * (1.0f - m.metallic) * (1.0f - m.transmission) * (1.0f - specular);
   // Kept inside [0.1, 0.9] while both lobes exist: a lobe never sampled would leave its
   // light to the light samples alone, and MIS could not weigh it.
   b.pSpecular_ = diffuse > 0.0f ? std::clamp(specular / (specular + diffuse), 0.1f, 0.9f) : 1.0f;
@@ -40,6 +41,15 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
     const float base = (1.0f - coat) * (specular + diffuse);
     b.alphaCoat_ = brdf::ggxAlpha(m.clearcoatRoughness);
     b.pCoat_ = base > 0.0f ? std::clamp(coat / (coat + base), 0.1f, 0.9f) : 1.0f;
+  }
+  if (m.transmission > 0.0f && m.metallic < 1.0f) {
+    const float coat = m.clearcoat * brdf::schlickFresnel(glm::vec3(0.04f), cosO).x;
+    const float through = mean(m.albedo) * (1.0f - m.metallic) * m.transmission * (1.0f - specular) * (1.0f - coat);
+    const float reflected = coat + (1.0f - coat) * (specular + diffuse);
+    b.pTransmit_ = reflected > 0.0f ? std::clamp(through / (through + reflected), 0.1f, 0.9f) : 1.0f;
+    // A thin wall blurs what is behind it as much as its ior bends (none at 1);
+    // a volume's facets refract at the surface's own roughness.
+    b.alphaTransmit_ = brdf::ggxAlpha(m.thickness > 0.0f ? m.roughness : brdf::transmissionRoughness(m.roughness, m.ior));
   }
   return b;
 }
@@ -55,7 +65,7 @@ glm::vec3 Bsdf::f(const glm::vec3& wi) const {
     return reflected / (brdf::BRDF_PI * cosI);
   }
   return brdf::layeredBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness, m_.dielectricF0,
-                           m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness);
+                           m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness, m_.transmission);
 }
 
 float Bsdf::pdf(const glm::vec3& wi) const {
@@ -64,8 +74,8 @@ float Bsdf::pdf(const glm::vec3& wi) const {
   if (model_ == Model::Classic) return (1.0f - pMirror_) * cosineHemispherePdf(wiLocal.z);
   const float base = pSpecular_ * ggxReflectionPdf(woLocal_, wiLocal, alpha_) +
                      (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
-  if (pCoat_ <= 0.0f) return base;
-  return pCoat_ * ggxReflectionPdf(woLocal_, wiLocal, alphaCoat_) + (1.0f - pCoat_) * base;
+  const float reflected = pCoat_ <= 0.0f ? base : pCoat_ * ggxReflectionPdf(woLocal_, wiLocal, alphaCoat_) + (1.0f - pCoat_) * base;
+  return (1.0f - pTransmit_) * reflected;
 }
 
 std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
@@ -78,6 +88,12 @@ std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
     return s;
   }
   if (model_ == Model::Classic && m_.specular <= 0.0f) return lambertSample(u);
+  if (uLobe < pTransmit_) return transmissionSample(u);
+  return reflectionSample(u, (uLobe - pTransmit_) / (1.0f - pTransmit_));
+}
+
+// The lobes above the surface, uLobe rescaled past the transmission's share.
+std::optional<BsdfSample> Bsdf::reflectionSample(glm::vec2 u, float uLobe) const {
   glm::vec3 wiLocal;
   if (model_ == Model::MetallicRoughness && uLobe < pCoat_) {
     wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alphaCoat_, u));
@@ -93,6 +109,43 @@ std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
   s.pdf = pdf(s.wi);
   if (!(s.pdf > 0.0f)) return std::nullopt;
   s.weight = f(s.wi) * (glm::dot(frame_.n, s.wi) / s.pdf);
+  return s;
+}
+
+// Through the surface: a GGX visible normal m, and the ray refracted by it into a
+// volume (or mirrored by it inside, past the critical angle), or mirrored by it and
+// turned through a thin wall. The weight is what the layered model passes,
+// (1 - F(wo.m)) times the base colour and transmission, times G1 of the new
+// direction (visible-normal sampling leaves no other factor), over the lobe's share.
+std::optional<BsdfSample> Bsdf::transmissionSample(glm::vec2 u) const {
+  const glm::vec3 m = sampleGgxVisibleNormal(woLocal_, alphaTransmit_, u);
+  const float cosO = glm::dot(woLocal_, m);
+  if (!(cosO > 0.0f)) return std::nullopt;
+  const float f90 = m_.dielectricF90;
+  const glm::vec3 fresnel = brdf::schlickFresnel90(m_.dielectricF0, f90, cosO);
+  const glm::vec3 share = (glm::vec3(1.0f) - fresnel) * m_.albedo * ((1.0f - m_.metallic) * m_.transmission);
+  glm::vec3 wiLocal;
+  if (m_.thickness > 0.0f) {
+    const float eta = entering_ ? 1.0f / std::max(m_.ior, 1.0f) : std::max(m_.ior, 1.0f);
+    wiLocal = glm::refract(-woLocal_, m, eta);
+    if (wiLocal == glm::vec3(0.0f)) {
+      // Total internal reflection: what the reflection lobe's Fresnel did not take
+      // stays inside as well.
+      wiLocal = reflectAbout(woLocal_, m);
+      if (wiLocal.z <= 0.0f) return std::nullopt;
+    } else if (wiLocal.z >= 0.0f) {
+      return std::nullopt;
+    }
+  } else {
+    wiLocal = reflectAbout(woLocal_, m);
+    if (wiLocal.z <= 0.0f) return std::nullopt;
+    wiLocal.z = -wiLocal.z;
+  }
+  BsdfSample s;
+  s.wi = glm::normalize(frame_.toWorld(wiLocal));
+  s.weight = share * (ggxSmithG1(std::abs(wiLocal.z), alphaTransmit_) / pTransmit_);
+  s.delta = true;
+  s.transmitted = wiLocal.z < 0.0f;
   return s;
 }
 

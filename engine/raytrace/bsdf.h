@@ -10,6 +10,13 @@
 // specular and clear coat), drawn by a mix of cosine-weighted directions and GGX
 // visible normals of the base and of the coat, the mix following the lobes' Fresnel
 // weights. The coat's normal is the shading normal: the tracers read no normal maps.
+// KHR_materials_transmission adds a lobe through the surface, the dielectric's
+// transmitted share (brdf.glsl's transmittedShare: what its Fresnel does not
+// reflect, tinted by the base colour): GGX visible normals refract the ray by the
+// ior into a volume (KHR_materials_volume; total internal reflection keeps it
+// inside), or turn the facet's mirror direction through a thin wall. No light
+// sample can be weighed against it (shadow rays stop at the surface), so it is
+// drawn alone and counts what it finds in full, as a mirror does.
 #include <optional>
 
 #include <glm/glm.hpp>
@@ -24,13 +31,16 @@ struct BsdfSample {
   glm::vec3 weight{0.0f};  // f * |cos| / pdf: what the path's throughput is multiplied by
   float pdf = 0.0f;        // of the lobe mixture; 0 for the mirror's delta
   bool delta = false;      // a mirror direction: no light sample can find it
+  bool transmitted = false;  // through the surface (KHR_materials_transmission)
 };
 
 class Bsdf {
  public:
   // n: the unit shading normal on the viewer's side; wo: unit, toward the viewer.
+  // `entering`: the viewer is outside the surface (its front face), which says which
+  // way a volume's ior bends.
   static Bsdf classic(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo);
-  static Bsdf metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo);
+  static Bsdf metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo, bool entering = true);
 
   // The BRDF for the light's direction wi (world, unit), mirror excluded.
   glm::vec3 f(const glm::vec3& wi) const;
@@ -46,6 +56,8 @@ class Bsdf {
   enum class Model { Classic, MetallicRoughness };
   Bsdf(Model model, const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo);
   std::optional<BsdfSample> lambertSample(glm::vec2 u) const;
+  std::optional<BsdfSample> reflectionSample(glm::vec2 u, float uLobe) const;
+  std::optional<BsdfSample> transmissionSample(glm::vec2 u) const;
 
   Model model_;
   HitMaterial m_;
@@ -57,6 +69,9 @@ class Bsdf {
   float pSpecular_ = 0.0f;  // metallic-roughness: the GGX lobe's share of the base's samples
   float pCoat_ = 0.0f;      // metallic-roughness: the clear coat's share of all samples
   float alphaCoat_ = 1.0f;
+  float pTransmit_ = 0.0f;  // the transmission lobe's share of all samples
+  float alphaTransmit_ = 1.0f;
+  bool entering_ = true;
 };
 
 }  // namespace engine::rt

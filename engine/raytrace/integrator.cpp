@@ -72,10 +72,38 @@ class Tracer {
       ++counters.reflection;
       color += m.reflection * Li(hit->spawnRay(r), depth + 1, rng, counters, cone);
     }
+    if (m.transmission > 0.0f && depth < settings_.maxDepth && scene_.render().shading == Shading::Pbr)
+      color += transmitted(*hit, m, n, v, depth, rng, counters, cone);
     return depth == 0 ? scene_.fogged(color, distance) : color;
   }
 
  private:
+  // KHR_materials_transmission the course's way: one refracted ray (straight on
+  // through a thin wall; bent by the ior into and out of a volume, reflected past the
+  // critical angle), sharp whatever the roughness, weighed by brdf.glsl's
+  // transmittedShare with Fresnel at the view angle, and inside a volume absorbed
+  // on its way to the next surface.
+  glm::vec3 transmitted(const SurfaceInteraction<T>& hit, const HitMaterial& m, const Vec3<T>& n, const Vec3<T>& v,
+                        int depth, Pcg32& rng, RayCounters& counters, RayCone cone) const {
+    const float cosV = std::max(float(-glm::dot(n, v)), 1e-4f);
+    const glm::vec3 share = brdf::transmittedShare(m.albedo, m.metallic, m.transmission,
+                                                   brdf::schlickFresnel90(m.dielectricF0, m.dielectricF90, cosV));
+    Vec3<T> d = v;
+    if (m.thickness > 0.0f) {
+      const T ior = T(std::max(m.ior, 1.0f));
+      d = glm::refract(v, n, glm::dot(hit.n, v) < T(0) ? T(1) / ior : ior);
+      if (d == Vec3<T>(T(0))) d = v - T(2) * glm::dot(n, v) * n;
+    }
+    ++counters.reflection;
+    const Ray<T> ray = hit.spawnRay(d);
+    glm::vec3 light = Li(ray, depth + 1, rng, counters, cone);
+    if (m.thickness > 0.0f && m.attenuationDistance > 0.0f && glm::dot(hit.n, d) < T(0)) {
+      if (const auto next = scene_.intersect(ray))
+        light *= brdf::volumeAttenuation(m.attenuationColor, m.attenuationDistance, float(next->t * glm::length(d)));
+    }
+    return share * light;
+  }
+
   // The nearest hit that is there at all: MASK's cut-away parts and single-sided faces
   // seen from behind are passed, as the rasterizer discards and culls them (at the
   // full-resolution texture level; BLEND is drawn opaque by this tracer). t is along
@@ -132,14 +160,14 @@ class Tracer {
       const float nDotL = glm::dot(nf, l);
       if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
       const glm::vec3 f = brdf::layeredBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness, m.dielectricF0,
-                                            m.dielectricF90, nf, m.clearcoat, m.clearcoatRoughness);
+                                            m.dielectricF90, nf, m.clearcoat, m.clearcoatRoughness, m.transmission);
       color += ls.radiance * ls.visibility * brdf::brdfLightFactor(f, nDotL);
     }
     // The same hemisphere ambient as the rasterizer's shadeAmbient.
     const glm::vec3 ambientLight = glm::mix(scene_.ambientGround(), scene_.ambientSky(), 0.5f + 0.5f * nf.y);
     return color + ambientLight * brdf::hemisphereAmbient(m.albedo, m.metallic, m.roughness, m.dielectricF0,
                                                           glm::max(glm::dot(nf, toEye), 1e-4f), m.clearcoat,
-                                                          m.clearcoatRoughness);
+                                                          m.clearcoatRoughness, m.transmission);
   }
 
   LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,

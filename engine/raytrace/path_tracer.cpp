@@ -100,11 +100,13 @@ class PathTracer {
     bool countEmitters = true;  // a camera ray or a mirror: nothing sampled the light
     float bsdfPdf = 0.0f;       // of the direction `ray` was drawn with
     int passes = 0;             // through cut-away or transparent surfaces
+    glm::vec3 absorption(0.0f);  // of the volume the ray travels in (KHR_materials_volume)
     for (int depth = 0;; ++depth) {
       const std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
       const Vec3<T> v = glm::normalize(ray.d);
       const glm::vec3 d(v);
       const T tHit = hit ? hit->t : ray.tMax;
+      if (absorption != glm::vec3(0.0f)) beta *= glm::exp(-absorption * float(double(tHit) * glm::length(glm::dvec3(ray.d))));
       radiance += beta * emittersAlong(ray, d, tHit, !hit, countEmitters, bsdfPdf, depth == 0);
       if (!hit) break;
       const float footprint = footprintAt(cone, *hit, v, float(hit->t * glm::length(ray.d)));
@@ -135,13 +137,17 @@ class PathTracer {
       const glm::vec3 ng = glm::vec3(back ? -hit->n : hit->n);
       const glm::vec3 ns = glm::vec3(back ? -hit->ns : hit->ns);
       const glm::vec3 wo = -d;
-      const Bsdf bsdf = scene_.render().shading == Shading::Pbr ? Bsdf::metallicRoughness(m, ns, wo)
+      const Bsdf bsdf = scene_.render().shading == Shading::Pbr ? Bsdf::metallicRoughness(m, ns, wo, !back)
                                                                  : Bsdf::classic(m, ns, wo);
       if (bsdf.hasDiffuseOrGlossy()) radiance += beta * directLight(*hit, bsdf, ng, rng, counters);
       const glm::vec2 u = rng.uniform2();
       const std::optional<BsdfSample> s = bsdf.sample(u, rng.uniform());
-      // A direction under the geometric surface would leak light through it.
-      if (!s || glm::dot(s->wi, ng) <= 0.0f) break;
+      // A direction under the geometric surface would leak light through it; one
+      // transmitted must be under it.
+      if (!s || (glm::dot(s->wi, ng) <= 0.0f) != s->transmitted) break;
+      // In or out of a volume: its absorption applies along the next segment.
+      if (m.transmission > 0.0f && m.thickness > 0.0f)
+        absorption = glm::dot(glm::dvec3(s->wi), glm::dvec3(hit->n)) < 0.0 ? volumeAbsorption(m) : glm::vec3(0.0f);
       beta *= s->weight;
       countEmitters = s->delta;
       bsdfPdf = s->pdf;
@@ -157,6 +163,13 @@ class PathTracer {
   }
 
  private:
+  // Beer-Lambert's coefficient per unit length: attenuationColor remains of white
+  // light after attenuationDistance (core/brdf.h's volumeAttenuation).
+  static glm::vec3 volumeAbsorption(const HitMaterial& m) {
+    if (m.attenuationDistance <= 0.0f) return glm::vec3(0.0f);
+    return -glm::log(glm::max(m.attenuationColor, glm::vec3(1e-6f))) / m.attenuationDistance;
+  }
+
   static glm::vec3 finite(const glm::vec3& c) {
     return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) ? c : glm::vec3(0.0f);
   }

@@ -211,7 +211,8 @@ Status RtScene::setLayerTexture(int material, TextureSlot slot, RtTexture textur
   return Ok{};
 }
 
-// glTF's layer textures at a hit, applied to `out`'s dielectric f0 and f90 and coat.
+// glTF's layer textures at a hit, applied to `out`'s dielectric f0 and f90, coat,
+// transmission and thickness.
 void RtScene::applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const {
   const auto& t = extras_[size_t(material)].layerTextures;
   auto at = [&](TextureSlot slot) -> const RtTexture* {
@@ -229,6 +230,8 @@ void RtScene::applyLayerTextures(int material, const HitUv& uv, float footprint,
   }
   if (const RtTexture* coat = at(TextureSlot::Clearcoat)) out.clearcoat *= coat->sample(uv, footprint).x;
   if (const RtTexture* rough = at(TextureSlot::ClearcoatRoughness)) out.clearcoatRoughness *= rough->sample(uv, footprint).y;
+  if (const RtTexture* share = at(TextureSlot::Transmission)) out.transmission *= share->sample(uv, footprint).x;
+  if (const RtTexture* thick = at(TextureSlot::Thickness)) out.thickness *= thick->sample(uv, footprint).y;
 }
 
 Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
@@ -257,7 +260,8 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
                   m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit,
                   extras_[size_t(material)].dielectricF0, m.layers.dielectricF90(), m.layers.clearcoat,
-                  m.layers.clearcoatRoughness};
+                  m.layers.clearcoatRoughness, m.layers.transmission, m.layers.ior, m.layers.thickness,
+                  m.layers.attenuationDistance, m.layers.attenuationColor};
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
     out.roughness *= t.y;

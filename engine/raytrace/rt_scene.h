@@ -63,6 +63,14 @@ struct HitMaterial {
   glm::vec3 dielectricF0{0.04f};
   float dielectricF90 = 1.0f;
   float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
+  // KHR_materials_transmission and _volume (asset/material_layers.h): the share of
+  // the diffuse lobe passed through, the ior it bends by, the volume's thickness
+  // (0: a thin wall) and its absorption.
+  float transmission = 0.0f;
+  float ior = 1.5f;
+  float thickness = 0.0f;
+  float attenuationDistance = 0.0f;
+  glm::vec3 attenuationColor{1.0f};
 };
 
 class RtScene {
@@ -91,9 +99,9 @@ class RtScene {
   Status setSingleSided(int material, bool singleSided);
   // KHR_materials_unlit (HitMaterial::unlit).
   Status setUnlit(int material, bool unlit);
-  // One of glTF's layer textures (`slot` Specular .. ClearcoatRoughness): they scale
-  // the material's MaterialLayers at each hit (specular by A, its colour by RGB, the
-  // coat by R, its roughness by G).
+  // One of glTF's layer textures (`slot` Specular .. Thickness): they scale the
+  // material's MaterialLayers at each hit (specular by A, its colour by RGB, the coat
+  // by R, its roughness by G, transmission by R, thickness by G).
   Status setLayerTexture(int material, TextureSlot slot, RtTexture texture);
   bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or

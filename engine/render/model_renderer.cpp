@@ -25,6 +25,7 @@ std::string ShaderVariant::describe() const {
   if (unlit) name += "+unlit";
   if (layers) name += "+layers";
   if (layerTextures) name += "+layertextures";
+  if (transmission) name += "+transmission";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -60,6 +61,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.unlit) defines.push_back("UNLIT 1");
   if (variant.layers) defines.push_back("MATERIAL_LAYERS 1");
   if (variant.layerTextures) defines.push_back("LAYER_TEXTURES 1");
+  if (variant.transmission) defines.push_back("TRANSMISSION 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -99,6 +101,11 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
     pr.set("u_specularColor", l.specularColor);
     pr.set("u_clearcoat", l.clearcoat);
     pr.set("u_clearcoatRoughness", l.clearcoatRoughness);
+    pr.set("u_transmission", l.transmission);
+    pr.set("u_thickness", l.thickness);
+    pr.set("u_ior", l.ior);
+    pr.set("u_attenuationDistance", l.attenuationDistance);
+    pr.set("u_attenuationColor", l.attenuationColor);
   }
   pr.set("u_normalScale", material->normalScale);
   pr.set("u_occlusionStrength", material->occlusionStrength);
@@ -437,6 +444,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.occlusion = m->occlusionImage >= 0;
     v.layers = m->layered();
     v.layerTextures = m->hasLayerTextures();
+    v.transmission = m->layers.transmissive();
   }
   const auto sampled = sampledSlots(v, *m);
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();

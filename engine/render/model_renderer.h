@@ -49,6 +49,9 @@ struct ShaderVariant {
   // BRDF (common/shading.glsl's MATERIAL_LAYERS). Last as well.
   bool layers = false;
   bool layerTextures = false;  // some of them has a texture (LAYER_TEXTURES)
+  // KHR_materials_transmission: refracts the opaque pass's image (scene.frag's
+  // TRANSMISSION, common/transmission.glsl); drawn after the opaque pass.
+  bool transmission = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };

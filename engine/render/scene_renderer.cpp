@@ -62,6 +62,9 @@ struct View {
   double fovy = 1.0;
   int height = 1;
   bool mirrored = false;  // a left-handed camera: faces wind the other way
+  // The camera's own view: only it copies its opaque pass for transmissive surfaces
+  // to refract (probe views refract the camera's last copy).
+  bool main = false;
 };
 
 // What the draws of one pass share besides the items themselves.
@@ -72,9 +75,11 @@ struct PassInputs {
   bool useProbes = false;  // mirrors show their reflection probe
 };
 
-// The opaque and the blended draws of one view.
+// The opaque and the blended draws of one view; the opaque ones of transmissive
+// materials (KHR_materials_transmission) apart, as they refract the others.
 struct DrawLists {
-  std::vector<DrawItem> opaque, blend;
+  std::vector<DrawItem> opaque, transmissive, blend;
+  bool refracts = false;  // some item, opaque or blended, is transmissive
 };
 
 // A cube map of the scene seen from a mirror shape's centre.
@@ -230,6 +235,12 @@ struct SceneRenderer::Impl {
   gl::Framebuffer probeFbo;
   bool probesValid = false;  // static scenes draw their probes once
   bool blendPass = false;  // some model has a BLEND material
+  // Some model has a transmissive material: the opaque pass is copied, mipmapped,
+  // for it to refract (common/transmission.glsl).
+  bool transmissionPass = false;
+  gl::Texture transmissionSource;
+  gl::Framebuffer transmissionFbo;
+  void copyTransmissionSource();
   terrain::Terrain* terrain = nullptr;  // the scene's, when it has one
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
@@ -610,6 +621,7 @@ Status SceneRenderer::Impl::buildVariants() {
         const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
         if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
         blendPass = blendPass || blend;
+        transmissionPass = transmissionPass || (prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive());
       }
     }
   }
@@ -642,6 +654,17 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
   }
   drawFbo.attach(GL_DEPTH_ATTACHMENT, depth);
   if (auto s = drawFbo.check("scene-hdr"); !s) return s;
+  if (transmissionPass) {
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(w, h)))));
+    transmissionSource = gl::Texture::create2D(GL_RGBA16F, w, h, levels);
+    transmissionSource.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    transmissionSource.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    transmissionSource.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    transmissionSource.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    transmissionFbo = gl::Framebuffer::create();
+    transmissionFbo.attach(GL_COLOR_ATTACHMENT0, transmissionSource);
+    if (auto s = transmissionFbo.check("transmission-source"); !s) return s;
+  }
   return samples > 0 ? resolveFbo.check("scene-hdr-resolve") : Status(Ok{});
 }
 
@@ -737,9 +760,13 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
         auto program = variants->get(primitiveVariant(model, node, prim, mode, depthOnly, cached));
         if (!program) return program.error();
         const GLuint id = (*program)->id();
+        const bool transmissive =
+            !depthOnly && prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive();
+        lists.refracts = lists.refracts || transmissive;
         if (!blend) {
           const std::uint32_t material = std::uint32_t(scene.materials.size()) + std::uint32_t(std::max(prim.material, 0));
-          lists.opaque.push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance)});
+          (transmissive ? lists.transmissive : lists.opaque)
+              .push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance)});
         }
       }
     }
@@ -761,6 +788,7 @@ Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bo
   if (auto s = collectShapes(planes, depthOnly, skipShape, lists); !s) return s.error();
   if (auto s = collectCharacters(planes, depthOnly, lists); !s) return s.error();
   sortDrawItems(lists.opaque);
+  sortDrawItems(lists.transmissive);
   sortDrawItems(lists.blend);
   stats->cullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return lists;
@@ -969,7 +997,8 @@ void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk
 }
 
 // Everything a colour pass shows, into the bound HDR framebuffer (cleared): the
-// sky, the terrain, the opaque draws of the view, then its blended ones.
+// sky, the terrain, the opaque draws of the view, the transmissive ones over a copy
+// of those, then its blended ones.
 Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useProbes) {
   if (scene.sky.enabled) {
     applyPassState(kSkyPass);
@@ -981,9 +1010,22 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   if (!lists) return lists.error();
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
   if (auto s = drawItems(lists->opaque, pass); !s) return s;
+  if (lists->refracts) {
+    if (view.main) copyTransmissionSource();
+    transmissionSource.bind(gl::binding::kTransmissionSource);
+    if (auto s = drawItems(lists->transmissive, pass); !s) return s;
+  }
   if (lists->blend.empty()) return Ok{};
   applyPassState(blendPassFor(view.mirrored));
   return drawItems(lists->blend, pass);
+}
+
+// What the transmissive draws refract: the view's colour so far (sky, terrain and
+// opaque draws; MSAA resolved by the blit), with its mip chain for rough surfaces.
+void SceneRenderer::Impl::copyTransmissionSource() {
+  glBlitNamedFramebuffer(drawFbo.id(), transmissionFbo.id(), 0, 0, targetWidth, targetHeight, 0, 0, targetWidth,
+                         targetHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glGenerateTextureMipmap(transmissionSource.id());
 }
 
 // Every character placed for a view from `cameraPosition`: only its root moves, the
@@ -1202,6 +1244,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   View mainView;
   mainView.mirrored = scene.camera.leftHanded;
+  mainView.main = true;
   mainView.viewProjection = viewProjection;
   std::copy(std::begin(planes), std::end(planes), std::begin(mainView.planes));
   mainView.fovy = fovy;
@@ -1275,6 +1318,7 @@ std::string SceneRenderer::describe() const {
   if (s.terrain) out << " terrain(cdlod, " << s.terrainError << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
+  if (s.transmissionPass) out << " transmission(copy + mips)";
   if (s.blendPass) out << " blend(sorted)";
   out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   out << "\nshading: " << (s.render.shading == Shading::Classic ? "classic" : "pbr");

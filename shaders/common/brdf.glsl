@@ -99,11 +99,14 @@ BRDF_INLINE vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, 
 // - a clear coat of weight `clearcoat`, a GGX lobe of ior 1.5 (f0 0.04) along its own
 //   normal nc, lies over that base, which loses what the coat reflects toward the
 //   eye: f = base (1 - clearcoat Fc(nc.v)) + clearcoat Fc(v.h) D V.
-// With dielectricF0 = 0.04, dielectricF90 = 1 and no coat it equals
+// - KHR_materials_transmission passes the share `transmission` of the dielectric's
+//   diffuse lobe through the surface instead (transmittedShare below says what comes
+//   back through it); what is left of the lobe reflects.
+// With dielectricF0 = 0.04, dielectricF90 = 1, no coat and no transmission it equals
 // metallicRoughnessBrdf (tests/gl/brdf_test.cpp).
 BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness,
                              vec3 dielectricF0, float dielectricF90, vec3 nc, float clearcoat,
-                             float clearcoatRoughness) {
+                             float clearcoatRoughness, float transmission) {
   vec3 base = vec3(0.0f);
   float nDotL = dot(n, l);
   if (nDotL > 0.0f) {
@@ -115,7 +118,7 @@ BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float meta
     float f90 = dielectricF90 + (1.0f - dielectricF90) * metallic;
     vec3 fresnel = schlickFresnel90(f0, f90, vDotH);
     vec3 specular = fresnel * (ggxDistribution(n, h, alpha) * smithVisibility(nDotL, nDotV, alpha));
-    base = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) / BRDF_PI) + specular;
+    base = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) * (1.0f - transmission) / BRDF_PI) + specular;
   }
   if (clearcoat <= 0.0f) return base;
   float ncDotV = max(dot(nc, toEye), 1e-4f);
@@ -135,12 +138,35 @@ BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float meta
 // diffuse colour, a guess at the specular's, and the coat's the same way over the
 // base it dims. Not physical: the path tracer and the IBL ambient replace it.
 BRDF_INLINE vec3 hemisphereAmbient(vec3 albedo, float metallic, float roughness, vec3 dielectricF0, float nDotV,
-                                   float clearcoat, float clearcoatRoughness) {
+                                   float clearcoat, float clearcoatRoughness, float transmission) {
   vec3 f0 = mix(dielectricF0, albedo, metallic);
-  vec3 base = albedo * (1.0f - metallic) + f0 * (1.0f - roughness) * 0.5f;
+  vec3 base = albedo * ((1.0f - metallic) * (1.0f - transmission)) + f0 * (1.0f - roughness) * 0.5f;
   if (clearcoat <= 0.0f) return base;
   float coat = clearcoat * schlickFresnel(vec3(0.04f), nDotV).x;
   return base * (1.0f - coat) + vec3(clearcoat * 0.04f * (1.0f - clearcoatRoughness) * 0.5f);
+}
+
+// KHR_materials_transmission: the share of the light arriving from behind, along the
+// refracted ray (straight on, through a thin wall), that leaves toward the eye: what
+// the surface does not reflect (`reflected`, its specular albedo toward the eye: the
+// split-sum table's f0 A + f90 B in the rasterizer, Fresnel in the Whitted tracer),
+// tinted by the base colour, for the dielectric's transmitted share (the Khronos
+// Sample Viewer's model).
+BRDF_INLINE vec3 transmittedShare(vec3 albedo, float metallic, float transmission, vec3 reflected) {
+  return (vec3(1.0f) - reflected) * albedo * ((1.0f - metallic) * transmission);
+}
+
+// KHR_materials_volume: what is left of light after `distance` through the medium
+// (Beer-Lambert): attenuationColor after each attenuationDistance; 0 means infinite.
+BRDF_INLINE vec3 volumeAttenuation(vec3 attenuationColor, float attenuationDistance, float distance) {
+  if (attenuationDistance <= 0.0f) return vec3(1.0f);
+  return pow(attenuationColor, vec3(distance / attenuationDistance));
+}
+
+// The roughness a transmitted image is blurred with: none at ior 1 (the light does
+// not bend), the surface's from ior 1.5 on (the Sample Viewer's applyIorToRoughness).
+BRDF_INLINE float transmissionRoughness(float roughness, float ior) {
+  return roughness * clamp(ior * 2.0f - 2.0f, 0.0f, 1.0f);
 }
 
 // What a light of radiance 1 arriving along l reflects through a BRDF value f:

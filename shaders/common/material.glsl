@@ -10,6 +10,8 @@
 //   VERTEX_COLOR      the mesh's COLOR_0 multiplies the base colour (v_color)
 //   MATERIAL_LAYERS   glTF's ior, specular and clear coat (common/shading.glsl), and
 //   LAYER_TEXTURES    their textures (UNIT_SPECULAR ..., u_layerTextures says which)
+//   TRANSMISSION      KHR_materials_transmission and _volume (with MATERIAL_LAYERS;
+//                     common/transmission.glsl draws what comes through)
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
 //                     every slot reads its set (u_texCoord) through its matrix
 //                     (u_uvTransform, built in C++: asset/texture_transform.h)
@@ -151,11 +153,15 @@ uniform float u_specularWeight;
 uniform vec3 u_specularColor;
 uniform float u_clearcoat;
 uniform float u_clearcoatRoughness;
+uniform float u_transmission;
+uniform float u_thickness;  // in the mesh's units
 #ifdef LAYER_TEXTURES
 layout(binding = UNIT_SPECULAR) uniform sampler2D u_specularTexture;              // A
 layout(binding = UNIT_SPECULAR_COLOR) uniform sampler2D u_specularColorTexture;   // RGB, sRGB
 layout(binding = UNIT_CLEARCOAT) uniform sampler2D u_clearcoatTexture;            // R
 layout(binding = UNIT_CLEARCOAT_ROUGHNESS) uniform sampler2D u_clearcoatRoughnessTexture;  // G
+layout(binding = UNIT_TRANSMISSION) uniform sampler2D u_transmissionTexture;  // R
+layout(binding = UNIT_THICKNESS) uniform sampler2D u_thicknessTexture;        // G
 uniform int u_layerTextures;  // bit (slot - SLOT_SPECULAR): the slot has a texture
 
 bool hasLayerTexture(int slot) { return (u_layerTextures & (1 << (slot - SLOT_SPECULAR))) != 0; }
@@ -166,6 +172,8 @@ void materialLayers(vec2 uv) {
   vec3 color = u_specularColor;
   g_clearcoat = u_clearcoat;
   g_clearcoatRoughness = u_clearcoatRoughness;
+  g_transmission = u_transmission;
+  g_thickness = u_thickness;
 #ifdef LAYER_TEXTURES
   if (hasLayerTexture(SLOT_SPECULAR)) weight *= texture(u_specularTexture, materialUv(SLOT_SPECULAR, uv)).a;
   if (hasLayerTexture(SLOT_SPECULAR_COLOR))
@@ -173,6 +181,9 @@ void materialLayers(vec2 uv) {
   if (hasLayerTexture(SLOT_CLEARCOAT)) g_clearcoat *= texture(u_clearcoatTexture, materialUv(SLOT_CLEARCOAT, uv)).r;
   if (hasLayerTexture(SLOT_CLEARCOAT_ROUGHNESS))
     g_clearcoatRoughness *= texture(u_clearcoatRoughnessTexture, materialUv(SLOT_CLEARCOAT_ROUGHNESS, uv)).g;
+  if (hasLayerTexture(SLOT_TRANSMISSION))
+    g_transmission *= texture(u_transmissionTexture, materialUv(SLOT_TRANSMISSION, uv)).r;
+  if (hasLayerTexture(SLOT_THICKNESS)) g_thickness *= texture(u_thicknessTexture, materialUv(SLOT_THICKNESS, uv)).g;
 #endif
   g_dielectricF0 = min(vec3(u_iorF0) * color, vec3(1.0)) * weight;
   g_dielectricF90 = weight;

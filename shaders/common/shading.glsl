@@ -30,6 +30,8 @@ float g_dielectricF90;
 float g_clearcoat;
 float g_clearcoatRoughness;
 vec3 g_clearcoatNormal;
+float g_transmission;  // KHR_materials_transmission's share, 0 without it
+float g_thickness;     // KHR_materials_volume's, in the mesh's units
 #endif
 
 #ifdef CLASSIC
@@ -82,7 +84,12 @@ vec3 shadeAmbient(Surface s) {
 #else
   vec3 f0 = metallicF0(s.albedo, s.metallic);
 #endif
+#ifdef MATERIAL_LAYERS
+  vec3 diffuse = (vec3(1.0) - f0) * (table.z * (1.0 - s.metallic) * (1.0 - g_transmission)) * s.albedo *
+                 shIrradiance(s.n) / PI;
+#else
   vec3 diffuse = (vec3(1.0) - f0) * (table.z * (1.0 - s.metallic)) * s.albedo * shIrradiance(s.n) / PI;
+#endif
   vec3 radiance = ambientRadiance(reflect(-s.toEye, s.n), s.roughness);
 #ifdef MATERIAL_LAYERS
   vec3 color = diffuse + radiance * (f0 * table.x + vec3(f90 * table.y));
@@ -106,7 +113,7 @@ vec3 shadeAmbient(Surface s) {
 #ifdef MATERIAL_LAYERS
   float ncDotV = max(dot(g_clearcoatNormal, s.toEye), 1e-4);
   return sky * hemisphereAmbient(s.albedo, s.metallic, s.roughness, g_dielectricF0, ncDotV, g_clearcoat,
-                                 g_clearcoatRoughness);
+                                 g_clearcoatRoughness, g_transmission);
 #else
   vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
   vec3 f0 = metallicF0(s.albedo, s.metallic);
@@ -121,7 +128,7 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
   if (nDotL <= 0.0 || visibility <= 0.0) return vec3(0.0);
 #ifdef MATERIAL_LAYERS
   vec3 f = layeredBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness, g_dielectricF0, g_dielectricF90,
-                       g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness);
+                       g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness, g_transmission);
 #else
   vec3 f = metallicRoughnessBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness);
 #endif

@@ -20,27 +20,31 @@ namespace {
 struct Case {
   glm::vec4 n, toEye, l, albedo, params, shininess;
   glm::vec4 dielectric;  // xyz dielectricF0, w dielectricF90
-  glm::vec4 coat;        // clearcoat, clearcoat roughness
+  glm::vec4 coat;        // clearcoat, clearcoat roughness, transmission
   glm::vec4 nc;          // the coat's normal
 };
 struct Result {
-  glm::vec4 metallicRoughness, classic, terms, fresnel, layered, hemisphere;
+  glm::vec4 metallicRoughness, classic, terms, fresnel, layered, hemisphere, transmitted;
 };
 
 // glTF's layers, cycled through the grid: none (0.04, 1), ior 1.33 tinted at half
 // weight, specular 0 (f0 0, f90 0), ior 2.5 under a smooth coat, a full rough coat
-// on a tilted normal, and a coat over a base with no specular.
+// on a tilted normal, a coat over a base with no specular, and two transmissive
+// dielectrics (KHR_materials_transmission), one under a coat.
 struct Layers {
   glm::vec3 f0;
   float f90, clearcoat, clearcoatRoughness;
   bool tilted;
+  float transmission = 0.0f;
 };
 const Layers kLayers[] = {{glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false},
                           {glm::vec3(0.02f, 0.01f, 0.005f), 0.5f, 0.0f, 0.0f, false},
                           {glm::vec3(0.0f), 0.0f, 0.0f, 0.0f, false},
                           {glm::vec3(0.18f), 1.0f, 0.5f, 0.05f, false},
                           {glm::vec3(0.04f), 1.0f, 1.0f, 0.7f, true},
-                          {glm::vec3(0.0f), 0.0f, 0.8f, 0.3f, true}};
+                          {glm::vec3(0.0f), 0.0f, 0.8f, 0.3f, true},
+                          {glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false, 0.7f},
+                          {glm::vec3(0.03f, 0.04f, 0.05f), 0.8f, 0.6f, 0.2f, true, 1.0f}};
 
 glm::vec3 direction(float thetaDegrees, float phiDegrees) {
   const float t = glm::radians(thetaDegrees), p = glm::radians(phiDegrees);
@@ -68,7 +72,7 @@ std::vector<Case> grid() {
               cases.push_back(Case{glm::vec4(n, 0), glm::vec4(v, 0), glm::vec4(l, 0), glm::vec4(albedo, 0),
                                    glm::vec4(metallic, float(r) / 10.0f, 0.9f, 0.5f), glm::vec4(8.0f + 12.0f * float(r)),
                                    glm::vec4(layers.f0, layers.f90),
-                                   glm::vec4(layers.clearcoat, layers.clearcoatRoughness, 0.0f, 0.0f),
+                                   glm::vec4(layers.clearcoat, layers.clearcoatRoughness, layers.transmission, 0.0f),
                                    glm::vec4(nc, 0.0f)});
             }
           }
@@ -92,11 +96,18 @@ Result onCpu(const Case& c) {
                       alpha, 0.0f);
   r.fresnel = glm::vec4(brdf::schlickFresnel(brdf::metallicF0(albedo, metallic), std::max(glm::dot(v, h), 0.0f)), 0.0f);
   const glm::vec3 f0(c.dielectric), nc(c.nc);
-  r.layered = glm::vec4(brdf::layeredBrdf(n, v, l, albedo, metallic, roughness, f0, c.dielectric.w, nc, c.coat.x, c.coat.y),
+  r.layered = glm::vec4(brdf::layeredBrdf(n, v, l, albedo, metallic, roughness, f0, c.dielectric.w, nc, c.coat.x, c.coat.y,
+                                          c.coat.z),
                         0.0f);
   r.hemisphere = glm::vec4(brdf::hemisphereAmbient(albedo, metallic, roughness, f0, std::max(glm::dot(nc, v), 1e-4f),
-                                                   c.coat.x, c.coat.y),
+                                                   c.coat.x, c.coat.y, c.coat.z),
                            0.0f);
+  // The transmission helpers: the light back through the surface, through a volume
+  // of the roughness-derived length with the albedo as its attenuation colour.
+  const glm::vec3 reflected = brdf::schlickFresnel90(f0, c.dielectric.w, std::max(glm::dot(n, v), 1e-4f));
+  r.transmitted = glm::vec4(brdf::transmittedShare(albedo, metallic, c.coat.z, reflected) *
+                                brdf::volumeAttenuation(albedo, 0.5f, 0.1f + roughness),
+                            brdf::transmissionRoughness(roughness, 1.0f + c.params.w * c.coat.z));
   return r;
 }
 
@@ -128,8 +139,8 @@ TEST_P(Brdf, GlslAndCppAgree) {
     const Result cpu = onCpu(cases[i]);
     const glm::vec4* a = &cpu.metallicRoughness;
     const glm::vec4* b = &gpu[i].metallicRoughness;
-    for (int k = 0; k < 6; ++k) {
-      for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < 7; ++k) {
+      for (int c = 0; c < (k == 6 ? 4 : 3); ++c) {  // transmitted.w: transmissionRoughness
         const double x = a[k][c], y = b[k][c];
         ASSERT_TRUE(std::isfinite(y)) << "case " << i << " value " << k;
         if (std::abs(x) > 1e-6) ++nonZero;

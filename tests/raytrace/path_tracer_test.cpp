@@ -49,6 +49,43 @@ TEST(PathTracer, WhiteFurnaceIsOne) {
   }
 }
 
+// A glass ball (KHR_materials_transmission and _volume: white, ior 1.5) under a sky of
+// radiance 1, seen head-on through its centre. Without absorption every path leaves
+// it again, reflected or refracted: it shows the sky's 1, solid or thin-walled. With
+// the volume absorbing half of the light over its diameter (attenuationColor 0.5 at
+// attenuationDistance 2), what comes straight through is (1 - F)^2 0.5, F = 0.04,
+// and the light reflected inside adds a geometric series: F + (1 - F)^2 0.5 /
+// (1 - 0.5 F) = 0.5102 (rays 2.5 degrees off the axis: paths 0.2 % shorter).
+TEST(PathTracer, GlassBallUnderAUniformSkyTransmitsWhatItDoesNotAbsorb) {
+  struct Case {
+    float thickness, attenuationColor, expected;
+  };
+  for (const Case& c : {Case{0.0f, 1.0f, 1.0f}, Case{2.0f, 1.0f, 1.0f}, Case{2.0f, 0.5f, 0.5102f}}) {
+    rt::RtScene scene = emptyScene(lookAt({0, 0, -3}, {0, 0, 0}, 10.0));
+    engine::SkyDesc sky;
+    sky.enabled = false;
+    sky.background = glm::vec3(1.0f);
+    scene.setSky(sky);
+    engine::RenderDesc render = scene.render();
+    render.shading = engine::Shading::Pbr;
+    scene.setRender(render);
+    MaterialDesc glass;
+    glass.color = glm::vec3(1.0f);
+    glass.metallic = 0.0f;
+    glass.roughness = 0.0f;
+    glass.layers.transmission = 1.0f;
+    glass.layers.thickness = c.thickness;
+    glass.layers.attenuationColor = glm::vec3(c.attenuationColor);
+    glass.layers.attenuationDistance = 2.0f;
+    scene.addSphere({0, 0, 0}, 1.0, scene.addMaterial(glass));
+    const rt::RenderResult r = rt::Integrator(scene, pathSettings(8, 8, 256)).render();
+    const glm::dvec3 mean = meanOf(r.image);
+    std::printf("glass ball, thickness %g, attenuation %g: %.4f (expected %.4f)\n", c.thickness, c.attenuationColor,
+                mean.x, c.expected);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(mean[k], c.expected, 0.015) << "thickness " << c.thickness << ", attenuation " << c.attenuationColor;
+  }
+}
+
 // The max-depth knob stops paths where it says, in the furnace where each bounce is
 // worth half the one before.
 TEST(PathTracer, MaxDepthCountsBounces) {

@@ -242,6 +242,43 @@ TEST(Energy, ClearCoatNeverAddsEnergy) {
   }
 }
 
+// KHR_materials_transmission: white glass (no diffuse left) reflects F and passes
+// 1 - F of what it receives, each lobe losing only GGX's masking, so the sum of the
+// two never exceeds what comes in, at any roughness or angle, through a thin wall,
+// into a volume or out of one (where total internal reflection keeps it all); smooth
+// glass loses nothing (the floor, at 3 %, catches a lobe whose weight was dropped).
+TEST(Energy, TransmissionNeitherAddsNorLosesLightInSmoothGlass) {
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (const float thickness : {0.0f, 1.0f}) {
+    for (const bool entering : {true, false}) {
+      for (int r = 0; r <= 10; r += 2) {
+        for (int a = 1; a <= 10; ++a) {
+          const float roughness = float(r) / 10.0f, cosTheta = float(a) / 10.0f;
+          engine::rt::HitMaterial m = material(glm::vec3(1.0f), 0.0f, roughness);
+          m.transmission = 1.0f;
+          m.thickness = thickness;
+          const glm::vec3 wo(std::sqrt(1.0f - cosTheta * cosTheta), 0.0f, cosTheta);
+          const rt::Bsdf bsdf = rt::Bsdf::metallicRoughness(m, glm::vec3(0.0f, 0.0f, 1.0f), wo, entering);
+          double sum = 0.0;
+          constexpr int kSamples = 16384;
+          for (int i = 0; i < kSamples; ++i) {
+            const auto s = bsdf.sample(glm::vec2(uniform(rng), uniform(rng)), uniform(rng));
+            if (s) sum += double(s->weight.x);
+          }
+          const double albedo = sum / kSamples;
+          const std::string where = "thickness " + std::to_string(thickness) + (entering ? ", entering" : ", leaving") +
+                                    ", roughness " + std::to_string(roughness) + ", cos " + std::to_string(cosTheta);
+          EXPECT_LE(albedo, 1.01) << where;
+          if (r == 0) {
+            EXPECT_GT(albedo, 0.97) << where;
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST(Distribution2D, PdfIntegratesToOneAndFollowsTheWeights) {
   const std::vector<float> weights = {0, 1, 2, 3, 0, 0, 0, 10};
   const rt::Distribution2D d(weights, 4, 2);
