@@ -17,6 +17,7 @@
 
 #include "asset/gltf_accessor.h"
 #include "asset/gltf_compression.h"
+#include "asset/material_variants.h"
 #include "asset/tangents.h"
 #include "asset/texture_transform.h"
 #include "core/log.h"
@@ -146,7 +147,7 @@ const std::set<std::string>& supportedExtensions() {
                                                "KHR_materials_transmission", "KHR_materials_volume",
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
                                                "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
-                                               "KHR_lights_punctual"};
+                                               "KHR_lights_punctual", "KHR_materials_variants"};
   return supported;
 }
 
@@ -529,6 +530,7 @@ class Converter {
     if (Status s = convertImages(); !s) return s;
     if (Status s = convertMaterials(); !s) return s;
     if (Status s = convertMeshes(); !s) return s;
+    if (Status s = convertVariants(); !s) return s;
     if (Status s = resolveNodeWeights(); !s) return s;
     if (Status s = convertSkins(); !s) return s;
     if (Status s = checkSkinnedMeshes(); !s) return s;
@@ -980,6 +982,28 @@ class Converter {
     auto weights = readWeightList(src.weights, targets, name);
     if (!weights) return weights.error();
     mesh.morphWeights = std::move(weights).value();
+    return Ok{};
+  }
+
+  // KHR_materials_variants (asset/material_variants.h). A primitive drawn with a
+  // variant's material gets what that material needs too: tangents for its normal
+  // map, TEXCOORD_1 (or set 0 in its place) for its textures.
+  Status convertVariants() {
+    if (Status s = readMaterialVariants(gltf_, file_, out_); !s) return s;
+    for (std::size_t m = 0; m < out_.meshes.size(); ++m) {
+      for (std::size_t p = 0; p < out_.meshes[m].primitives.size(); ++p) {
+        PrimitiveData& prim = out_.meshes[m].primitives[p];
+        const int own = prim.material;
+        for (const int material : prim.variantMaterials) {
+          if (material < 0 || material == own) continue;
+          prim.material = material;
+          const std::string name = "mesh " + str(m) + " primitive " + str(p);
+          checkUvSets(prim, name);
+          addMissingTangents(prim, name);
+        }
+        prim.material = own;
+      }
+    }
     return Ok{};
   }
 

@@ -67,6 +67,9 @@ struct PrimitiveData {
   std::vector<std::uint16_t> joints;
   std::vector<float> weights;
   int material = -1;
+  // KHR_materials_variants: the material of each of ModelData::variants, -1 where
+  // the variant keeps `material` (asset/material_variants.h); empty without them.
+  std::vector<int> variantMaterials;
   int mode = 4;  // glTF primitive mode, 4 = triangles
   // Morph targets: `morphTargets` sets of displacements, target-major (target t
   // moves vertex v by [t * vertices + v]), so a target's deltas are one span.
@@ -265,6 +268,7 @@ struct ModelData {
   std::vector<SkinData> skins;
   std::vector<AnimationData> animations;
   std::vector<PunctualLightData> lights;  // KHR_lights_punctual
+  std::vector<std::string> variants;      // KHR_materials_variants' names
   std::vector<std::string> warnings;  // also logged; kept for tests and tools
 };
 

@@ -10,6 +10,7 @@
 #include "anim/pose_dump.h"
 #include "app/cli.h"
 #include "asset/gltf_loader.h"
+#include "asset/material_variants.h"
 #include "viewer_scene.h"
 
 namespace {
@@ -30,12 +31,20 @@ engine::Status writeJson(const std::string& path, const nlohmann::json& json) {
   return engine::Ok{};
 }
 
+// Why --variant named nothing, with what the file has.
+std::string variantList(const engine::ModelData& model, const std::string& asked) {
+  if (model.variants.empty()) return "the file has no KHR_materials_variants";
+  std::string names;
+  for (const std::string& v : model.variants) names += (names.empty() ? "" : ", ") + v;
+  return "no variant \"" + asked + "\" (the file has " + names + ")";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Animation playback viewer for glTF 2.0 files.", "viewer"};
   engine::CommonOptions options;
-  std::string modelPath, anim, loop = "repeat", dumpPosePath;
+  std::string modelPath, anim, loop = "repeat", dumpPosePath, variant;
   double speed = 1.0;
   bool dualQuat = false, skeleton = false;
   app.add_option("model", modelPath, "glTF file (.gltf or .glb)")->required();
@@ -45,6 +54,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--dq", dualQuat, "Dual-quaternion skinning instead of linear blend");
   app.add_flag("--skeleton", skeleton, "Draw the skeleton over the model");
+  app.add_option("--variant", variant, "KHR_materials_variants: the variant to draw, by name or index (default: the file's materials)");
   app.add_option("--dump-pose", dumpPosePath, "Write the pose at --time as JSON and exit");
   engine::addCommonOptions(app, options);
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
@@ -61,6 +71,12 @@ int main(int argc, char** argv) {
   if (!animated) return fail(engine::kExitBadInput, animated.error().message);
   auto clip = engine::findClip(*animated, anim, modelPath);
   if (!clip) return fail(engine::kExitBadInput, modelPath + ": --anim: " + clip.error().message);
+  int variantIndex = -1;
+  if (!variant.empty()) {
+    const auto found = engine::findVariant(*model, variant);
+    if (!found) return fail(engine::kExitBadInput, modelPath + ": --variant: " + variantList(*model, variant));
+    variantIndex = *found;
+  }
   const engine::LoopMode loopMode = loop == "clamp"      ? engine::LoopMode::Clamp
                                     : loop == "pingpong" ? engine::LoopMode::PingPong
                                                          : engine::LoopMode::Repeat;
@@ -86,6 +102,7 @@ int main(int argc, char** argv) {
   settings.loop = loopMode;
   settings.skinMode = dualQuat ? engine::SkinMode::DualQuat : engine::SkinMode::Linear;
   settings.skeleton = skeleton;
+  settings.variant = variantIndex;
   // The scene renderer multisamples its own HDR target; the runner's target then
   // only receives the tone-mapped result.
   settings.msaa = options.run.msaa;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "anim/pose_dump.h"
+#include "asset/material_variants.h"
 #include "asset/model_lights.h"
 #include "core/log.h"
 #include "render/frame_block.h"
@@ -120,7 +121,7 @@ void ViewerScene::frameCamera(const ModelData& model) {
 // the model's data is shared, its GPU upload is not.
 Status ViewerScene::buildRenderer() {
   desc_.models[0].dualQuat = settings_.skinMode == SkinMode::DualQuat;
-  auto scene = Scene::load(desc_, {asset_});
+  auto scene = Scene::load(desc_, {shown_});
   if (!scene) return scene.error();
   SceneRenderOptions options;
   options.shaderDir = shaderDir_;
@@ -135,6 +136,7 @@ Status ViewerScene::init() {
   auto asset = ModelAsset::create(std::move(model_));
   if (!asset) return asset.error();
   asset_ = std::move(asset).value();
+  if (auto s = showVariant(settings_.variant); !s) return s;
   player_ = std::make_unique<Player>(asset_->animated.skeleton, asset_->animated.morphs.restWeights);
   clip_ = settings_.clip;
   if (clip_ >= 0 && clip_ < int(asset_->animated.clips.size())) player_->play(asset_->animated.clips[size_t(clip_)], settings_.loop);
@@ -153,6 +155,20 @@ Status ViewerScene::init() {
   overlay->vao.attribute(0, 0, 3, 0);
   overlay->vao.attribute(1, 0, 3, sizeof(glm::vec3));
   overlay_ = std::move(overlay);
+  return Ok{};
+}
+
+// KHR_materials_variants: the model as `variant` dresses it (asset/material_variants.h);
+// the animation stays the loaded asset's, which the variant does not change.
+Status ViewerScene::showVariant(int variant) {
+  settings_.variant = variant;
+  if (variant < 0) {
+    shown_ = asset_;
+    return Ok{};
+  }
+  auto shown = ModelAsset::create(withVariant(asset_->model, variant));
+  if (!shown) return shown.error();
+  shown_ = std::move(shown).value();
   return Ok{};
 }
 
@@ -207,6 +223,20 @@ Status ViewerScene::render(const FrameInfo& frame) {
   return Ok{};
 }
 
+// KHR_materials_variants' picker: the file's default materials or one variant.
+void ViewerScene::drawVariantPicker() {
+  const std::vector<std::string>& variants = asset_->model.variants;
+  if (variants.empty()) return;
+  const std::string current = settings_.variant < 0 ? "(default)" : variants[size_t(settings_.variant)];
+  if (!ImGui::BeginCombo("variant", current.c_str())) return;
+  for (int v = -1; v < int(variants.size()); ++v) {
+    if (!ImGui::Selectable(v < 0 ? "(default)" : variants[size_t(v)].c_str(), v == settings_.variant)) continue;
+    const Status status = showVariant(v);
+    posed_ = status ? buildRenderer() : status;  // a failure is shown as the run's error
+  }
+  ImGui::EndCombo();
+}
+
 std::string ViewerScene::describe() const { return renderer_ ? renderer_->describe() : std::string(); }
 
 void ViewerScene::drawUi() {
@@ -258,6 +288,7 @@ void ViewerScene::drawUi() {
     if (auto s = buildRenderer(); !s) posed_ = s;  // shown as the run's error
   }
   ImGui::Checkbox("skeleton", &settings_.skeleton);
+  drawVariantPicker();
   ImGui::End();
 }
 

@@ -29,6 +29,8 @@ struct ViewerSettings {
   bool skeleton = false;
   bool bindPose = false;
   int msaa = 1;
+  // KHR_materials_variants: the variant drawn (-1: the file's default materials).
+  int variant = -1;
   // Where the camera looks from, toward the model's centre (framed to fit its
   // bounds). Golden tests of flat test models look straight at them (0, 0, 1), as
   // Khronos's screenshots do.
@@ -56,10 +58,14 @@ class ViewerScene final : public engine::Game {
   struct Overlay;
   void frameCamera(const engine::ModelData& model);
   engine::Status buildRenderer();
+  engine::Status showVariant(int variant);
   void drawSkeleton(const glm::mat4& viewProjection);
+  void drawVariantPicker();
 
   std::string shaderDir_;
-  std::shared_ptr<const engine::ModelAsset> asset_;
+  std::shared_ptr<const engine::ModelAsset> asset_;  // as loaded: the player's
+  // What the renderer draws: asset_, or a copy with a variant's materials.
+  std::shared_ptr<const engine::ModelAsset> shown_;
   engine::ModelData model_;  // until init() makes the asset
   ViewerSettings settings_;
   engine::SceneDesc desc_;

@@ -13,6 +13,7 @@
 #include "anim/model_builder.h"
 #include "anim/pose_dump.h"
 #include "asset/gltf_loader.h"
+#include "asset/material_variants.h"
 #include "asset/texture_transform.h"
 
 namespace engine {
@@ -1010,6 +1011,51 @@ TEST_F(LoaderTest, ReadsTransmissionAndVolume) {
     EXPECT_NE(refused.error().message.find(std::string("material 0") + ": " + extension + ": " + key), std::string::npos)
         << refused.error().message;
   }
+}
+
+// KHR_materials_variants: the root's names, each primitive's mapping of variants to
+// materials, a model remapped to one variant (the others keep their material), and
+// mappings that point nowhere refused with the primitive and mapping named.
+TEST_F(LoaderTest, ReadsMaterialVariants) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_variants"};
+  m.doc["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "red"}}, {{"name", "blue"}}, {{"name", "plain"}}};
+  m.doc["materials"] = {{{"name", "default"}}, {{"name", "red"}}, {{"name", "blue"}}};
+  m.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  m.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"] = {
+      {{"material", 1}, {"variants", {0}}}, {{"material", 2}, {"variants", {1}}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->variants, (std::vector<std::string>{"red", "blue", "plain"}));
+  EXPECT_EQ(model->meshes[0].primitives[0].variantMaterials, (std::vector<int>{1, 2, -1}));
+  EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
+  EXPECT_EQ(findVariant(*model, "blue"), 1);
+  EXPECT_EQ(findVariant(*model, "2"), 2);
+  EXPECT_EQ(findVariant(*model, "green"), std::nullopt);
+  EXPECT_EQ(findVariant(*model, "3"), std::nullopt);
+  EXPECT_EQ(withVariant(*model, 0).meshes[0].primitives[0].material, 1);
+  EXPECT_EQ(withVariant(*model, 1).meshes[0].primitives[0].material, 2);
+  EXPECT_EQ(withVariant(*model, 2).meshes[0].primitives[0].material, 0);
+  EXPECT_EQ(withVariant(*model, -1).meshes[0].primitives[0].material, 0);
+
+  const std::pair<json, std::string> bad[] = {
+      {{{{"material", 7}, {"variants", {0}}}}, "mapping 0: material 7 does not exist"},
+      {{{{"material", 1}, {"variants", {0}}}, {{"material", 2}, {"variants", {5}}}}, "mapping 1: variant 5 does not exist"},
+      {{{{"material", 1}}}, "mapping 0: needs a \"material\" index and a \"variants\" list"},
+  };
+  for (const auto& [mappings, message] : bad) {
+    TestModel broken = m;
+    broken.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"] = mappings;
+    auto refused = loadGltf(write(broken));
+    ASSERT_FALSE(refused.ok()) << mappings.dump();
+    EXPECT_NE(refused.error().message.find("mesh 0 primitive 0: KHR_materials_variants: " + message), std::string::npos)
+        << refused.error().message;
+  }
+  TestModel undeclared = m;
+  undeclared.doc["extensions"].erase("KHR_materials_variants");
+  auto refused = loadGltf(write(undeclared));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("the file declares no variants"), std::string::npos) << refused.error().message;
 }
 
 }  // namespace

@@ -182,6 +182,21 @@ if sys.argv[2] != "asan":
 print(f"ok: {len(samples)} samples, {samples[0][2]} GL objects each, RSS {samples[1][1]} -> {samples[-1][1]} MiB")
 PY
     ;;
+  viewer_variants)
+    # KHR_materials_variants: --variant by name and by index draw the same image, one
+    # unlike the file's default materials; a name the file lacks is refused, naming
+    # the file and the variants it has.
+    model="$SRC/../shared/gltf-samples/MaterialsVariantsShoe/glTF/MaterialsVariantsShoe.gltf"
+    [ -f "$model" ] || { echo "no ../shared/gltf-samples: skipped"; exit 77; }
+    view() { expect 0 "$1" -- "$BIN/viewer" "$model" --offscreen --size 160x120 --screenshot "$1" "${@:2}"; }
+    view default.png
+    view street.png --variant street
+    view index.png --variant 2
+    cmp -s street.png index.png || { echo "FAIL: --variant street and --variant 2 differ"; exit 1; }
+    ! cmp -s default.png street.png || { echo "FAIL: the street variant draws the default materials"; exit 1; }
+    expect 2 "MaterialsVariantsShoe\.gltf: --variant: no variant \"Moon\" \(the file has midnight, beach, street\)" -- \
+      "$BIN/viewer" "$model" --offscreen --variant Moon
+    ;;
   draco_loads)
     # A Khronos sample that requires Draco loads (it used to be refused: "requires
     # KHR_draco_mesh_compression, which this engine does not support"), exit 0,
