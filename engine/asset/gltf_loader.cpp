@@ -536,6 +536,7 @@ class Converter {
     if (Status s = checkSkinnedMeshes(); !s) return s;
     if (Status s = convertInstancing(); !s) return s;
     if (Status s = convertLights(); !s) return s;
+    if (Status s = convertCameras(); !s) return s;
     return convertAnimations();
   }
 
@@ -1003,6 +1004,49 @@ class Converter {
         }
         prim.material = own;
       }
+    }
+    return Ok{};
+  }
+
+  // The file's cameras, then the node of each that places it. Errors name the camera
+  // and the value out of glTF's range.
+  Status convertCameras() {
+    for (std::size_t i = 0; i < gltf_.cameras.size(); ++i) {
+      const tinygltf::Camera& src = gltf_.cameras[i];
+      const std::string where = "camera " + str(i) + (src.name.empty() ? "" : " (\"" + src.name + "\")");
+      CameraData camera;
+      camera.name = src.name;
+      camera.perspective = src.type != "orthographic";
+      if (src.type != "perspective" && src.type != "orthographic")
+        return error(where + ": type \"" + src.type + "\" is not perspective or orthographic");
+      if (camera.perspective) {
+        const tinygltf::PerspectiveCamera& p = src.perspective;
+        if (!(p.yfov > 0.0 && p.yfov < 3.14159265358979)) return error(where + ": yfov must be in (0, pi)");
+        if (!(p.znear > 0.0 && std::isfinite(p.znear))) return error(where + ": znear must be > 0");
+        if (!(p.zfar == 0.0 || (p.zfar > p.znear && std::isfinite(p.zfar)))) return error(where + ": zfar must be > znear");
+        if (!(p.aspectRatio >= 0.0 && std::isfinite(p.aspectRatio))) return error(where + ": aspectRatio must be > 0");
+        camera.yfov = float(p.yfov);
+        camera.znear = float(p.znear);
+        camera.zfar = float(p.zfar);
+        camera.aspectRatio = float(p.aspectRatio);
+      } else {
+        const tinygltf::OrthographicCamera& o = src.orthographic;
+        if (!(o.xmag != 0.0 && o.ymag != 0.0 && std::isfinite(o.xmag) && std::isfinite(o.ymag)))
+          return error(where + ": xmag and ymag must be finite and not 0");
+        if (!(o.znear >= 0.0 && o.zfar > o.znear && std::isfinite(o.zfar))) return error(where + ": needs 0 <= znear < zfar");
+        camera.xmag = float(o.xmag);
+        camera.ymag = float(o.ymag);
+        camera.znear = float(o.znear);
+        camera.zfar = float(o.zfar);
+      }
+      out_.cameras.push_back(camera);
+    }
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      const int camera = gltf_.nodes[n].camera;
+      if (camera == -1) continue;
+      if (!validIndex(camera, out_.cameras.size()))
+        return error("node " + str(n) + ": camera " + str(camera) + " does not exist (" + str(out_.cameras.size()) + " cameras)");
+      out_.nodes[n].camera = camera;
     }
     return Ok{};
   }

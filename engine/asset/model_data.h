@@ -39,6 +39,9 @@ struct NodeData {
   std::vector<glm::mat4> instances;
   // KHR_lights_punctual: the index into ModelData::lights this node places, -1 none.
   int light = -1;
+  // The index into ModelData::cameras this node places (looking along its -Z, up
+  // its +Y), -1 none.
+  int camera = -1;
 };
 
 // The local transforms `node`'s mesh is drawn with: its instances, or one identity
@@ -248,6 +251,18 @@ struct AnimationData {
 // A KHR_lights_punctual light, as the file gives it; its node places it (at the
 // node's origin, shining along the node's -Z). Spot lights keep their cone here
 // though the engine draws them as point lights (asset/model_lights.h).
+// A glTF camera. Perspective: yfov (radians), znear, zfar (0: infinite) and the
+// aspect ratio it was made for (0: none; the viewer keeps its frame's). Orthographic:
+// xmag, ymag and both planes.
+struct CameraData {
+  std::string name;
+  bool perspective = true;
+  float yfov = 0.8f;
+  float aspectRatio = 0.0f;
+  float znear = 0.1f, zfar = 0.0f;
+  float xmag = 1.0f, ymag = 1.0f;
+};
+
 enum class PunctualType { Directional, Point, Spot };
 struct PunctualLightData {
   std::string name;
@@ -269,6 +284,7 @@ struct ModelData {
   std::vector<AnimationData> animations;
   std::vector<PunctualLightData> lights;  // KHR_lights_punctual
   std::vector<std::string> variants;      // KHR_materials_variants' names
+  std::vector<CameraData> cameras;
   std::vector<std::string> warnings;  // also logged; kept for tests and tools
 };
 

@@ -31,6 +31,18 @@ engine::Status writeJson(const std::string& path, const nlohmann::json& json) {
   return engine::Ok{};
 }
 
+// Whether the viewer can look through the file's camera `index`.
+engine::Status checkCamera(const engine::ModelData& model, int index) {
+  if (index >= int(model.cameras.size()))
+    return engine::makeError("camera " + std::to_string(index) + " does not exist (the file has " +
+                             std::to_string(model.cameras.size()) + ")");
+  if (!model.cameras[size_t(index)].perspective)
+    return engine::makeError("camera " + std::to_string(index) + " is orthographic; only perspective cameras are drawn");
+  for (const engine::NodeData& node : model.nodes)
+    if (node.camera == index) return engine::Ok{};
+  return engine::makeError("camera " + std::to_string(index) + " is placed by no node");
+}
+
 // Why --variant named nothing, with what the file has.
 std::string variantList(const engine::ModelData& model, const std::string& asked) {
   if (model.variants.empty()) return "the file has no KHR_materials_variants";
@@ -45,6 +57,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Animation playback viewer for glTF 2.0 files.", "viewer"};
   engine::CommonOptions options;
   std::string modelPath, anim, loop = "repeat", dumpPosePath, variant;
+  int camera = -1;
   double speed = 1.0;
   bool dualQuat = false, skeleton = false;
   app.add_option("model", modelPath, "glTF file (.gltf or .glb)")->required();
@@ -55,6 +68,7 @@ int main(int argc, char** argv) {
   app.add_flag("--dq", dualQuat, "Dual-quaternion skinning instead of linear blend");
   app.add_flag("--skeleton", skeleton, "Draw the skeleton over the model");
   app.add_option("--variant", variant, "KHR_materials_variants: the variant to draw, by name or index (default: the file's materials)");
+  app.add_option("--camera", camera, "Look through the file's camera INDEX, where its node stands (default: framed to the model)");
   app.add_option("--dump-pose", dumpPosePath, "Write the pose at --time as JSON and exit");
   engine::addCommonOptions(app, options);
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
@@ -76,6 +90,9 @@ int main(int argc, char** argv) {
     const auto found = engine::findVariant(*model, variant);
     if (!found) return fail(engine::kExitBadInput, modelPath + ": --variant: " + variantList(*model, variant));
     variantIndex = *found;
+  }
+  if (camera >= 0) {
+    if (auto s = checkCamera(*model, camera); !s) return fail(engine::kExitBadInput, modelPath + ": --camera: " + s.error().message);
   }
   const engine::LoopMode loopMode = loop == "clamp"      ? engine::LoopMode::Clamp
                                     : loop == "pingpong" ? engine::LoopMode::PingPong
@@ -103,6 +120,7 @@ int main(int argc, char** argv) {
   settings.skinMode = dualQuat ? engine::SkinMode::DualQuat : engine::SkinMode::Linear;
   settings.skeleton = skeleton;
   settings.variant = variantIndex;
+  settings.camera = camera;
   // The scene renderer multisamples its own HDR target; the runner's target then
   // only receives the tone-mapped result.
   settings.msaa = options.run.msaa;

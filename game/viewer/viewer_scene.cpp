@@ -172,6 +172,26 @@ Status ViewerScene::showVariant(int variant) {
   return Ok{};
 }
 
+// The file's camera settings_.camera where its node stands in the pose: the view
+// Khronos's screenshots of such models are taken from. The window's controls move
+// the camera from there on.
+void ViewerScene::placeAtModelCamera() {
+  cameraPlaced_ = true;
+  const ModelData& model = asset_->model;
+  if (settings_.camera < 0 || settings_.camera >= int(model.cameras.size())) return;
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    if (model.nodes[n].camera != settings_.camera) continue;
+    const glm::dmat4 world(pose_.joints[size_t(asset_->animated.skeleton.jointOfRaw(int(n)))]);
+    const CameraData& c = model.cameras[size_t(settings_.camera)];
+    camera_.position = glm::dvec3(world[3]);
+    camera_.fovyDegrees = glm::degrees(double(c.yfov));
+    camera_.nearPlane = c.znear;
+    if (c.zfar > 0.0f) camera_.farPlane = c.zfar;
+    camera_.lookAt(camera_.position - glm::normalize(glm::dvec3(world[2])));
+    return;
+  }
+}
+
 void ViewerScene::shutdown() {
   overlay_.reset();
   renderer_.reset();
@@ -187,8 +207,10 @@ void ViewerScene::update(double time, double dt) {
     player_->update(dt);
   }
   // A failure ends the run at render.
+  const bool first = !cameraPlaced_;
   posed_ = playerPose(*asset_, *player_, settings_.bindPose || clip_ < 0, locals_, pose_);
   if (posed_) renderer_->setPose(0, pose_);
+  if (posed_ && first) placeAtModelCamera();
 }
 
 void ViewerScene::drawSkeleton(const glm::mat4& viewProjection) {

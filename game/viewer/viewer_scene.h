@@ -31,6 +31,9 @@ struct ViewerSettings {
   int msaa = 1;
   // KHR_materials_variants: the variant drawn (-1: the file's default materials).
   int variant = -1;
+  // The file's perspective camera to look through, placed by its node in the pose at
+  // the first frame's time (-1: framed to the model's bounds).
+  int camera = -1;
   // Where the camera looks from, toward the model's centre (framed to fit its
   // bounds). Golden tests of flat test models look straight at them (0, 0, 1), as
   // Khronos's screenshots do.
@@ -61,6 +64,7 @@ class ViewerScene final : public engine::Game {
   engine::Status showVariant(int variant);
   void drawSkeleton(const glm::mat4& viewProjection);
   void drawVariantPicker();
+  void placeAtModelCamera();
 
   std::string shaderDir_;
   std::shared_ptr<const engine::ModelAsset> asset_;  // as loaded: the player's
@@ -77,6 +81,7 @@ class ViewerScene final : public engine::Game {
   engine::Camera camera_;
   bool playing_ = true;
   bool started_ = false;
+  bool cameraPlaced_ = false;
   std::unique_ptr<Overlay> overlay_;
   engine::Status posed_ = engine::Ok{};  // the last pose's
 };

@@ -1058,5 +1058,44 @@ TEST_F(LoaderTest, ReadsMaterialVariants) {
   EXPECT_NE(refused.error().message.find("the file declares no variants"), std::string::npos) << refused.error().message;
 }
 
+// glTF cameras: perspective and orthographic read with their node; values out of
+// glTF's range refused, naming the camera.
+TEST_F(LoaderTest, ReadsCameras) {
+  TestModel m;
+  m.doc["cameras"] = {{{"type", "perspective"}, {"name", "eye"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.05}, {"zfar", 80.0}}}},
+                      {{"type", "orthographic"}, {"orthographic", {{"xmag", 2.0}, {"ymag", 1.5}, {"znear", 0.0}, {"zfar", 10.0}}}}};
+  m.doc["nodes"][1]["camera"] = 0;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  ASSERT_EQ(model->cameras.size(), 2u);
+  EXPECT_EQ(model->cameras[0].name, "eye");
+  EXPECT_TRUE(model->cameras[0].perspective);
+  EXPECT_FLOAT_EQ(model->cameras[0].yfov, 0.6f);
+  EXPECT_FLOAT_EQ(model->cameras[0].znear, 0.05f);
+  EXPECT_FLOAT_EQ(model->cameras[0].zfar, 80.0f);
+  EXPECT_FALSE(model->cameras[1].perspective);
+  EXPECT_FLOAT_EQ(model->cameras[1].ymag, 1.5f);
+  EXPECT_EQ(model->nodes[1].camera, 0);
+  EXPECT_EQ(model->nodes[0].camera, -1);
+
+  const std::tuple<int, const char*, double, std::string> bad[] = {
+      {0, "yfov", 4.0, "camera 0 (\"eye\"): yfov must be in (0, pi)"},
+      {0, "zfar", 0.01, "camera 0 (\"eye\"): zfar must be > znear"},
+      {1, "xmag", 0.0, "camera 1: xmag and ymag must be finite and not 0"},
+  };
+  for (const auto& [camera, key, value, message] : bad) {
+    TestModel broken = m;
+    broken.doc["cameras"][camera][camera == 0 ? "perspective" : "orthographic"][key] = value;
+    auto refused = loadGltf(write(broken));
+    ASSERT_FALSE(refused.ok()) << key;
+    EXPECT_NE(refused.error().message.find(message), std::string::npos) << refused.error().message;
+  }
+  TestModel nowhere = m;
+  nowhere.doc["nodes"][1]["camera"] = 5;
+  auto refused = loadGltf(write(nowhere));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("node 1: camera 5 does not exist"), std::string::npos) << refused.error().message;
+}
+
 }  // namespace
 }  // namespace engine

@@ -197,6 +197,20 @@ PY
     expect 2 "MaterialsVariantsShoe\.gltf: --variant: no variant \"Moon\" \(the file has midnight, beach, street\)" -- \
       "$BIN/viewer" "$model" --offscreen --variant Moon
     ;;
+  viewer_camera)
+    # The file's camera: TransmissionTest's looks at its board head-on, which the
+    # framing does not; an index past the file's cameras, or an orthographic one
+    # (Cameras has one), is refused naming the file and the camera.
+    model="$SRC/../shared/gltf-samples/TransmissionTest/glTF-Binary/TransmissionTest.glb"
+    [ -f "$model" ] || { echo "no ../shared/gltf-samples: skipped"; exit 77; }
+    expect 0 framed.png -- "$BIN/viewer" "$model" --offscreen --size 160x120 --screenshot framed.png
+    expect 0 camera.png -- "$BIN/viewer" "$model" --offscreen --size 160x120 --screenshot camera.png --camera 0
+    ! cmp -s framed.png camera.png || { echo "FAIL: --camera 0 draws the framed view"; exit 1; }
+    expect 2 "TransmissionTest\.glb: --camera: camera 3 does not exist \(the file has 1\)" -- \
+      "$BIN/viewer" "$model" --offscreen --camera 3
+    cameras="$SRC/../shared/gltf-samples/Cameras/glTF/Cameras.gltf"
+    expect 2 "Cameras\.gltf: --camera: camera 1 is orthographic" -- "$BIN/viewer" "$cameras" --offscreen --camera 1
+    ;;
   draco_loads)
     # A Khronos sample that requires Draco loads (it used to be refused: "requires
     # KHR_draco_mesh_compression, which this engine does not support"), exit 0,
