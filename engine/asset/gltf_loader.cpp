@@ -447,6 +447,20 @@ Result<float> extensionNumber(const tinygltf::Value& ext, const char* key, float
   return static_cast<float>(v);
 }
 
+// One colour of a material extension: white when absent, an error naming the
+// material, the extension and the key unless it is three numbers in [0, most].
+Result<glm::vec3> extensionColor(const tinygltf::Value& ext, const char* key, float most, const std::string& where,
+                                 const char* expected) {
+  if (!ext.Has(key)) return glm::vec3(1.0f);
+  const tinygltf::Value& c = ext.Get(key);
+  const bool ok = c.IsArray() && c.ArrayLen() == 3 && c.Get(0).IsNumber() && c.Get(1).IsNumber() && c.Get(2).IsNumber();
+  const glm::vec3 color = ok ? glm::vec3(c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble())
+                             : glm::vec3(-1.0f);
+  if (!(glm::all(glm::greaterThanEqual(color, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(color, glm::vec3(most)))))
+    return makeError(where + ": " + key + " must be " + expected);
+  return color;
+}
+
 // KHR_materials_volume: thickness and Beer-Lambert's attenuation.
 Status readVolume(const tinygltf::Value& ext, const std::string& name, MaterialLayers& layers) {
   const std::string where = name + ": KHR_materials_volume";
@@ -458,15 +472,9 @@ Status readVolume(const tinygltf::Value& ext, const std::string& name, MaterialL
   if (ext.Has("attenuationDistance") && !(*distance > 0.0f)) return makeError(where + ": attenuationDistance must be > 0");
   layers.thickness = *thickness;
   layers.attenuationDistance = *distance;
-  if (ext.Has("attenuationColor")) {
-    const tinygltf::Value& c = ext.Get("attenuationColor");
-    const bool ok = c.IsArray() && c.ArrayLen() == 3 && c.Get(0).IsNumber() && c.Get(1).IsNumber() && c.Get(2).IsNumber();
-    if (ok) layers.attenuationColor = glm::vec3(c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble());
-    if (!ok || !(glm::all(glm::greaterThanEqual(layers.attenuationColor, glm::vec3(0.0f))) &&
-                 glm::all(glm::lessThanEqual(layers.attenuationColor, glm::vec3(1.0f))))) {
-      return makeError(where + ": attenuationColor must be three numbers in [0, 1]");
-    }
-  }
+  auto color = extensionColor(ext, "attenuationColor", 1.0f, where, "three numbers in [0, 1]");
+  if (!color) return color.error();
+  layers.attenuationColor = *color;
   return Ok{};
 }
 
@@ -488,15 +496,9 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
     auto weight = extensionNumber(ext, "specularFactor", 1.0f, 0.0, 1.0, where);
     if (!weight) return weight.error();
     layers.specular = *weight;
-    if (ext.Has("specularColorFactor")) {
-      const tinygltf::Value& c = ext.Get("specularColorFactor");
-      const bool ok = c.IsArray() && c.ArrayLen() == 3 && c.Get(0).IsNumber() && c.Get(1).IsNumber() && c.Get(2).IsNumber();
-      if (ok) layers.specularColor = glm::vec3(c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble());
-      if (!ok || !(glm::all(glm::greaterThanEqual(layers.specularColor, glm::vec3(0.0f))) &&
-                   glm::all(glm::lessThan(layers.specularColor, glm::vec3(1e6f))))) {
-        return makeError(where + ": specularColorFactor must be three numbers >= 0");
-      }
-    }
+    auto color = extensionColor(ext, "specularColorFactor", 1e6f, where, "three numbers >= 0");
+    if (!color) return color.error();
+    layers.specularColor = *color;
   }
   if (has("KHR_materials_clearcoat")) {
     const tinygltf::Value& ext = material.extensions.at("KHR_materials_clearcoat");

@@ -122,6 +122,20 @@ class LoaderTest : public ::testing::Test {
     std::ofstream out(path, std::ios::binary);
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   }
+  // Each (extension, key, value) set on material 0 of `m` is refused with a message
+  // naming the material, the extension and the key.
+  void expectMaterialValuesRefused(const TestModel& m,
+                                   const std::vector<std::tuple<const char*, const char*, nlohmann::json>>& bad) {
+    for (const auto& [extension, key, value] : bad) {
+      TestModel broken = m;
+      broken.doc["materials"][0]["extensions"][extension][key] = value;
+      auto refused = loadGltf(write(broken));
+      ASSERT_FALSE(refused.ok()) << extension << " " << key << " " << value.dump();
+      EXPECT_NE(refused.error().message.find(std::string("material 0") + ": " + extension + ": " + key),
+                std::string::npos)
+          << refused.error().message;
+    }
+  }
   // Loads and expects failure whose message contains every needle.
   void expectError(const std::string& path, std::initializer_list<std::string> needles) {
     auto model = loadGltf(path);
@@ -938,7 +952,7 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
   EXPECT_TRUE(hasWarning(*model, {"material 0", "KHR_materials_clearcoat", "clearcoatNormalTexture", "not read"}))
       << allWarnings(*model);
 
-  const std::tuple<const char*, const char*, nlohmann::json> bad[] = {
+  const std::vector<std::tuple<const char*, const char*, nlohmann::json>> bad = {
       {"KHR_materials_ior", "ior", 0.5},
       {"KHR_materials_ior", "ior", "glass"},
       {"KHR_materials_specular", "specularFactor", 1.5},
@@ -946,14 +960,7 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
       {"KHR_materials_clearcoat", "clearcoatFactor", -0.1},
       {"KHR_materials_clearcoat", "clearcoatRoughnessFactor", "smooth"},
   };
-  for (const auto& [extension, key, value] : bad) {
-    TestModel broken = m;
-    broken.doc["materials"][0]["extensions"][extension][key] = value;
-    auto refused = loadGltf(write(broken));
-    ASSERT_FALSE(refused.ok()) << extension << " " << key << " " << value.dump();
-    EXPECT_NE(refused.error().message.find(std::string("material 0") + ": " + extension + ": " + key), std::string::npos)
-        << refused.error().message;
-  }
+  expectMaterialValuesRefused(m, bad);
 }
 
 // KHR_materials_transmission and KHR_materials_volume: the factors, the two
@@ -995,7 +1002,7 @@ TEST_F(LoaderTest, ReadsTransmissionAndVolume) {
   EXPECT_TRUE(d.isDefault());
   EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
 
-  const std::tuple<const char*, const char*, nlohmann::json> bad[] = {
+  const std::vector<std::tuple<const char*, const char*, nlohmann::json>> bad = {
       {"KHR_materials_transmission", "transmissionFactor", 1.5},
       {"KHR_materials_transmission", "transmissionFactor", "clear"},
       {"KHR_materials_volume", "thicknessFactor", -1.0},
@@ -1003,14 +1010,7 @@ TEST_F(LoaderTest, ReadsTransmissionAndVolume) {
       {"KHR_materials_volume", "attenuationColor", {1.0, 2.0, 0.0}},
       {"KHR_materials_volume", "attenuationColor", {1.0, 1.0}},
   };
-  for (const auto& [extension, key, value] : bad) {
-    TestModel broken = m;
-    broken.doc["materials"][0]["extensions"][extension][key] = value;
-    auto refused = loadGltf(write(broken));
-    ASSERT_FALSE(refused.ok()) << extension << " " << key << " " << value.dump();
-    EXPECT_NE(refused.error().message.find(std::string("material 0") + ": " + extension + ": " + key), std::string::npos)
-        << refused.error().message;
-  }
+  expectMaterialValuesRefused(m, bad);
 }
 
 // KHR_materials_variants: the root's names, each primitive's mapping of variants to
