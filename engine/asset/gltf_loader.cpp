@@ -36,6 +36,12 @@ constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
 std::string str(std::size_t i) { return std::to_string(i); }
 std::string str(int i) { return std::to_string(i); }
 
+// How errors name an element: its kind and index, and its name when it has one
+// ("material 2 (\"paint\")").
+std::string labelled(const char* kind, std::size_t index, const std::string& name) {
+  return std::string(kind) + " " + std::to_string(index) + (name.empty() ? "" : " (\"" + name + "\")");
+}
+
 bool validIndex(int index, std::size_t size) {
   return index >= 0 && static_cast<std::size_t>(index) < size;
 }
@@ -842,7 +848,7 @@ class Converter {
   Status convertMaterials() {
     for (std::size_t i = 0; i < gltf_.materials.size(); ++i) {
       const tinygltf::Material& src = gltf_.materials[i];
-      const std::string name = "material " + str(i) + (src.name.empty() ? "" : " (\"" + src.name + "\")");
+      const std::string name = labelled("material", i, src.name);
       MaterialData m;
       m.name = src.name;
       const auto& pbr = src.pbrMetallicRoughness;
@@ -1010,38 +1016,12 @@ class Converter {
     return Ok{};
   }
 
-  // The file's cameras, then the node of each that places it. Errors name the camera
-  // and the value out of glTF's range.
+  // The file's cameras, then the node of each that places it.
   Status convertCameras() {
     for (std::size_t i = 0; i < gltf_.cameras.size(); ++i) {
-      const tinygltf::Camera& src = gltf_.cameras[i];
-      const std::string where = "camera " + str(i) + (src.name.empty() ? "" : " (\"" + src.name + "\")");
-      CameraData camera;
-      camera.name = src.name;
-      camera.perspective = src.type != "orthographic";
-      if (src.type != "perspective" && src.type != "orthographic")
-        return error(where + ": type \"" + src.type + "\" is not perspective or orthographic");
-      if (camera.perspective) {
-        const tinygltf::PerspectiveCamera& p = src.perspective;
-        if (!(p.yfov > 0.0 && p.yfov < 3.14159265358979)) return error(where + ": yfov must be in (0, pi)");
-        if (!(p.znear > 0.0 && std::isfinite(p.znear))) return error(where + ": znear must be > 0");
-        if (!(p.zfar == 0.0 || (p.zfar > p.znear && std::isfinite(p.zfar)))) return error(where + ": zfar must be > znear");
-        if (!(p.aspectRatio >= 0.0 && std::isfinite(p.aspectRatio))) return error(where + ": aspectRatio must be > 0");
-        camera.yfov = float(p.yfov);
-        camera.znear = float(p.znear);
-        camera.zfar = float(p.zfar);
-        camera.aspectRatio = float(p.aspectRatio);
-      } else {
-        const tinygltf::OrthographicCamera& o = src.orthographic;
-        if (!(o.xmag != 0.0 && o.ymag != 0.0 && std::isfinite(o.xmag) && std::isfinite(o.ymag)))
-          return error(where + ": xmag and ymag must be finite and not 0");
-        if (!(o.znear >= 0.0 && o.zfar > o.znear && std::isfinite(o.zfar))) return error(where + ": needs 0 <= znear < zfar");
-        camera.xmag = float(o.xmag);
-        camera.ymag = float(o.ymag);
-        camera.znear = float(o.znear);
-        camera.zfar = float(o.zfar);
-      }
-      out_.cameras.push_back(camera);
+      auto camera = convertCamera(gltf_.cameras[i], labelled("camera", i, gltf_.cameras[i].name));
+      if (!camera) return camera.error();
+      out_.cameras.push_back(std::move(camera).value());
     }
     for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
       const int camera = gltf_.nodes[n].camera;
@@ -1053,11 +1033,41 @@ class Converter {
     return Ok{};
   }
 
+  // One camera; an error names it and the value out of glTF's range.
+  Result<CameraData> convertCamera(const tinygltf::Camera& src, const std::string& where) {
+    CameraData camera;
+    camera.name = src.name;
+    camera.perspective = src.type == "perspective";
+    if (!camera.perspective && src.type != "orthographic")
+      return error(where + ": type \"" + src.type + "\" is not perspective or orthographic");
+    if (camera.perspective) {
+      const tinygltf::PerspectiveCamera& p = src.perspective;
+      if (!(p.yfov > 0.0 && p.yfov < 3.14159265358979)) return error(where + ": yfov must be in (0, pi)");
+      if (!(p.znear > 0.0 && std::isfinite(p.znear))) return error(where + ": znear must be > 0");
+      if (!(p.zfar == 0.0 || (p.zfar > p.znear && std::isfinite(p.zfar)))) return error(where + ": zfar must be > znear");
+      if (!(p.aspectRatio >= 0.0 && std::isfinite(p.aspectRatio))) return error(where + ": aspectRatio must be > 0");
+      camera.yfov = float(p.yfov);
+      camera.znear = float(p.znear);
+      camera.zfar = float(p.zfar);
+      camera.aspectRatio = float(p.aspectRatio);
+      return camera;
+    }
+    const tinygltf::OrthographicCamera& o = src.orthographic;
+    if (!(o.xmag != 0.0 && o.ymag != 0.0 && std::isfinite(o.xmag) && std::isfinite(o.ymag)))
+      return error(where + ": xmag and ymag must be finite and not 0");
+    if (!(o.znear >= 0.0 && o.zfar > o.znear && std::isfinite(o.zfar))) return error(where + ": needs 0 <= znear < zfar");
+    camera.xmag = float(o.xmag);
+    camera.ymag = float(o.ymag);
+    camera.znear = float(o.znear);
+    camera.zfar = float(o.zfar);
+    return camera;
+  }
+
   // KHR_lights_punctual: the file's lights (tinygltf parses the list), then the
   // node of each that places it.
   Status convertLights() {
     for (std::size_t i = 0; i < gltf_.lights.size(); ++i) {
-      auto light = convertLight(gltf_.lights[i], "light " + str(i) + " (\"" + gltf_.lights[i].name + "\")");
+      auto light = convertLight(gltf_.lights[i], labelled("light", i, gltf_.lights[i].name));
       if (!light) return light.error();
       out_.lights.push_back(std::move(light).value());
     }
