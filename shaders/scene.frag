@@ -20,7 +20,7 @@
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;
-#ifdef NORMAL_MAP
+#if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL)
 in vec4 v_tangent;
 #endif
 
@@ -60,7 +60,10 @@ void main() {
   geometric *= side;  // for the shadow lookups (common/direct_light.glsl)
 #ifdef MATERIAL_LAYERS
   materialLayers(v_uv);
-  g_clearcoatNormal = geometric;  // the coat's own normal map is not read yet
+  g_clearcoatNormal = geometric;  // the surface's, before its own normal map
+#ifdef CLEARCOAT_NORMAL
+  g_clearcoatNormal = materialClearcoatNormal(normalize(v_normal), v_tangent, v_uv) * side;
+#endif
 #endif
   vec3 toEye = normalize(-v_position);
   vec2 mr = materialMetallicRoughness(u_metallic, u_roughness, v_uv);

@@ -746,14 +746,10 @@ class Converter {
     return info;
   }
 
-  // The textures of KHR_materials_specular, _clearcoat, _transmission and _volume, each with its uv set,
-  // transform and sampler as the core slots have them. The coat's normal map is not
-  // read: a warning, and the coat keeps the surface's normal.
+  // The textures of KHR_materials_specular, _clearcoat (its normal map too),
+  // _transmission and _volume, each with its uv set, transform and sampler as the
+  // core slots have them.
   void readLayerTextures(const tinygltf::Material& src, const std::string& name, MaterialData& m) {
-    if (auto coat = src.extensions.find("KHR_materials_clearcoat");
-        coat != src.extensions.end() && coat->second.Has("clearcoatNormalTexture")) {
-      warn(name + ": KHR_materials_clearcoat: clearcoatNormalTexture is not read yet; drawn with the factor alone");
-    }
     struct Key {
       const char* extension;
       const char* key;
@@ -764,7 +760,8 @@ class Converter {
                                 {"KHR_materials_clearcoat", "clearcoatTexture", TextureSlot::Clearcoat},
                                 {"KHR_materials_clearcoat", "clearcoatRoughnessTexture", TextureSlot::ClearcoatRoughness},
                                 {"KHR_materials_transmission", "transmissionTexture", TextureSlot::Transmission},
-                                {"KHR_materials_volume", "thicknessTexture", TextureSlot::Thickness}};
+                                {"KHR_materials_volume", "thicknessTexture", TextureSlot::Thickness},
+                                {"KHR_materials_clearcoat", "clearcoatNormalTexture", TextureSlot::ClearcoatNormal}};
     for (const Key& k : kKeys) {
       auto ext = src.extensions.find(k.extension);
       if (ext == src.extensions.end() || !ext->second.Has(k.key)) continue;
@@ -775,7 +772,15 @@ class Converter {
       }
       const std::string slotName = std::string(k.extension) + ": " + k.key;
       m.layerImages[std::size_t(k.slot) - kFirstLayerSlot] = textureImage(info, name, slotName.c_str(), m.texture(k.slot));
+      if (k.slot == TextureSlot::ClearcoatNormal) m.layers.clearcoatNormalScale = normalScale(ext->second.Get(k.key));
     }
+  }
+
+  // A normal map's textureInfo "scale" (1 when absent or not a finite number).
+  static float normalScale(const tinygltf::Value& info) {
+    if (!info.Has("scale") || !info.Get("scale").IsNumber()) return 1.0f;
+    const double scale = info.Get("scale").GetNumberAsDouble();
+    return std::isfinite(scale) && std::abs(scale) < 1e6 ? float(scale) : 1.0f;
   }
 
   // KHR_texture_transform on one textureInfo: offset, rotation, scale (each
@@ -900,9 +905,10 @@ class Converter {
   // and the primitive is drawn without its normal map.
   void addMissingTangents(PrimitiveData& prim, const std::string& name) {
     if (prim.material < 0 || !prim.tangents.empty()) return;
-    if (out_.materials[static_cast<std::size_t>(prim.material)].normalImage < 0) return;
     const MaterialData& material = out_.materials[static_cast<std::size_t>(prim.material)];
-    const bool set1 = material.texture(TextureSlot::Normal).texCoord == 1;
+    const bool coatOnly = material.normalImage < 0;
+    if (coatOnly && material.image(TextureSlot::ClearcoatNormal) < 0) return;
+    const bool set1 = material.texture(coatOnly ? TextureSlot::ClearcoatNormal : TextureSlot::Normal).texCoord == 1;
     const std::vector<glm::vec2>& uvs = set1 ? prim.uvs1 : prim.uvs;
     if (prim.normals.empty() || uvs.empty() || prim.mode != 4) {
       warn(name + ": a normal map needs NORMAL, TEXCOORD_" + (set1 ? "1" : "0") +
@@ -920,7 +926,7 @@ class Converter {
     static const char* const kSlotNames[kTextureSlots] = {
         "baseColorTexture",  "normalTexture",        "metallicRoughnessTexture", "emissiveTexture",
         "occlusionTexture",  "specularTexture",      "specularColorTexture",     "clearcoatTexture",
-        "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture"};
+        "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture",         "clearcoatNormalTexture"};
     const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
     const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
     bool needed = false;

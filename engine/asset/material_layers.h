@@ -15,6 +15,7 @@ struct MaterialLayers {
   glm::vec3 specularColor{1.0f};  // specularColorFactor, linear
   float clearcoat = 0.0f;         // KHR_materials_clearcoat: clearcoatFactor
   float clearcoatRoughness = 0.0f;
+  float clearcoatNormalScale = 1.0f;  // clearcoatNormalTexture's scale
   // KHR_materials_transmission: the share of the dielectric's diffuse lobe that is
   // transmitted through the surface instead (metals transmit nothing).
   float transmission = 0.0f;

@@ -120,7 +120,7 @@ struct SamplerData {
 // KHR_materials_specular's specularTexture (A) and specularColorTexture (RGB, sRGB),
 // KHR_materials_clearcoat's clearcoatTexture (R) and clearcoatRoughnessTexture (G),
 // KHR_materials_transmission's transmissionTexture (R), KHR_materials_volume's
-// thicknessTexture (G).
+// thicknessTexture (G), and the coat's own normal map (clearcoatNormalTexture).
 enum class TextureSlot {
   BaseColor,
   Normal,
@@ -132,9 +132,10 @@ enum class TextureSlot {
   Clearcoat,
   ClearcoatRoughness,
   Transmission,
-  Thickness
+  Thickness,
+  ClearcoatNormal
 };
-inline constexpr int kTextureSlots = 11;
+inline constexpr int kTextureSlots = 12;
 inline constexpr int kFirstLayerSlot = 5;  // Specular
 // Colour slots hold sRGB-encoded images; the others linear data.
 inline bool isSrgbSlot(TextureSlot slot) {
@@ -176,7 +177,7 @@ struct MaterialData {
   // KHR_materials_ior, _specular, _clearcoat, _transmission, _volume: the factors, and their textures'
   // images (-1 none; the slots past Occlusion).
   MaterialLayers layers;
-  std::array<int, kTextureSlots - kFirstLayerSlot> layerImages{-1, -1, -1, -1, -1, -1};
+  std::array<int, kTextureSlots - kFirstLayerSlot> layerImages{-1, -1, -1, -1, -1, -1, -1};
   bool hasLayerTextures() const {
     for (int image : layerImages)
       if (image >= 0) return true;
@@ -200,7 +201,8 @@ struct MaterialData {
       case TextureSlot::Clearcoat:
       case TextureSlot::ClearcoatRoughness:
       case TextureSlot::Transmission:
-      case TextureSlot::Thickness: return layerImages[std::size_t(slot) - kFirstLayerSlot];
+      case TextureSlot::Thickness:
+      case TextureSlot::ClearcoatNormal: return layerImages[std::size_t(slot) - kFirstLayerSlot];
     }
     return -1;
   }

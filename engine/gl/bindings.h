@@ -26,6 +26,7 @@ inline constexpr unsigned kThickness = 17;
 // The opaque pass's colour, mipmapped, that transmissive surfaces refract
 // (scene.frag's TRANSMISSION).
 inline constexpr unsigned kTransmissionSource = 18;
+inline constexpr unsigned kClearcoatNormal = 19;  // KHR_materials_clearcoat's normal map
 // Shadow maps (common/shadows.glsl).
 inline constexpr unsigned kSunShadow = 4;
 inline constexpr unsigned kPointShadow = 5;
@@ -74,7 +75,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 45> kDefines{{
+inline constexpr std::array<Define, 46> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -87,6 +88,7 @@ inline constexpr std::array<Define, 45> kDefines{{
     {"UNIT_TRANSMISSION", kTransmission},
     {"UNIT_THICKNESS", kThickness},
     {"UNIT_TRANSMISSION_SOURCE", kTransmissionSource},
+    {"UNIT_CLEARCOAT_NORMAL", kClearcoatNormal},
     {"UNIT_SUN_SHADOW", kSunShadow},
     {"UNIT_POINT_SHADOW", kPointShadow},
     {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},

@@ -239,7 +239,7 @@ class RtScene {
     int texture = -1;
     int emissiveTexture = -1;
     int metallicRoughnessTexture = -1;
-    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1};
+    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1};
     // MaterialDesc::layers' dielectric f0 (worked in double), once per material, not per hit.
     glm::vec3 dielectricF0{0.04f};
     bool hasLayerTextures() const {

@@ -49,7 +49,8 @@ Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
       if (auto s = scene.setMetallicRoughnessTexture(material, std::move(mr)); !s) return s.error();
     }
     for (int slot = kFirstLayerSlot; slot < kTextureSlots; ++slot) {
-      if (m.image(TextureSlot(slot)) < 0) continue;
+      // The tracers read no normal maps, the coat's neither.
+      if (m.image(TextureSlot(slot)) < 0 || TextureSlot(slot) == TextureSlot::ClearcoatNormal) continue;
       const TextureEncoding encoding = isSrgbSlot(TextureSlot(slot)) ? TextureEncoding::Srgb : TextureEncoding::Linear;
       if (auto s = scene.setLayerTexture(material, TextureSlot(slot), slotTexture(TextureSlot(slot), encoding)); !s)
         return s.error();

@@ -26,6 +26,7 @@ std::string ShaderVariant::describe() const {
   if (layers) name += "+layers";
   if (layerTextures) name += "+layertextures";
   if (transmission) name += "+transmission";
+  if (clearcoatNormal) name += "+coatnormal";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -62,6 +63,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.layers) defines.push_back("MATERIAL_LAYERS 1");
   if (variant.layerTextures) defines.push_back("LAYER_TEXTURES 1");
   if (variant.transmission) defines.push_back("TRANSMISSION 1");
+  if (variant.clearcoatNormal) defines.push_back("CLEARCOAT_NORMAL 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -106,6 +108,7 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
     pr.set("u_ior", l.ior);
     pr.set("u_attenuationDistance", l.attenuationDistance);
     pr.set("u_attenuationColor", l.attenuationColor);
+    pr.set("u_clearcoatNormalScale", l.clearcoatNormalScale);
   }
   pr.set("u_normalScale", material->normalScale);
   pr.set("u_occlusionStrength", material->occlusionStrength);
@@ -117,10 +120,10 @@ void setUvTransforms(const gl::Program& pr, const MaterialData& m) {
   static constexpr const char* kTransforms[kTextureSlots] = {
       "u_uvTransform[0]", "u_uvTransform[1]", "u_uvTransform[2]", "u_uvTransform[3]",
       "u_uvTransform[4]", "u_uvTransform[5]", "u_uvTransform[6]", "u_uvTransform[7]",
-      "u_uvTransform[8]", "u_uvTransform[9]", "u_uvTransform[10]"};
+      "u_uvTransform[8]", "u_uvTransform[9]", "u_uvTransform[10]", "u_uvTransform[11]"};
   static constexpr const char* kTexCoords[kTextureSlots] = {
       "u_texCoord[0]", "u_texCoord[1]", "u_texCoord[2]", "u_texCoord[3]", "u_texCoord[4]", "u_texCoord[5]",
-      "u_texCoord[6]", "u_texCoord[7]", "u_texCoord[8]", "u_texCoord[9]", "u_texCoord[10]"};
+      "u_texCoord[6]", "u_texCoord[7]", "u_texCoord[8]", "u_texCoord[9]", "u_texCoord[10]", "u_texCoord[11]"};
   for (int i = 0; i < kTextureSlots; ++i) {
     pr.set(kTransforms[i], m.textures[size_t(i)].uvTransform);
     pr.set(kTexCoords[i], m.textures[size_t(i)].texCoord);
@@ -133,7 +136,7 @@ constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor,       gl:
                                               gl::binding::kOcclusion,         gl::binding::kSpecular,
                                               gl::binding::kSpecularColor,     gl::binding::kClearcoat,
                                               gl::binding::kClearcoatRoughness, gl::binding::kTransmission,
-                                              gl::binding::kThickness};
+                                              gl::binding::kThickness,         gl::binding::kClearcoatNormal};
 
 // Which slots the variant samples: the layer textures the material has, in a
 // +layertextures variant (common/material.glsl's u_layerTextures says which).
@@ -445,6 +448,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.layers = m->layered();
     v.layerTextures = m->hasLayerTextures();
     v.transmission = m->layers.transmissive();
+    v.clearcoatNormal = m->layers.clearcoat > 0.0f && m->image(TextureSlot::ClearcoatNormal) >= 0 && !prim.tangents.empty();
   }
   const auto sampled = sampledSlots(v, *m);
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();

@@ -52,6 +52,9 @@ struct ShaderVariant {
   // KHR_materials_transmission: refracts the opaque pass's image (scene.frag's
   // TRANSMISSION, common/transmission.glsl); drawn after the opaque pass.
   bool transmission = false;
+  // KHR_materials_clearcoat's own normal map (CLEARCOAT_NORMAL), on a mesh with
+  // tangents.
+  bool clearcoatNormal = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };

@@ -11,7 +11,7 @@
 #include "common/mesh_tangent.glsl"
 
 void deform(inout vec3 position, inout vec3 normal, mat4 model) {
-#ifdef NORMAL_MAP
+#ifdef MESH_TANGENT
   vec3 tangent = a_tangent.xyz;
 #else
   vec3 tangent = vec3(0.0);
@@ -19,12 +19,12 @@ void deform(inout vec3 position, inout vec3 normal, mat4 model) {
 #ifdef MORPH
   morph(position, normal, tangent);
 #endif
-#if defined(SKINNED) && defined(NORMAL_MAP)
+#if defined(SKINNED) && defined(MESH_TANGENT)
   skin(position, normal, tangent);
 #elif defined(SKINNED)
   skin(position, normal);
 #endif
-#ifdef NORMAL_MAP
+#ifdef MESH_TANGENT
   setTangent(tangent, model);
 #endif
 }

@@ -10,6 +10,7 @@
 //   VERTEX_COLOR      the mesh's COLOR_0 multiplies the base colour (v_color)
 //   MATERIAL_LAYERS   glTF's ior, specular and clear coat (common/shading.glsl), and
 //   LAYER_TEXTURES    their textures (UNIT_SPECULAR ..., u_layerTextures says which)
+//   CLEARCOAT_NORMAL  the coat's own normal map (UNIT_CLEARCOAT_NORMAL), with tangents
 //   TRANSMISSION      KHR_materials_transmission and _volume (with MATERIAL_LAYERS;
 //                     common/transmission.glsl draws what comes through)
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
@@ -35,11 +36,12 @@ const int SLOT_CLEARCOAT = 7;
 const int SLOT_CLEARCOAT_ROUGHNESS = 8;
 const int SLOT_TRANSMISSION = 9;
 const int SLOT_THICKNESS = 10;
+const int SLOT_CLEARCOAT_NORMAL = 11;
 
 #ifdef UV_TRANSFORM
 in vec2 v_uv1;  // TEXCOORD_1 (set 0 where the mesh has none)
-uniform mat3 u_uvTransform[11];
-uniform int u_texCoord[11];
+uniform mat3 u_uvTransform[12];
+uniform int u_texCoord[12];
 #endif
 
 // The uv that `slot` samples at, from the fragment's TEXCOORD_0 `uv`.
@@ -83,25 +85,43 @@ void materialAlphaTest(float alpha) {
 #endif
 }
 
-#ifdef NORMAL_MAP
-layout(binding = UNIT_NORMAL) uniform sampler2D u_normalTexture;
-uniform float u_normalScale = 1.0;
-
-// The normal map's direction in world space. `n` is the interpolated vertex
-// normal (unit), `tangent` the interpolated tangent with its handedness in w; the
-// bitangent is cross(n, t) * w as glTF defines it. The tangent is made orthogonal
-// to n again after interpolation; where it has collapsed the map is ignored.
-vec3 materialNormal(vec3 n, vec4 tangent, vec2 uv) {
+#if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL)
+// A tangent-space normal map's direction in world space. `n` is the interpolated
+// vertex normal (unit), `tangent` the interpolated tangent with its handedness in
+// w; the bitangent is cross(n, t) * w as glTF defines it. The tangent is made
+// orthogonal to n again after interpolation; where it has collapsed the map is
+// ignored. `texel` is the map's value at the fragment, xy scaled by `scale`.
+vec3 perturbedNormal(vec3 n, vec4 tangent, vec3 texel, float scale) {
   vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
   float len = length(t);
   if (!(len > 1e-6)) return n;
   t /= len;
   vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
-  vec3 m = texture(u_normalTexture, materialUv(SLOT_NORMAL, uv)).xyz * 2.0 - 1.0;
-  m.xy *= u_normalScale;
+  vec3 m = texel * 2.0 - 1.0;
+  m.xy *= scale;
   vec3 perturbed = mat3(t, b, n) * m;
   float plen = length(perturbed);
   return plen > 1e-6 ? perturbed / plen : n;
+}
+#endif
+
+#ifdef NORMAL_MAP
+layout(binding = UNIT_NORMAL) uniform sampler2D u_normalTexture;
+uniform float u_normalScale = 1.0;
+
+vec3 materialNormal(vec3 n, vec4 tangent, vec2 uv) {
+  return perturbedNormal(n, tangent, texture(u_normalTexture, materialUv(SLOT_NORMAL, uv)).xyz, u_normalScale);
+}
+#endif
+
+#ifdef CLEARCOAT_NORMAL
+// KHR_materials_clearcoat's clearcoatNormalTexture: the coat's own normal.
+layout(binding = UNIT_CLEARCOAT_NORMAL) uniform sampler2D u_clearcoatNormalTexture;
+uniform float u_clearcoatNormalScale = 1.0;
+
+vec3 materialClearcoatNormal(vec3 n, vec4 tangent, vec2 uv) {
+  return perturbedNormal(n, tangent, texture(u_clearcoatNormalTexture, materialUv(SLOT_CLEARCOAT_NORMAL, uv)).xyz,
+                         u_clearcoatNormalScale);
 }
 #endif
 

@@ -2,7 +2,11 @@
 // skinned like the normal when the mesh is skinned, then taken to world space by
 // the model matrix (a tangent lies in the surface, so the matrix itself, not its
 // inverse transpose). A mirroring model matrix flips the bitangent's handedness.
-#ifdef NORMAL_MAP
+// The clear coat's own normal map (CLEARCOAT_NORMAL) needs it as well.
+#if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL)
+#define MESH_TANGENT 1
+#endif
+#ifdef MESH_TANGENT
 layout(location = 7) in vec4 a_tangent;
 out vec4 v_tangent;
 

@@ -910,7 +910,7 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
            {"clearcoatRoughnessFactor", 0.25},
            {"clearcoatTexture", {{"index", 0}}},
            {"clearcoatRoughnessTexture", {{"index", 7}}},
-           {"clearcoatNormalTexture", {{"index", 0}}}}}}}},
+           {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}}}}},
       {{"emissiveFactor", {0.25, 0.25, 0.25}}}};
   m.doc["materials"][0]["extensions"]["KHR_materials_specular"]["specularColorTexture"] = {
       {"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 3.0}}}}}}};
@@ -936,8 +936,7 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
   EXPECT_EQ(model->materials[1].layers.dielectricF0(), glm::vec3(0.04f));
   EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
   // The layer textures are slots of their own, with their uv transforms; a texture
-  // index that does not exist is dropped with a warning, as for the core slots; the
-  // coat's normal map is not read.
+  // index that does not exist is dropped with a warning, as for the core slots.
   const MaterialData& mat = model->materials[0];
   EXPECT_EQ(mat.image(TextureSlot::Clearcoat), 0);
   EXPECT_EQ(mat.image(TextureSlot::SpecularColor), 0);
@@ -949,8 +948,10 @@ TEST_F(LoaderTest, ReadsTheDielectricLayers) {
   EXPECT_FLOAT_EQ(mat.texture(TextureSlot::SpecularColor).uvTransform[1][1], 3.0f);
   EXPECT_TRUE(hasWarning(*model, {"material 0", "KHR_materials_clearcoat: clearcoatRoughnessTexture 7 does not exist"}))
       << allWarnings(*model);
-  EXPECT_TRUE(hasWarning(*model, {"material 0", "KHR_materials_clearcoat", "clearcoatNormalTexture", "not read"}))
-      << allWarnings(*model);
+  // The coat's normal map is a slot of its own, with its scale.
+  EXPECT_EQ(mat.image(TextureSlot::ClearcoatNormal), 0);
+  EXPECT_FLOAT_EQ(mat.layers.clearcoatNormalScale, 0.5f);
+  EXPECT_FALSE(hasWarning(*model, {"clearcoatNormalTexture"})) << allWarnings(*model);
 
   const std::vector<std::tuple<const char*, const char*, nlohmann::json>> bad = {
       {"KHR_materials_ior", "ior", 0.5},
