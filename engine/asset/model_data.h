@@ -250,9 +250,6 @@ struct AnimationData {
   float duration = 0.0f;  // largest last key time of any channel
 };
 
-// A KHR_lights_punctual light, as the file gives it; its node places it (at the
-// node's origin, shining along the node's -Z). Spot lights keep their cone here
-// though the engine draws them as point lights (asset/model_lights.h).
 // A glTF camera. Perspective: yfov (radians), znear, zfar (0: infinite) and the
 // aspect ratio it was made for (0: none; the viewer keeps its frame's). Orthographic:
 // xmag, ymag and both planes.
@@ -265,6 +262,9 @@ struct CameraData {
   float xmag = 1.0f, ymag = 1.0f;
 };
 
+// A KHR_lights_punctual light, as the file gives it; its node places it (at the
+// node's origin, shining along the node's -Z). Spot lights keep their cone here
+// though the engine draws them as point lights (asset/model_lights.h).
 enum class PunctualType { Directional, Point, Spot };
 struct PunctualLightData {
   std::string name;
@@ -289,5 +289,12 @@ struct ModelData {
   std::vector<CameraData> cameras;
   std::vector<std::string> warnings;  // also logged; kept for tests and tools
 };
+
+// The node that places camera `camera` (its first, as glTF allows several), -1 none.
+inline int cameraNode(const ModelData& model, int camera) {
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    if (model.nodes[n].camera == camera) return int(n);
+  return -1;
+}
 
 }  // namespace engine

@@ -35,15 +35,15 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
   // Kept inside [0.1, 0.9] while both lobes exist: a lobe never sampled would leave its
   // light to the light samples alone, and MIS could not weigh it.
   b.pSpecular_ = diffuse > 0.0f ? std::clamp(specular / (specular + diffuse), 0.1f, 0.9f) : 1.0f;
+  // The coat reflects clearcoat Fc toward the eye and passes the rest to what lies
+  // under it: the base's reflection and the transmission alike.
+  const float coat = m.clearcoat > 0.0f ? m.clearcoat * brdf::schlickFresnel(glm::vec3(0.04f), cosO).x : 0.0f;
   if (m.clearcoat > 0.0f) {
-    // The coat reflects clearcoat Fc toward the eye and passes the rest to the base.
-    const float coat = m.clearcoat * brdf::schlickFresnel(glm::vec3(0.04f), cosO).x;
     const float base = (1.0f - coat) * (specular + diffuse);
     b.alphaCoat_ = brdf::ggxAlpha(m.clearcoatRoughness);
     b.pCoat_ = base > 0.0f ? std::clamp(coat / (coat + base), 0.1f, 0.9f) : 1.0f;
   }
   if (m.transmission > 0.0f && m.metallic < 1.0f) {
-    const float coat = m.clearcoat * brdf::schlickFresnel(glm::vec3(0.04f), cosO).x;
     const float through = mean(m.albedo) * (1.0f - m.metallic) * m.transmission * (1.0f - specular) * (1.0f - coat);
     const float reflected = coat + (1.0f - coat) * (specular + diffuse);
     b.pTransmit_ = reflected > 0.0f ? std::clamp(through / (through + reflected), 0.1f, 0.9f) : 1.0f;
@@ -121,8 +121,7 @@ std::optional<BsdfSample> Bsdf::transmissionSample(glm::vec2 u) const {
   const glm::vec3 m = sampleGgxVisibleNormal(woLocal_, alphaTransmit_, u);
   const float cosO = glm::dot(woLocal_, m);
   if (!(cosO > 0.0f)) return std::nullopt;
-  const float f90 = m_.dielectricF90;
-  const glm::vec3 fresnel = brdf::schlickFresnel90(m_.dielectricF0, f90, cosO);
+  const glm::vec3 fresnel = brdf::schlickFresnel90(m_.dielectricF0, m_.dielectricF90, cosO);
   const glm::vec3 share = (glm::vec3(1.0f) - fresnel) * m_.albedo * ((1.0f - m_.metallic) * m_.transmission);
   glm::vec3 wiLocal;
   if (m_.thickness > 0.0f) {

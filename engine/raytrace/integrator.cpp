@@ -50,12 +50,15 @@ class Tracer {
     return sum / float(spp);
   }
 
-  // `cone`: the ray's footprint (raytrace/ray_cone.h).
-  glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {}) const {
+  // `cone`: the ray's footprint (raytrace/ray_cone.h). `hitDistance`, when given,
+  // receives the distance to the surface the ray stops at (left alone when it escapes).
+  glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {},
+               float* hitDistance = nullptr) const {
     const std::optional<SurfaceInteraction<T>> hit = firstSolidHit(ray);
     if (!hit) return escaped(ray.d);
     const Vec3<T> v = glm::normalize(ray.d);
     const float distance = float(hit->t * glm::length(ray.d));
+    if (hitDistance) *hitDistance = distance;
     const float footprint = footprintAt(cone, *hit, v, distance);
     // The terrain's layers read the unflipped shading normal, as terrain.frag does.
     const HitMaterial m = scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y), glm::vec3(hit->ns));
@@ -95,12 +98,11 @@ class Tracer {
       if (d == Vec3<T>(T(0))) d = v - T(2) * glm::dot(n, v) * n;
     }
     ++counters.reflection;
-    const Ray<T> ray = hit.spawnRay(d);
-    glm::vec3 light = Li(ray, depth + 1, rng, counters, cone);
-    if (m.thickness > 0.0f && m.attenuationDistance > 0.0f && glm::dot(hit.n, d) < T(0)) {
-      if (const auto next = scene_.intersect(ray))
-        light *= brdf::volumeAttenuation(m.attenuationColor, m.attenuationDistance, float(next->t * glm::length(d)));
-    }
+    float travelled = -1.0f;
+    glm::vec3 light = Li(hit.spawnRay(d), depth + 1, rng, counters, cone, &travelled);
+    // Inside the volume up to the next surface.
+    if (m.thickness > 0.0f && m.attenuationDistance > 0.0f && glm::dot(hit.n, d) < T(0) && travelled >= 0.0f)
+      light *= brdf::volumeAttenuation(m.attenuationColor, m.attenuationDistance, travelled);
     return share * light;
   }
 

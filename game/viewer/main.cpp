@@ -38,9 +38,9 @@ engine::Status checkCamera(const engine::ModelData& model, int index) {
                              std::to_string(model.cameras.size()) + ")");
   if (!model.cameras[size_t(index)].perspective)
     return engine::makeError("camera " + std::to_string(index) + " is orthographic; only perspective cameras are drawn");
-  for (const engine::NodeData& node : model.nodes)
-    if (node.camera == index) return engine::Ok{};
-  return engine::makeError("camera " + std::to_string(index) + " is placed by no node");
+  if (engine::cameraNode(model, index) < 0)
+    return engine::makeError("camera " + std::to_string(index) + " is placed by no node");
+  return engine::Ok{};
 }
 
 // Why --variant named nothing, with what the file has.

@@ -172,24 +172,20 @@ Status ViewerScene::showVariant(int variant) {
   return Ok{};
 }
 
-// The file's camera settings_.camera where its node stands in the pose: the view
-// Khronos's screenshots of such models are taken from. The window's controls move
-// the camera from there on.
+// The file's camera settings_.camera (main.cpp has checked it) where its node
+// stands in the pose: the view Khronos's screenshots of such models are taken from.
+// The window's controls move the camera from there on.
 void ViewerScene::placeAtModelCamera() {
-  cameraPlaced_ = true;
   const ModelData& model = asset_->model;
-  if (settings_.camera < 0 || settings_.camera >= int(model.cameras.size())) return;
-  for (size_t n = 0; n < model.nodes.size(); ++n) {
-    if (model.nodes[n].camera != settings_.camera) continue;
-    const glm::dmat4 world(pose_.joints[size_t(asset_->animated.skeleton.jointOfRaw(int(n)))]);
-    const CameraData& c = model.cameras[size_t(settings_.camera)];
-    camera_.position = glm::dvec3(world[3]);
-    camera_.fovyDegrees = glm::degrees(double(c.yfov));
-    camera_.nearPlane = c.znear;
-    if (c.zfar > 0.0f) camera_.farPlane = c.zfar;
-    camera_.lookAt(camera_.position - glm::normalize(glm::dvec3(world[2])));
-    return;
-  }
+  const int node = settings_.camera >= 0 ? cameraNode(model, settings_.camera) : -1;
+  if (node < 0) return;
+  const glm::dmat4 world(pose_.joints[size_t(asset_->animated.skeleton.jointOfRaw(node))]);
+  const CameraData& c = model.cameras[size_t(settings_.camera)];
+  camera_.position = glm::dvec3(world[3]);
+  camera_.fovyDegrees = glm::degrees(double(c.yfov));
+  camera_.nearPlane = c.znear;
+  if (c.zfar > 0.0f) camera_.farPlane = c.zfar;
+  camera_.lookAt(camera_.position - glm::normalize(glm::dvec3(world[2])));
 }
 
 void ViewerScene::shutdown() {
@@ -198,7 +194,8 @@ void ViewerScene::shutdown() {
 }
 
 void ViewerScene::update(double time, double dt) {
-  if (!started_) {
+  const bool first = !started_;
+  if (first) {
     // The first update places the playhead at the scene time, so the frame at
     // time T shows the clip at T * speed whether or not frames came before.
     player_->seek(time * settings_.speed);
@@ -207,7 +204,6 @@ void ViewerScene::update(double time, double dt) {
     player_->update(dt);
   }
   // A failure ends the run at render.
-  const bool first = !cameraPlaced_;
   posed_ = playerPose(*asset_, *player_, settings_.bindPose || clip_ < 0, locals_, pose_);
   if (posed_) renderer_->setPose(0, pose_);
   if (posed_ && first) placeAtModelCamera();

@@ -81,7 +81,6 @@ class ViewerScene final : public engine::Game {
   engine::Camera camera_;
   bool playing_ = true;
   bool started_ = false;
-  bool cameraPlaced_ = false;
   std::unique_ptr<Overlay> overlay_;
   engine::Status posed_ = engine::Ok{};  // the last pose's
 };
