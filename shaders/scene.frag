@@ -5,7 +5,7 @@
 // the hemisphere; common/shading.glsl), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
 // material inputs of common/material.glsl (TEXTURED, NORMAL_MAP, MR_TEXTURE,
 // EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK) and glTF's dielectric layers
-// (MATERIAL_LAYERS), with transmission (TRANSMISSION). Alpha goes out with the colour: BLEND
+// (MATERIAL_LAYERS), with transmission (TRANSMISSION) and sheen (SHEEN). Alpha goes out with the colour: BLEND
 // materials are drawn with blending on, in linear HDR.
 #include "common/frame.glsl"
 #include "common/shading.glsl"
@@ -69,6 +69,9 @@ void main() {
   vec2 mr = materialMetallicRoughness(u_metallic, u_roughness, v_uv);
   Surface s = Surface(base.rgb, n, toEye, v_position, mr.x, mr.y, u_ambient, u_diffuse,
                       u_specular, u_shininess, u_reflection);
+#ifdef SHEEN
+  g_sheenAlbedo = sheenAlbedo(s);
+#endif
   vec3 color = materialEmissive(u_emissive, v_uv) + shadeAmbient(s) * materialOcclusion(v_uv);
   color += shadeDirectLight(s, geometric);
   color += reflectedEnvironment(s);

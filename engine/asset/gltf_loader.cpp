@@ -153,7 +153,8 @@ const std::set<std::string>& supportedExtensions() {
                                                "KHR_materials_transmission", "KHR_materials_volume",
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
                                                "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
-                                               "KHR_lights_punctual", "KHR_materials_variants"};
+                                               "KHR_lights_punctual", "KHR_materials_variants",
+                                               "KHR_materials_sheen"};
   return supported;
 }
 
@@ -453,11 +454,11 @@ Result<float> extensionNumber(const tinygltf::Value& ext, const char* key, float
   return static_cast<float>(v);
 }
 
-// One colour of a material extension: white when absent, an error naming the
+// One colour of a material extension: `fallback` when absent, an error naming the
 // material, the extension and the key unless it is three numbers in [0, most].
 Result<glm::vec3> extensionColor(const tinygltf::Value& ext, const char* key, float most, const std::string& where,
-                                 const char* expected) {
-  if (!ext.Has(key)) return glm::vec3(1.0f);
+                                 const char* expected, glm::vec3 fallback = glm::vec3(1.0f)) {
+  if (!ext.Has(key)) return fallback;
   const tinygltf::Value& c = ext.Get(key);
   const bool ok = c.IsArray() && c.ArrayLen() == 3 && c.Get(0).IsNumber() && c.Get(1).IsNumber() && c.Get(2).IsNumber();
   const glm::vec3 color = ok ? glm::vec3(c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble())
@@ -484,7 +485,19 @@ Status readVolume(const tinygltf::Value& ext, const std::string& name, MaterialL
   return Ok{};
 }
 
-// KHR_materials_ior, _specular, _clearcoat, _transmission and _volume.
+// KHR_materials_sheen: the fibres' colour (black, none, when absent) and roughness.
+Status readSheen(const tinygltf::Value& ext, const std::string& name, MaterialLayers& layers) {
+  const std::string where = name + ": KHR_materials_sheen";
+  auto color = extensionColor(ext, "sheenColorFactor", 1.0f, where, "three numbers in [0, 1]", glm::vec3(0.0f));
+  if (!color) return color.error();
+  auto roughness = extensionNumber(ext, "sheenRoughnessFactor", 0.0f, 0.0, 1.0, where);
+  if (!roughness) return roughness.error();
+  layers.sheenColor = *color;
+  layers.sheenRoughness = *roughness;
+  return Ok{};
+}
+
+// KHR_materials_ior, _specular, _clearcoat, _transmission, _volume and _sheen.
 Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const std::string& name) {
   MaterialLayers layers;
   auto has = [&](const char* ext) { return material.extensions.find(ext) != material.extensions.end(); };
@@ -524,6 +537,9 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
   }
   if (has("KHR_materials_volume")) {
     if (auto status = readVolume(material.extensions.at("KHR_materials_volume"), name, layers); !status) return status.error();
+  }
+  if (has("KHR_materials_sheen")) {
+    if (auto status = readSheen(material.extensions.at("KHR_materials_sheen"), name, layers); !status) return status.error();
   }
   return layers;
 }
@@ -747,7 +763,7 @@ class Converter {
   }
 
   // The textures of KHR_materials_specular, _clearcoat (its normal map too),
-  // _transmission and _volume, each with its uv set, transform and sampler as the
+  // _transmission, _volume and _sheen, each with its uv set, transform and sampler as the
   // core slots have them.
   void readLayerTextures(const tinygltf::Material& src, const std::string& name, MaterialData& m) {
     struct Key {
@@ -761,7 +777,9 @@ class Converter {
                                 {"KHR_materials_clearcoat", "clearcoatRoughnessTexture", TextureSlot::ClearcoatRoughness},
                                 {"KHR_materials_transmission", "transmissionTexture", TextureSlot::Transmission},
                                 {"KHR_materials_volume", "thicknessTexture", TextureSlot::Thickness},
-                                {"KHR_materials_clearcoat", "clearcoatNormalTexture", TextureSlot::ClearcoatNormal}};
+                                {"KHR_materials_clearcoat", "clearcoatNormalTexture", TextureSlot::ClearcoatNormal},
+                                {"KHR_materials_sheen", "sheenColorTexture", TextureSlot::SheenColor},
+                                {"KHR_materials_sheen", "sheenRoughnessTexture", TextureSlot::SheenRoughness}};
     for (const Key& k : kKeys) {
       auto ext = src.extensions.find(k.extension);
       if (ext == src.extensions.end() || !ext->second.Has(k.key)) continue;
@@ -926,7 +944,8 @@ class Converter {
     static const char* const kSlotNames[kTextureSlots] = {
         "baseColorTexture",  "normalTexture",        "metallicRoughnessTexture", "emissiveTexture",
         "occlusionTexture",  "specularTexture",      "specularColorTexture",     "clearcoatTexture",
-        "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture",         "clearcoatNormalTexture"};
+        "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture",         "clearcoatNormalTexture",
+        "sheenColorTexture",         "sheenRoughnessTexture"};
     const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
     const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
     bool needed = false;

@@ -1,8 +1,8 @@
 #pragma once
 // glTF's dielectric layers over the metallic-roughness base: KHR_materials_ior,
 // KHR_materials_specular and KHR_materials_clearcoat, and the light that passes
-// through the dielectric, KHR_materials_transmission and KHR_materials_volume:
-// their factors (the textures are MaterialData's slots past Occlusion). Every renderer
+// through the dielectric, KHR_materials_transmission and KHR_materials_volume, and
+// the fibres over it, KHR_materials_sheen: their factors (the textures are MaterialData's slots past Occlusion). Every renderer
 // evaluates them through layeredBrdf (shaders/common/brdf.glsl); a material whose
 // layers are the defaults draws exactly as plain metallic-roughness.
 #include <glm/glm.hpp>
@@ -26,12 +26,17 @@ struct MaterialLayers {
   float thickness = 0.0f;
   float attenuationDistance = 0.0f;
   glm::vec3 attenuationColor{1.0f};
+  // KHR_materials_sheen: the colour (linear) and roughness of a layer of fibres over
+  // the base; a black sheen is none.
+  glm::vec3 sheenColor{0.0f};
+  float sheenRoughness = 0.0f;
 
   bool isDefault() const {
     return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && clearcoat == 0.0f &&
-           transmission == 0.0f;
+           transmission == 0.0f && !sheen();
   }
   bool transmissive() const { return transmission > 0.0f; }
+  bool sheen() const { return sheenColor != glm::vec3(0.0f); }
   // The dielectric's reflectance at normal incidence: ((ior - 1) / (ior + 1))^2 times
   // the specular colour (each channel at most 1), times the specular weight. Worked
   // in double, so that ior 1.5 gives the very float 0.04f of metallicF0.

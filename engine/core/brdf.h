@@ -10,11 +10,13 @@ namespace engine::brdf {
 using glm::clamp;
 using glm::cross;
 using glm::dot;
+using glm::exp;
 using glm::max;
 using glm::mix;
 using glm::normalize;
 using glm::pow;
 using glm::sqrt;
+using glm::vec2;
 using glm::vec3;
 
 #define BRDF_INLINE inline

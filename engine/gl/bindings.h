@@ -27,6 +27,10 @@ inline constexpr unsigned kThickness = 17;
 // (scene.frag's TRANSMISSION).
 inline constexpr unsigned kTransmissionSource = 18;
 inline constexpr unsigned kClearcoatNormal = 19;  // KHR_materials_clearcoat's normal map
+inline constexpr unsigned kSheenColor = 20;       // KHR_materials_sheen
+inline constexpr unsigned kSheenRoughness = 21;
+// The white sheen's directional albedo (core/sheen_table.h), for albedo scaling.
+inline constexpr unsigned kSheenAlbedo = 22;
 // Shadow maps (common/shadows.glsl).
 inline constexpr unsigned kSunShadow = 4;
 inline constexpr unsigned kPointShadow = 5;
@@ -75,7 +79,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 46> kDefines{{
+inline constexpr std::array<Define, 49> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -89,6 +93,9 @@ inline constexpr std::array<Define, 46> kDefines{{
     {"UNIT_THICKNESS", kThickness},
     {"UNIT_TRANSMISSION_SOURCE", kTransmissionSource},
     {"UNIT_CLEARCOAT_NORMAL", kClearcoatNormal},
+    {"UNIT_SHEEN_COLOR", kSheenColor},
+    {"UNIT_SHEEN_ROUGHNESS", kSheenRoughness},
+    {"UNIT_SHEEN_ALBEDO", kSheenAlbedo},
     {"UNIT_SUN_SHADOW", kSunShadow},
     {"UNIT_POINT_SHADOW", kPointShadow},
     {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},

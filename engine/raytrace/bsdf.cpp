@@ -9,6 +9,10 @@ namespace {
 
 float mean(const glm::vec3& c) { return (c.x + c.y + c.z) / 3.0f; }
 
+// A lobe choice u in [0, 1) past a share p taken before it, rescaled to [0, 1) again
+// (unchanged where p is 0).
+float pastShare(float u, float p) { return (u - p) / (1.0f - p); }
+
 }  // namespace
 
 Bsdf::Bsdf(Model model, const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo)
@@ -30,22 +34,33 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
   const float cosO = std::clamp(b.woLocal_.z, 0.0f, 1.0f);
   const glm::vec3 f0 = glm::mix(m.dielectricF0, m.albedo, m.metallic);
   const float f90 = m.dielectricF90 + (1.0f - m.dielectricF90) * m.metallic;
-  const float specular = mean(brdf::schlickFresnel90(f0, f90, cosO));
-  const float diffuse = mean(m.albedo) * (1.0f - m.metallic) * (1.0f - m.transmission) * (1.0f - specular);
+  const float fresnel = mean(brdf::schlickFresnel90(f0, f90, cosO));
+  // A sheen dims what lies under it by its albedo scaling.
+  const float sheenAlbedo = m.sheenAlbedo(cosO);
+  b.sheenScale_ = brdf::sheenScaling(m.sheenColor, sheenAlbedo);
+  const float sheen = brdf::maxComponent(m.sheenColor) * sheenAlbedo;
+  const float specular = fresnel * b.sheenScale_;
+  const float diffuse =
+      mean(m.albedo) * (1.0f - m.metallic) * (1.0f - m.transmission) * (1.0f - fresnel) * b.sheenScale_;
   // Kept inside [0.1, 0.9] while both lobes exist: a lobe never sampled would leave its
   // light to the light samples alone, and MIS could not weigh it.
   b.pSpecular_ = diffuse > 0.0f ? std::clamp(specular / (specular + diffuse), 0.1f, 0.9f) : 1.0f;
+  if (sheen > 0.0f) {
+    const float under = specular + diffuse;
+    b.pSheen_ = under > 0.0f ? std::clamp(sheen / (sheen + under), 0.1f, 0.9f) : 1.0f;
+  }
   // The coat reflects clearcoat Fc toward the eye and passes the rest to what lies
   // under it: the base's reflection and the transmission alike.
   const float coat = m.clearcoat > 0.0f ? m.clearcoat * brdf::schlickFresnel(glm::vec3(0.04f), cosO).x : 0.0f;
   if (m.clearcoat > 0.0f) {
-    const float base = (1.0f - coat) * (specular + diffuse);
+    const float base = (1.0f - coat) * (specular + diffuse + sheen);
     b.alphaCoat_ = brdf::ggxAlpha(m.clearcoatRoughness);
     b.pCoat_ = base > 0.0f ? std::clamp(coat / (coat + base), 0.1f, 0.9f) : 1.0f;
   }
   if (m.transmission > 0.0f && m.metallic < 1.0f) {
-    const float through = mean(m.albedo) * (1.0f - m.metallic) * m.transmission * (1.0f - specular) * (1.0f - coat);
-    const float reflected = coat + (1.0f - coat) * (specular + diffuse);
+    const float through =
+        mean(m.albedo) * (1.0f - m.metallic) * m.transmission * (1.0f - fresnel) * (1.0f - coat) * b.sheenScale_;
+    const float reflected = coat + (1.0f - coat) * (specular + diffuse + sheen);
     b.pTransmit_ = reflected > 0.0f ? std::clamp(through / (through + reflected), 0.1f, 0.9f) : 1.0f;
     // A thin wall blurs what is behind it as much as its ior bends (none at 1);
     // a volume's facets refract at the surface's own roughness.
@@ -65,15 +80,17 @@ glm::vec3 Bsdf::f(const glm::vec3& wi) const {
     return reflected / (brdf::BRDF_PI * cosI);
   }
   return brdf::layeredBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness, m_.dielectricF0,
-                           m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness, m_.transmission);
+                           m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness, m_.transmission,
+                           m_.sheenColor, m_.sheenRoughness, sheenScale_);
 }
 
 float Bsdf::pdf(const glm::vec3& wi) const {
   const glm::vec3 wiLocal = frame_.toLocal(wi);
   if (wiLocal.z <= 0.0f || woLocal_.z <= 0.0f) return 0.0f;
   if (model_ == Model::Classic) return (1.0f - pMirror_) * cosineHemispherePdf(wiLocal.z);
-  const float base = pSpecular_ * ggxReflectionPdf(woLocal_, wiLocal, alpha_) +
-                     (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
+  float base = pSpecular_ * ggxReflectionPdf(woLocal_, wiLocal, alpha_) +
+               (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
+  if (pSheen_ > 0.0f) base = pSheen_ * uniformConePdf(0.0f) + (1.0f - pSheen_) * base;
   const float reflected = pCoat_ <= 0.0f ? base : pCoat_ * ggxReflectionPdf(woLocal_, wiLocal, alphaCoat_) + (1.0f - pCoat_) * base;
   return (1.0f - pTransmit_) * reflected;
 }
@@ -89,7 +106,7 @@ std::optional<BsdfSample> Bsdf::sample(glm::vec2 u, float uLobe) const {
   }
   if (model_ == Model::Classic && m_.specular <= 0.0f) return lambertSample(u);
   if (uLobe < pTransmit_) return transmissionSample(u);
-  return reflectionSample(u, (uLobe - pTransmit_) / (1.0f - pTransmit_));
+  return reflectionSample(u, pastShare(uLobe, pTransmit_));
 }
 
 // The lobes above the surface, uLobe rescaled past the transmission's share.
@@ -97,8 +114,9 @@ std::optional<BsdfSample> Bsdf::reflectionSample(glm::vec2 u, float uLobe) const
   glm::vec3 wiLocal;
   if (model_ == Model::MetallicRoughness && uLobe < pCoat_) {
     wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alphaCoat_, u));
-  } else if (model_ == Model::MetallicRoughness && (uLobe - pCoat_) / (1.0f - pCoat_) < pSpecular_) {
-    // The base's share, uLobe rescaled past the coat's (unchanged without a coat).
+  } else if (model_ == Model::MetallicRoughness && pastShare(uLobe, pCoat_) < pSheen_) {
+    wiLocal = sampleUniformCone(u, 0.0f);
+  } else if (model_ == Model::MetallicRoughness && pastShare(pastShare(uLobe, pCoat_), pSheen_) < pSpecular_) {
     wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alpha_, u));
   } else {
     wiLocal = sampleCosineHemisphere(u);
@@ -122,7 +140,8 @@ std::optional<BsdfSample> Bsdf::transmissionSample(glm::vec2 u) const {
   const float cosO = glm::dot(woLocal_, m);
   if (!(cosO > 0.0f)) return std::nullopt;
   const glm::vec3 fresnel = brdf::schlickFresnel90(m_.dielectricF0, m_.dielectricF90, cosO);
-  const glm::vec3 share = (glm::vec3(1.0f) - fresnel) * m_.albedo * ((1.0f - m_.metallic) * m_.transmission);
+  const glm::vec3 share =
+      (glm::vec3(1.0f) - fresnel) * m_.albedo * ((1.0f - m_.metallic) * m_.transmission * sheenScale_);
   glm::vec3 wiLocal;
   if (m_.thickness > 0.0f) {
     const float eta = entering_ ? 1.0f / std::max(m_.ior, 1.0f) : std::max(m_.ior, 1.0f);

@@ -90,7 +90,8 @@ class Tracer {
                         int depth, Pcg32& rng, RayCounters& counters, RayCone cone) const {
     const float cosV = std::max(float(-glm::dot(n, v)), 1e-4f);
     const glm::vec3 share = brdf::transmittedShare(m.albedo, m.metallic, m.transmission,
-                                                   brdf::schlickFresnel90(m.dielectricF0, m.dielectricF90, cosV));
+                                                   brdf::schlickFresnel90(m.dielectricF0, m.dielectricF90, cosV)) *
+                            brdf::sheenScaling(m.sheenColor, m.sheenAlbedo(cosV));
     Vec3<T> d = v;
     if (m.thickness > 0.0f) {
       const T ior = T(std::max(m.ior, 1.0f));
@@ -155,21 +156,25 @@ class Tracer {
                      Pcg32& rng, RayCounters& counters) const {
     const glm::vec3 nf(n);
     const glm::vec3 toEye = -glm::vec3(v);
+    const float nDotV = glm::max(glm::dot(nf, toEye), 1e-4f);
+    const float sheenAlbedo = m.sheenAlbedo(nDotV);
+    const float sheenScale = brdf::sheenScaling(m.sheenColor, sheenAlbedo);
     glm::vec3 color(0.0f);
     for (const LightDesc& light : scene_.lights()) {
       const LightSample<T> ls = sampleLight(si, light, rng, counters);
       const glm::vec3 l(ls.wi);
       const float nDotL = glm::dot(nf, l);
       if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
-      const glm::vec3 f = brdf::layeredBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness, m.dielectricF0,
-                                            m.dielectricF90, nf, m.clearcoat, m.clearcoatRoughness, m.transmission);
+      const glm::vec3 f =
+          brdf::layeredBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness, m.dielectricF0, m.dielectricF90, nf,
+                            m.clearcoat, m.clearcoatRoughness, m.transmission, m.sheenColor, m.sheenRoughness, sheenScale);
       color += ls.radiance * ls.visibility * brdf::brdfLightFactor(f, nDotL);
     }
     // The same hemisphere ambient as the rasterizer's shadeAmbient.
     const glm::vec3 ambientLight = glm::mix(scene_.ambientGround(), scene_.ambientSky(), 0.5f + 0.5f * nf.y);
-    return color + ambientLight * brdf::hemisphereAmbient(m.albedo, m.metallic, m.roughness, m.dielectricF0,
-                                                          glm::max(glm::dot(nf, toEye), 1e-4f), m.clearcoat,
-                                                          m.clearcoatRoughness, m.transmission);
+    return color + ambientLight * brdf::hemisphereAmbient(m.albedo, m.metallic, m.roughness, m.dielectricF0, nDotV,
+                                                          m.clearcoat, m.clearcoatRoughness, m.transmission,
+                                                          m.sheenColor, sheenAlbedo);
   }
 
   LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,

@@ -212,7 +212,7 @@ Status RtScene::setLayerTexture(int material, TextureSlot slot, RtTexture textur
 }
 
 // glTF's layer textures at a hit, applied to `out`'s dielectric f0 and f90, coat,
-// transmission and thickness.
+// transmission, thickness and sheen.
 void RtScene::applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const {
   const auto& t = extras_[size_t(material)].layerTextures;
   auto at = [&](TextureSlot slot) -> const RtTexture* {
@@ -232,6 +232,8 @@ void RtScene::applyLayerTextures(int material, const HitUv& uv, float footprint,
   if (const RtTexture* rough = at(TextureSlot::ClearcoatRoughness)) out.clearcoatRoughness *= rough->sample(uv, footprint).y;
   if (const RtTexture* share = at(TextureSlot::Transmission)) out.transmission *= share->sample(uv, footprint).x;
   if (const RtTexture* thick = at(TextureSlot::Thickness)) out.thickness *= thick->sample(uv, footprint).y;
+  if (const RtTexture* sheen = at(TextureSlot::SheenColor)) out.sheenColor *= sheen->sample(uv, footprint);
+  if (const RtTexture* rough = at(TextureSlot::SheenRoughness)) out.sheenRoughness *= rough->sampleRgba(uv, footprint).a;
 }
 
 Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
@@ -261,7 +263,8 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
                   m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit,
                   extras_[size_t(material)].dielectricF0, m.layers.dielectricF90(), m.layers.clearcoat,
                   m.layers.clearcoatRoughness, m.layers.transmission, m.layers.ior, m.layers.thickness,
-                  m.layers.attenuationDistance, m.layers.attenuationColor};
+                  m.layers.attenuationDistance, m.layers.attenuationColor, m.layers.sheenColor,
+                  m.layers.sheenRoughness};
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
     out.roughness *= t.y;

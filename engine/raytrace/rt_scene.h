@@ -23,6 +23,7 @@
 #include "asset/model_data.h"
 #include "asset/scene_desc.h"
 #include "core/result.h"
+#include "core/sheen_table.h"
 #include "raytrace/bvh.h"
 #include "raytrace/environment.h"
 #include "raytrace/ray.h"
@@ -71,6 +72,13 @@ struct HitMaterial {
   float thickness = 0.0f;
   float attenuationDistance = 0.0f;
   glm::vec3 attenuationColor{1.0f};
+  // KHR_materials_sheen (asset/material_layers.h): the fibres' colour and roughness.
+  glm::vec3 sheenColor{0.0f};
+  float sheenRoughness = 0.0f;
+  // The white sheen's directional albedo at N.V (core/sheen_table.h); 0 without one.
+  float sheenAlbedo(float nDotV) const {
+    return sheenColor != glm::vec3(0.0f) ? sheenTable().lookup(nDotV, sheenRoughness) : 0.0f;
+  }
 };
 
 class RtScene {
@@ -99,9 +107,10 @@ class RtScene {
   Status setSingleSided(int material, bool singleSided);
   // KHR_materials_unlit (HitMaterial::unlit).
   Status setUnlit(int material, bool unlit);
-  // One of glTF's layer textures (`slot` Specular .. Thickness): they scale the
+  // One of glTF's layer textures (`slot` Specular .. SheenRoughness): they scale the
   // material's MaterialLayers at each hit (specular by A, its colour by RGB, the coat
-  // by R, its roughness by G, transmission by R, thickness by G).
+  // by R, its roughness by G, transmission by R, thickness by G, the sheen's colour
+  // by RGB and its roughness by A).
   Status setLayerTexture(int material, TextureSlot slot, RtTexture texture);
   bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
@@ -239,7 +248,7 @@ class RtScene {
     int texture = -1;
     int emissiveTexture = -1;
     int metallicRoughnessTexture = -1;
-    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1};
+    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1, -1, -1};
     // MaterialDesc::layers' dielectric f0 (worked in double), once per material, not per hit.
     glm::vec3 dielectricF0{0.04f};
     bool hasLayerTextures() const {

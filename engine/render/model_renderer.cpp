@@ -4,6 +4,7 @@
 #include <array>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/sheen_table.h"
 #include "gl/bindings.h"
 #include "render/skin_cache.h"
 
@@ -27,6 +28,7 @@ std::string ShaderVariant::describe() const {
   if (layerTextures) name += "+layertextures";
   if (transmission) name += "+transmission";
   if (clearcoatNormal) name += "+coatnormal";
+  if (sheen) name += "+sheen";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -64,6 +66,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.layerTextures) defines.push_back("LAYER_TEXTURES 1");
   if (variant.transmission) defines.push_back("TRANSMISSION 1");
   if (variant.clearcoatNormal) defines.push_back("CLEARCOAT_NORMAL 1");
+  if (variant.sheen) defines.push_back("SHEEN 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -109,6 +112,8 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
     pr.set("u_attenuationDistance", l.attenuationDistance);
     pr.set("u_attenuationColor", l.attenuationColor);
     pr.set("u_clearcoatNormalScale", l.clearcoatNormalScale);
+    pr.set("u_sheenColor", l.sheenColor);
+    pr.set("u_sheenRoughness", l.sheenRoughness);
   }
   pr.set("u_normalScale", material->normalScale);
   pr.set("u_occlusionStrength", material->occlusionStrength);
@@ -117,16 +122,16 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
 
 // Each slot's uv set and KHR_texture_transform matrix, for UV_TRANSFORM variants.
 void setUvTransforms(const gl::Program& pr, const MaterialData& m) {
-  static constexpr const char* kTransforms[kTextureSlots] = {
-      "u_uvTransform[0]", "u_uvTransform[1]", "u_uvTransform[2]", "u_uvTransform[3]",
-      "u_uvTransform[4]", "u_uvTransform[5]", "u_uvTransform[6]", "u_uvTransform[7]",
-      "u_uvTransform[8]", "u_uvTransform[9]", "u_uvTransform[10]", "u_uvTransform[11]"};
-  static constexpr const char* kTexCoords[kTextureSlots] = {
-      "u_texCoord[0]", "u_texCoord[1]", "u_texCoord[2]", "u_texCoord[3]", "u_texCoord[4]", "u_texCoord[5]",
-      "u_texCoord[6]", "u_texCoord[7]", "u_texCoord[8]", "u_texCoord[9]", "u_texCoord[10]", "u_texCoord[11]"};
-  for (int i = 0; i < kTextureSlots; ++i) {
-    pr.set(kTransforms[i], m.textures[size_t(i)].uvTransform);
-    pr.set(kTexCoords[i], m.textures[size_t(i)].texCoord);
+  using Names = std::array<std::string, kTextureSlots>;
+  auto names = [](const char* array) {
+    Names out;
+    for (int i = 0; i < kTextureSlots; ++i) out[size_t(i)] = std::string(array) + "[" + std::to_string(i) + "]";
+    return out;
+  };
+  static const Names kTransforms = names("u_uvTransform"), kTexCoords = names("u_texCoord");
+  for (size_t i = 0; i < size_t(kTextureSlots); ++i) {
+    pr.set(kTransforms[i].c_str(), m.textures[i].uvTransform);
+    pr.set(kTexCoords[i].c_str(), m.textures[i].texCoord);
   }
 }
 
@@ -136,7 +141,8 @@ constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor,       gl:
                                               gl::binding::kOcclusion,         gl::binding::kSpecular,
                                               gl::binding::kSpecularColor,     gl::binding::kClearcoat,
                                               gl::binding::kClearcoatRoughness, gl::binding::kTransmission,
-                                              gl::binding::kThickness,         gl::binding::kClearcoatNormal};
+                                              gl::binding::kThickness,         gl::binding::kClearcoatNormal,
+                                              gl::binding::kSheenColor,        gl::binding::kSheenRoughness};
 
 // Which slots the variant samples: the layer textures the material has, in a
 // +layertextures variant (common/material.glsl's u_layerTextures says which).
@@ -154,8 +160,10 @@ int layerTextureMask(const MaterialData& m) {
   return mask;
 }
 
-// Binds each sampled slot's image (colour slots as sRGB) and its glTF sampler.
+// Binds each sampled slot's image (colour slots as sRGB) and its glTF sampler, and
+// a sheen's albedo table.
 void bindMaterialTextures(const GpuModel& gpu, const MaterialData& m, const ShaderVariant& v) {
+  if (v.sheen) gpu.sheenAlbedo().bind(gl::binding::kSheenAlbedo);
   const auto sampled = sampledSlots(v, m);
   for (int i = 0; i < kTextureSlots; ++i) {
     if (!sampled[size_t(i)]) continue;
@@ -354,6 +362,17 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   return Ok{};
 }
 
+// KHR_materials_sheen's albedo table, filtered as SheenTable::lookup filters it.
+gl::Texture uploadSheenTable(const SheenTable& table) {
+  gl::Texture texture = gl::Texture::create2D(GL_R32F, table.size, table.size, 1);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, table.size, table.size, GL_RED, GL_FLOAT, table.texels.data());
+  texture.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  texture.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  texture.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  texture.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
 }  // namespace
 
 void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, const gl::Buffer* deformed) {
@@ -449,6 +468,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.layerTextures = m->hasLayerTextures();
     v.transmission = m->layers.transmissive();
     v.clearcoatNormal = m->layers.clearcoat > 0.0f && m->image(TextureSlot::ClearcoatNormal) >= 0 && !prim.tangents.empty();
+    v.sheen = m->layers.sheen();
   }
   const auto sampled = sampledSlots(v, *m);
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();
@@ -487,6 +507,9 @@ Result<GpuModel> GpuModel::upload(const ModelData& model) {
       gpu.samplers_.emplace(slot.sampler, std::move(sampler));
     }
   }
+  const bool sheen = std::any_of(model.materials.begin(), model.materials.end(),
+                                 [](const MaterialData& m) { return m.layers.sheen(); });
+  if (sheen) gpu.sheenAlbedo_ = uploadSheenTable(sheenTable());
   gpu.white_ = gl::Texture::create2D(GL_SRGB8_ALPHA8, 1, 1, 1);
   const std::uint8_t white[4] = {255, 255, 255, 255};
   gpu.white_.uploadRgba8(white);

@@ -55,6 +55,9 @@ struct ShaderVariant {
   // KHR_materials_clearcoat's own normal map (CLEARCOAT_NORMAL), on a mesh with
   // tangents.
   bool clearcoatNormal = false;
+  // KHR_materials_sheen (SHEEN): a sheen lobe over the base, dimmed by the sheen's
+  // albedo table (GpuModel::sheenAlbedo).
+  bool sheen = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -124,6 +127,9 @@ class GpuModel {
   // The sampler object of a glTF sampler's settings (one per distinct setting the
   // model's materials use; made on upload).
   const gl::Sampler& sampler(const SamplerData& settings) const;
+  // KHR_materials_sheen's albedo table (core/sheen_table.h), uploaded only for a
+  // model with a sheen.
+  const gl::Texture& sheenAlbedo() const { return sheenAlbedo_; }
 
  private:
   std::vector<std::vector<GpuPrimitive>> meshes_;
@@ -131,6 +137,7 @@ class GpuModel {
   std::vector<gl::Texture> linearImages_;  // the same for data slots
   gl::Texture white_;
   std::map<SamplerData, gl::Sampler> samplers_;
+  gl::Texture sheenAlbedo_;
 };
 
 // Whether a primitive with `influences` joints per vertex, drawn by `node`, is

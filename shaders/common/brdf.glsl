@@ -91,6 +91,72 @@ BRDF_INLINE vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, 
   return diffuse + specular;
 }
 
+// KHR_materials_sheen: a layer of fibres over the base, the "Charlie" distribution
+// (Estevez and Kulla 2017, "Production Friendly Microfacet Sheen BRDF") with their
+// fitted visibility, as glTF's spec and the Khronos Sample Viewer define them. The
+// distribution's alpha is the sheen roughness squared, kept off zero as ggxAlpha is.
+BRDF_INLINE float sheenAlpha(float sheenRoughness) { return max(sheenRoughness * sheenRoughness, 1e-3f); }
+
+// (2 + 1/alpha) sin(theta_h)^(1/alpha) / (2 pi), with sin^2 = |n x h|^2 (no
+// cancellation near n = h, where the power of a small difference would magnify it).
+BRDF_INLINE float charlieDistribution(vec3 n, vec3 h, float alpha) {
+  vec3 nxh = cross(n, h);
+  float invAlpha = 1.0f / alpha;
+  return (2.0f + invAlpha) * pow(dot(nxh, nxh), invAlpha * 0.5f) / (2.0f * BRDF_PI);
+}
+
+// Estevez and Kulla's fit of the Charlie distribution's log Lambda at cos theta = x,
+// its coefficients interpolated by (1 - alpha)^2.
+BRDF_INLINE float sheenLambdaFit(float x, float alpha) {
+  float t = (1.0f - alpha) * (1.0f - alpha);
+  float a = mix(21.5473f, 25.3245f, t);
+  float b = mix(3.82987f, 3.32435f, t);
+  float c = mix(0.19823f, 0.16801f, t);
+  float d = mix(-1.97760f, -1.27393f, t);
+  float e = mix(-4.32054f, -4.85967f, t);
+  return a / (1.0f + b * pow(max(x, 0.0f), c)) + d * x + e;  // x may round past 1 - 1
+}
+
+// Lambda itself, with the fit's soft terminator above 60 degrees of cos theta.
+BRDF_INLINE float sheenLambda(float cosTheta, float alpha) {
+  if (cosTheta < 0.5f) return exp(sheenLambdaFit(cosTheta, alpha));
+  return exp(2.0f * sheenLambdaFit(0.5f, alpha) - sheenLambdaFit(1.0f - cosTheta, alpha));
+}
+
+// The sheen's masking-shadowing over 4 N.L N.V, kept in [0, 1] as the Sample Viewer's.
+BRDF_INLINE float sheenVisibility(float nDotL, float nDotV, float alpha) {
+  float v = 1.0f / ((1.0f + sheenLambda(nDotV, alpha) + sheenLambda(nDotL, alpha)) * (4.0f * nDotV * nDotL));
+  return clamp(v, 0.0f, 1.0f);
+}
+
+// The sheen BRDF for a white sheen colour, without the cosine (N.L > 0).
+BRDF_INLINE float sheenBrdf(vec3 n, vec3 toEye, vec3 l, float sheenRoughness) {
+  float alpha = sheenAlpha(sheenRoughness);
+  vec3 h = normalize(l + toEye);
+  return charlieDistribution(n, h, alpha) * sheenVisibility(dot(n, l), max(dot(n, toEye), 1e-4f), alpha);
+}
+
+BRDF_INLINE float maxComponent(vec3 c) { return max(c.x, max(c.y, c.z)); }
+
+// The white sheen's directional albedo E is a table (core/sheen_table.h) of this
+// size, read at sqrt(N.V) across (E changes fastest at grazing views) and the sheen
+// roughness up, the first and last texel centres on 0 and 1, so that a linear
+// filter needs no clamping at the edges.
+const float SHEEN_TABLE_SIZE = 32.0f;
+BRDF_INLINE vec2 sheenTableCoord(float nDotV, float sheenRoughness) {
+  vec2 t = vec2(sqrt(clamp(nDotV, 0.0f, 1.0f)), clamp(sheenRoughness, 0.0f, 1.0f));
+  return (t * (SHEEN_TABLE_SIZE - 1.0f) + vec2(0.5f)) / SHEEN_TABLE_SIZE;
+}
+
+// What the sheen leaves to the layers under it toward the eye (albedo scaling):
+// 1 - max(sheenColor) E, E the white sheen's directional albedo at N.V and the sheen
+// roughness (core/sheen_table.h computes its table from sheenBrdf above; the
+// rasterizer samples it as a texture, the tracers look it up). Kept at 0 or above:
+// at grazing views E exceeds 1 (core/sheen_table.h says why).
+BRDF_INLINE float sheenScaling(vec3 sheenColor, float sheenAlbedo) {
+  return max(1.0f - maxComponent(sheenColor) * sheenAlbedo, 0.0f);
+}
+
 // The same BRDF with glTF's dielectric layers (KHR_materials_ior, _specular,
 // _clearcoat), as the Khronos Sample Viewer draws them:
 // - the dielectric reflects dielectricF0 at normal incidence and dielectricF90 at
@@ -102,11 +168,15 @@ BRDF_INLINE vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, 
 // - KHR_materials_transmission passes the share `transmission` of the dielectric's
 //   diffuse lobe through the surface instead (transmittedShare below says what comes
 //   back through it); what is left of the lobe reflects.
-// With dielectricF0 = 0.04, dielectricF90 = 1, no coat and no transmission it equals
-// metallicRoughnessBrdf (tests/gl/brdf_test.cpp).
+// - KHR_materials_sheen lies between the two: over the base (and what it transmits)
+//   a sheen lobe of colour sheenColor, which dims the base by sheenScaling (above):
+//   f = sheenColor sheenBrdf + base sheenScaling, all under the coat.
+// With dielectricF0 = 0.04, dielectricF90 = 1, no coat, no transmission and no sheen
+// it equals metallicRoughnessBrdf (tests/gl/brdf_test.cpp).
 BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness,
                              vec3 dielectricF0, float dielectricF90, vec3 nc, float clearcoat,
-                             float clearcoatRoughness, float transmission) {
+                             float clearcoatRoughness, float transmission, vec3 sheenColor, float sheenRoughness,
+                             float sheenScale) {
   vec3 base = vec3(0.0f);
   float nDotL = dot(n, l);
   if (nDotL > 0.0f) {
@@ -119,6 +189,8 @@ BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float meta
     vec3 fresnel = schlickFresnel90(f0, f90, vDotH);
     vec3 specular = fresnel * (ggxDistribution(n, h, alpha) * smithVisibility(nDotL, nDotV, alpha));
     base = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) * (1.0f - transmission) / BRDF_PI) + specular;
+    if (maxComponent(sheenColor) > 0.0f)
+      base = base * sheenScale + sheenColor * sheenBrdf(n, toEye, l, sheenRoughness);
   }
   if (clearcoat <= 0.0f) return base;
   float ncDotV = max(dot(nc, toEye), 1e-4f);
@@ -136,11 +208,14 @@ BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float meta
 
 // The cheapest ambient's share of a sky colour (render.ambient "hemisphere"): the
 // diffuse colour, a guess at the specular's, and the coat's the same way over the
-// base it dims. Not physical: the path tracer and the IBL ambient replace it.
+// base it dims; the sheen reflects its directional albedo sheenAlbedo (the table's E)
+// over the base it dims. Not physical: the path tracer and the IBL ambient replace it.
 BRDF_INLINE vec3 hemisphereAmbient(vec3 albedo, float metallic, float roughness, vec3 dielectricF0, float nDotV,
-                                   float clearcoat, float clearcoatRoughness, float transmission) {
+                                   float clearcoat, float clearcoatRoughness, float transmission, vec3 sheenColor,
+                                   float sheenAlbedo) {
   vec3 f0 = mix(dielectricF0, albedo, metallic);
   vec3 base = albedo * ((1.0f - metallic) * (1.0f - transmission)) + f0 * (1.0f - roughness) * 0.5f;
+  if (maxComponent(sheenColor) > 0.0f) base = base * sheenScaling(sheenColor, sheenAlbedo) + sheenColor * sheenAlbedo;
   if (clearcoat <= 0.0f) return base;
   float coat = clearcoat * schlickFresnel(vec3(0.04f), nDotV).x;
   return base * (1.0f - coat) + vec3(clearcoat * 0.04f * (1.0f - clearcoatRoughness) * 0.5f);

@@ -13,6 +13,8 @@
 //   CLEARCOAT_NORMAL  the coat's own normal map (UNIT_CLEARCOAT_NORMAL), with tangents
 //   TRANSMISSION      KHR_materials_transmission and _volume (with MATERIAL_LAYERS;
 //                     common/transmission.glsl draws what comes through)
+//   SHEEN             KHR_materials_sheen (with MATERIAL_LAYERS; its textures with
+//                     LAYER_TEXTURES, UNIT_SHEEN_COLOR and UNIT_SHEEN_ROUGHNESS)
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
 //                     every slot reads its set (u_texCoord) through its matrix
 //                     (u_uvTransform, built in C++: asset/texture_transform.h)
@@ -37,11 +39,13 @@ const int SLOT_CLEARCOAT_ROUGHNESS = 8;
 const int SLOT_TRANSMISSION = 9;
 const int SLOT_THICKNESS = 10;
 const int SLOT_CLEARCOAT_NORMAL = 11;
+const int SLOT_SHEEN_COLOR = 12;
+const int SLOT_SHEEN_ROUGHNESS = 13;
 
 #ifdef UV_TRANSFORM
 in vec2 v_uv1;  // TEXCOORD_1 (set 0 where the mesh has none)
-uniform mat3 u_uvTransform[12];
-uniform int u_texCoord[12];
+uniform mat3 u_uvTransform[14];
+uniform int u_texCoord[14];
 #endif
 
 // The uv that `slot` samples at, from the fragment's TEXCOORD_0 `uv`.
@@ -166,7 +170,8 @@ float materialOcclusion(vec2 uv) {
 }
 
 #ifdef MATERIAL_LAYERS
-// KHR_materials_ior, _specular, _clearcoat: the factors, times their textures where
+// KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen: the
+// factors, times their textures where
 // the material has them, into common/shading.glsl's g_ values for this fragment.
 uniform float u_iorF0;          // ((ior - 1) / (ior + 1))^2
 uniform float u_specularWeight;
@@ -175,6 +180,8 @@ uniform float u_clearcoat;
 uniform float u_clearcoatRoughness;
 uniform float u_transmission;
 uniform float u_thickness;  // in the mesh's units
+uniform vec3 u_sheenColor;   // linear
+uniform float u_sheenRoughness;
 #ifdef LAYER_TEXTURES
 layout(binding = UNIT_SPECULAR) uniform sampler2D u_specularTexture;              // A
 layout(binding = UNIT_SPECULAR_COLOR) uniform sampler2D u_specularColorTexture;   // RGB, sRGB
@@ -182,6 +189,10 @@ layout(binding = UNIT_CLEARCOAT) uniform sampler2D u_clearcoatTexture;          
 layout(binding = UNIT_CLEARCOAT_ROUGHNESS) uniform sampler2D u_clearcoatRoughnessTexture;  // G
 layout(binding = UNIT_TRANSMISSION) uniform sampler2D u_transmissionTexture;  // R
 layout(binding = UNIT_THICKNESS) uniform sampler2D u_thicknessTexture;        // G
+#ifdef SHEEN
+layout(binding = UNIT_SHEEN_COLOR) uniform sampler2D u_sheenColorTexture;          // RGB, sRGB
+layout(binding = UNIT_SHEEN_ROUGHNESS) uniform sampler2D u_sheenRoughnessTexture;  // A
+#endif
 uniform int u_layerTextures;  // bit (slot - SLOT_SPECULAR): the slot has a texture
 
 bool hasLayerTexture(int slot) { return (u_layerTextures & (1 << (slot - SLOT_SPECULAR))) != 0; }
@@ -194,6 +205,10 @@ void materialLayers(vec2 uv) {
   g_clearcoatRoughness = u_clearcoatRoughness;
   g_transmission = u_transmission;
   g_thickness = u_thickness;
+#ifdef SHEEN
+  g_sheenColor = u_sheenColor;
+  g_sheenRoughness = u_sheenRoughness;
+#endif
 #ifdef LAYER_TEXTURES
   if (hasLayerTexture(SLOT_SPECULAR)) weight *= texture(u_specularTexture, materialUv(SLOT_SPECULAR, uv)).a;
   if (hasLayerTexture(SLOT_SPECULAR_COLOR))
@@ -204,6 +219,12 @@ void materialLayers(vec2 uv) {
   if (hasLayerTexture(SLOT_TRANSMISSION))
     g_transmission *= texture(u_transmissionTexture, materialUv(SLOT_TRANSMISSION, uv)).r;
   if (hasLayerTexture(SLOT_THICKNESS)) g_thickness *= texture(u_thicknessTexture, materialUv(SLOT_THICKNESS, uv)).g;
+#ifdef SHEEN
+  if (hasLayerTexture(SLOT_SHEEN_COLOR))
+    g_sheenColor *= texture(u_sheenColorTexture, materialUv(SLOT_SHEEN_COLOR, uv)).rgb;
+  if (hasLayerTexture(SLOT_SHEEN_ROUGHNESS))
+    g_sheenRoughness *= texture(u_sheenRoughnessTexture, materialUv(SLOT_SHEEN_ROUGHNESS, uv)).a;
+#endif
 #endif
   g_dielectricF0 = min(vec3(u_iorF0) * color, vec3(1.0)) * weight;
   g_dielectricF90 = weight;

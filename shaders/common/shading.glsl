@@ -34,6 +34,25 @@ float g_transmission;  // KHR_materials_transmission's share, 0 without it
 float g_thickness;     // KHR_materials_volume's, in the mesh's units
 #endif
 
+#ifdef SHEEN
+// KHR_materials_sheen: its colour and roughness at the fragment, and the white
+// sheen's directional albedo E there (core/sheen_table.h's table, sampled once per
+// fragment by sheenAlbedo below), which dims what lies under the sheen.
+layout(binding = UNIT_SHEEN_ALBEDO) uniform sampler2D u_sheenAlbedo;
+vec3 g_sheenColor;
+float g_sheenRoughness;
+float g_sheenAlbedo;
+
+float sheenAlbedo(Surface s) {
+  return texture(u_sheenAlbedo, sheenTableCoord(dot(s.n, s.toEye), g_sheenRoughness)).r;
+}
+#else
+// No sheen: constants, so that the layered code folds it away.
+const vec3 g_sheenColor = vec3(0.0);
+const float g_sheenRoughness = 0.0;
+const float g_sheenAlbedo = 0.0;
+#endif
+
 #ifdef CLASSIC
 vec3 shadeAmbient(Surface s) { return s.albedo * s.ambient; }
 
@@ -93,6 +112,11 @@ vec3 shadeAmbient(Surface s) {
   vec3 radiance = ambientRadiance(reflect(-s.toEye, s.n), s.roughness);
 #ifdef MATERIAL_LAYERS
   vec3 color = diffuse + radiance * (f0 * table.x + vec3(f90 * table.y));
+#ifdef SHEEN
+  // The sheen's broad lobe sees the environment as a Lambert lobe does (a shortcut:
+  // the Sample Viewer prefilters a Charlie-lobe cube of its own).
+  color = color * sheenScaling(g_sheenColor, g_sheenAlbedo) + g_sheenColor * (g_sheenAlbedo / PI) * shIrradiance(s.n);
+#endif
   if (g_clearcoat <= 0.0) return color;
   // The coat (f0 0.04) by the same split sum along its own normal, over the base it dims.
   vec3 nc = g_clearcoatNormal;
@@ -113,7 +137,7 @@ vec3 shadeAmbient(Surface s) {
 #ifdef MATERIAL_LAYERS
   float ncDotV = max(dot(g_clearcoatNormal, s.toEye), 1e-4);
   return sky * hemisphereAmbient(s.albedo, s.metallic, s.roughness, g_dielectricF0, ncDotV, g_clearcoat,
-                                 g_clearcoatRoughness, g_transmission);
+                                 g_clearcoatRoughness, g_transmission, g_sheenColor, g_sheenAlbedo);
 #else
   vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
   vec3 f0 = metallicF0(s.albedo, s.metallic);
@@ -128,7 +152,8 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
   if (nDotL <= 0.0 || visibility <= 0.0) return vec3(0.0);
 #ifdef MATERIAL_LAYERS
   vec3 f = layeredBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness, g_dielectricF0, g_dielectricF90,
-                       g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness, g_transmission);
+                       g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness, g_transmission, g_sheenColor,
+                       g_sheenRoughness, sheenScaling(g_sheenColor, g_sheenAlbedo));
 #else
   vec3 f = metallicRoughnessBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness);
 #endif

@@ -13,8 +13,9 @@ struct Case {
   vec4 params;     // metallic, roughness, diffuse, specular
   vec4 shininess;  // x
   vec4 dielectric; // xyz dielectricF0, w dielectricF90
-  vec4 coat;       // clearcoat, clearcoat roughness, transmission
+  vec4 coat;       // clearcoat, clearcoat roughness, transmission, sheen albedo E
   vec4 nc;         // xyz: the coat's normal
+  vec4 sheen;      // xyz sheen colour, w sheen roughness
 };
 
 struct Result {
@@ -25,6 +26,7 @@ struct Result {
   vec4 layered;            // xyz
   vec4 hemisphere;         // xyz
   vec4 transmitted;        // xyz transmittedShare x volumeAttenuation, w transmissionRoughness
+  vec4 sheenTerms;         // charlieDistribution, sheenVisibility, sheenLambda, sheenBrdf
 };
 
 layout(std430, binding = 0) readonly buffer Cases { Case cases[]; };
@@ -46,9 +48,15 @@ void main() {
                  smithVisibility(max(dot(n, l), 0.0), max(dot(n, v), 1e-4), alpha), alpha, 0.0);
   r.fresnel = vec4(schlickFresnel(metallicF0(c.albedo.xyz, metallic), max(dot(v, h), 0.0)), 0.0);
   r.layered = vec4(layeredBrdf(n, v, l, c.albedo.xyz, metallic, roughness, c.dielectric.xyz, c.dielectric.w, c.nc.xyz,
-                               c.coat.x, c.coat.y, c.coat.z), 0.0);
+                               c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.sheen.w, sheenScaling(c.sheen.xyz, c.coat.w)),
+                   0.0);
   r.hemisphere = vec4(hemisphereAmbient(c.albedo.xyz, metallic, roughness, c.dielectric.xyz,
-                                        max(dot(c.nc.xyz, v), 1e-4), c.coat.x, c.coat.y, c.coat.z), 0.0);
+                                        max(dot(c.nc.xyz, v), 1e-4), c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.coat.w),
+                      0.0);
+  float nDotL = max(dot(n, l), 1e-4), nDotV = max(dot(n, v), 1e-4);
+  float sheenA = sheenAlpha(roughness);
+  r.sheenTerms = vec4(charlieDistribution(n, h, sheenA), sheenVisibility(nDotL, nDotV, sheenA),
+                      sheenLambda(nDotV, sheenA), sheenBrdf(n, v, l, roughness));
   vec3 reflected = schlickFresnel90(c.dielectric.xyz, c.dielectric.w, max(dot(n, v), 1e-4));
   r.transmitted = vec4(transmittedShare(c.albedo.xyz, metallic, c.coat.z, reflected) *
                            volumeAttenuation(c.albedo.xyz, 0.5, 0.1 + roughness),

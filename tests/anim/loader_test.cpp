@@ -670,11 +670,11 @@ TEST_F(LoaderTest, UnsupportedExtensionsRequiredAreErrorsUsedAreWarnings) {
             path + ": requires KHR_texture_basisu, EXT_unheard_of, which this engine does not support");
 
   TestModel optional;
-  optional.doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_mesh_quantization"};
+  optional.doc["extensionsUsed"] = {"KHR_materials_dispersion", "KHR_mesh_quantization"};
   optional.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
   auto model = loadGltf(write(optional));
   ASSERT_TRUE(model.ok()) << model.error().message;
-  EXPECT_TRUE(hasWarning(*model, {"uses KHR_materials_sheen, which this engine does not support; drawn without it"}))
+  EXPECT_TRUE(hasWarning(*model, {"uses KHR_materials_dispersion, which this engine does not support; drawn without it"}))
       << allWarnings(*model);
   EXPECT_FALSE(hasWarning(*model, {"KHR_mesh_quantization"})) << allWarnings(*model);
 }
@@ -1010,6 +1010,48 @@ TEST_F(LoaderTest, ReadsTransmissionAndVolume) {
       {"KHR_materials_volume", "attenuationDistance", 0.0},
       {"KHR_materials_volume", "attenuationColor", {1.0, 2.0, 0.0}},
       {"KHR_materials_volume", "attenuationColor", {1.0, 1.0}},
+  };
+  expectMaterialValuesRefused(m, bad);
+}
+
+// KHR_materials_sheen: colour and roughness, black (no sheen) when absent, the two
+// textures as slots of their own (the colour's sRGB), and each key's range checked
+// with the material named.
+TEST_F(LoaderTest, ReadsSheen) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_sheen"};
+  m.doc["materials"] = {{{"extensions",
+                          {{"KHR_materials_sheen",
+                            {{"sheenColorFactor", {0.9, 0.5, 0.1}},
+                             {"sheenColorTexture", {{"index", 0}}},
+                             {"sheenRoughnessFactor", 0.3},
+                             {"sheenRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}}}}}},
+                        {{"extensions", {{"KHR_materials_sheen", json::object()}}}}};
+  m.doc["images"] = {{{"uri", "missing.png"}}};
+  m.doc["textures"] = {{{"source", 0}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const MaterialData& mat = model->materials[0];
+  EXPECT_EQ(mat.layers.sheenColor, glm::vec3(0.9f, 0.5f, 0.1f));
+  EXPECT_FLOAT_EQ(mat.layers.sheenRoughness, 0.3f);
+  EXPECT_TRUE(mat.layers.sheen());
+  EXPECT_FALSE(mat.layers.isDefault());
+  EXPECT_EQ(mat.image(TextureSlot::SheenColor), 0);
+  EXPECT_EQ(mat.image(TextureSlot::SheenRoughness), 0);
+  EXPECT_EQ(mat.texture(TextureSlot::SheenRoughness).texCoord, 1);
+  EXPECT_TRUE(isSrgbSlot(TextureSlot::SheenColor));
+  EXPECT_FALSE(isSrgbSlot(TextureSlot::SheenRoughness));
+  // The default is no sheen at all: the plain material.
+  const MaterialLayers& d = model->materials[1].layers;
+  EXPECT_FALSE(d.sheen());
+  EXPECT_TRUE(d.isDefault());
+  EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
+
+  const std::vector<std::tuple<const char*, const char*, nlohmann::json>> bad = {
+      {"KHR_materials_sheen", "sheenColorFactor", {1.0, 1.5, 0.0}},
+      {"KHR_materials_sheen", "sheenColorFactor", "white"},
+      {"KHR_materials_sheen", "sheenRoughnessFactor", -0.5},
+      {"KHR_materials_sheen", "sheenRoughnessFactor", 2.0},
   };
   expectMaterialValuesRefused(m, bad);
 }

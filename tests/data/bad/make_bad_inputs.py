@@ -234,6 +234,15 @@ def main(out):
         m.doc["meshes"][0]["primitives"][0]["material"] = 0
     case("bad_volume.glb", bad_volume)
 
+    # KHR_materials_sheen with a roughness past 1; its colour goes through the same
+    # range check as the other extensions' colours.
+    def bad_sheen(m):
+        m.doc["extensionsUsed"] = ["KHR_materials_sheen"]
+        m.doc["materials"] = [{"name": "velvet", "extensions": {
+            "KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.5, 0.5], "sheenRoughnessFactor": 1.5}}}]
+        m.doc["meshes"][0]["primitives"][0]["material"] = 0
+    case("bad_sheen.glb", bad_sheen)
+
     # Compressed geometry cut short. Draco: a stream with a whole header (magic,
     # version 2.2, a triangle mesh, edgebreaker) and nothing after it. Meshopt: the
     # positions as a vertex stream of 3 x 12 bytes whose data stops after the
