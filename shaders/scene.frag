@@ -5,7 +5,8 @@
 // the hemisphere; common/shading.glsl), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
 // material inputs of common/material.glsl (TEXTURED, NORMAL_MAP, MR_TEXTURE,
 // EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK) and glTF's dielectric layers
-// (MATERIAL_LAYERS), with transmission (TRANSMISSION) and sheen (SHEEN). Alpha goes out with the colour: BLEND
+// (MATERIAL_LAYERS), with transmission (TRANSMISSION), sheen (SHEEN) and anisotropy
+// (ANISOTROPY). Alpha goes out with the colour: BLEND
 // materials are drawn with blending on, in linear HDR.
 #include "common/frame.glsl"
 #include "common/shading.glsl"
@@ -20,7 +21,7 @@
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;
-#if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL)
+#if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL) || defined(ANISOTROPY)
 in vec4 v_tangent;
 #endif
 
@@ -63,6 +64,9 @@ void main() {
   g_clearcoatNormal = geometric;  // the surface's, before its own normal map
 #ifdef CLEARCOAT_NORMAL
   g_clearcoatNormal = materialClearcoatNormal(normalize(v_normal), v_tangent, v_uv) * side;
+#endif
+#ifdef ANISOTROPY
+  materialAnisotropy(normalize(v_normal), geometric, v_tangent, v_uv);
 #endif
 #endif
   vec3 toEye = normalize(-v_position);

@@ -154,7 +154,7 @@ const std::set<std::string>& supportedExtensions() {
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
                                                "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
                                                "KHR_lights_punctual", "KHR_materials_variants",
-                                               "KHR_materials_sheen"};
+                                               "KHR_materials_sheen", "KHR_materials_anisotropy"};
   return supported;
 }
 
@@ -497,7 +497,20 @@ Status readSheen(const tinygltf::Value& ext, const std::string& name, MaterialLa
   return Ok{};
 }
 
-// KHR_materials_ior, _specular, _clearcoat, _transmission, _volume and _sheen.
+// KHR_materials_anisotropy: the stretch's strength and its direction's turn.
+Status readAnisotropy(const tinygltf::Value& ext, const std::string& name, MaterialLayers& layers) {
+  const std::string where = name + ": KHR_materials_anisotropy";
+  auto strength = extensionNumber(ext, "anisotropyStrength", 0.0f, 0.0, 1.0, where);
+  if (!strength) return strength.error();
+  auto rotation = extensionNumber(ext, "anisotropyRotation", 0.0f, -1e6, 1e6, where);
+  if (!rotation) return rotation.error();
+  layers.anisotropy = *strength;
+  layers.anisotropyRotation = *rotation;
+  return Ok{};
+}
+
+// KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen and
+// _anisotropy.
 Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const std::string& name) {
   MaterialLayers layers;
   auto has = [&](const char* ext) { return material.extensions.find(ext) != material.extensions.end(); };
@@ -540,6 +553,10 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
   }
   if (has("KHR_materials_sheen")) {
     if (auto status = readSheen(material.extensions.at("KHR_materials_sheen"), name, layers); !status) return status.error();
+  }
+  if (has("KHR_materials_anisotropy")) {
+    const tinygltf::Value& ext = material.extensions.at("KHR_materials_anisotropy");
+    if (auto status = readAnisotropy(ext, name, layers); !status) return status.error();
   }
   return layers;
 }
@@ -763,7 +780,7 @@ class Converter {
   }
 
   // The textures of KHR_materials_specular, _clearcoat (its normal map too),
-  // _transmission, _volume and _sheen, each with its uv set, transform and sampler as the
+  // _transmission, _volume, _sheen and _anisotropy, each with its uv set, transform and sampler as the
   // core slots have them.
   void readLayerTextures(const tinygltf::Material& src, const std::string& name, MaterialData& m) {
     struct Key {
@@ -779,7 +796,8 @@ class Converter {
                                 {"KHR_materials_volume", "thicknessTexture", TextureSlot::Thickness},
                                 {"KHR_materials_clearcoat", "clearcoatNormalTexture", TextureSlot::ClearcoatNormal},
                                 {"KHR_materials_sheen", "sheenColorTexture", TextureSlot::SheenColor},
-                                {"KHR_materials_sheen", "sheenRoughnessTexture", TextureSlot::SheenRoughness}};
+                                {"KHR_materials_sheen", "sheenRoughnessTexture", TextureSlot::SheenRoughness},
+                                {"KHR_materials_anisotropy", "anisotropyTexture", TextureSlot::Anisotropy}};
     for (const Key& k : kKeys) {
       auto ext = src.extensions.find(k.extension);
       if (ext == src.extensions.end() || !ext->second.Has(k.key)) continue;
@@ -918,18 +936,22 @@ class Converter {
     return Ok{};
   }
 
-  // Normal maps need tangents: primitives without TANGENT get generated ones, as
-  // glTF asks; without NORMAL or TEXCOORD_0 there is nothing to build them from,
-  // and the primitive is drawn without its normal map.
+  // Normal maps and anisotropy need tangents: primitives without TANGENT get
+  // generated ones, as glTF asks; without NORMAL or TEXCOORD_0 there is nothing to
+  // build them from, and the primitive is drawn without its normal map (or stretch).
   void addMissingTangents(PrimitiveData& prim, const std::string& name) {
     if (prim.material < 0 || !prim.tangents.empty()) return;
     const MaterialData& material = out_.materials[static_cast<std::size_t>(prim.material)];
-    const bool coatOnly = material.normalImage < 0;
-    if (coatOnly && material.image(TextureSlot::ClearcoatNormal) < 0) return;
-    const bool set1 = material.texture(coatOnly ? TextureSlot::ClearcoatNormal : TextureSlot::Normal).texCoord == 1;
+    const TextureSlot slot = material.normalImage >= 0                                ? TextureSlot::Normal
+                             : material.image(TextureSlot::ClearcoatNormal) >= 0     ? TextureSlot::ClearcoatNormal
+                             : material.image(TextureSlot::Anisotropy) >= 0          ? TextureSlot::Anisotropy
+                                                                                      : TextureSlot::BaseColor;
+    if (slot == TextureSlot::BaseColor && material.layers.anisotropy <= 0.0f) return;
+    const bool set1 = material.texture(slot).texCoord == 1;
     const std::vector<glm::vec2>& uvs = set1 ? prim.uvs1 : prim.uvs;
     if (prim.normals.empty() || uvs.empty() || prim.mode != 4) {
-      warn(name + ": a normal map needs NORMAL, TEXCOORD_" + (set1 ? "1" : "0") +
+      const char* what = slot == TextureSlot::Normal || slot == TextureSlot::ClearcoatNormal ? "a normal map" : "anisotropy";
+      warn(name + ": " + what + " needs NORMAL, TEXCOORD_" + (set1 ? "1" : "0") +
            " and triangles to build tangents; drawn without it");
       return;
     }
@@ -945,7 +967,7 @@ class Converter {
         "baseColorTexture",  "normalTexture",        "metallicRoughnessTexture", "emissiveTexture",
         "occlusionTexture",  "specularTexture",      "specularColorTexture",     "clearcoatTexture",
         "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture",         "clearcoatNormalTexture",
-        "sheenColorTexture",         "sheenRoughnessTexture"};
+        "sheenColorTexture",         "sheenRoughnessTexture",  "anisotropyTexture"};
     const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
     const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
     bool needed = false;

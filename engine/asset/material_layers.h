@@ -2,7 +2,8 @@
 // glTF's dielectric layers over the metallic-roughness base: KHR_materials_ior,
 // KHR_materials_specular and KHR_materials_clearcoat, and the light that passes
 // through the dielectric, KHR_materials_transmission and KHR_materials_volume, and
-// the fibres over it, KHR_materials_sheen: their factors (the textures are MaterialData's slots past Occlusion). Every renderer
+// the fibres over it, KHR_materials_sheen, and the stretch of its highlight,
+// KHR_materials_anisotropy: their factors (the textures are MaterialData's slots past Occlusion). Every renderer
 // evaluates them through layeredBrdf (shaders/common/brdf.glsl); a material whose
 // layers are the defaults draws exactly as plain metallic-roughness.
 #include <glm/glm.hpp>
@@ -30,10 +31,14 @@ struct MaterialLayers {
   // the base; a black sheen is none.
   glm::vec3 sheenColor{0.0f};
   float sheenRoughness = 0.0f;
+  // KHR_materials_anisotropy: how far the base's GGX lobe stretches (0 none, 1 most)
+  // and the direction's turn from the tangent toward the bitangent, in radians.
+  float anisotropy = 0.0f;
+  float anisotropyRotation = 0.0f;
 
   bool isDefault() const {
     return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && clearcoat == 0.0f &&
-           transmission == 0.0f && !sheen();
+           transmission == 0.0f && !sheen() && anisotropy == 0.0f;
   }
   bool transmissive() const { return transmission > 0.0f; }
   bool sheen() const { return sheenColor != glm::vec3(0.0f); }

@@ -8,13 +8,16 @@ namespace engine::brdf {
 // GLSL's built-ins (dot, normalize, mix, max, clamp, sqrt, pow) and types, for the
 // included text only.
 using glm::clamp;
+using glm::cos;
 using glm::cross;
 using glm::dot;
 using glm::exp;
+using glm::length;
 using glm::max;
 using glm::mix;
 using glm::normalize;
 using glm::pow;
+using glm::sin;
 using glm::sqrt;
 using glm::vec2;
 using glm::vec3;

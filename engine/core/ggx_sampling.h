@@ -36,4 +36,28 @@ inline glm::vec3 sampleGgxVisibleNormal(const glm::vec3& wo, float alpha, glm::v
   return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(1e-6f, nh.z)));
 }
 
+// KHR_materials_anisotropy's GGX, alpha.x along the local x axis and alpha.y along y
+// (Heitz 2014 and 2018 with two roughnesses). Kept apart from the isotropic forms
+// above, which every other material's images were made with.
+inline float ggxAnisotropicLambda(const glm::vec3& w, glm::vec2 alpha) {
+  const float z2 = std::max(w.z * w.z, 1e-12f);
+  const float a2Tan2 = (alpha.x * alpha.x * w.x * w.x + alpha.y * alpha.y * w.y * w.y) / z2;
+  return 0.5f * (std::sqrt(1.0f + a2Tan2) - 1.0f);
+}
+inline float ggxAnisotropicG1(const glm::vec3& w, glm::vec2 alpha) { return 1.0f / (1.0f + ggxAnisotropicLambda(w, alpha)); }
+
+inline glm::vec3 sampleGgxAnisotropicVisibleNormal(const glm::vec3& wo, glm::vec2 alpha, glm::vec2 u) {
+  const glm::vec3 vh = glm::normalize(glm::vec3(alpha.x * wo.x, alpha.y * wo.y, wo.z));
+  const float lensq = vh.x * vh.x + vh.y * vh.y;
+  const glm::vec3 t1 = lensq > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 t2 = glm::cross(vh, t1);
+  const float r = std::sqrt(u.x);
+  const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
+  const float p1 = r * std::cos(phi);
+  const float s = 0.5f * (1.0f + vh.z);
+  const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
+  const glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+  return glm::normalize(glm::vec3(alpha.x * nh.x, alpha.y * nh.y, std::max(1e-6f, nh.z)));
+}
+
 }  // namespace engine

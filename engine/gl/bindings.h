@@ -31,6 +31,7 @@ inline constexpr unsigned kSheenColor = 20;       // KHR_materials_sheen
 inline constexpr unsigned kSheenRoughness = 21;
 // The white sheen's directional albedo (core/sheen_table.h), for albedo scaling.
 inline constexpr unsigned kSheenAlbedo = 22;
+inline constexpr unsigned kAnisotropy = 23;  // KHR_materials_anisotropy's texture
 // Shadow maps (common/shadows.glsl).
 inline constexpr unsigned kSunShadow = 4;
 inline constexpr unsigned kPointShadow = 5;
@@ -79,7 +80,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 49> kDefines{{
+inline constexpr std::array<Define, 50> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -96,6 +97,7 @@ inline constexpr std::array<Define, 49> kDefines{{
     {"UNIT_SHEEN_COLOR", kSheenColor},
     {"UNIT_SHEEN_ROUGHNESS", kSheenRoughness},
     {"UNIT_SHEEN_ALBEDO", kSheenAlbedo},
+    {"UNIT_ANISOTROPY", kAnisotropy},
     {"UNIT_SUN_SHADOW", kSunShadow},
     {"UNIT_POINT_SHADOW", kPointShadow},
     {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},

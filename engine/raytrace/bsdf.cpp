@@ -31,6 +31,13 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
   Bsdf b(Model::MetallicRoughness, m, n, wo);
   b.entering_ = entering;
   b.alpha_ = brdf::ggxAlpha(m.roughness);
+  if (const glm::vec3 t = m.anisotropy > 0.0f ? m.anisotropyTangent(n) : glm::vec3(0.0f); t != glm::vec3(0.0f)) {
+    // KHR_materials_anisotropy: the local frame's x along the stretch.
+    b.frame_ = Frame(n, t);
+    b.woLocal_ = b.frame_.toLocal(wo);
+    b.anisotropy_ = m.anisotropy;
+    b.alphas_ = glm::vec2(brdf::anisotropicAlpha(b.alpha_, m.anisotropy), b.alpha_);
+  }
   const float cosO = std::clamp(b.woLocal_.z, 0.0f, 1.0f);
   const glm::vec3 f0 = glm::mix(m.dielectricF0, m.albedo, m.metallic);
   const float f90 = m.dielectricF90 + (1.0f - m.dielectricF90) * m.metallic;
@@ -81,15 +88,16 @@ glm::vec3 Bsdf::f(const glm::vec3& wi) const {
   }
   return brdf::layeredBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness, m_.dielectricF0,
                            m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness, m_.transmission,
-                           m_.sheenColor, m_.sheenRoughness, sheenScale_);
+                           m_.sheenColor, m_.sheenRoughness, sheenScale_, frame_.s, frame_.t, anisotropy_);
 }
 
 float Bsdf::pdf(const glm::vec3& wi) const {
   const glm::vec3 wiLocal = frame_.toLocal(wi);
   if (wiLocal.z <= 0.0f || woLocal_.z <= 0.0f) return 0.0f;
   if (model_ == Model::Classic) return (1.0f - pMirror_) * cosineHemispherePdf(wiLocal.z);
-  float base = pSpecular_ * ggxReflectionPdf(woLocal_, wiLocal, alpha_) +
-               (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
+  const float specular = anisotropy_ > 0.0f ? ggxAnisotropicReflectionPdf(woLocal_, wiLocal, alphas_)
+                                            : ggxReflectionPdf(woLocal_, wiLocal, alpha_);
+  float base = pSpecular_ * specular + (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
   if (pSheen_ > 0.0f) base = pSheen_ * uniformConePdf(0.0f) + (1.0f - pSheen_) * base;
   const float reflected = pCoat_ <= 0.0f ? base : pCoat_ * ggxReflectionPdf(woLocal_, wiLocal, alphaCoat_) + (1.0f - pCoat_) * base;
   return (1.0f - pTransmit_) * reflected;
@@ -117,7 +125,9 @@ std::optional<BsdfSample> Bsdf::reflectionSample(glm::vec2 u, float uLobe) const
   } else if (model_ == Model::MetallicRoughness && pastShare(uLobe, pCoat_) < pSheen_) {
     wiLocal = sampleUniformCone(u, 0.0f);
   } else if (model_ == Model::MetallicRoughness && pastShare(pastShare(uLobe, pCoat_), pSheen_) < pSpecular_) {
-    wiLocal = reflectAbout(woLocal_, sampleGgxVisibleNormal(woLocal_, alpha_, u));
+    const glm::vec3 h = anisotropy_ > 0.0f ? sampleGgxAnisotropicVisibleNormal(woLocal_, alphas_, u)
+                                           : sampleGgxVisibleNormal(woLocal_, alpha_, u);
+    wiLocal = reflectAbout(woLocal_, h);
   } else {
     wiLocal = sampleCosineHemisphere(u);
   }

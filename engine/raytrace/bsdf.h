@@ -9,7 +9,8 @@
 // METALLIC-ROUGHNESS: brdf.glsl's Lambert + GGX (layeredBrdf, with glTF's ior,
 // specular and clear coat), drawn by a mix of cosine-weighted directions and GGX
 // visible normals of the base and of the coat, the mix following the lobes' Fresnel
-// weights. A sheen (KHR_materials_sheen) over the base has a lobe of uniform
+// weights; an anisotropic base (KHR_materials_anisotropy) draws its visible normals
+// from the stretched GGX in a frame whose x follows the stretch. A sheen (KHR_materials_sheen) over the base has a lobe of uniform
 // directions in the mix: its lobe leans to the horizon, where cosine-weighted
 // directions are rare (measured: 0.3 to 0.8 times their estimate's standard
 // deviation, the least at low roughness and grazing views). The coat's normal is the shading normal: the tracers read no normal maps.
@@ -77,6 +78,10 @@ class Bsdf {
   bool entering_ = true;
   float sheenScale_ = 1.0f;  // KHR_materials_sheen's albedo scaling at wo (1: no sheen)
   float pSheen_ = 0.0f;      // the sheen's share of the samples under the coat
+  // KHR_materials_anisotropy: the stretch (0 none) and the base lobe's alphas along
+  // frame_.s (the stretch's direction) and frame_.t.
+  float anisotropy_ = 0.0f;
+  glm::vec2 alphas_{1.0f};
 };
 
 }  // namespace engine::rt

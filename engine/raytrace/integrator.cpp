@@ -61,7 +61,8 @@ class Tracer {
     if (hitDistance) *hitDistance = distance;
     const float footprint = footprintAt(cone, *hit, v, distance);
     // The terrain's layers read the unflipped shading normal, as terrain.frag does.
-    const HitMaterial m = scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y), glm::vec3(hit->ns));
+    const HitMaterial m = scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y),
+                          glm::vec3(hit->ns), hit->dpdu, hit->dpdv);
     if (m.unlit) return depth == 0 ? scene_.fogged(m.albedo, distance) : m.albedo;
     // Surfaces are two-sided: shade with the normal that faces the viewer.
     const Vec3<T> n = glm::dot(hit->n, v) > T(0) ? -hit->ns : hit->ns;
@@ -159,6 +160,9 @@ class Tracer {
     const float nDotV = glm::max(glm::dot(nf, toEye), 1e-4f);
     const float sheenAlbedo = m.sheenAlbedo(nDotV);
     const float sheenScale = brdf::sheenScaling(m.sheenColor, sheenAlbedo);
+    const glm::vec3 anisotropyT = m.anisotropy > 0.0f ? m.anisotropyTangent(nf) : glm::vec3(0.0f);
+    const float anisotropy = anisotropyT == glm::vec3(0.0f) ? 0.0f : m.anisotropy;
+    const glm::vec3 anisotropyB = glm::cross(nf, anisotropyT);
     glm::vec3 color(0.0f);
     for (const LightDesc& light : scene_.lights()) {
       const LightSample<T> ls = sampleLight(si, light, rng, counters);
@@ -167,7 +171,8 @@ class Tracer {
       if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
       const glm::vec3 f =
           brdf::layeredBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness, m.dielectricF0, m.dielectricF90, nf,
-                            m.clearcoat, m.clearcoatRoughness, m.transmission, m.sheenColor, m.sheenRoughness, sheenScale);
+                            m.clearcoat, m.clearcoatRoughness, m.transmission, m.sheenColor, m.sheenRoughness, sheenScale,
+                            anisotropyT, anisotropyB, anisotropy);
       color += ls.radiance * ls.visibility * brdf::brdfLightFactor(f, nDotL);
     }
     // The same hemisphere ambient as the rasterizer's shadeAmbient.

@@ -122,7 +122,8 @@ class PathTracer {
         continue;
       }
       const HitMaterial m =
-          scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y), glm::vec3(hit->ns));
+          scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y),
+                          glm::vec3(hit->ns), hit->dpdu, hit->dpdv);
       if (firstHit && *firstHit < 0.0f) *firstHit = float(glm::length(glm::dvec3(hit->p) - cameraPosition_));
       radiance += beta * m.emission;
       if (m.unlit) {

@@ -1,6 +1,7 @@
 #include "raytrace/rt_scene.h"
 
 #include "asset/material_texture.h"
+#include "core/brdf.h"
 #include "scene/shapes.h"
 
 #include <algorithm>
@@ -234,7 +235,43 @@ void RtScene::applyLayerTextures(int material, const HitUv& uv, float footprint,
   if (const RtTexture* thick = at(TextureSlot::Thickness)) out.thickness *= thick->sample(uv, footprint).y;
   if (const RtTexture* sheen = at(TextureSlot::SheenColor)) out.sheenColor *= sheen->sample(uv, footprint);
   if (const RtTexture* rough = at(TextureSlot::SheenRoughness)) out.sheenRoughness *= rough->sampleRgba(uv, footprint).a;
+  if (const RtTexture* stretch = at(TextureSlot::Anisotropy)) {
+    const glm::vec3 texel = stretch->sample(uv, footprint);
+    out.anisotropyDirection = glm::vec2(texel) * 2.0f - 1.0f;
+    out.anisotropy *= texel.z;
+  }
 }
+
+namespace {
+
+// KHR_materials_anisotropy's stretch in world space: the tangent frame of the
+// triangle's uv gradient (the tangent MikkTSpace builds, flat across the triangle and
+// following the posed mesh; the rasterizer interpolates the file's or the loader's
+// tangents instead), the material's direction in it turned by its rotation
+// (brdf.glsl's anisotropyDirection, as the rasterizer turns it).
+void orientAnisotropy(HitMaterial& m, const glm::vec3& ns, const glm::vec3& dpdu, const glm::vec3& dpdv) {
+  glm::vec3 t = dpdu - ns * glm::dot(ns, dpdu);
+  const float len = glm::length(t);
+  const glm::vec2 d = brdf::anisotropyDirection(m.anisotropyDirection, m.anisotropyRotation);
+  if (len > 0.0f && std::isfinite(len)) {
+    t /= len;
+    // glTF's bitangent points up the image, against dP/dv (uv's v runs down it; its
+    // normal maps are +Y up): the files' TANGENT handedness says the same
+    // (RasterVsRaytrace.GltfAnisotropyAgrees turns on it).
+    const glm::vec3 across = glm::cross(ns, t);
+    const glm::vec3 b = glm::dot(across, dpdv) < 0.0f ? across : -across;
+    const glm::vec3 stretched = t * d.x + b * d.y;
+    const float slen = glm::length(stretched);
+    if (slen > 1e-6f) {
+      m.anisotropyT = stretched / slen;
+      m.anisotropy = std::clamp(m.anisotropy, 0.0f, 1.0f);
+      return;
+    }
+  }
+  m.anisotropy = 0.0f;  // nothing to orient it by
+}
+
+}  // namespace
 
 Status RtScene::setEmissiveTexture(int material, RtTexture texture) {
   return attachTexture(material, &MaterialExtras::emissiveTexture, std::move(texture));
@@ -257,14 +294,15 @@ Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
   return Ok{};
 }
 
-HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns) const {
+HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns,
+                                const glm::vec3& dpdu, const glm::vec3& dpdv) const {
   const MaterialDesc& m = materials_[size_t(material)];
   HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
                   m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit,
                   extras_[size_t(material)].dielectricF0, m.layers.dielectricF90(), m.layers.clearcoat,
                   m.layers.clearcoatRoughness, m.layers.transmission, m.layers.ior, m.layers.thickness,
                   m.layers.attenuationDistance, m.layers.attenuationColor, m.layers.sheenColor,
-                  m.layers.sheenRoughness};
+                  m.layers.sheenRoughness, m.layers.anisotropy, m.layers.anisotropyRotation};
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
     out.roughness *= t.y;
@@ -274,6 +312,7 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
     out.emission *= textures_[size_t(emissive)].sample(uv, footprint);
   }
   if (extras_[size_t(material)].hasLayerTextures()) applyLayerTextures(material, uv, footprint, out);
+  if (out.anisotropy > 0.0f) orientAnisotropy(out, ns, dpdu, dpdv);
   if (const int terrain = extras_[size_t(material)].terrain; terrain >= 0) {
     const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv.uv0, footprint, y, ns.y);
     out.albedo *= layers.albedo;
@@ -450,6 +489,12 @@ SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<
     const float uvArea = std::abs(du.x * dv.y - du.y * dv.x);
     const float area = glm::length(glm::cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]));
     si.uvPerMetre = area > 0.0f ? std::sqrt(uvArea / area) : 0.0f;
+    const float det = du.x * dv.y - dv.x * du.y;
+    if (materials_[size_t(mesh.material)].layers.anisotropy > 0.0f && std::abs(det) > 0.0f) {
+      const glm::vec3 e1 = mesh.positions[i1] - mesh.positions[i0], e2 = mesh.positions[i2] - mesh.positions[i0];
+      si.dpdu = (dv.y * e1 - du.y * e2) / det;
+      si.dpdv = (du.x * e2 - dv.x * e1) / det;
+    }
   }
   si.uv1 = mesh.uvs1.empty() ? si.uv : atHit(mesh.uvs1, hit.hit, i0, i1, i2);
   if (!mesh.colors.empty()) si.color = atHit(mesh.colors, hit.hit, i0, i1, i2);

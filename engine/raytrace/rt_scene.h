@@ -75,6 +75,21 @@ struct HitMaterial {
   // KHR_materials_sheen (asset/material_layers.h): the fibres' colour and roughness.
   glm::vec3 sheenColor{0.0f};
   float sheenRoughness = 0.0f;
+  // KHR_materials_anisotropy: the stretch's strength and turn, the direction in the
+  // tangent frame its texture gives (+x without one), and the stretch's direction in
+  // world space at the hit (RtScene::materialAt; zero where the hit has no uv
+  // gradient to orient it by, and then no stretch).
+  float anisotropy = 0.0f;
+  float anisotropyRotation = 0.0f;
+  glm::vec2 anisotropyDirection{1.0f, 0.0f};
+  glm::vec3 anisotropyT{0.0f};
+  // That direction made orthogonal to the shading normal n (unit); the tracers' lobe
+  // is stretched along it, across it along n x it.
+  glm::vec3 anisotropyTangent(const glm::vec3& n) const {
+    const glm::vec3 t = anisotropyT - n * glm::dot(n, anisotropyT);
+    const float len = glm::length(t);
+    return len > 1e-6f ? t / len : glm::vec3(0.0f);
+  }
   // The white sheen's directional albedo at N.V (core/sheen_table.h); 0 without one.
   float sheenAlbedo(float nDotV) const {
     return sheenColor != glm::vec3(0.0f) ? sheenTable().lookup(nDotV, sheenRoughness) : 0.0f;
@@ -107,10 +122,10 @@ class RtScene {
   Status setSingleSided(int material, bool singleSided);
   // KHR_materials_unlit (HitMaterial::unlit).
   Status setUnlit(int material, bool unlit);
-  // One of glTF's layer textures (`slot` Specular .. SheenRoughness): they scale the
+  // One of glTF's layer textures (`slot` Specular .. Anisotropy): they scale the
   // material's MaterialLayers at each hit (specular by A, its colour by RGB, the coat
   // by R, its roughness by G, transmission by R, thickness by G, the sheen's colour
-  // by RGB and its roughness by A).
+  // by RGB and its roughness by A, anisotropy's direction by RG and strength by B).
   Status setLayerTexture(int material, TextureSlot slot, RtTexture texture);
   bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
@@ -138,7 +153,9 @@ class RtScene {
   Status setTerrainMaterial(int material, RtTerrainMaterial layers);
   // The material at a hit with uv `uv` (and `footprint`, as RtTexture::sample takes
   // it), world height `y` and unit shading normal `ns`.
-  HitMaterial materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns) const;
+  // `dpdu` and `dpdv` (SurfaceInteraction's) orient KHR_materials_anisotropy.
+  HitMaterial materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns,
+                         const glm::vec3& dpdu = glm::vec3(0.0f), const glm::vec3& dpdv = glm::vec3(0.0f)) const;
   // A sun also draws the gradient sky's disk, as the last sun did before.
   void addLight(const LightDesc& light);
   void addSphere(const glm::dvec3& center, double radius, int material);
@@ -248,7 +265,7 @@ class RtScene {
     int texture = -1;
     int emissiveTexture = -1;
     int metallicRoughnessTexture = -1;
-    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1, -1, -1};
+    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
     // MaterialDesc::layers' dielectric f0 (worked in double), once per material, not per hit.
     glm::vec3 dielectricF0{0.04f};
     bool hasLayerTextures() const {

@@ -27,6 +27,9 @@ using engine::sampleGgxVisibleNormal;
 struct Frame {
   glm::vec3 s, t, n;
 
+  // s along `tangent` made orthogonal to the normal (unit, non-zero), t = n x s.
+  Frame(const glm::vec3& normal, const glm::vec3& tangent)
+      : s(glm::normalize(tangent - normal * glm::dot(normal, tangent))), t(glm::cross(normal, s)), n(normal) {}
   explicit Frame(const glm::vec3& normal) : n(normal) {
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
@@ -76,6 +79,19 @@ inline float ggxReflectionPdf(const glm::vec3& wo, const glm::vec3& wi, float al
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
   const glm::vec3 h = glm::normalize(wo + wi);
   return ggxSmithG1(wo.z, alpha) * ggxD(h, alpha) / (4.0f * wo.z);
+}
+
+// The same for the anisotropic GGX (alpha.x along x, alpha.y along y).
+inline float ggxAnisotropicD(const glm::vec3& h, glm::vec2 alpha) {
+  const float a2 = alpha.x * alpha.y;
+  const glm::vec3 f(alpha.y * h.x, alpha.x * h.y, a2 * h.z);
+  const float w2 = a2 / std::max(glm::dot(f, f), 1e-30f);
+  return a2 * w2 * w2 / kPi;
+}
+inline float ggxAnisotropicReflectionPdf(const glm::vec3& wo, const glm::vec3& wi, glm::vec2 alpha) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  const glm::vec3 h = glm::normalize(wo + wi);
+  return ggxAnisotropicG1(wo, alpha) * ggxAnisotropicD(h, alpha) / (4.0f * wo.z);
 }
 
 inline glm::vec3 reflectAbout(const glm::vec3& w, const glm::vec3& h) { return 2.0f * glm::dot(w, h) * h - w; }

@@ -26,6 +26,9 @@ struct SurfaceInteraction {
   // surface area (0 where nothing is mapped), to turn a ray cone's width into a
   // texture footprint.
   float uvPerMetre = 0.0f;
+  // The triangle's dP/du and dP/dv of its TEXCOORD_0 (zero on shapes and unmapped
+  // meshes): the tangent frame KHR_materials_anisotropy is oriented by.
+  glm::vec3 dpdu{0.0f}, dpdv{0.0f};
 
   // A ray leaving this point toward w, offset so that it cannot hit this surface.
   Ray<T> spawnRay(const Vec3<T>& w) const { return Ray<T>{offsetRayOrigin(p, pError, n, w), w}; }

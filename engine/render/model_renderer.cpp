@@ -29,6 +29,7 @@ std::string ShaderVariant::describe() const {
   if (transmission) name += "+transmission";
   if (clearcoatNormal) name += "+coatnormal";
   if (sheen) name += "+sheen";
+  if (anisotropy) name += "+anisotropy";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -67,6 +68,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.transmission) defines.push_back("TRANSMISSION 1");
   if (variant.clearcoatNormal) defines.push_back("CLEARCOAT_NORMAL 1");
   if (variant.sheen) defines.push_back("SHEEN 1");
+  if (variant.anisotropy) defines.push_back("ANISOTROPY 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -114,6 +116,8 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
     pr.set("u_clearcoatNormalScale", l.clearcoatNormalScale);
     pr.set("u_sheenColor", l.sheenColor);
     pr.set("u_sheenRoughness", l.sheenRoughness);
+    pr.set("u_anisotropy", l.anisotropy);
+    pr.set("u_anisotropyRotation", l.anisotropyRotation);
   }
   pr.set("u_normalScale", material->normalScale);
   pr.set("u_occlusionStrength", material->occlusionStrength);
@@ -142,7 +146,8 @@ constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor,       gl:
                                               gl::binding::kSpecularColor,     gl::binding::kClearcoat,
                                               gl::binding::kClearcoatRoughness, gl::binding::kTransmission,
                                               gl::binding::kThickness,         gl::binding::kClearcoatNormal,
-                                              gl::binding::kSheenColor,        gl::binding::kSheenRoughness};
+                                              gl::binding::kSheenColor,        gl::binding::kSheenRoughness,
+                                              gl::binding::kAnisotropy};
 
 // Which slots the variant samples: the layer textures the material has, in a
 // +layertextures variant (common/material.glsl's u_layerTextures says which).
@@ -469,6 +474,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.transmission = m->layers.transmissive();
     v.clearcoatNormal = m->layers.clearcoat > 0.0f && m->image(TextureSlot::ClearcoatNormal) >= 0 && !prim.tangents.empty();
     v.sheen = m->layers.sheen();
+    v.anisotropy = m->layers.anisotropy > 0.0f && !prim.tangents.empty();
   }
   const auto sampled = sampledSlots(v, *m);
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();

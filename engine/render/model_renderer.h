@@ -58,6 +58,9 @@ struct ShaderVariant {
   // KHR_materials_sheen (SHEEN): a sheen lobe over the base, dimmed by the sheen's
   // albedo table (GpuModel::sheenAlbedo).
   bool sheen = false;
+  // KHR_materials_anisotropy (ANISOTROPY), on a mesh with tangents: the base's
+  // highlight stretched along a direction of the tangent frame.
+  bool anisotropy = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };

@@ -91,6 +91,55 @@ BRDF_INLINE vec3 metallicRoughnessBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, 
   return diffuse + specular;
 }
 
+// KHR_materials_anisotropy: the base's GGX lobe stretched along a direction t in the
+// surface (b = n x t), as glTF's spec and the Khronos Sample Viewer define it:
+// alpha along t is mix(alpha, 1, anisotropy^2), along b alpha itself. The
+// distribution in Filament's form (no cancellation near the peak, as ggxDistribution).
+BRDF_INLINE float anisotropicAlpha(float alpha, float anisotropy) { return mix(alpha, 1.0f, anisotropy * anisotropy); }
+
+BRDF_INLINE float ggxAnisotropicDistribution(vec3 n, vec3 h, vec3 t, vec3 b, float alphaT, float alphaB) {
+  float a2 = alphaT * alphaB;
+  vec3 f = vec3(alphaB * dot(t, h), alphaT * dot(b, h), a2 * dot(n, h));
+  float w2 = a2 / max(dot(f, f), 1e-30f);
+  return a2 * w2 * w2 / BRDF_PI;
+}
+
+// The anisotropic height-correlated Smith visibility (Heitz 2014), over 4 N.L N.V.
+BRDF_INLINE float smithAnisotropicVisibility(vec3 n, vec3 toEye, vec3 l, vec3 t, vec3 b, float alphaT, float alphaB) {
+  float nDotL = dot(n, l);
+  float nDotV = max(dot(n, toEye), 1e-4f);
+  float gv = nDotL * length(vec3(alphaT * dot(t, toEye), alphaB * dot(b, toEye), nDotV));
+  float gl = nDotV * length(vec3(alphaT * dot(t, l), alphaB * dot(b, l), nDotL));
+  return 0.5f / max(gv + gl, 1e-6f);
+}
+
+// The direction of the stretch in the tangent frame: the texture's (or +x), turned by
+// anisotropyRotation counter-clockwise (toward the bitangent).
+BRDF_INLINE vec2 anisotropyDirection(vec2 direction, float rotation) {
+  float c = cos(rotation);
+  float s = sin(rotation);
+  return vec2(c * direction.x - s * direction.y, s * direction.x + c * direction.y);
+}
+
+// The base's specular D V: isotropic GGX, or stretched along t (anisotropy > 0).
+BRDF_INLINE float baseSpecularDV(vec3 n, vec3 toEye, vec3 l, vec3 h, float alpha, vec3 t, vec3 b, float anisotropy) {
+  if (anisotropy <= 0.0f)
+    return ggxDistribution(n, h, alpha) * smithVisibility(dot(n, l), max(dot(n, toEye), 1e-4f), alpha);
+  float alphaT = anisotropicAlpha(alpha, anisotropy);
+  return ggxAnisotropicDistribution(n, h, t, b, alphaT, alpha) *
+         smithAnisotropicVisibility(n, toEye, l, t, b, alphaT, alpha);
+}
+
+// The normal an anisotropic surface reflects its environment about (the Sample
+// Viewer's bent normal): turned toward the direction across the stretch, the more so
+// the stronger and smoother. The split-sum ambients read the environment along it.
+BRDF_INLINE vec3 anisotropicReflectionNormal(vec3 n, vec3 toEye, vec3 b, float anisotropy, float roughness) {
+  vec3 bent = normalize(cross(cross(b, toEye), b));
+  float k = 1.0f - anisotropy * (1.0f - roughness);
+  float a = k * k * k * k;
+  return normalize(mix(bent, n, a));
+}
+
 // KHR_materials_sheen: a layer of fibres over the base, the "Charlie" distribution
 // (Estevez and Kulla 2017, "Production Friendly Microfacet Sheen BRDF") with their
 // fitted visibility, as glTF's spec and the Khronos Sample Viewer define them. The
@@ -168,6 +217,8 @@ BRDF_INLINE float sheenScaling(vec3 sheenColor, float sheenAlbedo) {
 // - KHR_materials_transmission passes the share `transmission` of the dielectric's
 //   diffuse lobe through the surface instead (transmittedShare below says what comes
 //   back through it); what is left of the lobe reflects.
+// - KHR_materials_anisotropy stretches the base's GGX lobe along anisotropyT
+//   (anisotropyB across it; baseSpecularDV above).
 // - KHR_materials_sheen lies between the two: over the base (and what it transmits)
 //   a sheen lobe of colour sheenColor, which dims the base by sheenScaling (above):
 //   f = sheenColor sheenBrdf + base sheenScaling, all under the coat.
@@ -176,18 +227,17 @@ BRDF_INLINE float sheenScaling(vec3 sheenColor, float sheenAlbedo) {
 BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness,
                              vec3 dielectricF0, float dielectricF90, vec3 nc, float clearcoat,
                              float clearcoatRoughness, float transmission, vec3 sheenColor, float sheenRoughness,
-                             float sheenScale) {
+                             float sheenScale, vec3 anisotropyT, vec3 anisotropyB, float anisotropy) {
   vec3 base = vec3(0.0f);
   float nDotL = dot(n, l);
   if (nDotL > 0.0f) {
     vec3 h = normalize(l + toEye);
-    float nDotV = max(dot(n, toEye), 1e-4f);
     float vDotH = max(dot(toEye, h), 0.0f);
     float alpha = ggxAlpha(roughness);
     vec3 f0 = mix(dielectricF0, albedo, metallic);
     float f90 = dielectricF90 + (1.0f - dielectricF90) * metallic;
     vec3 fresnel = schlickFresnel90(f0, f90, vDotH);
-    vec3 specular = fresnel * (ggxDistribution(n, h, alpha) * smithVisibility(nDotL, nDotV, alpha));
+    vec3 specular = fresnel * baseSpecularDV(n, toEye, l, h, alpha, anisotropyT, anisotropyB, anisotropy);
     base = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) * (1.0f - transmission) / BRDF_PI) + specular;
     if (maxComponent(sheenColor) > 0.0f)
       base = base * sheenScale + sheenColor * sheenBrdf(n, toEye, l, sheenRoughness);

@@ -15,6 +15,8 @@
 //                     common/transmission.glsl draws what comes through)
 //   SHEEN             KHR_materials_sheen (with MATERIAL_LAYERS; its textures with
 //                     LAYER_TEXTURES, UNIT_SHEEN_COLOR and UNIT_SHEEN_ROUGHNESS)
+//   ANISOTROPY        KHR_materials_anisotropy (with MATERIAL_LAYERS, on a mesh with
+//                     tangents; its texture with LAYER_TEXTURES, UNIT_ANISOTROPY)
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
 //                     every slot reads its set (u_texCoord) through its matrix
 //                     (u_uvTransform, built in C++: asset/texture_transform.h)
@@ -41,11 +43,12 @@ const int SLOT_THICKNESS = 10;
 const int SLOT_CLEARCOAT_NORMAL = 11;
 const int SLOT_SHEEN_COLOR = 12;
 const int SLOT_SHEEN_ROUGHNESS = 13;
+const int SLOT_ANISOTROPY = 14;
 
 #ifdef UV_TRANSFORM
 in vec2 v_uv1;  // TEXCOORD_1 (set 0 where the mesh has none)
-uniform mat3 u_uvTransform[14];
-uniform int u_texCoord[14];
+uniform mat3 u_uvTransform[15];
+uniform int u_texCoord[15];
 #endif
 
 // The uv that `slot` samples at, from the fragment's TEXCOORD_0 `uv`.
@@ -182,6 +185,8 @@ uniform float u_transmission;
 uniform float u_thickness;  // in the mesh's units
 uniform vec3 u_sheenColor;   // linear
 uniform float u_sheenRoughness;
+uniform float u_anisotropy;          // strength
+uniform float u_anisotropyRotation;  // radians, from the tangent toward the bitangent
 #ifdef LAYER_TEXTURES
 layout(binding = UNIT_SPECULAR) uniform sampler2D u_specularTexture;              // A
 layout(binding = UNIT_SPECULAR_COLOR) uniform sampler2D u_specularColorTexture;   // RGB, sRGB
@@ -192,6 +197,9 @@ layout(binding = UNIT_THICKNESS) uniform sampler2D u_thicknessTexture;        //
 #ifdef SHEEN
 layout(binding = UNIT_SHEEN_COLOR) uniform sampler2D u_sheenColorTexture;          // RGB, sRGB
 layout(binding = UNIT_SHEEN_ROUGHNESS) uniform sampler2D u_sheenRoughnessTexture;  // A
+#endif
+#ifdef ANISOTROPY
+layout(binding = UNIT_ANISOTROPY) uniform sampler2D u_anisotropyTexture;  // RG direction, B strength
 #endif
 uniform int u_layerTextures;  // bit (slot - SLOT_SPECULAR): the slot has a texture
 
@@ -228,5 +236,38 @@ void materialLayers(vec2 uv) {
 #endif
   g_dielectricF0 = min(vec3(u_iorF0) * color, vec3(1.0)) * weight;
   g_dielectricF90 = weight;
+}
+#endif
+
+#ifdef ANISOTROPY
+// KHR_materials_anisotropy: the stretch's direction in world space from the mesh's
+// tangent frame (the interpolated normal `n`, `tangent` with its handedness), the
+// texture's direction (or the tangent) turned by the rotation (common/brdf.glsl's
+// anisotropyDirection), and its strength, into common/shading.glsl's g_ values. The
+// direction across it is taken about the geometric normal `ng`, as the Sample
+// Viewer does.
+void materialAnisotropy(vec3 n, vec3 ng, vec4 tangent, vec2 uv) {
+  vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+  float len = length(t);
+  g_anisotropy = 0.0;
+  if (!(len > 1e-6)) return;
+  t /= len;
+  vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+  vec2 direction = vec2(1.0, 0.0);
+  float strength = u_anisotropy;
+#ifdef LAYER_TEXTURES
+  if (hasLayerTexture(SLOT_ANISOTROPY)) {
+    vec3 texel = texture(u_anisotropyTexture, materialUv(SLOT_ANISOTROPY, uv)).rgb;
+    direction = texel.rg * 2.0 - 1.0;
+    strength *= texel.b;
+  }
+#endif
+  direction = anisotropyDirection(direction, u_anisotropyRotation);
+  vec3 stretched = t * direction.x + b * direction.y;
+  float slen = length(stretched);
+  if (!(slen > 1e-6)) return;
+  g_anisotropyT = stretched / slen;
+  g_anisotropyB = cross(ng, g_anisotropyT);
+  g_anisotropy = clamp(strength, 0.0, 1.0);
 }
 #endif

@@ -2,8 +2,9 @@
 // skinned like the normal when the mesh is skinned, then taken to world space by
 // the model matrix (a tangent lies in the surface, so the matrix itself, not its
 // inverse transpose). A mirroring model matrix flips the bitangent's handedness.
-// The clear coat's own normal map (CLEARCOAT_NORMAL) needs it as well.
-#if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL)
+// The clear coat's own normal map (CLEARCOAT_NORMAL) and anisotropy (ANISOTROPY)
+// need it as well.
+#if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL) || defined(ANISOTROPY)
 #define MESH_TANGENT 1
 #endif
 #ifdef MESH_TANGENT

@@ -53,6 +53,18 @@ const float g_sheenRoughness = 0.0;
 const float g_sheenAlbedo = 0.0;
 #endif
 
+#ifdef ANISOTROPY
+// KHR_materials_anisotropy at the fragment (material.glsl's materialAnisotropy): the
+// stretch's direction, the one across it, and its strength.
+vec3 g_anisotropyT;
+vec3 g_anisotropyB;
+float g_anisotropy;
+#else
+const vec3 g_anisotropyT = vec3(1.0, 0.0, 0.0);
+const vec3 g_anisotropyB = vec3(0.0, 1.0, 0.0);
+const float g_anisotropy = 0.0;
+#endif
+
 #ifdef CLASSIC
 vec3 shadeAmbient(Surface s) { return s.albedo * s.ambient; }
 
@@ -109,7 +121,12 @@ vec3 shadeAmbient(Surface s) {
 #else
   vec3 diffuse = (vec3(1.0) - f0) * (table.z * (1.0 - s.metallic)) * s.albedo * shIrradiance(s.n) / PI;
 #endif
-  vec3 radiance = ambientRadiance(reflect(-s.toEye, s.n), s.roughness);
+#ifdef ANISOTROPY
+  vec3 reflectAbout = anisotropicReflectionNormal(s.n, s.toEye, g_anisotropyB, g_anisotropy, s.roughness);
+#else
+  vec3 reflectAbout = s.n;
+#endif
+  vec3 radiance = ambientRadiance(reflect(-s.toEye, reflectAbout), s.roughness);
 #ifdef MATERIAL_LAYERS
   vec3 color = diffuse + radiance * (f0 * table.x + vec3(f90 * table.y));
 #ifdef SHEEN
@@ -153,7 +170,8 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
 #ifdef MATERIAL_LAYERS
   vec3 f = layeredBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness, g_dielectricF0, g_dielectricF90,
                        g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness, g_transmission, g_sheenColor,
-                       g_sheenRoughness, sheenScaling(g_sheenColor, g_sheenAlbedo));
+                       g_sheenRoughness, sheenScaling(g_sheenColor, g_sheenAlbedo), g_anisotropyT, g_anisotropyB,
+                       g_anisotropy);
 #else
   vec3 f = metallicRoughnessBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness);
 #endif

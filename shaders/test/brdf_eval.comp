@@ -16,6 +16,7 @@ struct Case {
   vec4 coat;       // clearcoat, clearcoat roughness, transmission, sheen albedo E
   vec4 nc;         // xyz: the coat's normal
   vec4 sheen;      // xyz sheen colour, w sheen roughness
+  vec4 anisotropy; // xyz the stretch's direction, w its strength
 };
 
 struct Result {
@@ -27,6 +28,7 @@ struct Result {
   vec4 hemisphere;         // xyz
   vec4 transmitted;        // xyz transmittedShare x volumeAttenuation, w transmissionRoughness
   vec4 sheenTerms;         // charlieDistribution, sheenVisibility, sheenLambda, sheenBrdf
+  vec4 anisotropic;        // xyz anisotropicReflectionNormal, w anisotropyDirection's x
 };
 
 layout(std430, binding = 0) readonly buffer Cases { Case cases[]; };
@@ -48,7 +50,8 @@ void main() {
                  smithVisibility(max(dot(n, l), 0.0), max(dot(n, v), 1e-4), alpha), alpha, 0.0);
   r.fresnel = vec4(schlickFresnel(metallicF0(c.albedo.xyz, metallic), max(dot(v, h), 0.0)), 0.0);
   r.layered = vec4(layeredBrdf(n, v, l, c.albedo.xyz, metallic, roughness, c.dielectric.xyz, c.dielectric.w, c.nc.xyz,
-                               c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.sheen.w, sheenScaling(c.sheen.xyz, c.coat.w)),
+                               c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.sheen.w, sheenScaling(c.sheen.xyz, c.coat.w),
+                               c.anisotropy.xyz, cross(n, c.anisotropy.xyz), c.anisotropy.w),
                    0.0);
   r.hemisphere = vec4(hemisphereAmbient(c.albedo.xyz, metallic, roughness, c.dielectric.xyz,
                                         max(dot(c.nc.xyz, v), 1e-4), c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.coat.w),
@@ -57,6 +60,9 @@ void main() {
   float sheenA = sheenAlpha(roughness);
   r.sheenTerms = vec4(charlieDistribution(n, h, sheenA), sheenVisibility(nDotL, nDotV, sheenA),
                       sheenLambda(nDotV, sheenA), sheenBrdf(n, v, l, roughness));
+  float strength = c.anisotropy.w > 0.0 ? c.anisotropy.w : 0.7;
+  r.anisotropic = vec4(anisotropicReflectionNormal(n, v, cross(n, c.anisotropy.xyz), strength, roughness),
+                       anisotropyDirection(vec2(0.6, 0.8), 3.0 * roughness - 1.0).x);
   vec3 reflected = schlickFresnel90(c.dielectric.xyz, c.dielectric.w, max(dot(n, v), 1e-4));
   r.transmitted = vec4(transmittedShare(c.albedo.xyz, metallic, c.coat.z, reflected) *
                            volumeAttenuation(c.albedo.xyz, 0.5, 0.1 + roughness),

@@ -1056,6 +1056,41 @@ TEST_F(LoaderTest, ReadsSheen) {
   expectMaterialValuesRefused(m, bad);
 }
 
+// KHR_materials_anisotropy: strength, rotation and texture; a primitive that cannot
+// have tangents built is warned about (the stretch is oriented by them), and each
+// key's range checked with the material named.
+TEST_F(LoaderTest, ReadsAnisotropy) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_anisotropy"};
+  m.doc["materials"] = {{{"extensions",
+                          {{"KHR_materials_anisotropy",
+                            {{"anisotropyStrength", 0.6}, {"anisotropyRotation", 1.25}, {"anisotropyTexture", {{"index", 0}}}}}}}}};
+  m.doc["images"] = {{{"uri", "missing.png"}}};
+  m.doc["textures"] = {{{"source", 0}}};
+  m.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const MaterialData& mat = model->materials[0];
+  EXPECT_FLOAT_EQ(mat.layers.anisotropy, 0.6f);
+  EXPECT_FLOAT_EQ(mat.layers.anisotropyRotation, 1.25f);
+  EXPECT_FALSE(mat.layers.isDefault());
+  EXPECT_EQ(mat.image(TextureSlot::Anisotropy), 0);
+  EXPECT_FALSE(isSrgbSlot(TextureSlot::Anisotropy));
+  EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
+  // The test model's triangle has neither NORMAL nor TEXCOORD_0: no tangents to
+  // orient the stretch by, said so.
+  EXPECT_TRUE(model->meshes[0].primitives[0].tangents.empty());
+  EXPECT_TRUE(hasWarning(*model, {"anisotropy needs NORMAL, TEXCOORD_0 and triangles to build tangents"}))
+      << allWarnings(*model);
+
+  const std::vector<std::tuple<const char*, const char*, nlohmann::json>> bad = {
+      {"KHR_materials_anisotropy", "anisotropyStrength", 1.5},
+      {"KHR_materials_anisotropy", "anisotropyStrength", -0.1},
+      {"KHR_materials_anisotropy", "anisotropyRotation", "left"},
+  };
+  expectMaterialValuesRefused(m, bad);
+}
+
 // KHR_materials_variants: the root's names, each primitive's mapping of variants to
 // materials, a model remapped to one variant (the others keep their material), and
 // mappings that point nowhere refused with the primitive and mapping named.

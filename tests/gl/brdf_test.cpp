@@ -23,9 +23,10 @@ struct Case {
   glm::vec4 coat;        // clearcoat, clearcoat roughness, transmission, sheen albedo E
   glm::vec4 nc;          // the coat's normal
   glm::vec4 sheen;       // xyz sheen colour, w sheen roughness
+  glm::vec4 anisotropy;  // xyz the stretch's direction (in the surface), w its strength
 };
 struct Result {
-  glm::vec4 metallicRoughness, classic, terms, fresnel, layered, hemisphere, transmitted, sheenTerms;
+  glm::vec4 metallicRoughness, classic, terms, fresnel, layered, hemisphere, transmitted, sheenTerms, anisotropic;
 };
 
 // glTF's layers, cycled through the grid: none (0.04, 1), ior 1.33 tinted at half
@@ -41,6 +42,7 @@ struct Layers {
   float transmission = 0.0f;
   glm::vec3 sheenColor{0.0f};
   float sheenRoughness = 0.0f, sheenAlbedo = 0.0f;
+  float anisotropy = 0.0f;
 };
 const Layers kLayers[] = {{glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false},
                           {glm::vec3(0.02f, 0.01f, 0.005f), 0.5f, 0.0f, 0.0f, false},
@@ -51,7 +53,9 @@ const Layers kLayers[] = {{glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false},
                           {glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false, 0.7f},
                           {glm::vec3(0.03f, 0.04f, 0.05f), 0.8f, 0.6f, 0.2f, true, 1.0f},
                           {glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false, 0.0f, glm::vec3(1.0f, 0.5f, 0.25f), 0.5f, 0.3f},
-                          {glm::vec3(0.04f), 1.0f, 0.5f, 0.1f, true, 0.5f, glm::vec3(0.2f, 0.9f, 0.4f), 0.05f, 0.9f}};
+                          {glm::vec3(0.04f), 1.0f, 0.5f, 0.1f, true, 0.5f, glm::vec3(0.2f, 0.9f, 0.4f), 0.05f, 0.9f},
+                          {glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false, 0.0f, glm::vec3(0.0f), 0.0f, 0.0f, 0.5f},
+                          {glm::vec3(0.1f), 1.0f, 0.4f, 0.3f, true, 0.0f, glm::vec3(0.5f), 0.4f, 0.2f, 1.0f}};
 
 glm::vec3 direction(float thetaDegrees, float phiDegrees) {
   const float t = glm::radians(thetaDegrees), p = glm::radians(phiDegrees);
@@ -76,12 +80,18 @@ std::vector<Case> grid() {
               const glm::vec3 l = glm::normalize(direction(thetaL, 10.0f + phi) + (axisFix - glm::vec3(0, 1, 0)));
               const Layers& layers = kLayers[cases.size() % std::size(kLayers)];
               const glm::vec3 nc = layers.tilted ? glm::normalize(n + glm::vec3(0.15f, 0.0f, 0.1f)) : n;
+              // A direction in the surface, turned with phi so the stretch meets the
+              // light from several sides.
+              const glm::vec3 stretch =
+                  glm::normalize(glm::cross(n, glm::vec3(std::cos(glm::radians(phi + 20.0f)), 0.0f,
+                                                         std::sin(glm::radians(phi + 20.0f)))));
               cases.push_back(Case{glm::vec4(n, 0), glm::vec4(v, 0), glm::vec4(l, 0), glm::vec4(albedo, 0),
                                    glm::vec4(metallic, float(r) / 10.0f, 0.9f, 0.5f), glm::vec4(8.0f + 12.0f * float(r)),
                                    glm::vec4(layers.f0, layers.f90),
                                    glm::vec4(layers.clearcoat, layers.clearcoatRoughness, layers.transmission,
                                              layers.sheenAlbedo),
-                                   glm::vec4(nc, 0.0f), glm::vec4(layers.sheenColor, layers.sheenRoughness)});
+                                   glm::vec4(nc, 0.0f), glm::vec4(layers.sheenColor, layers.sheenRoughness),
+                                   glm::vec4(stretch, layers.anisotropy)});
             }
           }
         }
@@ -106,7 +116,8 @@ Result onCpu(const Case& c) {
   const glm::vec3 f0(c.dielectric), nc(c.nc);
   const glm::vec3 sheenColor(c.sheen);
   r.layered = glm::vec4(brdf::layeredBrdf(n, v, l, albedo, metallic, roughness, f0, c.dielectric.w, nc, c.coat.x, c.coat.y,
-                                          c.coat.z, sheenColor, c.sheen.w, brdf::sheenScaling(sheenColor, c.coat.w)),
+                                          c.coat.z, sheenColor, c.sheen.w, brdf::sheenScaling(sheenColor, c.coat.w),
+                                          glm::vec3(c.anisotropy), glm::cross(n, glm::vec3(c.anisotropy)), c.anisotropy.w),
                         0.0f);
   r.hemisphere = glm::vec4(brdf::hemisphereAmbient(albedo, metallic, roughness, f0, std::max(glm::dot(nc, v), 1e-4f),
                                                    c.coat.x, c.coat.y, c.coat.z, sheenColor, c.coat.w),
@@ -117,6 +128,11 @@ Result onCpu(const Case& c) {
   const float sheenAlpha = brdf::sheenAlpha(roughness);
   r.sheenTerms = glm::vec4(brdf::charlieDistribution(n, h, sheenAlpha), brdf::sheenVisibility(nDotL, nDotV, sheenAlpha),
                            brdf::sheenLambda(nDotV, sheenAlpha), brdf::sheenBrdf(n, v, l, roughness));
+  // Anisotropy's helpers: the bent reflection normal at the case's strength (or 0.7)
+  // and the turned direction.
+  const float strength = c.anisotropy.w > 0.0f ? c.anisotropy.w : 0.7f;
+  r.anisotropic = glm::vec4(brdf::anisotropicReflectionNormal(n, v, glm::cross(n, glm::vec3(c.anisotropy)), strength, roughness),
+                            brdf::anisotropyDirection(glm::vec2(0.6f, 0.8f), 3.0f * roughness - 1.0f).x);
   // The transmission helpers: the light back through the surface, through a volume
   // of the roughness-derived length with the albedo as its attenuation colour.
   const glm::vec3 reflected = brdf::schlickFresnel90(f0, c.dielectric.w, std::max(glm::dot(n, v), 1e-4f));
@@ -169,8 +185,8 @@ TEST_P(Brdf, GlslAndCppAgree) {
     const Result cpu = onCpu(cases[i]);
     const glm::vec4* a = &cpu.metallicRoughness;
     const glm::vec4* b = &gpu[i].metallicRoughness;
-    for (int k = 0; k < 8; ++k) {
-      for (int c = 0; c < (k >= 6 ? 4 : 3); ++c) {  // transmitted.w: transmissionRoughness
+    for (int k = 0; k < 9; ++k) {
+      for (int c = 0; c < (k >= 6 ? 4 : 3); ++c) {  // the .w of transmitted, sheenTerms, anisotropic
         const double x = a[k][c], y = b[k][c];
         ASSERT_TRUE(std::isfinite(y)) << "case " << i << " value " << k;
         if (std::abs(x) > 1e-6) ++nonZero;

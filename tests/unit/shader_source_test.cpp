@@ -118,14 +118,15 @@ TEST(ShaderBindings, MaterialSlotsAreTextureSlotNumbers) {
                                                        {"SLOT_THICKNESS", TextureSlot::Thickness},
                                                        {"SLOT_CLEARCOAT_NORMAL", TextureSlot::ClearcoatNormal},
                                                        {"SLOT_SHEEN_COLOR", TextureSlot::SheenColor},
-                                                       {"SLOT_SHEEN_ROUGHNESS", TextureSlot::SheenRoughness}};
+                                                       {"SLOT_SHEEN_ROUGHNESS", TextureSlot::SheenRoughness},
+                                                       {"SLOT_ANISOTROPY", TextureSlot::Anisotropy}};
   for (const auto& [name, slot] : slots) {
     const std::regex declared("const int " + std::string(name) + " = ([0-9]+);");
     std::smatch m;
     ASSERT_TRUE(std::regex_search(text, m, declared)) << name;
     EXPECT_EQ(std::stoi(m[1]), static_cast<int>(slot)) << name;
   }
-  EXPECT_EQ(kTextureSlots, 14);
+  EXPECT_EQ(kTextureSlots, 15);
   // The per-slot arrays are sized for every slot.
   EXPECT_NE(text.find("uniform mat3 u_uvTransform[" + std::to_string(kTextureSlots) + "];"), std::string::npos);
   EXPECT_NE(text.find("uniform int u_texCoord[" + std::to_string(kTextureSlots) + "];"), std::string::npos);

@@ -243,6 +243,14 @@ def main(out):
         m.doc["meshes"][0]["primitives"][0]["material"] = 0
     case("bad_sheen.glb", bad_sheen)
 
+    # KHR_materials_anisotropy with a strength past 1.
+    def bad_anisotropy(m):
+        m.doc["extensionsUsed"] = ["KHR_materials_anisotropy"]
+        m.doc["materials"] = [{"name": "brushed", "extensions": {
+            "KHR_materials_anisotropy": {"anisotropyStrength": 2.0}}}]
+        m.doc["meshes"][0]["primitives"][0]["material"] = 0
+    case("bad_anisotropy.glb", bad_anisotropy)
+
     # Compressed geometry cut short. Draco: a stream with a whole header (magic,
     # version 2.2, a triangle mesh, edgebreaker) and nothing after it. Meshopt: the
     # positions as a vertex stream of 3 x 12 bytes whose data stops after the
