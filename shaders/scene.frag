@@ -5,8 +5,8 @@
 // the hemisphere; common/shading.glsl), SUN_SHADOWS, POINT_SHADOWS, FOG, and the glTF
 // material inputs of common/material.glsl (TEXTURED, NORMAL_MAP, MR_TEXTURE,
 // EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK) and glTF's dielectric layers
-// (MATERIAL_LAYERS), with transmission (TRANSMISSION), sheen (SHEEN) and anisotropy
-// (ANISOTROPY). Alpha goes out with the colour: BLEND
+// (MATERIAL_LAYERS), with transmission (TRANSMISSION), sheen (SHEEN), anisotropy
+// (ANISOTROPY) and iridescence (IRIDESCENCE). Alpha goes out with the colour: BLEND
 // materials are drawn with blending on, in linear HDR.
 #include "common/frame.glsl"
 #include "common/shading.glsl"
@@ -75,6 +75,9 @@ void main() {
                       u_specular, u_shininess, u_reflection);
 #ifdef SHEEN
   g_sheenAlbedo = sheenAlbedo(s);
+#endif
+#ifdef IRIDESCENCE
+  g_iridescenceF = surfaceIridescence(s);
 #endif
   vec3 color = materialEmissive(u_emissive, v_uv) + shadeAmbient(s) * materialOcclusion(v_uv);
   color += shadeDirectLight(s, geometric);

@@ -154,7 +154,8 @@ const std::set<std::string>& supportedExtensions() {
                                                "KHR_texture_transform", "KHR_draco_mesh_compression",
                                                "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
                                                "KHR_lights_punctual", "KHR_materials_variants",
-                                               "KHR_materials_sheen", "KHR_materials_anisotropy"};
+                                               "KHR_materials_sheen", "KHR_materials_anisotropy",
+                                               "KHR_materials_iridescence"};
   return supported;
 }
 
@@ -509,8 +510,26 @@ Status readAnisotropy(const tinygltf::Value& ext, const std::string& name, Mater
   return Ok{};
 }
 
-// KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen and
-// _anisotropy.
+// KHR_materials_iridescence: the film's share, index and thickness range (nm).
+Status readIridescence(const tinygltf::Value& ext, const std::string& name, MaterialLayers& layers) {
+  const std::string where = name + ": KHR_materials_iridescence";
+  auto factor = extensionNumber(ext, "iridescenceFactor", 0.0f, 0.0, 1.0, where);
+  if (!factor) return factor.error();
+  auto ior = extensionNumber(ext, "iridescenceIor", 1.3f, 1.0, 1e6, where);
+  if (!ior) return ior.error();
+  auto thinnest = extensionNumber(ext, "iridescenceThicknessMinimum", 100.0f, 0.0, 1e6, where);
+  if (!thinnest) return thinnest.error();
+  auto thickest = extensionNumber(ext, "iridescenceThicknessMaximum", 400.0f, 0.0, 1e6, where);
+  if (!thickest) return thickest.error();
+  layers.iridescence = *factor;
+  layers.iridescenceIor = *ior;
+  layers.iridescenceThicknessMin = *thinnest;
+  layers.iridescenceThicknessMax = *thickest;
+  return Ok{};
+}
+
+// KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen,
+// _anisotropy and _iridescence.
 Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const std::string& name) {
   MaterialLayers layers;
   auto has = [&](const char* ext) { return material.extensions.find(ext) != material.extensions.end(); };
@@ -557,6 +576,10 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
   if (has("KHR_materials_anisotropy")) {
     const tinygltf::Value& ext = material.extensions.at("KHR_materials_anisotropy");
     if (auto status = readAnisotropy(ext, name, layers); !status) return status.error();
+  }
+  if (has("KHR_materials_iridescence")) {
+    const tinygltf::Value& ext = material.extensions.at("KHR_materials_iridescence");
+    if (auto status = readIridescence(ext, name, layers); !status) return status.error();
   }
   return layers;
 }
@@ -780,7 +803,7 @@ class Converter {
   }
 
   // The textures of KHR_materials_specular, _clearcoat (its normal map too),
-  // _transmission, _volume, _sheen and _anisotropy, each with its uv set, transform and sampler as the
+  // _transmission, _volume, _sheen, _anisotropy and _iridescence, each with its uv set, transform and sampler as the
   // core slots have them.
   void readLayerTextures(const tinygltf::Material& src, const std::string& name, MaterialData& m) {
     struct Key {
@@ -797,7 +820,10 @@ class Converter {
                                 {"KHR_materials_clearcoat", "clearcoatNormalTexture", TextureSlot::ClearcoatNormal},
                                 {"KHR_materials_sheen", "sheenColorTexture", TextureSlot::SheenColor},
                                 {"KHR_materials_sheen", "sheenRoughnessTexture", TextureSlot::SheenRoughness},
-                                {"KHR_materials_anisotropy", "anisotropyTexture", TextureSlot::Anisotropy}};
+                                {"KHR_materials_anisotropy", "anisotropyTexture", TextureSlot::Anisotropy},
+                                {"KHR_materials_iridescence", "iridescenceTexture", TextureSlot::Iridescence},
+                                {"KHR_materials_iridescence", "iridescenceThicknessTexture",
+                                 TextureSlot::IridescenceThickness}};
     for (const Key& k : kKeys) {
       auto ext = src.extensions.find(k.extension);
       if (ext == src.extensions.end() || !ext->second.Has(k.key)) continue;
@@ -967,7 +993,8 @@ class Converter {
         "baseColorTexture",  "normalTexture",        "metallicRoughnessTexture", "emissiveTexture",
         "occlusionTexture",  "specularTexture",      "specularColorTexture",     "clearcoatTexture",
         "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture",         "clearcoatNormalTexture",
-        "sheenColorTexture",         "sheenRoughnessTexture",  "anisotropyTexture"};
+        "sheenColorTexture",         "sheenRoughnessTexture",  "anisotropyTexture",        "iridescenceTexture",
+        "iridescenceThicknessTexture"};
     const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
     const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
     bool needed = false;

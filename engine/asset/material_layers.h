@@ -2,8 +2,9 @@
 // glTF's dielectric layers over the metallic-roughness base: KHR_materials_ior,
 // KHR_materials_specular and KHR_materials_clearcoat, and the light that passes
 // through the dielectric, KHR_materials_transmission and KHR_materials_volume, and
-// the fibres over it, KHR_materials_sheen, and the stretch of its highlight,
-// KHR_materials_anisotropy: their factors (the textures are MaterialData's slots past Occlusion). Every renderer
+// the fibres over it, KHR_materials_sheen, the stretch of its highlight,
+// KHR_materials_anisotropy, and a thin film on it, KHR_materials_iridescence: their
+// factors (the textures are MaterialData's slots past Occlusion). Every renderer
 // evaluates them through layeredBrdf (shaders/common/brdf.glsl); a material whose
 // layers are the defaults draws exactly as plain metallic-roughness.
 #include <glm/glm.hpp>
@@ -35,10 +36,17 @@ struct MaterialLayers {
   // and the direction's turn from the tangent toward the bitangent, in radians.
   float anisotropy = 0.0f;
   float anisotropyRotation = 0.0f;
+  // KHR_materials_iridescence: the thin film's share, its index, and its thickness in
+  // nanometres (the maximum without a thickness texture; the texture's G goes from
+  // the minimum to the maximum).
+  float iridescence = 0.0f;
+  float iridescenceIor = 1.3f;
+  float iridescenceThicknessMin = 100.0f;
+  float iridescenceThicknessMax = 400.0f;
 
   bool isDefault() const {
     return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && clearcoat == 0.0f &&
-           transmission == 0.0f && !sheen() && anisotropy == 0.0f;
+           transmission == 0.0f && !sheen() && anisotropy == 0.0f && iridescence == 0.0f;
   }
   bool transmissive() const { return transmission > 0.0f; }
   bool sheen() const { return sheenColor != glm::vec3(0.0f); }

@@ -116,13 +116,15 @@ struct SamplerData {
 };
 
 // The material texture slots, in the order of MaterialData::textures.
-// The last ten are glTF's dielectric layers' (asset/material_layers.h):
+// The last twelve are glTF's dielectric layers' (asset/material_layers.h):
 // KHR_materials_specular's specularTexture (A) and specularColorTexture (RGB, sRGB),
 // KHR_materials_clearcoat's clearcoatTexture (R) and clearcoatRoughnessTexture (G),
 // KHR_materials_transmission's transmissionTexture (R), KHR_materials_volume's
 // thicknessTexture (G), the coat's own normal map (clearcoatNormalTexture), and
 // KHR_materials_sheen's sheenColorTexture (RGB, sRGB) and sheenRoughnessTexture (A),
-// KHR_materials_anisotropy's anisotropyTexture (RG direction, B strength).
+// KHR_materials_anisotropy's anisotropyTexture (RG direction, B strength),
+// KHR_materials_iridescence's iridescenceTexture (R) and
+// iridescenceThicknessTexture (G).
 enum class TextureSlot {
   BaseColor,
   Normal,
@@ -138,9 +140,11 @@ enum class TextureSlot {
   ClearcoatNormal,
   SheenColor,
   SheenRoughness,
-  Anisotropy
+  Anisotropy,
+  Iridescence,
+  IridescenceThickness
 };
-inline constexpr int kTextureSlots = 15;
+inline constexpr int kTextureSlots = 17;
 inline constexpr int kFirstLayerSlot = 5;  // Specular
 // Colour slots hold sRGB-encoded images; the others linear data.
 inline bool isSrgbSlot(TextureSlot slot) {
@@ -180,10 +184,10 @@ struct MaterialData {
   // KHR_materials_unlit: the surface shows its base colour (factor x texture x
   // vertex colour) as it is, lit by nothing; every renderer draws it so.
   bool unlit = false;
-  // KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen, _anisotropy: the factors, and their textures'
+  // KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen, _anisotropy, _iridescence: the factors, and their textures'
   // images (-1 none; the slots past Occlusion).
   MaterialLayers layers;
-  std::array<int, kTextureSlots - kFirstLayerSlot> layerImages{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+  std::array<int, kTextureSlots - kFirstLayerSlot> layerImages{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   bool hasLayerTextures() const {
     for (int image : layerImages)
       if (image >= 0) return true;
@@ -211,7 +215,9 @@ struct MaterialData {
       case TextureSlot::ClearcoatNormal:
       case TextureSlot::SheenColor:
       case TextureSlot::SheenRoughness:
-      case TextureSlot::Anisotropy: return layerImages[std::size_t(slot) - kFirstLayerSlot];
+      case TextureSlot::Anisotropy:
+      case TextureSlot::Iridescence:
+      case TextureSlot::IridescenceThickness: return layerImages[std::size_t(slot) - kFirstLayerSlot];
     }
     return -1;
   }

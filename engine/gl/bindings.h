@@ -32,6 +32,8 @@ inline constexpr unsigned kSheenRoughness = 21;
 // The white sheen's directional albedo (core/sheen_table.h), for albedo scaling.
 inline constexpr unsigned kSheenAlbedo = 22;
 inline constexpr unsigned kAnisotropy = 23;  // KHR_materials_anisotropy's texture
+inline constexpr unsigned kIridescence = 24;  // KHR_materials_iridescence's textures
+inline constexpr unsigned kIridescenceThickness = 25;
 // Shadow maps (common/shadows.glsl).
 inline constexpr unsigned kSunShadow = 4;
 inline constexpr unsigned kPointShadow = 5;
@@ -80,7 +82,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 50> kDefines{{
+inline constexpr std::array<Define, 52> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -98,6 +100,8 @@ inline constexpr std::array<Define, 50> kDefines{{
     {"UNIT_SHEEN_ROUGHNESS", kSheenRoughness},
     {"UNIT_SHEEN_ALBEDO", kSheenAlbedo},
     {"UNIT_ANISOTROPY", kAnisotropy},
+    {"UNIT_IRIDESCENCE", kIridescence},
+    {"UNIT_IRIDESCENCE_THICKNESS", kIridescenceThickness},
     {"UNIT_SUN_SHADOW", kSunShadow},
     {"UNIT_POINT_SHADOW", kPointShadow},
     {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},

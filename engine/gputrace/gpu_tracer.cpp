@@ -89,8 +89,8 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
     return "vertex colours (COLOR_0) are not supported yet";
   const auto& materials = scene.materials();
   if (std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return !m.layers.isDefault(); }))
-    return "glTF's material layers (KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen) are "
-           "not supported yet";
+    return "glTF's material layers (KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen, "
+           "_anisotropy) are not supported yet";
   return {};
 }
 

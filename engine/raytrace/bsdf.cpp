@@ -41,7 +41,8 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
   const float cosO = std::clamp(b.woLocal_.z, 0.0f, 1.0f);
   const glm::vec3 f0 = glm::mix(m.dielectricF0, m.albedo, m.metallic);
   const float f90 = m.dielectricF90 + (1.0f - m.dielectricF90) * m.metallic;
-  const float fresnel = mean(brdf::schlickFresnel90(f0, f90, cosO));
+  if (m.iridescence > 0.0f) b.iridescenceF_ = m.iridescenceFresnelAt(std::max(cosO, 1e-4f));
+  const float fresnel = mean(glm::mix(brdf::schlickFresnel90(f0, f90, cosO), b.iridescenceF_, m.iridescence));
   // A sheen dims what lies under it by its albedo scaling.
   const float sheenAlbedo = m.sheenAlbedo(cosO);
   b.sheenScale_ = brdf::sheenScaling(m.sheenColor, sheenAlbedo);
@@ -88,7 +89,8 @@ glm::vec3 Bsdf::f(const glm::vec3& wi) const {
   }
   return brdf::layeredBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness, m_.dielectricF0,
                            m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness, m_.transmission,
-                           m_.sheenColor, m_.sheenRoughness, sheenScale_, frame_.s, frame_.t, anisotropy_);
+                           m_.sheenColor, m_.sheenRoughness, sheenScale_, frame_.s, frame_.t, anisotropy_,
+                           iridescenceF_, m_.iridescence);
 }
 
 float Bsdf::pdf(const glm::vec3& wi) const {

@@ -82,6 +82,7 @@ class Bsdf {
   // frame_.s (the stretch's direction) and frame_.t.
   float anisotropy_ = 0.0f;
   glm::vec2 alphas_{1.0f};
+  glm::vec3 iridescenceF_{0.0f};  // KHR_materials_iridescence's Fresnel at wo
 };
 
 }  // namespace engine::rt

@@ -240,6 +240,11 @@ void RtScene::applyLayerTextures(int material, const HitUv& uv, float footprint,
     out.anisotropyDirection = glm::vec2(texel) * 2.0f - 1.0f;
     out.anisotropy *= texel.z;
   }
+  if (const RtTexture* film = at(TextureSlot::Iridescence)) out.iridescence *= film->sample(uv, footprint).x;
+  if (const RtTexture* thick = at(TextureSlot::IridescenceThickness)) {
+    out.iridescenceThickness =
+        glm::mix(layers.iridescenceThicknessMin, layers.iridescenceThicknessMax, thick->sample(uv, footprint).y);
+  }
 }
 
 namespace {
@@ -303,6 +308,9 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
                   m.layers.clearcoatRoughness, m.layers.transmission, m.layers.ior, m.layers.thickness,
                   m.layers.attenuationDistance, m.layers.attenuationColor, m.layers.sheenColor,
                   m.layers.sheenRoughness, m.layers.anisotropy, m.layers.anisotropyRotation};
+  out.iridescence = m.layers.iridescence;
+  out.iridescenceIor = m.layers.iridescenceIor;
+  out.iridescenceThickness = m.layers.iridescenceThicknessMax;
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
     out.roughness *= t.y;

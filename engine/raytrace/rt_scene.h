@@ -22,6 +22,7 @@
 
 #include "asset/model_data.h"
 #include "asset/scene_desc.h"
+#include "core/brdf.h"
 #include "core/result.h"
 #include "core/sheen_table.h"
 #include "raytrace/bvh.h"
@@ -90,6 +91,15 @@ struct HitMaterial {
     const float len = glm::length(t);
     return len > 1e-6f ? t / len : glm::vec3(0.0f);
   }
+  // KHR_materials_iridescence: the thin film's share, index and thickness (nm) at the
+  // hit, and its Fresnel at N.V over this base (brdf.glsl's iridescenceFresnel).
+  float iridescence = 0.0f;
+  float iridescenceIor = 1.3f;
+  float iridescenceThickness = 400.0f;
+  glm::vec3 iridescenceFresnelAt(float nDotV) const {
+    return brdf::iridescenceFresnel(1.0f, iridescenceIor, nDotV, iridescenceThickness,
+                                    glm::mix(dielectricF0, albedo, metallic));
+  }
   // The white sheen's directional albedo at N.V (core/sheen_table.h); 0 without one.
   float sheenAlbedo(float nDotV) const {
     return sheenColor != glm::vec3(0.0f) ? sheenTable().lookup(nDotV, sheenRoughness) : 0.0f;
@@ -122,10 +132,11 @@ class RtScene {
   Status setSingleSided(int material, bool singleSided);
   // KHR_materials_unlit (HitMaterial::unlit).
   Status setUnlit(int material, bool unlit);
-  // One of glTF's layer textures (`slot` Specular .. Anisotropy): they scale the
+  // One of glTF's layer textures (`slot` Specular .. IridescenceThickness): they scale the
   // material's MaterialLayers at each hit (specular by A, its colour by RGB, the coat
   // by R, its roughness by G, transmission by R, thickness by G, the sheen's colour
-  // by RGB and its roughness by A, anisotropy's direction by RG and strength by B).
+  // by RGB and its roughness by A, anisotropy's direction by RG and strength by B,
+  // iridescence by R and the film's thickness by G between its minimum and maximum).
   Status setLayerTexture(int material, TextureSlot slot, RtTexture texture);
   bool singleSided(int material) const { return extras_[size_t(material)].singleSided; }
   // How much of a ray the surface stops at uv: 1 opaque, 0 cut away (MASK), or
@@ -265,7 +276,7 @@ class RtScene {
     int texture = -1;
     int emissiveTexture = -1;
     int metallicRoughnessTexture = -1;
-    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+    std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
     // MaterialDesc::layers' dielectric f0 (worked in double), once per material, not per hit.
     glm::vec3 dielectricF0{0.04f};
     bool hasLayerTextures() const {

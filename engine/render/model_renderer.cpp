@@ -30,6 +30,7 @@ std::string ShaderVariant::describe() const {
   if (clearcoatNormal) name += "+coatnormal";
   if (sheen) name += "+sheen";
   if (anisotropy) name += "+anisotropy";
+  if (iridescence) name += "+iridescence";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -69,6 +70,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.clearcoatNormal) defines.push_back("CLEARCOAT_NORMAL 1");
   if (variant.sheen) defines.push_back("SHEEN 1");
   if (variant.anisotropy) defines.push_back("ANISOTROPY 1");
+  if (variant.iridescence) defines.push_back("IRIDESCENCE 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -118,6 +120,9 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
     pr.set("u_sheenRoughness", l.sheenRoughness);
     pr.set("u_anisotropy", l.anisotropy);
     pr.set("u_anisotropyRotation", l.anisotropyRotation);
+    pr.set("u_iridescence", l.iridescence);
+    pr.set("u_iridescenceIor", l.iridescenceIor);
+    pr.set("u_iridescenceThickness", glm::vec2(l.iridescenceThicknessMin, l.iridescenceThicknessMax));
   }
   pr.set("u_normalScale", material->normalScale);
   pr.set("u_occlusionStrength", material->occlusionStrength);
@@ -147,7 +152,8 @@ constexpr GLuint kSlotUnits[kTextureSlots] = {gl::binding::kBaseColor,       gl:
                                               gl::binding::kClearcoatRoughness, gl::binding::kTransmission,
                                               gl::binding::kThickness,         gl::binding::kClearcoatNormal,
                                               gl::binding::kSheenColor,        gl::binding::kSheenRoughness,
-                                              gl::binding::kAnisotropy};
+                                              gl::binding::kAnisotropy,        gl::binding::kIridescence,
+                                              gl::binding::kIridescenceThickness};
 
 // Which slots the variant samples: the layer textures the material has, in a
 // +layertextures variant (common/material.glsl's u_layerTextures says which).
@@ -475,6 +481,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.clearcoatNormal = m->layers.clearcoat > 0.0f && m->image(TextureSlot::ClearcoatNormal) >= 0 && !prim.tangents.empty();
     v.sheen = m->layers.sheen();
     v.anisotropy = m->layers.anisotropy > 0.0f && !prim.tangents.empty();
+    v.iridescence = m->layers.iridescence > 0.0f;
   }
   const auto sampled = sampledSlots(v, *m);
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();

@@ -61,6 +61,8 @@ struct ShaderVariant {
   // KHR_materials_anisotropy (ANISOTROPY), on a mesh with tangents: the base's
   // highlight stretched along a direction of the tangent frame.
   bool anisotropy = false;
+  // KHR_materials_iridescence (IRIDESCENCE): the thin film's Fresnel.
+  bool iridescence = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };

@@ -140,6 +140,83 @@ BRDF_INLINE vec3 anisotropicReflectionNormal(vec3 n, vec3 toEye, vec3 b, float a
   return normalize(mix(bent, n, a));
 }
 
+// KHR_materials_iridescence: a thin film of index filmIor and `thickness` nanometres
+// over the base, whose two interfaces' reflections interfere (Belcour and Barla 2017,
+// "A Practical Extension to Microfacet Theory for the Modeling of Varying
+// Iridescence", as glTF's spec and the Khronos Sample Viewer evaluate it): the
+// Fresnel reflectance at cos theta1 of the film over a base of reflectance baseF0,
+// seen from a medium of index outsideIor (air: 1).
+BRDF_INLINE float iorToF0(float transmittedIor, float incidentIor) {
+  float r = (transmittedIor - incidentIor) / (transmittedIor + incidentIor);
+  return r * r;
+}
+BRDF_INLINE vec3 iorToF0Rgb(vec3 transmittedIor, float incidentIor) {
+  vec3 r = (transmittedIor - vec3(incidentIor)) / (transmittedIor + vec3(incidentIor));
+  return r * r;
+}
+BRDF_INLINE vec3 f0ToIor(vec3 f0) {
+  vec3 root = sqrt(f0);
+  return (vec3(1.0f) + root) / (vec3(1.0f) - root);
+}
+BRDF_INLINE float schlickScalar(float f0, float cosTheta) {
+  float m = clamp(1.0f - cosTheta, 0.0f, 1.0f);
+  float m2 = m * m;
+  return f0 + (1.0f - f0) * (m2 * m2 * m);
+}
+
+// The eye's response to an optical path difference `opd` (nm) at phase `shift`, as
+// linear Rec. 709 RGB: Belcour and Barla's Gaussian fit of the CIE XYZ matching
+// functions in Fourier space, turned to RGB.
+BRDF_INLINE vec3 iridescenceSensitivity(float opd, vec3 shift) {
+  float phase = 2.0f * BRDF_PI * opd * 1.0e-9f;
+  vec3 val = vec3(5.4856e-13f, 4.4201e-13f, 5.2481e-13f);
+  vec3 pos = vec3(1.6810e+06f, 1.7953e+06f, 2.2084e+06f);
+  vec3 var = vec3(4.3278e+09f, 9.3046e+09f, 6.6121e+09f);
+  vec3 xyz = val * sqrt(2.0f * BRDF_PI * var) * cos(pos * phase + shift) * exp(-(phase * phase) * var);
+  float x = xyz.x + 9.7470e-14f * sqrt(2.0f * BRDF_PI * 4.5282e+09f) * cos(2.2399e+06f * phase + shift.x) *
+                        exp(-4.5282e+09f * (phase * phase));
+  vec3 c = vec3(x, xyz.y, xyz.z) / 1.0685e-7f;
+  // XYZ to linear Rec. 709, row by row.
+  return vec3(3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
+              -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
+              0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z);
+}
+
+BRDF_INLINE vec3 iridescenceFresnel(float outsideIor, float filmIor, float cosTheta1, float thickness, vec3 baseF0) {
+  // A film thinner than 30 nm fades into the outside medium (no film at 0).
+  float t = clamp(thickness / 30.0f, 0.0f, 1.0f);
+  float ior = mix(outsideIor, filmIor, t * t * (3.0f - 2.0f * t));
+  float ratio = outsideIor / ior;
+  float cosTheta2Sq = 1.0f - ratio * ratio * (1.0f - cosTheta1 * cosTheta1);
+  if (cosTheta2Sq < 0.0f) return vec3(1.0f);  // total internal reflection in the film
+  float cosTheta2 = sqrt(cosTheta2Sq);
+  // The first interface, outside to film.
+  float r12 = schlickScalar(iorToF0(ior, outsideIor), cosTheta1);
+  float t121 = 1.0f - r12;
+  float phi12 = ior < outsideIor ? BRDF_PI : 0.0f;
+  float phi21 = BRDF_PI - phi12;
+  // The second, film to base (each channel's index from its f0).
+  vec3 baseIor = f0ToIor(clamp(baseF0, vec3(0.0f), vec3(0.9999f)));
+  vec3 r1 = iorToF0Rgb(baseIor, ior);
+  float m = clamp(1.0f - cosTheta2, 0.0f, 1.0f);
+  float m2 = m * m;
+  vec3 r23 = r1 + (vec3(1.0f) - r1) * (m2 * m2 * m);
+  vec3 phi23 = vec3(baseIor.x < ior ? BRDF_PI : 0.0f, baseIor.y < ior ? BRDF_PI : 0.0f, baseIor.z < ior ? BRDF_PI : 0.0f);
+  float opd = 2.0f * ior * thickness * cosTheta2;
+  vec3 phi = vec3(phi21) + phi23;
+  vec3 r123 = clamp(r12 * r23, vec3(1e-5f), vec3(0.9999f));
+  vec3 root123 = sqrt(r123);
+  vec3 rs = (t121 * t121) * r23 / (vec3(1.0f) - r123);
+  // The mean term, then two pairs of interference terms.
+  vec3 reflectance = vec3(r12) + rs;
+  vec3 cm = rs - vec3(t121);
+  cm = cm * root123;
+  reflectance = reflectance + cm * (2.0f * iridescenceSensitivity(opd, phi));
+  cm = cm * root123;
+  reflectance = reflectance + cm * (2.0f * iridescenceSensitivity(2.0f * opd, 2.0f * phi));
+  return max(reflectance, vec3(0.0f));
+}
+
 // KHR_materials_sheen: a layer of fibres over the base, the "Charlie" distribution
 // (Estevez and Kulla 2017, "Production Friendly Microfacet Sheen BRDF") with their
 // fitted visibility, as glTF's spec and the Khronos Sample Viewer define them. The
@@ -219,6 +296,9 @@ BRDF_INLINE float sheenScaling(vec3 sheenColor, float sheenAlbedo) {
 //   back through it); what is left of the lobe reflects.
 // - KHR_materials_anisotropy stretches the base's GGX lobe along anisotropyT
 //   (anisotropyB across it; baseSpecularDV above).
+// - KHR_materials_iridescence replaces the base's Fresnel by the thin film's,
+//   iridescenceF (iridescenceFresnel above, at N.V, once per shading point), by the
+//   share `iridescence`; the diffuse lobe loses the film's strongest channel.
 // - KHR_materials_sheen lies between the two: over the base (and what it transmits)
 //   a sheen lobe of colour sheenColor, which dims the base by sheenScaling (above):
 //   f = sheenColor sheenBrdf + base sheenScaling, all under the coat.
@@ -227,7 +307,8 @@ BRDF_INLINE float sheenScaling(vec3 sheenColor, float sheenAlbedo) {
 BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness,
                              vec3 dielectricF0, float dielectricF90, vec3 nc, float clearcoat,
                              float clearcoatRoughness, float transmission, vec3 sheenColor, float sheenRoughness,
-                             float sheenScale, vec3 anisotropyT, vec3 anisotropyB, float anisotropy) {
+                             float sheenScale, vec3 anisotropyT, vec3 anisotropyB, float anisotropy,
+                             vec3 iridescenceF, float iridescence) {
   vec3 base = vec3(0.0f);
   float nDotL = dot(n, l);
   if (nDotL > 0.0f) {
@@ -237,8 +318,13 @@ BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float meta
     vec3 f0 = mix(dielectricF0, albedo, metallic);
     float f90 = dielectricF90 + (1.0f - dielectricF90) * metallic;
     vec3 fresnel = schlickFresnel90(f0, f90, vDotH);
+    vec3 diffuseFresnel = fresnel;
+    if (iridescence > 0.0f) {
+      diffuseFresnel = mix(fresnel, vec3(maxComponent(iridescenceF)), iridescence);
+      fresnel = mix(fresnel, iridescenceF, iridescence);
+    }
     vec3 specular = fresnel * baseSpecularDV(n, toEye, l, h, alpha, anisotropyT, anisotropyB, anisotropy);
-    base = (vec3(1.0f) - fresnel) * albedo * ((1.0f - metallic) * (1.0f - transmission) / BRDF_PI) + specular;
+    base = (vec3(1.0f) - diffuseFresnel) * albedo * ((1.0f - metallic) * (1.0f - transmission) / BRDF_PI) + specular;
     if (maxComponent(sheenColor) > 0.0f)
       base = base * sheenScale + sheenColor * sheenBrdf(n, toEye, l, sheenRoughness);
   }
@@ -262,8 +348,9 @@ BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float meta
 // over the base it dims. Not physical: the path tracer and the IBL ambient replace it.
 BRDF_INLINE vec3 hemisphereAmbient(vec3 albedo, float metallic, float roughness, vec3 dielectricF0, float nDotV,
                                    float clearcoat, float clearcoatRoughness, float transmission, vec3 sheenColor,
-                                   float sheenAlbedo) {
+                                   float sheenAlbedo, vec3 iridescenceF, float iridescence) {
   vec3 f0 = mix(dielectricF0, albedo, metallic);
+  if (iridescence > 0.0f) f0 = mix(f0, iridescenceF, iridescence);
   vec3 base = albedo * ((1.0f - metallic) * (1.0f - transmission)) + f0 * (1.0f - roughness) * 0.5f;
   if (maxComponent(sheenColor) > 0.0f) base = base * sheenScaling(sheenColor, sheenAlbedo) + sheenColor * sheenAlbedo;
   if (clearcoat <= 0.0f) return base;

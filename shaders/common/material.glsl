@@ -17,6 +17,8 @@
 //                     LAYER_TEXTURES, UNIT_SHEEN_COLOR and UNIT_SHEEN_ROUGHNESS)
 //   ANISOTROPY        KHR_materials_anisotropy (with MATERIAL_LAYERS, on a mesh with
 //                     tangents; its texture with LAYER_TEXTURES, UNIT_ANISOTROPY)
+//   IRIDESCENCE       KHR_materials_iridescence (with MATERIAL_LAYERS; its textures
+//                     with LAYER_TEXTURES, UNIT_IRIDESCENCE and _THICKNESS)
 //   UV_TRANSFORM      some slot reads TEXCOORD_1 or has a KHR_texture_transform:
 //                     every slot reads its set (u_texCoord) through its matrix
 //                     (u_uvTransform, built in C++: asset/texture_transform.h)
@@ -44,11 +46,13 @@ const int SLOT_CLEARCOAT_NORMAL = 11;
 const int SLOT_SHEEN_COLOR = 12;
 const int SLOT_SHEEN_ROUGHNESS = 13;
 const int SLOT_ANISOTROPY = 14;
+const int SLOT_IRIDESCENCE = 15;
+const int SLOT_IRIDESCENCE_THICKNESS = 16;
 
 #ifdef UV_TRANSFORM
 in vec2 v_uv1;  // TEXCOORD_1 (set 0 where the mesh has none)
-uniform mat3 u_uvTransform[15];
-uniform int u_texCoord[15];
+uniform mat3 u_uvTransform[17];
+uniform int u_texCoord[17];
 #endif
 
 // The uv that `slot` samples at, from the fragment's TEXCOORD_0 `uv`.
@@ -187,6 +191,8 @@ uniform vec3 u_sheenColor;   // linear
 uniform float u_sheenRoughness;
 uniform float u_anisotropy;          // strength
 uniform float u_anisotropyRotation;  // radians, from the tangent toward the bitangent
+uniform float u_iridescence;
+uniform vec2 u_iridescenceThickness;  // nm: the texture's G = 0 and 1 (the latter without one)
 #ifdef LAYER_TEXTURES
 layout(binding = UNIT_SPECULAR) uniform sampler2D u_specularTexture;              // A
 layout(binding = UNIT_SPECULAR_COLOR) uniform sampler2D u_specularColorTexture;   // RGB, sRGB
@@ -200,6 +206,10 @@ layout(binding = UNIT_SHEEN_ROUGHNESS) uniform sampler2D u_sheenRoughnessTexture
 #endif
 #ifdef ANISOTROPY
 layout(binding = UNIT_ANISOTROPY) uniform sampler2D u_anisotropyTexture;  // RG direction, B strength
+#endif
+#ifdef IRIDESCENCE
+layout(binding = UNIT_IRIDESCENCE) uniform sampler2D u_iridescenceTexture;                     // R
+layout(binding = UNIT_IRIDESCENCE_THICKNESS) uniform sampler2D u_iridescenceThicknessTexture;  // G
 #endif
 uniform int u_layerTextures;  // bit (slot - SLOT_SPECULAR): the slot has a texture
 
@@ -217,6 +227,10 @@ void materialLayers(vec2 uv) {
   g_sheenColor = u_sheenColor;
   g_sheenRoughness = u_sheenRoughness;
 #endif
+#ifdef IRIDESCENCE
+  g_iridescence = u_iridescence;
+  g_iridescenceThickness = u_iridescenceThickness.y;
+#endif
 #ifdef LAYER_TEXTURES
   if (hasLayerTexture(SLOT_SPECULAR)) weight *= texture(u_specularTexture, materialUv(SLOT_SPECULAR, uv)).a;
   if (hasLayerTexture(SLOT_SPECULAR_COLOR))
@@ -232,6 +246,14 @@ void materialLayers(vec2 uv) {
     g_sheenColor *= texture(u_sheenColorTexture, materialUv(SLOT_SHEEN_COLOR, uv)).rgb;
   if (hasLayerTexture(SLOT_SHEEN_ROUGHNESS))
     g_sheenRoughness *= texture(u_sheenRoughnessTexture, materialUv(SLOT_SHEEN_ROUGHNESS, uv)).a;
+#endif
+#ifdef IRIDESCENCE
+  if (hasLayerTexture(SLOT_IRIDESCENCE))
+    g_iridescence *= texture(u_iridescenceTexture, materialUv(SLOT_IRIDESCENCE, uv)).r;
+  if (hasLayerTexture(SLOT_IRIDESCENCE_THICKNESS)) {
+    float g = texture(u_iridescenceThicknessTexture, materialUv(SLOT_IRIDESCENCE_THICKNESS, uv)).g;
+    g_iridescenceThickness = mix(u_iridescenceThickness.x, u_iridescenceThickness.y, g);
+  }
 #endif
 #endif
   g_dielectricF0 = min(vec3(u_iorF0) * color, vec3(1.0)) * weight;

@@ -65,6 +65,24 @@ const vec3 g_anisotropyB = vec3(0.0, 1.0, 0.0);
 const float g_anisotropy = 0.0;
 #endif
 
+#ifdef IRIDESCENCE
+// KHR_materials_iridescence at the fragment: the film's share and thickness
+// (material.glsl's materialLayers) and its Fresnel at N.V (surfaceIridescence, once
+// per fragment).
+uniform float u_iridescenceIor;
+float g_iridescence;
+float g_iridescenceThickness;
+vec3 g_iridescenceF;
+
+vec3 surfaceIridescence(Surface s) {
+  vec3 f0 = mix(g_dielectricF0, s.albedo, s.metallic);
+  return iridescenceFresnel(1.0, u_iridescenceIor, max(dot(s.n, s.toEye), 1e-4), g_iridescenceThickness, f0);
+}
+#else
+const float g_iridescence = 0.0;
+const vec3 g_iridescenceF = vec3(0.0);
+#endif
+
 #ifdef CLASSIC
 vec3 shadeAmbient(Surface s) { return s.albedo * s.ambient; }
 
@@ -129,6 +147,11 @@ vec3 shadeAmbient(Surface s) {
   vec3 radiance = ambientRadiance(reflect(-s.toEye, reflectAbout), s.roughness);
 #ifdef MATERIAL_LAYERS
   vec3 color = diffuse + radiance * (f0 * table.x + vec3(f90 * table.y));
+#ifdef IRIDESCENCE
+  // The film's Fresnel at N.V in place of the split sum's f0 scale and bias (the
+  // Sample Viewer's shortcut).
+  color = mix(color, diffuse + radiance * g_iridescenceF * (table.x + table.y), g_iridescence);
+#endif
 #ifdef SHEEN
   // The sheen's broad lobe sees the environment as a Lambert lobe does (a shortcut:
   // the Sample Viewer prefilters a Charlie-lobe cube of its own).
@@ -154,7 +177,8 @@ vec3 shadeAmbient(Surface s) {
 #ifdef MATERIAL_LAYERS
   float ncDotV = max(dot(g_clearcoatNormal, s.toEye), 1e-4);
   return sky * hemisphereAmbient(s.albedo, s.metallic, s.roughness, g_dielectricF0, ncDotV, g_clearcoat,
-                                 g_clearcoatRoughness, g_transmission, g_sheenColor, g_sheenAlbedo);
+                                 g_clearcoatRoughness, g_transmission, g_sheenColor, g_sheenAlbedo, g_iridescenceF,
+                                 g_iridescence);
 #else
   vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
   vec3 f0 = metallicF0(s.albedo, s.metallic);
@@ -171,7 +195,7 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
   vec3 f = layeredBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness, g_dielectricF0, g_dielectricF90,
                        g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness, g_transmission, g_sheenColor,
                        g_sheenRoughness, sheenScaling(g_sheenColor, g_sheenAlbedo), g_anisotropyT, g_anisotropyB,
-                       g_anisotropy);
+                       g_anisotropy, g_iridescenceF, g_iridescence);
 #else
   vec3 f = metallicRoughnessBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness);
 #endif

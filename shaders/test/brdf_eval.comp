@@ -17,6 +17,7 @@ struct Case {
   vec4 nc;         // xyz: the coat's normal
   vec4 sheen;      // xyz sheen colour, w sheen roughness
   vec4 anisotropy; // xyz the stretch's direction, w its strength
+  vec4 iridescence; // xyz the film's Fresnel, w its share
 };
 
 struct Result {
@@ -29,6 +30,7 @@ struct Result {
   vec4 transmitted;        // xyz transmittedShare x volumeAttenuation, w transmissionRoughness
   vec4 sheenTerms;         // charlieDistribution, sheenVisibility, sheenLambda, sheenBrdf
   vec4 anisotropic;        // xyz anisotropicReflectionNormal, w anisotropyDirection's x
+  vec4 film;               // xyz iridescenceFresnel
 };
 
 layout(std430, binding = 0) readonly buffer Cases { Case cases[]; };
@@ -51,10 +53,12 @@ void main() {
   r.fresnel = vec4(schlickFresnel(metallicF0(c.albedo.xyz, metallic), max(dot(v, h), 0.0)), 0.0);
   r.layered = vec4(layeredBrdf(n, v, l, c.albedo.xyz, metallic, roughness, c.dielectric.xyz, c.dielectric.w, c.nc.xyz,
                                c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.sheen.w, sheenScaling(c.sheen.xyz, c.coat.w),
-                               c.anisotropy.xyz, cross(n, c.anisotropy.xyz), c.anisotropy.w),
+                               c.anisotropy.xyz, cross(n, c.anisotropy.xyz), c.anisotropy.w, c.iridescence.xyz,
+                               c.iridescence.w),
                    0.0);
   r.hemisphere = vec4(hemisphereAmbient(c.albedo.xyz, metallic, roughness, c.dielectric.xyz,
-                                        max(dot(c.nc.xyz, v), 1e-4), c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.coat.w),
+                                        max(dot(c.nc.xyz, v), 1e-4), c.coat.x, c.coat.y, c.coat.z, c.sheen.xyz, c.coat.w,
+                                        c.iridescence.xyz, c.iridescence.w),
                       0.0);
   float nDotL = max(dot(n, l), 1e-4), nDotV = max(dot(n, v), 1e-4);
   float sheenA = sheenAlpha(roughness);
@@ -63,6 +67,9 @@ void main() {
   float strength = c.anisotropy.w > 0.0 ? c.anisotropy.w : 0.7;
   r.anisotropic = vec4(anisotropicReflectionNormal(n, v, cross(n, c.anisotropy.xyz), strength, roughness),
                        anisotropyDirection(vec2(0.6, 0.8), 3.0 * roughness - 1.0).x);
+  r.film = vec4(iridescenceFresnel(1.0, 1.2 + 2.0 * c.params.w * roughness, nDotV, 1000.0 * roughness,
+                                   metallicF0(c.albedo.xyz, metallic)),
+                0.0);
   vec3 reflected = schlickFresnel90(c.dielectric.xyz, c.dielectric.w, max(dot(n, v), 1e-4));
   r.transmitted = vec4(transmittedShare(c.albedo.xyz, metallic, c.coat.z, reflected) *
                            volumeAttenuation(c.albedo.xyz, 0.5, 0.1 + roughness),

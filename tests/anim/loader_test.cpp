@@ -1091,6 +1091,49 @@ TEST_F(LoaderTest, ReadsAnisotropy) {
   expectMaterialValuesRefused(m, bad);
 }
 
+// KHR_materials_iridescence: the film's share, index and thickness range with their
+// defaults (1.3, 100-400 nm), the two textures as slots of their own, and each key's
+// range checked with the material named.
+TEST_F(LoaderTest, ReadsIridescence) {
+  TestModel m;
+  m.doc["extensionsUsed"] = {"KHR_materials_iridescence"};
+  m.doc["extensionsRequired"] = {"KHR_materials_iridescence"};
+  m.doc["materials"] = {{{"extensions",
+                          {{"KHR_materials_iridescence",
+                            {{"iridescenceFactor", 0.8},
+                             {"iridescenceIor", 1.8},
+                             {"iridescenceThicknessMinimum", 200.0},
+                             {"iridescenceThicknessMaximum", 600.0},
+                             {"iridescenceTexture", {{"index", 0}}},
+                             {"iridescenceThicknessTexture", {{"index", 0}}}}}}}},
+                        {{"extensions", {{"KHR_materials_iridescence", {{"iridescenceFactor", 1.0}}}}}}};
+  m.doc["images"] = {{{"uri", "missing.png"}}};
+  m.doc["textures"] = {{{"source", 0}}};
+  auto model = loadGltf(write(m));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const MaterialLayers& l = model->materials[0].layers;
+  EXPECT_FLOAT_EQ(l.iridescence, 0.8f);
+  EXPECT_FLOAT_EQ(l.iridescenceIor, 1.8f);
+  EXPECT_FLOAT_EQ(l.iridescenceThicknessMin, 200.0f);
+  EXPECT_FLOAT_EQ(l.iridescenceThicknessMax, 600.0f);
+  EXPECT_FALSE(l.isDefault());
+  EXPECT_EQ(model->materials[0].image(TextureSlot::Iridescence), 0);
+  EXPECT_EQ(model->materials[0].image(TextureSlot::IridescenceThickness), 0);
+  const MaterialLayers& d = model->materials[1].layers;
+  EXPECT_FLOAT_EQ(d.iridescenceIor, 1.3f);
+  EXPECT_FLOAT_EQ(d.iridescenceThicknessMin, 100.0f);
+  EXPECT_FLOAT_EQ(d.iridescenceThicknessMax, 400.0f);
+  EXPECT_FALSE(hasWarning(*model, {"does not support"})) << allWarnings(*model);
+
+  const std::vector<std::tuple<const char*, const char*, nlohmann::json>> bad = {
+      {"KHR_materials_iridescence", "iridescenceFactor", 1.2},
+      {"KHR_materials_iridescence", "iridescenceIor", 0.5},
+      {"KHR_materials_iridescence", "iridescenceThicknessMinimum", -10.0},
+      {"KHR_materials_iridescence", "iridescenceThicknessMaximum", "thick"},
+  };
+  expectMaterialValuesRefused(m, bad);
+}
+
 // KHR_materials_variants: the root's names, each primitive's mapping of variants to
 // materials, a model remapped to one variant (the others keep their material), and
 // mappings that point nowhere refused with the primitive and mapping named.

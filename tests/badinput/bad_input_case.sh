@@ -82,6 +82,7 @@ case "$CASE" in
   huge_image) model huge_image.glb 0 "warning: huge_image\.glb: image 0: 20000 x 20000 pixels is over the limit of 16384" ;;
   bad_clearcoat) model bad_clearcoat.glb 2 "bad_clearcoat\.glb: material 0 \(\"paint\"\): KHR_materials_clearcoat: clearcoatFactor must be a number in \[0, 1\]" ;;
   bad_anisotropy) model bad_anisotropy.glb 2 "bad_anisotropy\.glb: material 0 \(\"brushed\"\): KHR_materials_anisotropy: anisotropyStrength must be a number in \[0, 1\]" ;;
+  bad_iridescence) model bad_iridescence.glb 2 "bad_iridescence\.glb: material 0 \(\"soap\"\): KHR_materials_iridescence: iridescenceIor must be a number in \[1, 1e\+06\]" ;;
   bad_sheen) model bad_sheen.glb 2 "bad_sheen\.glb: material 0 \(\"velvet\"\): KHR_materials_sheen: sheenRoughnessFactor must be a number in \[0, 1\]" ;;
   bad_volume) model bad_volume.glb 2 "bad_volume\.glb: material 0 \(\"glass\"\): KHR_materials_volume: attenuationColor must be three numbers in \[0, 1\]" ;;
   bad_texture_settings) model bad_texture_settings.glb 0 "warning: bad_texture_settings\.glb: material 0 \(\"tiles\"\): baseColorTexture 0: TEXCOORD_2 is not supported" ;;

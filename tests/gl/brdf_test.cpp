@@ -24,9 +24,10 @@ struct Case {
   glm::vec4 nc;          // the coat's normal
   glm::vec4 sheen;       // xyz sheen colour, w sheen roughness
   glm::vec4 anisotropy;  // xyz the stretch's direction (in the surface), w its strength
+  glm::vec4 iridescence;  // xyz the film's Fresnel (as iridescenceFresnel would give it), w its share
 };
 struct Result {
-  glm::vec4 metallicRoughness, classic, terms, fresnel, layered, hemisphere, transmitted, sheenTerms, anisotropic;
+  glm::vec4 metallicRoughness, classic, terms, fresnel, layered, hemisphere, transmitted, sheenTerms, anisotropic, film;
 };
 
 // glTF's layers, cycled through the grid: none (0.04, 1), ior 1.33 tinted at half
@@ -43,6 +44,7 @@ struct Layers {
   glm::vec3 sheenColor{0.0f};
   float sheenRoughness = 0.0f, sheenAlbedo = 0.0f;
   float anisotropy = 0.0f;
+  float iridescence = 0.0f;
 };
 const Layers kLayers[] = {{glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false},
                           {glm::vec3(0.02f, 0.01f, 0.005f), 0.5f, 0.0f, 0.0f, false},
@@ -55,7 +57,9 @@ const Layers kLayers[] = {{glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false},
                           {glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false, 0.0f, glm::vec3(1.0f, 0.5f, 0.25f), 0.5f, 0.3f},
                           {glm::vec3(0.04f), 1.0f, 0.5f, 0.1f, true, 0.5f, glm::vec3(0.2f, 0.9f, 0.4f), 0.05f, 0.9f},
                           {glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false, 0.0f, glm::vec3(0.0f), 0.0f, 0.0f, 0.5f},
-                          {glm::vec3(0.1f), 1.0f, 0.4f, 0.3f, true, 0.0f, glm::vec3(0.5f), 0.4f, 0.2f, 1.0f}};
+                          {glm::vec3(0.1f), 1.0f, 0.4f, 0.3f, true, 0.0f, glm::vec3(0.5f), 0.4f, 0.2f, 1.0f},
+                          {glm::vec3(0.04f), 1.0f, 0.0f, 0.0f, false, 0.0f, glm::vec3(0.0f), 0.0f, 0.0f, 0.0f, 1.0f},
+                          {glm::vec3(0.04f), 1.0f, 0.5f, 0.2f, true, 0.4f, glm::vec3(0.3f), 0.5f, 0.3f, 0.5f, 0.6f}};
 
 glm::vec3 direction(float thetaDegrees, float phiDegrees) {
   const float t = glm::radians(thetaDegrees), p = glm::radians(phiDegrees);
@@ -91,7 +95,8 @@ std::vector<Case> grid() {
                                    glm::vec4(layers.clearcoat, layers.clearcoatRoughness, layers.transmission,
                                              layers.sheenAlbedo),
                                    glm::vec4(nc, 0.0f), glm::vec4(layers.sheenColor, layers.sheenRoughness),
-                                   glm::vec4(stretch, layers.anisotropy)});
+                                   glm::vec4(stretch, layers.anisotropy),
+                                   glm::vec4(0.3f, 0.6f, 0.2f, layers.iridescence)});
             }
           }
         }
@@ -117,10 +122,12 @@ Result onCpu(const Case& c) {
   const glm::vec3 sheenColor(c.sheen);
   r.layered = glm::vec4(brdf::layeredBrdf(n, v, l, albedo, metallic, roughness, f0, c.dielectric.w, nc, c.coat.x, c.coat.y,
                                           c.coat.z, sheenColor, c.sheen.w, brdf::sheenScaling(sheenColor, c.coat.w),
-                                          glm::vec3(c.anisotropy), glm::cross(n, glm::vec3(c.anisotropy)), c.anisotropy.w),
+                                          glm::vec3(c.anisotropy), glm::cross(n, glm::vec3(c.anisotropy)), c.anisotropy.w,
+                                          glm::vec3(c.iridescence), c.iridescence.w),
                         0.0f);
   r.hemisphere = glm::vec4(brdf::hemisphereAmbient(albedo, metallic, roughness, f0, std::max(glm::dot(nc, v), 1e-4f),
-                                                   c.coat.x, c.coat.y, c.coat.z, sheenColor, c.coat.w),
+                                                   c.coat.x, c.coat.y, c.coat.z, sheenColor, c.coat.w,
+                                                   glm::vec3(c.iridescence), c.iridescence.w),
                            0.0f);
   // The sheen's terms at the case's angles, with the material roughness as the
   // sheen's (all of 0..1), wherever the light is above the surface.
@@ -133,6 +140,11 @@ Result onCpu(const Case& c) {
   const float strength = c.anisotropy.w > 0.0f ? c.anisotropy.w : 0.7f;
   r.anisotropic = glm::vec4(brdf::anisotropicReflectionNormal(n, v, glm::cross(n, glm::vec3(c.anisotropy)), strength, roughness),
                             brdf::anisotropyDirection(glm::vec2(0.6f, 0.8f), 3.0f * roughness - 1.0f).x);
+  // The thin film's Fresnel at the case's view angle: film index 1.2 to 2.2 (so
+  // above and below the base's), 0 to 1000 nm (the fade below 30 nm included).
+  r.film = glm::vec4(brdf::iridescenceFresnel(1.0f, 1.2f + 2.0f * c.params.w * roughness, nDotV, 1000.0f * roughness,
+                                              brdf::metallicF0(albedo, metallic)),
+                     0.0f);
   // The transmission helpers: the light back through the surface, through a volume
   // of the roughness-derived length with the albedo as its attenuation colour.
   const glm::vec3 reflected = brdf::schlickFresnel90(f0, c.dielectric.w, std::max(glm::dot(n, v), 1e-4f));
@@ -149,11 +161,20 @@ Result onCpu(const Case& c) {
 // Charlie term (sheenTerms' distribution and BRDF, the layered BRDF of a sheen case)
 // are held to 1e-5 per unit of 1 + p: the same agreement of the inputs, not a
 // looser one of the formula.
+// The thin film's Fresnel (value 9) is a sum of cosines of the optical phase, up to
+// 120 radians for a 1000 nm film of index 2.2: a float argument that large is
+// rounded by some 1e-5 radians, which the cosine passes on in full. Its values are
+// held to 1e-5 per unit of that largest argument, for the same reason.
 double charlieCondition(const Case& c, int value, int component) {
   const bool sheenTerm = value == 7 && (component == 0 || component == 3);
   const bool layeredSheen = value == 4 && glm::vec3(c.sheen) != glm::vec3(0.0f);
   if (sheenTerm) return 1.0 + 0.5 / double(brdf::sheenAlpha(c.params.y));
   if (layeredSheen) return 1.0 + 0.5 / double(brdf::sheenAlpha(c.sheen.w));
+  if (value == 9) {
+    const double roughness = c.params.y, ior = 1.2 + 2.0 * c.params.w * roughness, thickness = 1000.0 * roughness;
+    const double opd = 2.0 * ior * thickness;  // nm, at most (cos theta2 <= 1)
+    return 1.0 + 2.2084e6 * 2.0 * M_PI * 2.0 * opd * 1e-9;  // the second pair's largest argument
+  }
   return 1.0;
 }
 
@@ -185,8 +206,8 @@ TEST_P(Brdf, GlslAndCppAgree) {
     const Result cpu = onCpu(cases[i]);
     const glm::vec4* a = &cpu.metallicRoughness;
     const glm::vec4* b = &gpu[i].metallicRoughness;
-    for (int k = 0; k < 9; ++k) {
-      for (int c = 0; c < (k >= 6 ? 4 : 3); ++c) {  // the .w of transmitted, sheenTerms, anisotropic
+    for (int k = 0; k < 10; ++k) {
+      for (int c = 0; c < (k >= 6 && k <= 8 ? 4 : 3); ++c) {  // the .w of transmitted, sheenTerms, anisotropic
         const double x = a[k][c], y = b[k][c];
         ASSERT_TRUE(std::isfinite(y)) << "case " << i << " value " << k;
         if (std::abs(x) > 1e-6) ++nonZero;

@@ -296,6 +296,28 @@ TEST(Energy, AnisotropicGgxNeverExceedsOne) {
   }
 }
 
+// KHR_materials_iridescence: a thin film over a white metal (thickness 0 to 1000 nm,
+// film index below and above the base's) reflects a Fresnel of at most 1 in every
+// channel (measured up to 1.0002: the Gaussian fit of the eye's sensitivity and its
+// turn to RGB overshoot that little; 0.1 % allowed), so the stack never reflects
+// more than it receives (1 % for the estimate's noise).
+TEST(Energy, IridescentFilmNeverAddsEnergy) {
+  std::mt19937 rng(31);
+  for (const float thickness : {0.0f, 150.0f, 400.0f, 1000.0f}) {
+    for (const float ior : {1.2f, 1.8f}) {
+      for (const float cosTheta : {0.05f, 0.4f, 1.0f}) {
+        engine::rt::HitMaterial m = material(glm::vec3(1.0f), 1.0f, 0.4f);
+        m.iridescence = 1.0f;
+        m.iridescenceIor = ior;
+        m.iridescenceThickness = thickness;
+        const glm::vec3 film = m.iridescenceFresnelAt(cosTheta);
+        EXPECT_LE(std::max({film.x, film.y, film.z}), 1.001f) << thickness << " nm, ior " << ior << ", cos " << cosTheta;
+        EXPECT_LE(directionalAlbedo(m, cosTheta, rng), 1.01) << thickness << " nm, ior " << ior << ", cos " << cosTheta;
+      }
+    }
+  }
+}
+
 // The mean of f cos / pdf over `samples` draws from wo, and its standard error.
 struct AlbedoEstimate {
   double mean = 0.0, standardError = 0.0;

@@ -119,14 +119,16 @@ TEST(ShaderBindings, MaterialSlotsAreTextureSlotNumbers) {
                                                        {"SLOT_CLEARCOAT_NORMAL", TextureSlot::ClearcoatNormal},
                                                        {"SLOT_SHEEN_COLOR", TextureSlot::SheenColor},
                                                        {"SLOT_SHEEN_ROUGHNESS", TextureSlot::SheenRoughness},
-                                                       {"SLOT_ANISOTROPY", TextureSlot::Anisotropy}};
+                                                       {"SLOT_ANISOTROPY", TextureSlot::Anisotropy},
+                                                       {"SLOT_IRIDESCENCE", TextureSlot::Iridescence},
+                                                       {"SLOT_IRIDESCENCE_THICKNESS", TextureSlot::IridescenceThickness}};
   for (const auto& [name, slot] : slots) {
     const std::regex declared("const int " + std::string(name) + " = ([0-9]+);");
     std::smatch m;
     ASSERT_TRUE(std::regex_search(text, m, declared)) << name;
     EXPECT_EQ(std::stoi(m[1]), static_cast<int>(slot)) << name;
   }
-  EXPECT_EQ(kTextureSlots, 15);
+  EXPECT_EQ(kTextureSlots, 17);
   // The per-slot arrays are sized for every slot.
   EXPECT_NE(text.find("uniform mat3 u_uvTransform[" + std::to_string(kTextureSlots) + "];"), std::string::npos);
   EXPECT_NE(text.find("uniform int u_texCoord[" + std::to_string(kTextureSlots) + "];"), std::string::npos);

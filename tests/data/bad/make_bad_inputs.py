@@ -251,6 +251,14 @@ def main(out):
         m.doc["meshes"][0]["primitives"][0]["material"] = 0
     case("bad_anisotropy.glb", bad_anisotropy)
 
+    # KHR_materials_iridescence with a film index below 1.
+    def bad_iridescence(m):
+        m.doc["extensionsUsed"] = ["KHR_materials_iridescence"]
+        m.doc["materials"] = [{"name": "soap", "extensions": {
+            "KHR_materials_iridescence": {"iridescenceFactor": 1.0, "iridescenceIor": 0.5}}}]
+        m.doc["meshes"][0]["primitives"][0]["material"] = 0
+    case("bad_iridescence.glb", bad_iridescence)
+
     # Compressed geometry cut short. Draco: a stream with a whole header (magic,
     # version 2.2, a triangle mesh, edgebreaker) and nothing after it. Meshopt: the
     # positions as a vertex stream of 3 x 12 bytes whose data stops after the
