@@ -586,7 +586,7 @@ Result<MaterialLayers> materialLayers(const tinygltf::Material& material, const 
 
 class Converter {
  public:
-  Converter(const tinygltf::Model& gltf, ModelData& out) : gltf_(gltf), out_(out), file_(out.path) {}
+  Converter(const tinygltf::Model& gltf, ModelData& out, int scene) : gltf_(gltf), out_(out), file_(out.path), scene_(scene) {}
 
   Status run() {
     if (Status s = checkLimits(); !s) return s;
@@ -601,7 +601,9 @@ class Converter {
     if (Status s = convertInstancing(); !s) return s;
     if (Status s = convertLights(); !s) return s;
     if (Status s = convertCameras(); !s) return s;
-    return convertAnimations();
+    if (Status s = convertAnimations(); !s) return s;
+    leaveOutOtherScenes();
+    return Ok{};
   }
 
  private:
@@ -625,8 +627,7 @@ class Converter {
       if (Status s = convertNode(i); !s) return s;
     }
     if (Status s = checkTree(); !s) return s;
-    findSceneRoots();
-    return Ok{};
+    return findSceneRoots();
   }
 
   Status convertNode(std::size_t i) {
@@ -698,16 +699,48 @@ class Converter {
     return Ok{};
   }
 
-  void findSceneRoots() {
-    int scene = gltf_.defaultScene >= 0 ? gltf_.defaultScene : 0;
+  // The scene drawn: the one asked for (viewer --scene), else the file's default,
+  // else its first; a file without scenes (or an empty one) draws every root.
+  Status findSceneRoots() {
+    out_.sceneCount = static_cast<int>(gltf_.scenes.size());
+    if (scene_ >= 0 && !validIndex(scene_, gltf_.scenes.size()))
+      return error("scene " + str(scene_) + " does not exist (the file has " + str(gltf_.scenes.size()) + ")");
+    const int scene = scene_ >= 0 ? scene_ : gltf_.defaultScene >= 0 ? gltf_.defaultScene : 0;
     if (validIndex(scene, gltf_.scenes.size())) {
       for (int n : gltf_.scenes[static_cast<std::size_t>(scene)].nodes)
         if (validIndex(n, out_.nodes.size()) && out_.nodes[static_cast<std::size_t>(n)].parent == -1)
           out_.sceneRoots.push_back(n);
-      if (!out_.sceneRoots.empty()) return;
+      if (!out_.sceneRoots.empty()) {
+        out_.scene = scene;
+        return Ok{};
+      }
     }
     for (std::size_t i = 0; i < out_.nodes.size(); ++i)
       if (out_.nodes[i].parent == -1) out_.sceneRoots.push_back(static_cast<int>(i));
+    return Ok{};
+  }
+
+  // Nodes outside the scene drawn keep their place in the tree and their animation,
+  // but draw, light and look through nothing (MultipleScenes' other scene's mesh
+  // would otherwise lie in this one's).
+  void leaveOutOtherScenes() {
+    if (out_.scene < 0) return;
+    std::vector<char> inScene(out_.nodes.size(), 0);
+    std::vector<int> stack(out_.sceneRoots.begin(), out_.sceneRoots.end());
+    while (!stack.empty()) {
+      const int n = stack.back();
+      stack.pop_back();
+      inScene[static_cast<std::size_t>(n)] = 1;
+      for (int c : out_.nodes[static_cast<std::size_t>(n)].children) stack.push_back(c);
+    }
+    for (std::size_t i = 0; i < out_.nodes.size(); ++i) {
+      if (inScene[i]) continue;
+      NodeData& node = out_.nodes[i];
+      node.mesh = -1;
+      node.instances.clear();
+      node.light = -1;
+      node.camera = -1;
+    }
   }
 
   Status convertImages() {
@@ -1649,6 +1682,7 @@ class Converter {
   const tinygltf::Model& gltf_;
   ModelData& out_;
   std::string file_;
+  int scene_ = -1;  // the scene asked for; -1 the file's default
 };
 
 }  // namespace
@@ -1656,12 +1690,12 @@ class Converter {
 namespace {
 
 Result<ModelData> convert(const std::vector<unsigned char>& bytes, const std::string& path,
-                          const fs::path& folder) {
+                          const fs::path& folder, int scene = -1) {
   ModelData model;
   model.path = path;
   auto gltf = parseWithTinygltf(bytes, path, folder, model);
   if (!gltf) return gltf.error();
-  Converter converter(*gltf, model);
+  Converter converter(*gltf, model, scene);
   if (Status s = converter.run(); !s) return s.error();
   for (const std::string& w : model.warnings) logWarning(w);
   return model;
@@ -1669,13 +1703,13 @@ Result<ModelData> convert(const std::vector<unsigned char>& bytes, const std::st
 
 }  // namespace
 
-Result<ModelData> loadGltf(const std::string& path) {
+Result<ModelData> loadGltf(const std::string& path, int scene) {
   auto bytes = readFileBytes(path);
   if (!bytes) return bytes.error();
   std::error_code ec;
   fs::path folder = fs::weakly_canonical(fs::absolute(path).parent_path(), ec);
   if (ec || folder.empty()) return makeError(path + ": cannot resolve the model's folder");
-  return convert(*bytes, path, folder);
+  return convert(*bytes, path, folder, scene);
 }
 
 Result<ModelData> loadGltfFromMemory(std::span<const unsigned char> bytes, const std::string& name) {

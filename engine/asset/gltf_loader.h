@@ -24,8 +24,10 @@ inline constexpr std::size_t kMaxNodeInstances = 1u << 20;
 
 // Refuses URIs that leave the model's folder ("..", absolute paths, other
 // schemes than data:). Missing or undecodable images only warn and get a 1x1
-// white fallback; missing buffers are errors.
-Result<ModelData> loadGltf(const std::string& path);
+// white fallback; missing buffers are errors. `scene` chooses the glTF scene drawn
+// (-1: the file's default, else its first; one it lacks is an error): nodes outside
+// it keep their place and animation but carry no mesh, light or camera.
+Result<ModelData> loadGltf(const std::string& path, int scene = -1);
 
 // The same loader on bytes already in memory (.glb or .gltf text); `name` stands
 // for the file in messages. Only data: URIs are followed: a buffer that names a

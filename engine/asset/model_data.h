@@ -293,7 +293,9 @@ struct PunctualLightData {
 struct ModelData {
   std::string path;
   std::vector<NodeData> nodes;
-  std::vector<int> sceneRoots;  // roots of the default scene (all roots if none)
+  std::vector<int> sceneRoots;  // roots of the scene drawn (all roots if none)
+  int sceneCount = 0;           // the file's glTF scenes
+  int scene = -1;               // the one drawn (-1: none, every root is drawn)
   std::vector<MeshData> meshes;
   std::vector<MaterialData> materials;
   std::vector<ImageData> images;

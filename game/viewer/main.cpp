@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   engine::CommonOptions options;
   std::string modelPath, anim, loop = "repeat", dumpPosePath, variant;
   int camera = -1;
+  int sceneIndex = -1;
   double speed = 1.0;
   bool dualQuat = false, skeleton = false;
   app.add_option("model", modelPath, "glTF file (.gltf or .glb)")->required();
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
   app.add_flag("--skeleton", skeleton, "Draw the skeleton over the model");
   app.add_option("--variant", variant, "KHR_materials_variants: the variant to draw, by name or index (default: the file's materials)");
   app.add_option("--camera", camera, "Look through the file's camera INDEX, where its node stands (default: framed to the model)");
+  app.add_option("--scene", sceneIndex, "The file's glTF scene INDEX to draw (default: its default scene)");
   app.add_option("--dump-pose", dumpPosePath, "Write the pose at --time as JSON and exit");
   engine::addCommonOptions(app, options);
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
@@ -79,7 +81,8 @@ int main(int argc, char** argv) {
       return fail(engine::kExitBadInput, s.error().message);
     }
   }
-  auto model = engine::loadGltf(modelPath);
+  if (sceneIndex < -1) return fail(engine::kExitBadInput, "--scene: must be a scene index (0 or more)");
+  auto model = engine::loadGltf(modelPath, sceneIndex);
   if (!model) return fail(engine::kExitBadInput, model.error().message);
   auto animated = engine::buildAnimatedModel(*model);
   if (!animated) return fail(engine::kExitBadInput, animated.error().message);

@@ -211,6 +211,26 @@ PY
     cameras="$SRC/../shared/gltf-samples/Cameras/glTF/Cameras.gltf"
     expect 2 "Cameras\.gltf: --camera: camera 1 is orthographic" -- "$BIN/viewer" "$cameras" --offscreen --camera 1
     ;;
+  viewer_scene)
+    # MultipleScenes' two scenes, a node each: the default (scene 1, the square)
+    # and scene 0 (the triangle) draw different images, and neither draws the
+    # other's mesh (the pose of each names one mesh); a scene the file lacks is
+    # refused naming the file and the scene.
+    model="$SRC/../shared/gltf-samples/MultipleScenes/glTF/MultipleScenes.gltf"
+    [ -f "$model" ] || { echo "no ../shared/gltf-samples: skipped"; exit 77; }
+    expect 0 default.png -- "$BIN/viewer" "$model" --offscreen --size 160x120 --screenshot default.png
+    expect 0 scene0.png -- "$BIN/viewer" "$model" --offscreen --size 160x120 --screenshot scene0.png --scene 0
+    ! cmp -s default.png scene0.png || { echo "FAIL: --scene 0 draws the default scene"; exit 1; }
+    rm -f scene0.json scene1.json
+    expect 0 "scene0\.json" -- "$BIN/viewer" "$model" --dump-pose scene0.json --scene 0
+    expect 0 "scene1\.json" -- "$BIN/viewer" "$model" --dump-pose scene1.json
+    for pose in scene0.json scene1.json; do
+      meshes="$(grep -o '"mesh": *[0-9]*' "$pose" | sort -u | wc -l)"
+      [ "$meshes" = 1 ] || { echo "FAIL: $pose names $meshes meshes"; cat "$pose"; exit 1; }
+    done
+    expect 2 "MultipleScenes\.gltf: scene 2 does not exist \(the file has 2\)" -- \
+      "$BIN/viewer" "$model" --offscreen --scene 2
+    ;;
   draco_loads)
     # A Khronos sample that requires Draco loads (it used to be refused: "requires
     # KHR_draco_mesh_compression, which this engine does not support"), exit 0,
