@@ -1,11 +1,26 @@
 #include "app/frame_stats.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 namespace engine {
+namespace {
+
+const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_clock::now();
+double firstFrameMs = -1.0;
+
+}  // namespace
+
+double msSinceProcessStart() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - kProcessStart).count();
+}
+
+void noteFrameFinished() {
+  if (firstFrameMs < 0.0) firstFrameMs = msSinceProcessStart();
+}
 
 FrameSummary summarize(std::vector<double> frameMs) {
   FrameSummary s;
@@ -35,6 +50,7 @@ Status writeBenchJson(const std::string& path, const BenchReport& r) {
                       {"height", r.height},
                       {"msaa", r.msaa},
                       {"command", r.command}};
+  if (firstFrameMs >= 0.0) j["first_frame_ms_since_start"] = firstFrameMs;
   if (!r.counters.empty()) {
     nlohmann::json counters = nlohmann::json::object();
     for (const auto& [name, value] : r.counters) counters[name] = value;

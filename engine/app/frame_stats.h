@@ -34,4 +34,13 @@ struct BenchReport {
 
 Status writeBenchJson(const std::string& path, const BenchReport& report);
 
+// Milliseconds from the process's start (the engine's static initialisation, before
+// main) to now.
+double msSinceProcessStart();
+// The runners call this when a frame is finished (glFinish, or the window's swap):
+// the first call is kept, and a bench report then says how long starting, loading
+// and drawing the first frame took ("first_frame_ms_since_start"), what a user waits
+// for after typing the command.
+void noteFrameFinished();
+
 }  // namespace engine

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "app/frame_stats.h"
 #include "app/runner_common.h"
 
 namespace engine {
@@ -30,6 +31,7 @@ Status runHeadless(Backend backend, Game& game, const RunOptions& options, Image
     target.resolve();
     // The frame is finished when the GL is: count the rasterizer's work too.
     glFinish();
+    noteFrameFinished();
     const auto end = std::chrono::steady_clock::now();
     frameMs.push_back(std::chrono::duration<double, std::milli>(end - start).count());
   }

@@ -7,6 +7,7 @@
 
 #include "app/camera_controller.h"
 #include "app/clock.h"
+#include "app/frame_stats.h"
 #include "app/imgui_layer.h"
 #include "app/runner_common.h"
 
@@ -120,6 +121,7 @@ Status runWindow(Game& game, const RunOptions& options) {
     }
     if (options.screenshotWindow && scripted && frame == options.frames - 1) lastFrame = readWindow(width, height);
     setup->context->swapBuffers();
+    noteFrameFinished();
 
     frameMs.push_back(elapsed * 1000.0);
     titleTimer += elapsed;

@@ -253,7 +253,11 @@ PY
     # The last frame's work: the demo scene draws something in every pass.
     python3 - bench.json <<'PY' || { cat bench.json; exit 1; }
 import json, sys
-counters = json.load(open(sys.argv[1]))["last_frame"]
+report = json.load(open(sys.argv[1]))
+# Starting, loading and the first frame: at least the first frame itself, so at
+# least the quickest frame.
+assert report["first_frame_ms_since_start"] >= report["frame_ms"]["min"], report.get("first_frame_ms_since_start")
+counters = report["last_frame"]
 for key in ("draw_calls", "program_changes", "triangles_all_passes", "objects_drawn", "gpu_ms_world", "gpu_ms_shadow-sun"):
     assert counters.get(key, 0) > 0, f"FAIL: last_frame.{key} = {counters.get(key)}"
 # Vertex skinning (the scene's default) runs no skin cache.
