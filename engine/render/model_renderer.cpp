@@ -199,28 +199,29 @@ int addBuffer(GpuPrimitive& prim, const std::vector<T>& data) {
 }
 
 // Appends a target-major attribute (PrimitiveData) vertex-major, so that the shader
-// reads one vertex's displacements together; returns where the block starts (in
-// vec3s), or -1 when no target moves the attribute.
-int appendVertexMajor(std::vector<glm::vec3>& out, const std::vector<glm::vec3>& deltas, size_t vertices,
+// reads one vertex's displacements together, each padded to a vec4 (one load each in
+// the shader, not three: llvmpipe checks every storage-buffer load); returns where
+// the block starts (in vec4s), or -1 when no target moves the attribute.
+int appendVertexMajor(std::vector<glm::vec4>& out, const std::vector<glm::vec3>& deltas, size_t vertices,
                       size_t targets) {
   if (deltas.empty()) return -1;
   const int start = int(out.size());
   for (size_t v = 0; v < vertices; ++v)
-    for (size_t t = 0; t < targets; ++t) out.push_back(deltas[t * vertices + v]);
+    for (size_t t = 0; t < targets; ++t) out.emplace_back(deltas[t * vertices + v], 0.0f);
   return start;
 }
 
 void uploadMorphTargets(const PrimitiveData& data, GpuPrimitive& prim) {
   if (data.morphTargets == 0) return;
   const size_t vertices = data.positions.size(), targets = size_t(data.morphTargets);
-  std::vector<glm::vec3> deltas;
+  std::vector<glm::vec4> deltas;
   prim.morphTargets = data.morphTargets;
   prim.morphPositions = appendVertexMajor(deltas, data.morphPositions, vertices, targets);
   prim.morphNormals = appendVertexMajor(deltas, data.morphNormals, vertices, targets);
   prim.morphTangents = appendVertexMajor(deltas, data.morphTangents, vertices, targets);
   // A buffer of at least one element: targets that move nothing still bind one.
   if (deltas.empty()) deltas.emplace_back(0.0f);
-  prim.morphDeltas = gl::Buffer::fromSpan(std::span<const glm::vec3>(deltas));
+  prim.morphDeltas = gl::Buffer::fromSpan(std::span<const glm::vec4>(deltas));
 }
 
 GpuPrimitive uploadPrimitive(const PrimitiveData& data) {

@@ -110,7 +110,7 @@ struct GpuPrimitive {
   } sources;
   glm::vec3 center{0.0f};  // of the bind-pose bounds, mesh space: sorting BLEND draws
   // Morph targets: every displacement in one storage buffer, vertex-major, one
-  // block per attribute that a target moves; each block's start (in vec3s, -1 for
+  // block per attribute that a target moves; each block's start (in vec4s, -1 for
   // none) as common/morph.glsl reads them.
   int morphTargets = 0;
   gl::Buffer morphDeltas;

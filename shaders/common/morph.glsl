@@ -1,11 +1,11 @@
 // Morph targets on the GPU (glTF: applied before skinning), for primitives drawn
 // with the MORPH variant. Each such primitive has one storage buffer of its
-// displacements, vertex-major (vertex v's displacement by target t starts at float
-// 3 * (block + v * u_morphTargets + t)), one block per attribute that some target
+// displacements, vertex-major (vertex v's displacement by target t is the vec4
+// block + v * u_morphTargets + t, xyz; w pads), one block per attribute that some target
 // moves; u_morphPositions, u_morphNormals and u_morphTangents say where each block
 // starts (-1: no target moves it). The weights of every morphing node of the
 // model share a second buffer; this node's start at u_morphFirst.
-layout(std430, binding = BUFFER_MORPH_DELTAS) readonly buffer MorphDeltas { float u_morphDeltas[]; };
+layout(std430, binding = BUFFER_MORPH_DELTAS) readonly buffer MorphDeltas { vec4 u_morphDeltas[]; };
 layout(std430, binding = BUFFER_MORPH_WEIGHTS) readonly buffer MorphWeights { float u_morphWeights[]; };
 
 uniform int u_morphTargets;
@@ -19,10 +19,7 @@ uniform int u_morphTangents = -1;
 #define MORPH_VERTEX gl_VertexID
 #endif
 
-vec3 morphDelta(int block, int target) {
-  int i = 3 * (block + MORPH_VERTEX * u_morphTargets + target);
-  return vec3(u_morphDeltas[i], u_morphDeltas[i + 1], u_morphDeltas[i + 2]);
-}
+vec3 morphDelta(int block, int target) { return u_morphDeltas[block + MORPH_VERTEX * u_morphTargets + target].xyz; }
 
 // base + sum_t w_t * delta_t, target by target as the CPU's MorphJob adds them;
 // targets of zero weight are skipped. The tangent is only morphed for normal maps.
