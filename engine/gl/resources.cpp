@@ -98,6 +98,16 @@ void Texture::mipmapTrilinear(GLint wrapS, GLint wrapT) const {
   parameter(GL_TEXTURE_WRAP_T, wrapT);
 }
 
+Texture Texture::table(GLenum internalFormat, GLenum format, int size, const float* texels) {
+  Texture texture = create2D(internalFormat, size, size, 1);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, size, size, format, GL_FLOAT, texels);
+  texture.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  texture.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  texture.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  texture.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
 void Texture::uploadRgba8(const void* pixels) const {
   glTextureSubImage2D(id(), 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
 }

@@ -71,6 +71,10 @@ class Texture : public Object<TextureDeleter> {
   // Fills the mip chain from level 0 and samples it trilinearly, wrapping in s and t
   // as asked (GL_REPEAT, GL_CLAMP_TO_EDGE, ...).
   void mipmapTrilinear(GLint wrapS, GLint wrapT) const;
+  // A square lookup table of `size` floats per texel (`format` GL_RED or GL_RGB,
+  // stored as `internalFormat`), read linearly between texels and clamped at the
+  // edges: the BRDF tables C++ computes and the shaders read.
+  static Texture table(GLenum internalFormat, GLenum format, int size, const float* texels);
   void parameter(GLenum name, GLint value) const { glTextureParameteri(id(), name, value); }
   void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
   int width() const { return width_; }

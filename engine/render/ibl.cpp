@@ -26,16 +26,6 @@ constexpr int kPrefilterSamples = 128;
 constexpr int kMaxLevels = 5;
 constexpr int kSmallestLevel = 8;
 
-gl::Texture uploadSplitSum(const SplitSumTable& table) {
-  gl::Texture texture = gl::Texture::create2D(GL_RGBA16F, table.size, table.size, 1);
-  glTextureSubImage2D(texture.id(), 0, 0, 0, table.size, table.size, GL_RGB, GL_FLOAT, table.texels.data());
-  texture.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  texture.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  texture.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  texture.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return texture;
-}
-
 // Level 0 of the cube map, read back as RGB floats, faces in GL's order.
 std::vector<glm::vec3> readCubeLevel0(const gl::Texture& cube, int size) {
   std::vector<glm::vec3> texels(size_t(6 * size * size));
@@ -71,7 +61,7 @@ Result<EnvironmentLighting> EnvironmentLighting::create(const std::string& shade
   EnvironmentLighting lighting;
   lighting.size_ = size;
   static const SplitSumTable table = makeSplitSumTable(kSplitSumSize, kSplitSumSamples);
-  lighting.splitSum_ = uploadSplitSum(table);
+  lighting.splitSum_ = gl::Texture::table(GL_RGBA16F, GL_RGB, table.size, &table.texels[0].x);
   lighting.sh_ = projectIrradiance(readCubeLevel0(environment, size), size);
   if (ambient == Ambient::Ibl) {
     if (auto s = lighting.prefilter(shaderDir, environment, size); !s) return s.error();

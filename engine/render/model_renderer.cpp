@@ -374,17 +374,6 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   return Ok{};
 }
 
-// KHR_materials_sheen's albedo table, filtered as SheenTable::lookup filters it.
-gl::Texture uploadSheenTable(const SheenTable& table) {
-  gl::Texture texture = gl::Texture::create2D(GL_R32F, table.size, table.size, 1);
-  glTextureSubImage2D(texture.id(), 0, 0, 0, table.size, table.size, GL_RED, GL_FLOAT, table.texels.data());
-  texture.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  texture.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  texture.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  texture.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return texture;
-}
-
 }  // namespace
 
 void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, const gl::Buffer* deformed) {
@@ -523,7 +512,8 @@ Result<GpuModel> GpuModel::upload(const ModelData& model) {
   }
   const bool sheen = std::any_of(model.materials.begin(), model.materials.end(),
                                  [](const MaterialData& m) { return m.layers.sheen(); });
-  if (sheen) gpu.sheenAlbedo_ = uploadSheenTable(sheenTable());
+  // Filtered as SheenTable::lookup filters it.
+  if (sheen) gpu.sheenAlbedo_ = gl::Texture::table(GL_R32F, GL_RED, sheenTable().size, sheenTable().texels.data());
   gpu.white_ = gl::Texture::create2D(GL_SRGB8_ALPHA8, 1, 1, 1);
   const std::uint8_t white[4] = {255, 255, 255, 255};
   gpu.white_.uploadRgba8(white);

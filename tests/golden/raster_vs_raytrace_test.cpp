@@ -299,6 +299,28 @@ std::optional<ImageDiff> boardDifference(const std::string& model, glm::dvec3 ca
   return *diff;
 }
 
+// A Khronos sample (a path under ../shared/gltf-samples) seen from `camera`, and
+// the limits measured for it.
+struct Board {
+  const char* model;
+  glm::dvec3 camera;
+  double maxMean, minPsnr;
+};
+
+// Khronos boards through both renderers, each held to its limits; skipped without
+// ../shared. The material boards take PBR shading under a bright grey hemisphere
+// (so that black and metal surfaces show their specular).
+void expectBoardsAgree(std::initializer_list<Board> boards, const std::string& shading = "pbr", double ambient = 1.0) {
+  const std::string samples = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
+  for (const Board& board : boards) {
+    if (!std::filesystem::exists(samples + board.model)) GTEST_SKIP() << samples + board.model << " not found";
+    const auto diff = boardDifference(samples + board.model, board.camera, shading, ambient);
+    ASSERT_TRUE(diff) << board.model;
+    EXPECT_LT(diff->meanAbs, board.maxMean) << board.model;
+    EXPECT_GT(diff->psnr, board.minPsnr) << board.model;
+  }
+}
+
 }  // namespace
 
 // TextureTransformTest (offsets, rotation, scale under a clamping sampler),
@@ -308,32 +330,21 @@ std::optional<ImageDiff> boardDifference(const std::string& model, glm::dvec3 ca
 // wraps as GL does, takes the vertex colours and turns mirrored triangles back as the
 // rasterizer flips its front face, so the boards agree.
 TEST(RasterVsRaytrace, KhronosTextureBoardsAgree) {
-  const std::string samples = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
-  struct Board {
-    const char* model;
-    glm::dvec3 camera;
-  };
-  const Board boards[] = {{"TextureTransformTest/glTF/TextureTransformTest.gltf", {0.0, 0.0, 4.6}},
-                          {"TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", {0.0, -0.55, 16.0}},
-                          {"VertexColorTest/glTF-Binary/VertexColorTest.glb", {0.0, 0.0, 3.2}},
-                          {"NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb", {0.0, 0.0, 14.6}}};
-  for (const Board& board : boards) {
-    if (!std::filesystem::exists(samples + board.model)) GTEST_SKIP() << samples + board.model << " not found";
-    const auto diff = boardDifference(samples + board.model, board.camera, "classic", 0.1);
-    ASSERT_TRUE(diff) << board.model;
-    // Measured (llvmpipe, Mesa 22): TextureTransformTest mean 2.09, 28.0 dB, 2.8% of
-    // pixels over 16; TextureSettingsTest 1.39, 28.9 dB, 2.3%. What remains are the
-    // edges of the checks and letters: the tracer filters trilinearly at its ray
-    // cone's level, GL by the sampler's filter (these use NEAREST_MIPMAP_LINEAR) at its
-    // quad derivatives' level. Broken, measured: the tracer ignoring the samplers'
-    // wrap, 3.26, 24.1 dB (transform) and 2.94, 22.3 dB (settings); ignoring the uv
-    // transform, 27.8, 11.2 dB. The limits sit between, 2 dB below the agreement.
-    // VertexColorTest agrees to 0.16, 46.5 dB and NegativeScaleTest to 0.11, 49.1 dB;
-    // with the tracer ignoring COLOR_0, 7.32, 18.7 dB, and keeping the winding of
-    // mirrored meshes (their single-sided fronts culled), 2.22, 24.0 dB.
-    EXPECT_LT(diff->meanAbs, 2.6) << board.model;
-    EXPECT_GT(diff->psnr, 26.0) << board.model;
-  }
+  // Measured (llvmpipe, Mesa 22): TextureTransformTest mean 2.09, 28.0 dB, 2.8% of
+  // pixels over 16; TextureSettingsTest 1.39, 28.9 dB, 2.3%. What remains are the
+  // edges of the checks and letters: the tracer filters trilinearly at its ray
+  // cone's level, GL by the sampler's filter (these use NEAREST_MIPMAP_LINEAR) at its
+  // quad derivatives' level. Broken, measured: the tracer ignoring the samplers'
+  // wrap, 3.26, 24.1 dB (transform) and 2.94, 22.3 dB (settings); ignoring the uv
+  // transform, 27.8, 11.2 dB. The limits sit between, 2 dB below the agreement.
+  // VertexColorTest agrees to 0.16, 46.5 dB and NegativeScaleTest to 0.11, 49.1 dB;
+  // with the tracer ignoring COLOR_0, 7.32, 18.7 dB, and keeping the winding of
+  // mirrored meshes (their single-sided fronts culled), 2.22, 24.0 dB.
+  expectBoardsAgree({{"TextureTransformTest/glTF/TextureTransformTest.gltf", {0.0, 0.0, 4.6}, 2.6, 26.0},
+                     {"TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", {0.0, -0.55, 16.0}, 2.6, 26.0},
+                     {"VertexColorTest/glTF-Binary/VertexColorTest.glb", {0.0, 0.0, 3.2}, 2.6, 26.0},
+                     {"NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb", {0.0, 0.0, 14.6}, 2.6, 26.0}},
+                    "classic", 0.1);
 }
 
 // glTF's dielectric layers through both renderers, PBR shading with the hemisphere
@@ -342,109 +353,67 @@ TEST(RasterVsRaytrace, KhronosTextureBoardsAgree) {
 // evaluate layeredBrdf and hemisphereAmbient (common/brdf.glsl), so they agree as
 // the plain material does.
 TEST(RasterVsRaytrace, GltfDielectricLayersAgree) {
-  const std::string samples = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
   // Measured (llvmpipe, Mesa 22): SpecularTest agrees to mean 1.03, 31.3 dB (what
   // remains is the labels' text, filtered as in the texture boards above);
   // ClearCoatCarPaint to 0.033, 56.8 dB. With the tracer ignoring the layers (plain
   // metallic-roughness): 8.58, 19.4 dB and 2.18, 30.6 dB; with the rasterizer
   // ignoring SpecularTest's layer textures (uploaded for no slot): 4.14, 27.3 dB.
   // The limits sit between.
-  struct Board {
-    const char* model;
-    glm::dvec3 camera;
-    double maxMean, minPsnr;
-  };
-  const Board boards[] = {{"SpecularTest/glTF-Binary/SpecularTest.glb", {0.0, 0.0, 1.0}, 2.5, 26.0},
-                          {"ClearCoatCarPaint/glTF-Binary/ClearCoatCarPaint.glb", {0.0, 0.0, 3.0}, 0.5, 44.0}};
-  for (const Board& board : boards) {
-    if (!std::filesystem::exists(samples + board.model)) GTEST_SKIP() << samples + board.model << " not found";
-    // A bright grey hemisphere, so that the black spheres show their specular.
-    const auto diff = boardDifference(samples + board.model, board.camera, "pbr", 1.0);
-    ASSERT_TRUE(diff) << board.model;
-    EXPECT_LT(diff->meanAbs, board.maxMean) << board.model;
-    EXPECT_GT(diff->psnr, board.minPsnr) << board.model;
-  }
+  expectBoardsAgree({{"SpecularTest/glTF-Binary/SpecularTest.glb", {0.0, 0.0, 1.0}, 2.5, 26.0},
+                        {"ClearCoatCarPaint/glTF-Binary/ClearCoatCarPaint.glb", {0.0, 0.0, 3.0}, 0.5, 44.0}});
 }
 
 // KHR_materials_transmission through both renderers: TransmissionTest's thin-walled
 // spheres (smooth, rough, metallic; with and without transmission textures) in
-// front of its cloth, PBR shading with the hemisphere ambient. The rasterizer reads
-// what lies behind from its copy of the opaque pass, the Whitted tracer traces the
-// ray on; both weigh it by transmittedShare (common/brdf.glsl).
+// front of its cloth. The rasterizer reads what lies behind from its copy of the
+// opaque pass, the Whitted tracer traces the ray on; both weigh it by
+// transmittedShare (common/brdf.glsl).
 TEST(RasterVsRaytrace, GltfTransmissionAgrees) {
-  const std::string model = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/TransmissionTest/glTF-Binary/TransmissionTest.glb";
-  if (!std::filesystem::exists(model)) GTEST_SKIP() << model << " not found";
-  const auto diff = boardDifference(model, {0.0, 0.0, 1.3}, "pbr", 1.0);
-  ASSERT_TRUE(diff);
   // Measured (llvmpipe, Mesa 22): mean 4.64, 24.95 dB. What remains is the
   // rasterizer's shortcut: its copy holds no transmissive surface, so it sees the
   // cloth through one wall of each sphere where the tracer sees it through two (more
   // deeply tinted), and no rim of the far wall. With the tracer ignoring transmission
   // (the spheres opaque, as before): 20.9, 13.5 dB. The limits sit between.
-  EXPECT_LT(diff->meanAbs, 8.0);
-  EXPECT_GT(diff->psnr, 21.0);
+  expectBoardsAgree({{"TransmissionTest/glTF-Binary/TransmissionTest.glb", {0.0, 0.0, 1.3}, 8.0, 21.0}});
 }
 
 // KHR_materials_sheen through both renderers: SheenChair's velvet (an orange and a
-// teal sheen over dark bases, its sheen colour and roughness textured), PBR shading
-// with the hemisphere ambient. Both evaluate layeredBrdf's sheen lobe and dim the base
-// by the same sheen table (core/sheen_table.h; the rasterizer samples it uploaded).
+// teal sheen over dark bases, its sheen colour and roughness textured). Both
+// evaluate layeredBrdf's sheen lobe and dim the base by the same sheen table
+// (core/sheen_table.h; the rasterizer samples it uploaded).
 TEST(RasterVsRaytrace, GltfSheenAgrees) {
-  const std::string model = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/SheenChair/glTF/SheenChair.gltf";
-  if (!std::filesystem::exists(model)) GTEST_SKIP() << model << " not found";
-  const auto diff = boardDifference(model, {0.0, 0.45, 1.9}, "pbr", 1.0);
-  ASSERT_TRUE(diff);
   // Measured (llvmpipe, Mesa 22): mean 0.617, 37.4 dB. Broken, measured: the tracer
   // ignoring the sheen, 2.61, 27.2 dB; the rasterizer not dimming the base under it
   // (its table unread), 1.99, 29.9 dB. The limits sit between.
-  EXPECT_LT(diff->meanAbs, 1.3);
-  EXPECT_GT(diff->psnr, 33.5);
+  expectBoardsAgree({{"SheenChair/glTF/SheenChair.gltf", {0.0, 0.45, 1.9}, 1.3, 33.5}});
 }
 
 // KHR_materials_anisotropy through both renderers: AnisotropyStrengthTest's spheres
 // (strength up, roughness across) and AnisotropyRotationTest's stacks (the
-// direction turned by the rotation and by a texture), PBR shading with the hemisphere
-// ambient. Both stretch the base's lobe with layeredBrdf; the rasterizer orients it
-// by the mesh's interpolated tangents, the tracers by each triangle's uv gradient.
+// direction turned by the rotation and by a texture). Both stretch the base's lobe
+// with layeredBrdf; the rasterizer orients it by the mesh's interpolated tangents,
+// the tracers by each triangle's uv gradient.
 TEST(RasterVsRaytrace, GltfAnisotropyAgrees) {
-  const std::string samples = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
-  struct Board {
-    const char* model;
-    glm::dvec3 camera;
-    double maxMean, minPsnr;
-  };
   // Measured (llvmpipe, Mesa 22): the strength board agrees to mean 0.065, 47.6 dB,
   // the rotation board to 0.427, 45.5 dB (the tangents differ a little, flat per
   // triangle against interpolated). Broken, measured: the tracer ignoring anisotropy,
   // 0.809, 35.4 dB and 1.43, 31.7 dB; its bitangent along dP/dv instead of against
   // it (the turned and textured directions mirrored), rotation board 1.11, 33.1 dB.
   // The limits sit between.
-  const Board boards[] = {{"AnisotropyStrengthTest/glTF-Binary/AnisotropyStrengthTest.glb", {-1.2, 2.2, 13.0}, 0.4, 41.0},
-                          {"AnisotropyRotationTest/glTF-Binary/AnisotropyRotationTest.glb", {0.0, 0.0, 8.0}, 0.75, 39.0}};
-  for (const Board& board : boards) {
-    if (!std::filesystem::exists(samples + board.model)) GTEST_SKIP() << samples + board.model << " not found";
-    const auto diff = boardDifference(samples + board.model, board.camera, "pbr", 1.0);
-    ASSERT_TRUE(diff) << board.model;
-    EXPECT_LT(diff->meanAbs, board.maxMean) << board.model;
-    EXPECT_GT(diff->psnr, board.minPsnr) << board.model;
-  }
+  expectBoardsAgree(
+      {{"AnisotropyStrengthTest/glTF-Binary/AnisotropyStrengthTest.glb", {-1.2, 2.2, 13.0}, 0.4, 41.0},
+       {"AnisotropyRotationTest/glTF-Binary/AnisotropyRotationTest.glb", {0.0, 0.0, 8.0}, 0.75, 39.0}});
 }
 
 // KHR_materials_iridescence through both renderers: IridescenceSuzanne's three
 // heads (a white dielectric, a metal and glass under thin films of 400 nm and of a
-// textured 200-600 nm), PBR shading with the hemisphere ambient. Both evaluate the
-// film's Fresnel at N.V (brdf.glsl's iridescenceFresnel) into layeredBrdf.
+// textured 200-600 nm). Both evaluate the film's Fresnel at N.V (brdf.glsl's
+// iridescenceFresnel) into layeredBrdf.
 TEST(RasterVsRaytrace, GltfIridescenceAgrees) {
-  const std::string model =
-      std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/IridescenceSuzanne/glTF-Binary/IridescenceSuzanne.glb";
-  if (!std::filesystem::exists(model)) GTEST_SKIP() << model << " not found";
-  const auto diff = boardDifference(model, {0.0, 0.0, 9.0}, "pbr", 1.0);
-  ASSERT_TRUE(diff);
   // Measured (llvmpipe, Mesa 22): mean 0.186, 41.4 dB (what remains is the glass
   // head's, refracted differently by the two). Broken, measured: the tracer ignoring
   // the film, 2.40, 27.7 dB. The limits sit between.
-  EXPECT_LT(diff->meanAbs, 0.8);
-  EXPECT_GT(diff->psnr, 35.0);
+  expectBoardsAgree({{"IridescenceSuzanne/glTF-Binary/IridescenceSuzanne.glb", {0.0, 0.0, 9.0}, 0.8, 35.0}});
 }
 
 namespace {
