@@ -36,6 +36,37 @@ uniform vec3 u_emissive;
 
 layout(location = 0) out vec4 o_color;
 
+#ifdef DEBUG_VIEW
+// The viewer's debug views (render/scene_renderer.h's DebugView, by number): one
+// input as it is. Data are decoded from sRGB here, so that the post pass's encoding
+// gives their values back as bytes; the base colour and emission go through as
+// colours.
+vec3 srgbDecoded(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
+
+vec3 debugValue(Surface s, vec4 base, vec2 mr) {
+#if DEBUG_VIEW == 1
+  return srgbDecoded(s.n * 0.5 + 0.5);
+#elif DEBUG_VIEW == 2
+  return srgbDecoded(vec3(fract(v_uv), 0.0));
+#elif DEBUG_VIEW == 3
+  return base.rgb;
+#elif DEBUG_VIEW == 4
+  return srgbDecoded(vec3(mr.x));
+#elif DEBUG_VIEW == 5
+  return srgbDecoded(vec3(mr.y));
+#elif DEBUG_VIEW == 6
+  return srgbDecoded(vec3(materialOcclusion(v_uv)));
+#elif DEBUG_VIEW == 7
+  return materialEmissive(u_emissive, v_uv);
+#else
+  return srgbDecoded(vec3(base.a));
+#endif
+}
+#endif
+
 void main() {
   vec4 base = materialBaseColor(v_uv);
   materialAlphaTest(base.a);
@@ -78,6 +109,10 @@ void main() {
 #endif
 #ifdef IRIDESCENCE
   g_iridescenceF = surfaceIridescence(s);
+#endif
+#ifdef DEBUG_VIEW
+  o_color = vec4(debugValue(s, base, mr), 1.0);
+  return;
 #endif
   vec3 color = materialEmissive(u_emissive, v_uv) + shadeAmbient(s) * materialOcclusion(v_uv);
   color += shadeDirectLight(s, geometric);

@@ -192,6 +192,7 @@ struct SceneRenderer::Impl {
   double terrainError = 2.0;                 // the LOD target in pixels (terrain.error_pixels or the override)
   std::optional<SkinMode> skinModeOverride;  // every model's, when set
   QuatInterpolation rotations = QuatInterpolation::Slerp;
+  DebugView debugView = DebugView::None;
   gl::Program sky, post;
   gl::Texture skyImage;  // the sky's lat-long image, when the scene has one
   // The PBR ambient (render/ibl.h); built at load for Ambient::Sh and ::Ibl only.
@@ -355,6 +356,13 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     iblSize = options.iblSizeOverride > 0 ? options.iblSizeOverride : render.iblSize;
     if (ambient == Ambient::Sh) defines.push_back("AMBIENT_SH 1");
     if (ambient == Ambient::Ibl) defines.push_back("AMBIENT_IBL 1");
+  }
+  debugView = options.debugView;
+  if (debugView != DebugView::None) {
+    // The value as it is: no exposure, no tone map (post.frag's TONE_MAP 0 clamps).
+    defines.push_back("DEBUG_VIEW " + std::to_string(int(debugView)));
+    render.exposure = 1.0f;
+    render.toneMap = ToneMap::None;
   }
   probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
   if (auto s = makeProbes(); !s) return s;
@@ -1300,6 +1308,19 @@ std::string SceneRenderer::Impl::describeSkinCache() const {
   return out.str();
 }
 
+namespace {
+constexpr const char* kDebugViewNames[] = {"none",      "normal",    "uv",       "basecolor", "metallic",
+                                           "roughness", "occlusion", "emissive", "alpha"};
+}  // namespace
+
+const char* debugViewName(DebugView view) { return kDebugViewNames[int(view)]; }
+
+std::optional<DebugView> parseDebugView(const std::string& name) {
+  for (int i = 0; i < int(std::size(kDebugViewNames)); ++i)
+    if (name == kDebugViewNames[i]) return DebugView(i);
+  return std::nullopt;
+}
+
 std::string SceneRenderer::describe() const {
   const Impl& s = *impl_;
   std::ostringstream out;
@@ -1321,6 +1342,7 @@ std::string SceneRenderer::describe() const {
   if (s.transmissionPass) out << " transmission(copy + mips)";
   if (s.blendPass) out << " blend(sorted)";
   out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
+  if (s.debugView != DebugView::None) out << "\ndebug view: " << debugViewName(s.debugView) << " (no exposure, no tone map)";
   out << "\nshading: " << (s.render.shading == Shading::Classic ? "classic" : "pbr");
   if (s.render.shading == Shading::Pbr) {
     out << ", ambient " << ambientName(s.ambient);

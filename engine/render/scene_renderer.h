@@ -22,6 +22,17 @@ class CharacterInstance;
 class EnvironmentLighting;
 class Scene;
 
+// What scene.frag writes in place of the shaded colour (the viewer's debug views,
+// as the Khronos Sample Viewer has them): the shading normal (world, mapped to 0..1),
+// TEXCOORD_0 (fract), the base colour, metallic, roughness, occlusion, emission or
+// alpha, as they are: data channels arrive as their values in bytes, colours as
+// colours, with no exposure or tone map.
+enum class DebugView { None, Normal, Uv, BaseColor, Metallic, Roughness, Occlusion, Emissive, Alpha };
+// "none", "normal", "uv", "basecolor", "metallic", "roughness", "occlusion",
+// "emissive", "alpha".
+const char* debugViewName(DebugView view);
+std::optional<DebugView> parseDebugView(const std::string& name);
+
 struct SceneRenderOptions {
   std::string shaderDir;
   int msaaOverride = 0;        // > 0 replaces the scene's render.msaa
@@ -42,6 +53,7 @@ struct SceneRenderOptions {
   std::optional<OutputCurve> outputOverride;
   // How the rasterizer's poses interpolate rotation keys: slerp (exact) or nlerp.
   QuatInterpolation rotations = QuatInterpolation::Slerp;
+  DebugView debugView = DebugView::None;
 };
 
 struct SceneStats {

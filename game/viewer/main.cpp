@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   std::string modelPath, anim, loop = "repeat", dumpPosePath, variant;
   int camera = -1;
   int sceneIndex = -1;
+  std::string debugView = "none";
   double speed = 1.0;
   bool dualQuat = false, skeleton = false;
   app.add_option("model", modelPath, "glTF file (.gltf or .glb)")->required();
@@ -71,6 +72,8 @@ int main(int argc, char** argv) {
   app.add_option("--variant", variant, "KHR_materials_variants: the variant to draw, by name or index (default: the file's materials)");
   app.add_option("--camera", camera, "Look through the file's camera INDEX, where its node stands (default: framed to the model)");
   app.add_option("--scene", sceneIndex, "The file's glTF scene INDEX to draw (default: its default scene)");
+  app.add_option("--debug-view", debugView,
+                 "Draw one input as it is: normal, uv, basecolor, metallic, roughness, occlusion, emissive, alpha");
   app.add_option("--dump-pose", dumpPosePath, "Write the pose at --time as JSON and exit");
   engine::addCommonOptions(app, options);
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
@@ -82,6 +85,12 @@ int main(int argc, char** argv) {
     }
   }
   if (sceneIndex < -1) return fail(engine::kExitBadInput, "--scene: must be a scene index (0 or more)");
+  const auto view = engine::parseDebugView(debugView);
+  if (!view) {
+    return fail(engine::kExitBadInput, "--debug-view: no view \"" + debugView +
+                                           "\"; views are: none, normal, uv, basecolor, metallic, roughness, occlusion, "
+                                           "emissive, alpha");
+  }
   auto model = engine::loadGltf(modelPath, sceneIndex);
   if (!model) return fail(engine::kExitBadInput, model.error().message);
   auto animated = engine::buildAnimatedModel(*model);
@@ -124,6 +133,7 @@ int main(int argc, char** argv) {
   settings.skeleton = skeleton;
   settings.variant = variantIndex;
   settings.camera = camera;
+  settings.debugView = *view;
   // The scene renderer multisamples its own HDR target; the runner's target then
   // only receives the tone-mapped result.
   settings.msaa = options.run.msaa;

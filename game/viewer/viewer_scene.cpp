@@ -125,6 +125,7 @@ Status ViewerScene::buildRenderer() {
   if (!scene) return scene.error();
   SceneRenderOptions options;
   options.shaderDir = shaderDir_;
+  options.debugView = settings_.debugView;
   auto renderer = SceneRenderer::create(std::move(scene).value(), options);
   if (!renderer) return renderer.error();
   renderer_ = std::move(renderer).value();
@@ -255,6 +256,17 @@ void ViewerScene::drawVariantPicker() {
   ImGui::EndCombo();
 }
 
+// The debug views' picker: a new renderer with the view's program variants.
+void ViewerScene::drawDebugViewPicker() {
+  if (!ImGui::BeginCombo("debug view", debugViewName(settings_.debugView))) return;
+  for (int v = 0; v <= int(DebugView::Alpha); ++v) {
+    if (!ImGui::Selectable(debugViewName(DebugView(v)), DebugView(v) == settings_.debugView)) continue;
+    settings_.debugView = DebugView(v);
+    posed_ = buildRenderer();  // a failure is shown as the run's error
+  }
+  ImGui::EndCombo();
+}
+
 std::string ViewerScene::describe() const { return renderer_ ? renderer_->describe() : std::string(); }
 
 void ViewerScene::drawUi() {
@@ -307,6 +319,7 @@ void ViewerScene::drawUi() {
   }
   ImGui::Checkbox("skeleton", &settings_.skeleton);
   drawVariantPicker();
+  drawDebugViewPicker();
   ImGui::End();
 }
 

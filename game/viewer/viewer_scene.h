@@ -34,6 +34,8 @@ struct ViewerSettings {
   // The file's perspective camera to look through, placed by its node in the pose at
   // the first frame's time (-1: framed to the model's bounds).
   int camera = -1;
+  // A debug view in place of the shaded image (render/scene_renderer.h).
+  engine::DebugView debugView = engine::DebugView::None;
   // Where the camera looks from, toward the model's centre (framed to fit its
   // bounds). Golden tests of flat test models look straight at them (0, 0, 1), as
   // Khronos's screenshots do.
@@ -64,6 +66,7 @@ class ViewerScene final : public engine::Game {
   engine::Status showVariant(int variant);
   void drawSkeleton(const glm::mat4& viewProjection);
   void drawVariantPicker();
+  void drawDebugViewPicker();
   void placeAtModelCamera();
 
   std::string shaderDir_;

@@ -231,6 +231,30 @@ PY
     expect 2 "MultipleScenes\.gltf: scene 2 does not exist \(the file has 2\)" -- \
       "$BIN/viewer" "$model" --offscreen --scene 2
     ;;
+  viewer_debug_views)
+    # The debug views draw one input as it is: Khronos's Box (base colour factor
+    # 0.8, 0, 0; metallic 0, roughness 1 by default; its front face toward the
+    # viewer) shows at its centre the factor sRGB-encoded (231, 0, 0), its normal
+    # +Z as (127, 127, 255), metallic as 0 and roughness as 255 (2 levels of
+    # rounding allowed); an unknown view exits 2 listing the views.
+    model="$SRC/../shared/gltf-samples/Box/glTF-Binary/Box.glb"
+    [ -f "$model" ] || { echo "no ../shared/gltf-samples: skipped"; exit 77; }
+    check_view() {  # check_view VIEW R G B
+      rm -f "view_$1.png"
+      expect 0 "view_$1\.png" -- "$BIN/viewer" "$model" --offscreen --size 160x120 --screenshot "view_$1.png" --debug-view "$1"
+      read -r r g b < <(python3 "$SRC/tests/support/png_pixel.py" "view_$1.png" 80 60)
+      for pair in "$r $2" "$g $3" "$b $4"; do
+        read -r got want <<<"$pair"
+        [ $(( got > want ? got - want : want - got )) -le 2 ] \
+          || { echo "FAIL: --debug-view $1: centre ($r, $g, $b), expected ($2, $3, $4)"; exit 1; }
+      done
+    }
+    check_view basecolor 231 0 0
+    check_view normal 127 127 255
+    check_view metallic 0 0 0
+    check_view roughness 255 255 255
+    expect 2 "--debug-view: no view \"shiny\"; views are: none, normal, uv" -- "$BIN/viewer" "$model" --offscreen --debug-view shiny
+    ;;
   draco_loads)
     # A Khronos sample that requires Draco loads (it used to be refused: "requires
     # KHR_draco_mesh_compression, which this engine does not support"), exit 0,
