@@ -78,6 +78,45 @@ SceneDesc viewerScene(const ModelData& model, const glm::dvec3& lo, double radiu
   return scene;
 }
 
+// The material panel's lines for one material: the core factors, then each glTF
+// extension that moves it from the defaults, then the texture slots it fills.
+void materialLines(const MaterialData& m) {
+  const glm::vec4& c = m.baseColorFactor;
+  ImGui::Text("base colour %.3g %.3g %.3g, alpha %.3g", c.r, c.g, c.b, c.a);
+  ImGui::Text("metallic %.3g, roughness %.3g%s%s", m.metallicFactor, m.roughnessFactor,
+              m.doubleSided ? ", double-sided" : "", m.unlit ? ", unlit" : "");
+  const char* modes[] = {"opaque", "mask", "blend"};
+  ImGui::Text("alpha %s%s", modes[int(m.alphaMode)],
+              m.alphaMode == AlphaMode::Mask ? (" below " + std::to_string(m.alphaCutoff).substr(0, 4)).c_str() : "");
+  if (m.emissiveFactor != glm::vec3(0.0f))
+    ImGui::Text("emissive %.3g %.3g %.3g", m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b);
+  const MaterialLayers& l = m.layers;
+  if (l.ior != 1.5f) ImGui::Text("ior %.3g", l.ior);
+  if (l.specular != 1.0f || l.specularColor != glm::vec3(1.0f))
+    ImGui::Text("specular %.3g, colour %.3g %.3g %.3g", l.specular, l.specularColor.r, l.specularColor.g,
+                l.specularColor.b);
+  if (l.clearcoat > 0.0f) ImGui::Text("clear coat %.3g, roughness %.3g", l.clearcoat, l.clearcoatRoughness);
+  if (l.transmission > 0.0f) ImGui::Text("transmission %.3g", l.transmission);
+  if (l.thickness > 0.0f)
+    ImGui::Text("volume %.3g thick, %.3g %.3g %.3g after %.3g", l.thickness, l.attenuationColor.r,
+                l.attenuationColor.g, l.attenuationColor.b, l.attenuationDistance);
+  if (l.sheen())
+    ImGui::Text("sheen %.3g %.3g %.3g, roughness %.3g", l.sheenColor.r, l.sheenColor.g, l.sheenColor.b,
+                l.sheenRoughness);
+  if (l.anisotropy > 0.0f) ImGui::Text("anisotropy %.3g, turned %.3g rad", l.anisotropy, l.anisotropyRotation);
+  if (l.iridescence > 0.0f)
+    ImGui::Text("iridescence %.3g, ior %.3g, %.0f-%.0f nm", l.iridescence, l.iridescenceIor, l.iridescenceThicknessMin,
+                l.iridescenceThicknessMax);
+  static const char* const kSlots[kTextureSlots] = {
+      "base colour", "normal",          "metallic-roughness", "emissive",  "occlusion",  "specular",
+      "specular colour", "clear coat",  "coat roughness",     "transmission", "thickness", "coat normal",
+      "sheen colour", "sheen roughness", "anisotropy",        "iridescence", "film thickness"};
+  std::string textures;
+  for (int i = 0; i < kTextureSlots; ++i)
+    if (m.image(TextureSlot(i)) >= 0) textures += (textures.empty() ? "" : ", ") + std::string(kSlots[i]);
+  if (!textures.empty()) ImGui::TextWrapped("textures: %s", textures.c_str());
+}
+
 }  // namespace
 
 ViewerScene::ViewerScene(std::string shaderDir, ModelData model, ViewerSettings settings)
@@ -320,6 +359,21 @@ void ViewerScene::drawUi() {
   ImGui::Checkbox("skeleton", &settings_.skeleton);
   drawVariantPicker();
   drawDebugViewPicker();
+  ImGui::End();
+  drawMaterialPanel();
+}
+
+// The shown materials (the variant's, when one is picked), one section each.
+void ViewerScene::drawMaterialPanel() {
+  const std::vector<MaterialData>& materials = shown_->model.materials;
+  if (materials.empty()) return;
+  ImGui::SetNextWindowPos(ImVec2(340, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Materials");
+  for (size_t i = 0; i < materials.size(); ++i) {
+    const std::string label = std::to_string(i) + ": " + (materials[i].name.empty() ? "(unnamed)" : materials[i].name);
+    if (ImGui::CollapsingHeader(label.c_str(), i == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0)) materialLines(materials[i]);
+  }
   ImGui::End();
 }
 

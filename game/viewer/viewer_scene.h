@@ -67,6 +67,7 @@ class ViewerScene final : public engine::Game {
   void drawSkeleton(const glm::mat4& viewProjection);
   void drawVariantPicker();
   void drawDebugViewPicker();
+  void drawMaterialPanel();
   void placeAtModelCamera();
 
   std::string shaderDir_;

@@ -76,6 +76,18 @@ case "$CASE" in
     expect 0 "win\.png" -- "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
     cmp egl_w.png win.png || { echo "FAIL: window and EGL frames differ"; exit 1; }
     echo "ok: identical bytes" ;;
+  viewer_window_panels)
+    # The viewer's window under Xvfb with its panels (animation, variant and debug-view
+    # pickers, materials): it runs, and its image is the offscreen frame's with the
+    # panels over it, so the two differ (the panels' text names the file's path, which
+    # differs between checkouts: no golden).
+    model="$SRC/../shared/gltf-samples/SheenChair/glTF/SheenChair.gltf"
+    [ -f "$model" ] || { echo "no ../shared/gltf-samples: skipped"; exit 77; }
+    rm -f viewer_win.png viewer_off.png
+    expect 0 "viewer_off\.png" -- "$BIN/viewer" "$model" --offscreen --size 640x400 --screenshot viewer_off.png
+    start_xvfb
+    expect 0 "viewer_win\.png" -- "$BIN/viewer" "$model" --frames 3 --size 640x400 --screenshot-window --screenshot viewer_win.png
+    ! cmp -s viewer_off.png viewer_win.png || { echo "FAIL: the window shows no panels"; exit 1; } ;;
   window_panel)
     # The trade panel turns two knobs through its own apply path (--panel-set, as a
     # click on the combo does), and the whole window, panel included, is compared
