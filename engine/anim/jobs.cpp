@@ -14,19 +14,76 @@ namespace {
 // Normal transform without an inverse: the cofactor matrix is the inverse
 // transpose times the determinant, so after normalising it handles non-uniform
 // scale, and a zero scale gives a zero vector instead of NaNs.
+// r made unit length, or zero where it has none.
+glm::vec3 unitOrZero(const glm::vec3& r) {
+  const float len2 = glm::dot(r, r);
+  return len2 > 0.0f ? r / std::sqrt(len2) : glm::vec3(0.0f);
+}
+
+#if !defined(__SSE2__)
 glm::vec3 transformNormal(const glm::mat4& m, const glm::vec3& n) {
   glm::vec3 c0(m[0]), c1(m[1]), c2(m[2]);
   glm::mat3 cofactor(glm::cross(c1, c2), glm::cross(c2, c0), glm::cross(c0, c1));
-  glm::vec3 r = cofactor * n;
-  float len2 = glm::dot(r, r);
-  return len2 > 0.0f ? r / std::sqrt(len2) : glm::vec3(0.0f);
+  return unitOrZero(cofactor * n);
 }
+#endif
 
 bool usable(std::uint16_t joint, float weight, std::size_t paletteSize) {
   return weight != 0.0f && joint < paletteSize;
 }
 
+#if defined(__SSE2__)
+// skinLinear's arithmetic on whole columns, one SSE register each, in glm's order
+// element by element (the blend m += M_j w_j column by column; m * (p, 1) as
+// (c0 x + c1 y) + (c2 z + c3); the cofactor columns as glm's cross products, then
+// cofactor * n as (k0 x + k1 y) + k2 z): the same bits as the scalar loop, four
+// lanes at a time (SkinningJob.LinearBlendIsGlmBitForBit holds them together).
+struct Columns {
+  __m128 c[4];
+};
+
+inline __m128 yzx(__m128 v) { return _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 0, 2, 1)); }
+inline __m128 zxy(__m128 v) { return _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 1, 0, 2)); }
+// glm::cross(a, b) = (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y).
+inline __m128 cross(__m128 a, __m128 b) {
+  return _mm_sub_ps(_mm_mul_ps(yzx(a), zxy(b)), _mm_mul_ps(yzx(b), zxy(a)));
+}
+
+void skinLinearSse(const SkinningJob& job) {
+  const std::size_t k = static_cast<std::size_t>(job.influences);
+  const bool withNormals = !job.normals.empty();
+  const float* palette = &job.palette[0][0][0];
+  for (std::size_t v = 0; v < job.positions.size(); ++v) {
+    const std::uint16_t* joints = &job.joints[v * k];
+    const float* weights = &job.weights[v * k];
+    Columns m{{_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps()}};
+    for (std::size_t i = 0; i < k; ++i) {
+      if (!usable(joints[i], weights[i], job.palette.size())) continue;
+      const float* joint = palette + 16 * std::size_t(joints[i]);
+      const __m128 w = _mm_set1_ps(weights[i]);
+      for (int c = 0; c < 4; ++c) m.c[c] = _mm_add_ps(m.c[c], _mm_mul_ps(_mm_loadu_ps(joint + 4 * c), w));
+    }
+    const glm::vec3& p = job.positions[v];
+    const __m128 xy = _mm_add_ps(_mm_mul_ps(m.c[0], _mm_set1_ps(p.x)), _mm_mul_ps(m.c[1], _mm_set1_ps(p.y)));
+    const __m128 zw = _mm_add_ps(_mm_mul_ps(m.c[2], _mm_set1_ps(p.z)), m.c[3]);
+    alignas(16) float out[4];
+    _mm_store_ps(out, _mm_add_ps(xy, zw));
+    job.outPositions[v] = glm::vec3(out[0], out[1], out[2]);
+    if (!withNormals) continue;
+    const glm::vec3& n = job.normals[v];
+    const __m128 k0 = cross(m.c[1], m.c[2]), k1 = cross(m.c[2], m.c[0]), k2 = cross(m.c[0], m.c[1]);
+    const __m128 r = _mm_add_ps(_mm_add_ps(_mm_mul_ps(k0, _mm_set1_ps(n.x)), _mm_mul_ps(k1, _mm_set1_ps(n.y))),
+                                _mm_mul_ps(k2, _mm_set1_ps(n.z)));
+    _mm_store_ps(out, r);
+    job.outNormals[v] = unitOrZero(glm::vec3(out[0], out[1], out[2]));
+  }
+}
+#endif
+
 void skinLinear(const SkinningJob& job) {
+#if defined(__SSE2__)
+  skinLinearSse(job);
+#else
   std::size_t k = static_cast<std::size_t>(job.influences);
   bool withNormals = !job.normals.empty();
   for (std::size_t v = 0; v < job.positions.size(); ++v) {
@@ -38,6 +95,7 @@ void skinLinear(const SkinningJob& job) {
     job.outPositions[v] = glm::vec3(m * glm::vec4(job.positions[v], 1.0f));
     if (withNormals) job.outNormals[v] = transformNormal(m, job.normals[v]);
   }
+#endif
 }
 
 void skinDualQuat(const SkinningJob& job) {
