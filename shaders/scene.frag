@@ -105,7 +105,7 @@ void main() {
   Surface s = Surface(base.rgb, n, toEye, v_position, mr.x, mr.y, u_ambient, u_diffuse,
                       u_specular, u_shininess, u_reflection);
 #ifdef SHEEN
-  g_sheenAlbedo = sheenAlbedo(s);
+  surfaceSheen(s);
 #endif
 #ifdef IRIDESCENCE
   g_iridescenceF = surfaceIridescence(s);

@@ -734,7 +734,6 @@ class Converter {
   // The scene drawn: the one asked for (viewer --scene), else the file's default,
   // else its first; a file without scenes (or an empty one) draws every root.
   Status findSceneRoots() {
-    out_.sceneCount = static_cast<int>(gltf_.scenes.size());
     if (scene_ >= 0 && !validIndex(scene_, gltf_.scenes.size()))
       return error("scene " + str(scene_) + " does not exist (the file has " + str(gltf_.scenes.size()) + ")");
     const int scene = scene_ >= 0 ? scene_ : gltf_.defaultScene >= 0 ? gltf_.defaultScene : 0;
@@ -1058,18 +1057,12 @@ class Converter {
   // (copied into uvs1, so that every renderer finds the set it asks for).
   void checkUvSets(PrimitiveData& prim, const std::string& name) {
     if (prim.material < 0 || !prim.uvs1.empty()) return;
-    static const char* const kSlotNames[kTextureSlots] = {
-        "baseColorTexture",  "normalTexture",        "metallicRoughnessTexture", "emissiveTexture",
-        "occlusionTexture",  "specularTexture",      "specularColorTexture",     "clearcoatTexture",
-        "clearcoatRoughnessTexture", "transmissionTexture",  "thicknessTexture",         "clearcoatNormalTexture",
-        "sheenColorTexture",         "sheenRoughnessTexture",  "anisotropyTexture",        "iridescenceTexture",
-        "iridescenceThicknessTexture"};
     const MaterialData& m = out_.materials[static_cast<std::size_t>(prim.material)];
     const std::string material = "material " + str(prim.material) + (m.name.empty() ? "" : " (\"" + m.name + "\")");
     bool needed = false;
     for (int i = 0; i < kTextureSlots; ++i) {
       if (m.image(TextureSlot(i)) < 0 || m.textures[std::size_t(i)].texCoord != 1) continue;
-      warn(name + ": " + material + ": " + kSlotNames[i] + " reads TEXCOORD_1, which the primitive does not have; TEXCOORD_0 is used");
+      warn(name + ": " + material + ": " + textureSlotName(TextureSlot(i)) + " reads TEXCOORD_1, which the primitive does not have; TEXCOORD_0 is used");
       needed = true;
     }
     if (needed) prim.uvs1 = prim.uvs;

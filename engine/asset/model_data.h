@@ -151,6 +151,18 @@ inline bool isSrgbSlot(TextureSlot slot) {
   return slot == TextureSlot::BaseColor || slot == TextureSlot::Emissive || slot == TextureSlot::SpecularColor ||
          slot == TextureSlot::SheenColor;
 }
+// The slot's key in glTF ("baseColorTexture", ..., "iridescenceThicknessTexture"),
+// for messages and the viewer's material panel.
+inline const char* textureSlotName(TextureSlot slot) {
+  static constexpr const char* kNames[] = {
+      "baseColorTexture",          "normalTexture",       "metallicRoughnessTexture", "emissiveTexture",
+      "occlusionTexture",          "specularTexture",     "specularColorTexture",     "clearcoatTexture",
+      "clearcoatRoughnessTexture", "transmissionTexture", "thicknessTexture",         "clearcoatNormalTexture",
+      "sheenColorTexture",         "sheenRoughnessTexture", "anisotropyTexture",      "iridescenceTexture",
+      "iridescenceThicknessTexture"};
+  static_assert(std::size(kNames) == kTextureSlots);
+  return kNames[static_cast<int>(slot)];
+}
 
 // How one slot reads its texture: which uv set, KHR_texture_transform's matrix
 // (asset/texture_transform.h; identity without the extension) and the sampler.
@@ -294,7 +306,6 @@ struct ModelData {
   std::string path;
   std::vector<NodeData> nodes;
   std::vector<int> sceneRoots;  // roots of the scene drawn (all roots if none)
-  int sceneCount = 0;           // the file's glTF scenes
   int scene = -1;               // the one drawn (-1: none, every root is drawn)
   std::vector<MeshData> meshes;
   std::vector<MaterialData> materials;

@@ -31,25 +31,22 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
   Bsdf b(Model::MetallicRoughness, m, n, wo);
   b.entering_ = entering;
   b.alpha_ = brdf::ggxAlpha(m.roughness);
-  if (const glm::vec3 t = m.anisotropy > 0.0f ? m.anisotropyTangent(n) : glm::vec3(0.0f); t != glm::vec3(0.0f)) {
-    // KHR_materials_anisotropy: the local frame's x along the stretch.
-    b.frame_ = Frame(n, t);
-    b.woLocal_ = b.frame_.toLocal(wo);
-    b.anisotropy_ = m.anisotropy;
-    b.alphas_ = glm::vec2(brdf::anisotropicAlpha(b.alpha_, m.anisotropy), b.alpha_);
-  }
   const float cosO = std::clamp(b.woLocal_.z, 0.0f, 1.0f);
+  b.view_ = m.atView(n, cosO);
+  if (b.view_.anisotropy > 0.0f) {
+    // KHR_materials_anisotropy: the local frame's x along the stretch.
+    b.frame_ = Frame(n, b.view_.anisotropyT);
+    b.woLocal_ = b.frame_.toLocal(wo);
+    b.alphas_ = glm::vec2(brdf::anisotropicAlpha(b.alpha_, b.view_.anisotropy), b.alpha_);
+  }
   const glm::vec3 f0 = glm::mix(m.dielectricF0, m.albedo, m.metallic);
   const float f90 = m.dielectricF90 + (1.0f - m.dielectricF90) * m.metallic;
-  if (m.iridescence > 0.0f) b.iridescenceF_ = m.iridescenceFresnelAt(std::max(cosO, 1e-4f));
-  const float fresnel = mean(glm::mix(brdf::schlickFresnel90(f0, f90, cosO), b.iridescenceF_, m.iridescence));
+  const float fresnel = mean(glm::mix(brdf::schlickFresnel90(f0, f90, cosO), b.view_.iridescenceF, m.iridescence));
   // A sheen dims what lies under it by its albedo scaling.
-  const float sheenAlbedo = m.sheenAlbedo(cosO);
-  b.sheenScale_ = brdf::sheenScaling(m.sheenColor, sheenAlbedo);
-  const float sheen = brdf::maxComponent(m.sheenColor) * sheenAlbedo;
-  const float specular = fresnel * b.sheenScale_;
-  const float diffuse =
-      mean(m.albedo) * (1.0f - m.metallic) * (1.0f - m.transmission) * (1.0f - fresnel) * b.sheenScale_;
+  const float sheenScale = b.view_.sheenScale;
+  const float sheen = brdf::maxComponent(m.sheenColor) * b.view_.sheenAlbedo;
+  const float specular = fresnel * sheenScale;
+  const float diffuse = mean(m.albedo) * (1.0f - m.metallic) * (1.0f - m.transmission) * (1.0f - fresnel) * sheenScale;
   // Kept inside [0.1, 0.9] while both lobes exist: a lobe never sampled would leave its
   // light to the light samples alone, and MIS could not weigh it.
   b.pSpecular_ = diffuse > 0.0f ? std::clamp(specular / (specular + diffuse), 0.1f, 0.9f) : 1.0f;
@@ -67,7 +64,7 @@ Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm
   }
   if (m.transmission > 0.0f && m.metallic < 1.0f) {
     const float through =
-        mean(m.albedo) * (1.0f - m.metallic) * m.transmission * (1.0f - fresnel) * (1.0f - coat) * b.sheenScale_;
+        mean(m.albedo) * (1.0f - m.metallic) * m.transmission * (1.0f - fresnel) * (1.0f - coat) * sheenScale;
     const float reflected = coat + (1.0f - coat) * (specular + diffuse + sheen);
     b.pTransmit_ = reflected > 0.0f ? std::clamp(through / (through + reflected), 0.1f, 0.9f) : 1.0f;
     // A thin wall blurs what is behind it as much as its ior bends (none at 1);
@@ -89,15 +86,15 @@ glm::vec3 Bsdf::f(const glm::vec3& wi) const {
   }
   return brdf::layeredBrdf(frame_.n, wo_, wi, m_.albedo, m_.metallic, m_.roughness, m_.dielectricF0,
                            m_.dielectricF90, frame_.n, m_.clearcoat, m_.clearcoatRoughness, m_.transmission,
-                           m_.sheenColor, m_.sheenRoughness, sheenScale_, frame_.s, frame_.t, anisotropy_,
-                           iridescenceF_, m_.iridescence);
+                           m_.sheenColor, m_.sheenRoughness, view_.sheenScale, frame_.s, frame_.t, view_.anisotropy,
+                           view_.iridescenceF, m_.iridescence);
 }
 
 float Bsdf::pdf(const glm::vec3& wi) const {
   const glm::vec3 wiLocal = frame_.toLocal(wi);
   if (wiLocal.z <= 0.0f || woLocal_.z <= 0.0f) return 0.0f;
   if (model_ == Model::Classic) return (1.0f - pMirror_) * cosineHemispherePdf(wiLocal.z);
-  const float specular = anisotropy_ > 0.0f ? ggxAnisotropicReflectionPdf(woLocal_, wiLocal, alphas_)
+  const float specular = view_.anisotropy > 0.0f ? ggxAnisotropicReflectionPdf(woLocal_, wiLocal, alphas_)
                                             : ggxReflectionPdf(woLocal_, wiLocal, alpha_);
   float base = pSpecular_ * specular + (1.0f - pSpecular_) * cosineHemispherePdf(wiLocal.z);
   if (pSheen_ > 0.0f) base = pSheen_ * uniformConePdf(0.0f) + (1.0f - pSheen_) * base;
@@ -127,7 +124,7 @@ std::optional<BsdfSample> Bsdf::reflectionSample(glm::vec2 u, float uLobe) const
   } else if (model_ == Model::MetallicRoughness && pastShare(uLobe, pCoat_) < pSheen_) {
     wiLocal = sampleUniformCone(u, 0.0f);
   } else if (model_ == Model::MetallicRoughness && pastShare(pastShare(uLobe, pCoat_), pSheen_) < pSpecular_) {
-    const glm::vec3 h = anisotropy_ > 0.0f ? sampleGgxAnisotropicVisibleNormal(woLocal_, alphas_, u)
+    const glm::vec3 h = view_.anisotropy > 0.0f ? sampleGgxAnisotropicVisibleNormal(woLocal_, alphas_, u)
                                            : sampleGgxVisibleNormal(woLocal_, alpha_, u);
     wiLocal = reflectAbout(woLocal_, h);
   } else {
@@ -153,7 +150,7 @@ std::optional<BsdfSample> Bsdf::transmissionSample(glm::vec2 u) const {
   if (!(cosO > 0.0f)) return std::nullopt;
   const glm::vec3 fresnel = brdf::schlickFresnel90(m_.dielectricF0, m_.dielectricF90, cosO);
   const glm::vec3 share =
-      (glm::vec3(1.0f) - fresnel) * m_.albedo * ((1.0f - m_.metallic) * m_.transmission * sheenScale_);
+      (glm::vec3(1.0f) - fresnel) * m_.albedo * ((1.0f - m_.metallic) * m_.transmission * view_.sheenScale);
   glm::vec3 wiLocal;
   if (m_.thickness > 0.0f) {
     const float eta = entering_ ? 1.0f / std::max(m_.ior, 1.0f) : std::max(m_.ior, 1.0f);

@@ -76,13 +76,12 @@ class Bsdf {
   float pTransmit_ = 0.0f;  // the transmission lobe's share of all samples
   float alphaTransmit_ = 1.0f;
   bool entering_ = true;
-  float sheenScale_ = 1.0f;  // KHR_materials_sheen's albedo scaling at wo (1: no sheen)
-  float pSheen_ = 0.0f;      // the sheen's share of the samples under the coat
-  // KHR_materials_anisotropy: the stretch (0 none) and the base lobe's alphas along
-  // frame_.s (the stretch's direction) and frame_.t.
-  float anisotropy_ = 0.0f;
+  // The layers' terms at wo (sheen scaling, anisotropy, the film's Fresnel).
+  ViewLayers view_;
+  float pSheen_ = 0.0f;  // the sheen's share of the samples under the coat
+  // KHR_materials_anisotropy: the base lobe's alphas along frame_.s (the stretch's
+  // direction) and frame_.t.
   glm::vec2 alphas_{1.0f};
-  glm::vec3 iridescenceF_{0.0f};  // KHR_materials_iridescence's Fresnel at wo
 };
 
 }  // namespace engine::rt

@@ -158,12 +158,7 @@ class Tracer {
     const glm::vec3 nf(n);
     const glm::vec3 toEye = -glm::vec3(v);
     const float nDotV = glm::max(glm::dot(nf, toEye), 1e-4f);
-    const float sheenAlbedo = m.sheenAlbedo(nDotV);
-    const float sheenScale = brdf::sheenScaling(m.sheenColor, sheenAlbedo);
-    const glm::vec3 anisotropyT = m.anisotropy > 0.0f ? m.anisotropyTangent(nf) : glm::vec3(0.0f);
-    const float anisotropy = anisotropyT == glm::vec3(0.0f) ? 0.0f : m.anisotropy;
-    const glm::vec3 anisotropyB = glm::cross(nf, anisotropyT);
-    const glm::vec3 iridescenceF = m.iridescence > 0.0f ? m.iridescenceFresnelAt(nDotV) : glm::vec3(0.0f);
+    const ViewLayers view = m.atView(nf, nDotV);
     glm::vec3 color(0.0f);
     for (const LightDesc& light : scene_.lights()) {
       const LightSample<T> ls = sampleLight(si, light, rng, counters);
@@ -172,15 +167,17 @@ class Tracer {
       if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
       const glm::vec3 f =
           brdf::layeredBrdf(nf, toEye, l, m.albedo, m.metallic, m.roughness, m.dielectricF0, m.dielectricF90, nf,
-                            m.clearcoat, m.clearcoatRoughness, m.transmission, m.sheenColor, m.sheenRoughness, sheenScale,
-                            anisotropyT, anisotropyB, anisotropy, iridescenceF, m.iridescence);
+                            m.clearcoat, m.clearcoatRoughness, m.transmission, m.sheenColor, m.sheenRoughness,
+                            view.sheenScale, view.anisotropyT, view.anisotropyB, view.anisotropy, view.iridescenceF,
+                            m.iridescence);
       color += ls.radiance * ls.visibility * brdf::brdfLightFactor(f, nDotL);
     }
     // The same hemisphere ambient as the rasterizer's shadeAmbient.
     const glm::vec3 ambientLight = glm::mix(scene_.ambientGround(), scene_.ambientSky(), 0.5f + 0.5f * nf.y);
     return color + ambientLight * brdf::hemisphereAmbient(m.albedo, m.metallic, m.roughness, m.dielectricF0, nDotV,
                                                           m.clearcoat, m.clearcoatRoughness, m.transmission,
-                                                          m.sheenColor, sheenAlbedo, iridescenceF, m.iridescence);
+                                                          m.sheenColor, view.sheenAlbedo, view.iridescenceF,
+                                                          m.iridescence);
   }
 
   LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,

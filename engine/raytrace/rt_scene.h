@@ -52,6 +52,18 @@ using MeshId = int;
 // What the integrator shades one hit with: its material's weights, with the albedo
 // (colour times texture) and, for the terrain's layered material, the roughness and
 // highlight evaluated at the hit.
+// What layeredBrdf (core/brdf.h) takes of a hit's layers that depends on the view:
+// the sheen's albedo E and the scaling it leaves the base, the anisotropic frame
+// about the shading normal (anisotropy 0 where there is none to orient), and the
+// thin film's Fresnel. HitMaterial::atView works them out once per hit, for the
+// Whitted tracer's lights and ambient and for the path tracer's Bsdf alike.
+struct ViewLayers {
+  float sheenAlbedo = 0.0f, sheenScale = 1.0f;
+  glm::vec3 anisotropyT{0.0f}, anisotropyB{0.0f};
+  float anisotropy = 0.0f;
+  glm::vec3 iridescenceF{0.0f};
+};
+
 struct HitMaterial {
   glm::vec3 albedo{0.8f};
   float ambient = 0.1f, diffuse = 0.9f, specular = 0.0f, shininess = 32.0f, reflection = 0.0f;
@@ -103,6 +115,18 @@ struct HitMaterial {
   // The white sheen's directional albedo at N.V (core/sheen_table.h); 0 without one.
   float sheenAlbedo(float nDotV) const {
     return sheenColor != glm::vec3(0.0f) ? sheenTable().lookup(nDotV, sheenRoughness) : 0.0f;
+  }
+  // The view's terms (ViewLayers) for the unit shading normal n at N.V = nDotV (the
+  // film's Fresnel at no less than 1e-4).
+  ViewLayers atView(const glm::vec3& n, float nDotV) const {
+    ViewLayers v;
+    v.sheenAlbedo = sheenAlbedo(nDotV);
+    v.sheenScale = brdf::sheenScaling(sheenColor, v.sheenAlbedo);
+    v.anisotropyT = anisotropy > 0.0f ? anisotropyTangent(n) : glm::vec3(0.0f);
+    v.anisotropy = v.anisotropyT == glm::vec3(0.0f) ? 0.0f : anisotropy;
+    v.anisotropyB = glm::cross(n, v.anisotropyT);
+    if (iridescence > 0.0f) v.iridescenceF = iridescenceFresnelAt(std::max(nDotV, 1e-4f));
+    return v;
   }
 };
 

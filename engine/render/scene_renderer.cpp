@@ -1321,6 +1321,12 @@ std::optional<DebugView> parseDebugView(const std::string& name) {
   return std::nullopt;
 }
 
+std::string debugViewList() {
+  std::string list;
+  for (const char* name : kDebugViewNames) list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
+}
+
 std::string SceneRenderer::describe() const {
   const Impl& s = *impl_;
   std::ostringstream out;

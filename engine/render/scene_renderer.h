@@ -32,6 +32,8 @@ enum class DebugView { None, Normal, Uv, BaseColor, Metallic, Roughness, Occlusi
 // "emissive", "alpha".
 const char* debugViewName(DebugView view);
 std::optional<DebugView> parseDebugView(const std::string& name);
+// Every view's name, ", " between them (for help and error messages).
+std::string debugViewList();
 
 struct SceneRenderOptions {
   std::string shaderDir;

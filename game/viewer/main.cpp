@@ -72,8 +72,7 @@ int main(int argc, char** argv) {
   app.add_option("--variant", variant, "KHR_materials_variants: the variant to draw, by name or index (default: the file's materials)");
   app.add_option("--camera", camera, "Look through the file's camera INDEX, where its node stands (default: framed to the model)");
   app.add_option("--scene", sceneIndex, "The file's glTF scene INDEX to draw (default: its default scene)");
-  app.add_option("--debug-view", debugView,
-                 "Draw one input as it is: normal, uv, basecolor, metallic, roughness, occlusion, emissive, alpha");
+  app.add_option("--debug-view", debugView, "Draw one input as it is: " + engine::debugViewList());
   app.add_option("--dump-pose", dumpPosePath, "Write the pose at --time as JSON and exit");
   engine::addCommonOptions(app, options);
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
@@ -87,9 +86,7 @@ int main(int argc, char** argv) {
   if (sceneIndex < -1) return fail(engine::kExitBadInput, "--scene: must be a scene index (0 or more)");
   const auto view = engine::parseDebugView(debugView);
   if (!view) {
-    return fail(engine::kExitBadInput, "--debug-view: no view \"" + debugView +
-                                           "\"; views are: none, normal, uv, basecolor, metallic, roughness, occlusion, "
-                                           "emissive, alpha");
+    return fail(engine::kExitBadInput, "--debug-view: no view \"" + debugView + "\"; views are: " + engine::debugViewList());
   }
   auto model = engine::loadGltf(modelPath, sceneIndex);
   if (!model) return fail(engine::kExitBadInput, model.error().message);

@@ -85,9 +85,8 @@ void materialLines(const MaterialData& m) {
   ImGui::Text("base colour %.3g %.3g %.3g, alpha %.3g", c.r, c.g, c.b, c.a);
   ImGui::Text("metallic %.3g, roughness %.3g%s%s", m.metallicFactor, m.roughnessFactor,
               m.doubleSided ? ", double-sided" : "", m.unlit ? ", unlit" : "");
-  const char* modes[] = {"opaque", "mask", "blend"};
-  ImGui::Text("alpha %s%s", modes[int(m.alphaMode)],
-              m.alphaMode == AlphaMode::Mask ? (" below " + std::to_string(m.alphaCutoff).substr(0, 4)).c_str() : "");
+  if (m.alphaMode == AlphaMode::Mask) ImGui::Text("alpha mask below %.3g", m.alphaCutoff);
+  else ImGui::Text("alpha %s", m.alphaMode == AlphaMode::Blend ? "blend" : "opaque");
   if (m.emissiveFactor != glm::vec3(0.0f))
     ImGui::Text("emissive %.3g %.3g %.3g", m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b);
   const MaterialLayers& l = m.layers;
@@ -107,13 +106,9 @@ void materialLines(const MaterialData& m) {
   if (l.iridescence > 0.0f)
     ImGui::Text("iridescence %.3g, ior %.3g, %.0f-%.0f nm", l.iridescence, l.iridescenceIor, l.iridescenceThicknessMin,
                 l.iridescenceThicknessMax);
-  static const char* const kSlots[kTextureSlots] = {
-      "base colour", "normal",          "metallic-roughness", "emissive",  "occlusion",  "specular",
-      "specular colour", "clear coat",  "coat roughness",     "transmission", "thickness", "coat normal",
-      "sheen colour", "sheen roughness", "anisotropy",        "iridescence", "film thickness"};
   std::string textures;
   for (int i = 0; i < kTextureSlots; ++i)
-    if (m.image(TextureSlot(i)) >= 0) textures += (textures.empty() ? "" : ", ") + std::string(kSlots[i]);
+    if (m.image(TextureSlot(i)) >= 0) textures += (textures.empty() ? "" : ", ") + std::string(textureSlotName(TextureSlot(i)));
   if (!textures.empty()) ImGui::TextWrapped("textures: %s", textures.c_str());
 }
 

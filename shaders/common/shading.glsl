@@ -35,22 +35,25 @@ float g_thickness;     // KHR_materials_volume's, in the mesh's units
 #endif
 
 #ifdef SHEEN
-// KHR_materials_sheen: its colour and roughness at the fragment, and the white
-// sheen's directional albedo E there (core/sheen_table.h's table, sampled once per
-// fragment by sheenAlbedo below), which dims what lies under the sheen.
+// KHR_materials_sheen: its colour and roughness at the fragment, the white sheen's
+// directional albedo E there (core/sheen_table.h's table) and the scaling it leaves
+// what lies under the sheen, both once per fragment (surfaceSheen below).
 layout(binding = UNIT_SHEEN_ALBEDO) uniform sampler2D u_sheenAlbedo;
 vec3 g_sheenColor;
 float g_sheenRoughness;
 float g_sheenAlbedo;
+float g_sheenScale;
 
-float sheenAlbedo(Surface s) {
-  return texture(u_sheenAlbedo, sheenTableCoord(dot(s.n, s.toEye), g_sheenRoughness)).r;
+void surfaceSheen(Surface s) {
+  g_sheenAlbedo = texture(u_sheenAlbedo, sheenTableCoord(dot(s.n, s.toEye), g_sheenRoughness)).r;
+  g_sheenScale = sheenScaling(g_sheenColor, g_sheenAlbedo);
 }
 #else
 // No sheen: constants, so that the layered code folds it away.
 const vec3 g_sheenColor = vec3(0.0);
 const float g_sheenRoughness = 0.0;
 const float g_sheenAlbedo = 0.0;
+const float g_sheenScale = 1.0;
 #endif
 
 #ifdef ANISOTROPY
@@ -155,7 +158,7 @@ vec3 shadeAmbient(Surface s) {
 #ifdef SHEEN
   // The sheen's broad lobe sees the environment as a Lambert lobe does (a shortcut:
   // the Sample Viewer prefilters a Charlie-lobe cube of its own).
-  color = color * sheenScaling(g_sheenColor, g_sheenAlbedo) + g_sheenColor * (g_sheenAlbedo / PI) * shIrradiance(s.n);
+  color = color * g_sheenScale + g_sheenColor * (g_sheenAlbedo / PI) * shIrradiance(s.n);
 #endif
   if (g_clearcoat <= 0.0) return color;
   // The coat (f0 0.04) by the same split sum along its own normal, over the base it dims.
@@ -194,7 +197,7 @@ vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
 #ifdef MATERIAL_LAYERS
   vec3 f = layeredBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness, g_dielectricF0, g_dielectricF90,
                        g_clearcoatNormal, g_clearcoat, g_clearcoatRoughness, g_transmission, g_sheenColor,
-                       g_sheenRoughness, sheenScaling(g_sheenColor, g_sheenAlbedo), g_anisotropyT, g_anisotropyB,
+                       g_sheenRoughness, g_sheenScale, g_anisotropyT, g_anisotropyB,
                        g_anisotropy, g_iridescenceF, g_iridescence);
 #else
   vec3 f = metallicRoughnessBrdf(s.n, s.toEye, l, s.albedo, s.metallic, s.roughness);

@@ -33,6 +33,5 @@ vec3 transmittedLight(Surface s) {
   vec3 reflected = schlickFresnel90(g_dielectricF0, g_dielectricF90, nDotV);
 #endif
   // A sheen lies over what comes through as over the base (no sheen: a factor of 1).
-  return transmittedShare(s.albedo, s.metallic, g_transmission, reflected) * behind *
-         sheenScaling(g_sheenColor, g_sheenAlbedo);
+  return transmittedShare(s.albedo, s.metallic, g_transmission, reflected) * behind * g_sheenScale;
 }
