@@ -9,19 +9,20 @@ layout(local_size_x = 64) in;
 
 #define SKIN_COMPUTE 1
 
-// The primitive's own vertex buffers (render/model_renderer.cpp's upload): tight
-// vec3 positions and normals, vec4 tangents, INFLUENCES uint16 joints and floats
-// per vertex.
-layout(std430, binding = BUFFER_SKIN_POSITIONS) readonly buffer InPositions { float in_positions[]; };
+// The primitive's own vertex buffers (render/model_renderer.cpp's upload) as
+// buffer textures (gl::Texture::ofBuffer says why): tight vec3 positions and
+// normals (RGB32F), vec4 tangents, INFLUENCES uint16 joints (RGBA16UI: four a
+// texel) and floats (RGBA32F) per vertex.
+layout(binding = UNIT_SKIN_POSITIONS) uniform samplerBuffer in_positions;
 #ifdef HAS_NORMALS
-layout(std430, binding = BUFFER_SKIN_NORMALS) readonly buffer InNormals { float in_normals[]; };
+layout(binding = UNIT_SKIN_NORMALS) uniform samplerBuffer in_normals;
 #endif
 #ifdef NORMAL_MAP
-layout(std430, binding = BUFFER_SKIN_TANGENTS) readonly buffer InTangents { vec4 in_tangents[]; };
+layout(binding = UNIT_SKIN_TANGENTS) uniform samplerBuffer in_tangents;
 #endif
 #ifdef SKINNED
-layout(std430, binding = BUFFER_SKIN_JOINTS) readonly buffer InJoints { uint in_joints[]; };
-layout(std430, binding = BUFFER_SKIN_WEIGHTS) readonly buffer InWeights { float in_weights[]; };
+layout(binding = UNIT_SKIN_JOINTS) uniform usamplerBuffer in_joints;
+layout(binding = UNIT_SKIN_WEIGHTS) uniform samplerBuffer in_weights;
 #endif
 
 // One deformed vertex: what the cached vertex array reads at offsets 0, 16, 32.
@@ -37,16 +38,9 @@ uniform int u_vertexCount;
 uint g_vertex;  // this invocation's vertex
 
 #ifdef SKINNED
-// Group k of four joints (two uint16 per uint) and of four weights.
-uvec4 vertexJoints(uint k) {
-  uint base = (g_vertex * uint(INFLUENCES) + 4u * k) / 2u;
-  uint a = in_joints[base], b = in_joints[base + 1u];
-  return uvec4(a & 0xFFFFu, a >> 16, b & 0xFFFFu, b >> 16);
-}
-vec4 vertexWeights(uint k) {
-  uint base = g_vertex * uint(INFLUENCES) + 4u * k;
-  return vec4(in_weights[base], in_weights[base + 1u], in_weights[base + 2u], in_weights[base + 3u]);
-}
+// Group k of four joints and of four weights: texel k of the vertex's.
+uvec4 vertexJoints(uint k) { return texelFetch(in_joints, int(g_vertex * uint(INFLUENCES / 4) + k)); }
+vec4 vertexWeights(uint k) { return texelFetch(in_weights, int(g_vertex * uint(INFLUENCES / 4) + k)); }
 #define a_joints0 vertexJoints(0u)
 #define a_weights0 vertexWeights(0u)
 #define a_joints1 vertexJoints(1u)
@@ -59,22 +53,21 @@ vec4 vertexWeights(uint k) {
 #include "common/morph.glsl"
 #endif
 
-vec3 readVec3(uint i, bool normal) {
+vec3 readNormal(uint i) {
 #ifdef HAS_NORMALS
-  if (normal) return vec3(in_normals[3u * i], in_normals[3u * i + 1u], in_normals[3u * i + 2u]);
+  return texelFetch(in_normals, int(i)).xyz;
 #else
-  if (normal) return vec3(0.0, 1.0, 0.0);  // the vertex arrays' constant attribute
+  return vec3(0.0, 1.0, 0.0);  // the vertex arrays' constant attribute
 #endif
-  return vec3(in_positions[3u * i], in_positions[3u * i + 1u], in_positions[3u * i + 2u]);
 }
 
 void main() {
   g_vertex = gl_GlobalInvocationID.x;
   if (int(g_vertex) >= u_vertexCount) return;
-  vec3 position = readVec3(g_vertex, false);
-  vec3 normal = readVec3(g_vertex, true);
+  vec3 position = texelFetch(in_positions, int(g_vertex)).xyz;
+  vec3 normal = readNormal(g_vertex);
 #ifdef NORMAL_MAP
-  vec4 tangent = in_tangents[g_vertex];
+  vec4 tangent = texelFetch(in_tangents, int(g_vertex));
 #else
   vec4 tangent = vec4(0.0);
 #endif

@@ -131,7 +131,9 @@ enum class Ambient { Hemisphere, Sh, Ibl };
 // How the rasterizer deforms skinned and morphed models: in each pass's vertex
 // shader, or once per pose by a compute shader into a skin cache that every pass
 // draws as a static mesh (render/skin_cache.h).
-enum class Skinning { Vertex, Compute };
+// Where characters deform: in every pass's vertex shader, once a frame into the
+// skin cache, or (auto) the cache where it pays (scene_renderer.cpp's usesSkinCache).
+enum class Skinning { Vertex, Compute, Auto };
 
 struct RenderDesc {
   int msaa = 1;
@@ -149,7 +151,7 @@ struct RenderDesc {
   // PBR ambient; unset: IBL under a sky, the hemisphere without one (render.ambient).
   std::optional<Ambient> ambient;
   int iblSize = 128;  // texels a side of the environment's cube map (render.ibl_size)
-  Skinning skinning = Skinning::Vertex;  // render.skinning: "vertex" or "compute"
+  Skinning skinning = Skinning::Auto;  // render.skinning: "vertex", "compute" or "auto"
 };
 
 struct TerrainDesc {

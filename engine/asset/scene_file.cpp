@@ -320,11 +320,16 @@ const std::map<std::string, OutputCurve>& outputNames() {
 }
 
 const std::map<std::string, Skinning>& skinningNames() {
-  static const std::map<std::string, Skinning> names{{"vertex", Skinning::Vertex}, {"compute", Skinning::Compute}};
+  static const std::map<std::string, Skinning> names{
+      {"vertex", Skinning::Vertex}, {"compute", Skinning::Compute}, {"auto", Skinning::Auto}};
   return names;
 }
 
-std::string skinningName(Skinning skinning) { return skinning == Skinning::Compute ? "compute" : "vertex"; }
+std::string skinningName(Skinning skinning) {
+  for (const auto& [name, value] : skinningNames())
+    if (value == skinning) return name;
+  return "vertex";
+}
 
 namespace {
 

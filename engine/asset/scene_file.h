@@ -22,7 +22,7 @@ std::string ambientName(Ambient ambient);
 const std::map<std::string, Shading>& shadingNames();
 const std::map<std::string, ToneMap>& toneMapNames();
 const std::map<std::string, OutputCurve>& outputNames();
-// render.skinning's and --skinning's names: vertex, compute.
+// render.skinning's and --skinning's names: vertex, compute, auto.
 const std::map<std::string, Skinning>& skinningNames();
 std::string skinningName(Skinning skinning);
 

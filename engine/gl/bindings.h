@@ -34,6 +34,11 @@ inline constexpr unsigned kSheenAlbedo = 22;
 inline constexpr unsigned kAnisotropy = 23;  // KHR_materials_anisotropy's texture
 inline constexpr unsigned kIridescence = 24;  // KHR_materials_iridescence's textures
 inline constexpr unsigned kIridescenceThickness = 25;
+// Read per vertex at a per-vertex index, so buffer textures (gl::Texture::ofBuffer
+// says why): a morphing primitive's displacements (common/morph.glsl) and a
+// skin's palette (common/skinning.glsl).
+inline constexpr unsigned kMorphDeltas = 26;
+inline constexpr unsigned kSkinPalette = 27;
 // Shadow maps (common/shadows.glsl).
 inline constexpr unsigned kSunShadow = 4;
 inline constexpr unsigned kPointShadow = 5;
@@ -50,18 +55,16 @@ inline constexpr unsigned kTerrainLayers = 1;
 inline constexpr unsigned kHdr = 0;
 inline constexpr unsigned kIblSource = 0;
 inline constexpr unsigned kIblLevelImage = 0;  // an image unit: the level being written
-// Storage buffers: the skin palette (common/skinning.glsl), morph targets and
-// weights (common/morph.glsl). Uniform buffers: the frame block (common/frame.glsl).
-inline constexpr unsigned kSkinBuffer = 0;
-inline constexpr unsigned kMorphDeltasBuffer = 1;
+// Storage buffers: the morph weights (common/morph.glsl; read at an index every
+// vertex shares). Uniform buffers: the frame block (common/frame.glsl).
 inline constexpr unsigned kMorphWeightsBuffer = 2;
-// The skin cache's compute (skin.comp): a primitive's vertex buffers in, its
-// deformed vertices out.
-inline constexpr unsigned kSkinPositions = 3;
-inline constexpr unsigned kSkinNormals = 4;
-inline constexpr unsigned kSkinTangents = 5;
-inline constexpr unsigned kSkinJoints = 6;
-inline constexpr unsigned kSkinWeights = 7;
+// The skin cache's compute (skin.comp): a primitive's vertex buffers in, as
+// buffer textures on these units, its deformed vertices out, a storage buffer.
+inline constexpr unsigned kSkinPositions = 0;
+inline constexpr unsigned kSkinNormals = 1;
+inline constexpr unsigned kSkinTangents = 2;
+inline constexpr unsigned kSkinJoints = 3;
+inline constexpr unsigned kSkinWeights = 4;
 inline constexpr unsigned kSkinOutput = 8;
 inline constexpr unsigned kFrameBlock = 0;
 // The GPU ray tracer (shaders/rt/): the flattened scene (raytrace/gpu_layout.h),
@@ -102,6 +105,8 @@ inline constexpr std::array<Define, 52> kDefines{{
     {"UNIT_ANISOTROPY", kAnisotropy},
     {"UNIT_IRIDESCENCE", kIridescence},
     {"UNIT_IRIDESCENCE_THICKNESS", kIridescenceThickness},
+    {"UNIT_MORPH_DELTAS", kMorphDeltas},
+    {"UNIT_SKIN_PALETTE", kSkinPalette},
     {"UNIT_SUN_SHADOW", kSunShadow},
     {"UNIT_POINT_SHADOW", kPointShadow},
     {"UNIT_SUN_SHADOW_FAR", kSunShadowFar},
@@ -114,14 +119,12 @@ inline constexpr std::array<Define, 52> kDefines{{
     {"UNIT_HDR", kHdr},
     {"UNIT_IBL_SOURCE", kIblSource},
     {"IMAGE_IBL_LEVEL", kIblLevelImage},
-    {"BUFFER_SKIN", kSkinBuffer},
-    {"BUFFER_MORPH_DELTAS", kMorphDeltasBuffer},
     {"BUFFER_MORPH_WEIGHTS", kMorphWeightsBuffer},
-    {"BUFFER_SKIN_POSITIONS", kSkinPositions},
-    {"BUFFER_SKIN_NORMALS", kSkinNormals},
-    {"BUFFER_SKIN_TANGENTS", kSkinTangents},
-    {"BUFFER_SKIN_JOINTS", kSkinJoints},
-    {"BUFFER_SKIN_WEIGHTS", kSkinWeights},
+    {"UNIT_SKIN_POSITIONS", kSkinPositions},
+    {"UNIT_SKIN_NORMALS", kSkinNormals},
+    {"UNIT_SKIN_TANGENTS", kSkinTangents},
+    {"UNIT_SKIN_JOINTS", kSkinJoints},
+    {"UNIT_SKIN_WEIGHTS", kSkinWeights},
     {"BUFFER_SKIN_OUTPUT", kSkinOutput},
     {"BLOCK_FRAME", kFrameBlock},
     {"BUFFER_RT_NODES", kRtNodes},

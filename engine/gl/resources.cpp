@@ -108,6 +108,13 @@ Texture Texture::table(GLenum internalFormat, GLenum format, int size, const flo
   return texture;
 }
 
+Texture Texture::ofBuffer(const Buffer& buffer, GLenum internalFormat) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+  glTextureBuffer(id, internalFormat, buffer.id());
+  return adopt(id, 0, 0);
+}
+
 void Texture::uploadRgba8(const void* pixels) const {
   glTextureSubImage2D(id(), 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
 }

@@ -75,6 +75,11 @@ class Texture : public Object<TextureDeleter> {
   // stored as `internalFormat`), read linearly between texels and clamped at the
   // edges: the BRDF tables C++ computes and the shaders read.
   static Texture table(GLenum internalFormat, GLenum format, int size, const float* texels);
+  // A buffer texture: `buffer`'s bytes as texels of `internalFormat` (GL_RGBA32F,
+  // GL_RGB32F, GL_RGBA16UI...), which shaders read with texelFetch. llvmpipe
+  // fetches a texel per lane in one load, where a storage buffer read at a
+  // per-vertex index loops over the lanes once per component.
+  static Texture ofBuffer(const Buffer& buffer, GLenum internalFormat);
   void parameter(GLenum name, GLint value) const { glTextureParameteri(id(), name, value); }
   void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
   int width() const { return width_; }

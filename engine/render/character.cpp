@@ -31,6 +31,7 @@ CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset
   for (const Skin& skin : asset_->animated.skins) {
     // Room for either layout: one mat4 (LBS) or two vec4 (DQS) per joint.
     skinBuffers_.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * sizeof(glm::mat4)));
+    skinPalettes_.push_back(gl::Texture::ofBuffer(skinBuffers_.back(), GL_RGBA32F));
   }
   if (!pose_.morphWeights.empty()) morphBuffer_ = gl::Buffer::create(pose_.morphWeights.size() * sizeof(float));
 }
@@ -114,7 +115,7 @@ Status CharacterInstance::prepare(SkinMode mode) {
   if (auto s = uploadPalettes(mode); !s) return s;
   uploadMorphWeights();
   if (cache_) {
-    const SkinCache::Inputs inputs{skinBuffers_, mode, pose_.morphWeights.empty() ? nullptr : &morphBuffer_,
+    const SkinCache::Inputs inputs{skinPalettes_, mode, pose_.morphWeights.empty() ? nullptr : &morphBuffer_,
                                    asset_->animated.morphs.first};
     if (auto s = cache_->update(*skinPrograms_, asset_->model, asset_->gpu, inputs); !s) return s;
   }
@@ -131,7 +132,7 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   frame.cameraPosition = glm::dvec3(0.0);  // the root is camera-relative already
   frame.root = root_;
   frame.nodeWorlds = nodeWorlds_;
-  frame.skinBuffers = skinBuffers_;
+  frame.skinPalettes = skinPalettes_;
   frame.skinMode = mode;
   frame.morphWeights = pose_.morphWeights.empty() ? nullptr : &morphBuffer_;
   frame.morphFirst = asset_->animated.morphs.first;

@@ -103,6 +103,7 @@ class CharacterInstance {
   std::vector<glm::mat4> palette_;     // scratch, reused every frame
   std::vector<DualQuat> dualQuats_;    // scratch
   std::vector<gl::Buffer> skinBuffers_;
+  std::vector<gl::Texture> skinPalettes_;  // each of skinBuffers_ as shaders read it
   gl::Buffer morphBuffer_;           // the same on the GPU
   SkinPrograms* skinPrograms_ = nullptr;
   std::optional<SkinCache> cache_;

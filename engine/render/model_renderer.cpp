@@ -222,6 +222,7 @@ void uploadMorphTargets(const PrimitiveData& data, GpuPrimitive& prim) {
   // A buffer of at least one element: targets that move nothing still bind one.
   if (deltas.empty()) deltas.emplace_back(0.0f);
   prim.morphDeltas = gl::Buffer::fromSpan(std::span<const glm::vec4>(deltas));
+  prim.morphDeltaTexture = gl::Texture::ofBuffer(prim.morphDeltas, GL_RGBA32F);
 }
 
 GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
@@ -335,7 +336,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   pr.set("u_uvScale", glm::vec2(1.0f));
   if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
   if (variant.influences > 0) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kSkinBuffer, frame.skinBuffers[size_t(node.skin)].id());
+    frame.skinPalettes[size_t(node.skin)].bind(gl::binding::kSkinPalette);
   }
   if (variant.morph) {
     if (auto s = bindNodeMorphTargets(pr, prim, frame, n); !s) return makeError(model.path + ": " + s.error().message);
@@ -428,7 +429,7 @@ void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, cons
 }
 
 void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, const gl::Buffer& weights, int first) {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kMorphDeltasBuffer, prim.morphDeltas.id());
+  glBindTextureUnit(gl::binding::kMorphDeltas, prim.morphDeltaTexture.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kMorphWeightsBuffer, weights.id());
   program.set("u_morphTargets", prim.morphTargets);
   program.set("u_morphFirst", first);

@@ -114,6 +114,7 @@ struct GpuPrimitive {
   // none) as common/morph.glsl reads them.
   int morphTargets = 0;
   gl::Buffer morphDeltas;
+  gl::Texture morphDeltaTexture;  // RGBA32F texels of morphDeltas
   int morphPositions = -1;
   int morphNormals = -1;
   int morphTangents = -1;
@@ -178,8 +179,9 @@ struct ModelFrame {
   // The model's root in the world: skinned primitives are placed by it, their
   // palettes being in the root's space (model space).
   glm::dmat4 root{1.0};
-  // One storage buffer per skin: mat4 palette (Linear) or 2 vec4 per joint (DualQuat).
-  std::span<const gl::Buffer> skinBuffers;
+  // One RGBA32F buffer texture per skin: a mat4 palette (Linear, four texels a
+  // joint) or 2 vec4 per joint (DualQuat).
+  std::span<const gl::Texture> skinPalettes;
   SkinMode skinMode = SkinMode::Linear;
   // Models with morph targets: every morphing node's weights in one storage buffer
   // (float, MorphLayout order) and where each node's start (per glTF node, -1 none).

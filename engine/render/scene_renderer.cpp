@@ -186,8 +186,8 @@ struct SceneRenderer::Impl {
   RenderDesc render;
   std::string shaderDir;
   std::unique_ptr<ShaderVariants> variants;
-  // The skin cache's compute programs (render.skinning compute; before the
-  // characters, which point at it).
+  // The skin cache's compute programs, made with the first instance that uses the
+  // cache (usesSkinCache; declared before the characters, which point at it).
   std::unique_ptr<SkinPrograms> skinPrograms;
   double terrainError = 2.0;                 // the LOD target in pixels (terrain.error_pixels or the override)
   std::optional<SkinMode> skinModeOverride;  // every model's, when set
@@ -304,6 +304,7 @@ struct SceneRenderer::Impl {
   Status renderPointShadow(const glm::dvec3& cameraPosition);
   Status renderFrame(const Camera& camera, int width, int height);
   Status deformCharacters();
+  bool usesSkinCache(const ModelData& model, const ModelDesc& desc) const;
   std::string describeSkinCache() const;
   void fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection);
 };
@@ -368,7 +369,6 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (auto s = makeProbes(); !s) return s;
   if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
-  if (render.skinning == Skinning::Compute) skinPrograms = std::make_unique<SkinPrograms>(shaderDir);
 
   if (auto s = makeSky(); !s) return s;
   // The one post variant these settings need (post.frag says why not uniforms).
@@ -560,6 +560,28 @@ Status SceneRenderer::Impl::loadMaterials() {
   return Ok{};
 }
 
+// Whether an instance deforms in the skin cache. render.skinning auto sends it
+// there where each vertex would otherwise be deformed again at a price in every
+// pass that draws it (measured: bench/morph_cost, bench/skinning_cost): morph
+// targets (8 of them cost 1.5x the frame in the vertex shaders, 1.1-1.2x cached),
+// dual quaternions, or more than the view and one sun map drawing it (a point
+// light's six cube faces, the probes). Plain LBS under a sun stays in the vertex
+// shaders, cheaper there than a dispatch that writes 48 bytes a vertex.
+bool SceneRenderer::Impl::usesSkinCache(const ModelData& model, const ModelDesc& desc) const {
+  if (render.skinning == Skinning::Vertex) return false;
+  bool skins = false, morphs = false;
+  for (const NodeData& node : model.nodes) {
+    if (node.mesh < 0) continue;
+    for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
+      skins = skins || (node.skin >= 0 && prim.influences > 0 && !desc.unskinned);
+      morphs = morphs || prim.morphTargets > 0;
+    }
+  }
+  if (render.skinning == Skinning::Compute) return skins || morphs;
+  const bool manyPasses = pointShadows || !probes.empty();
+  return morphs || (skins && (desc.dualQuat || manyPasses));
+}
+
 // One upload per model file, one CharacterInstance per scene instance.
 Status SceneRenderer::Impl::loadModels() {
   std::vector<std::shared_ptr<const CharacterAsset>> uploaded;
@@ -571,12 +593,15 @@ Status SceneRenderer::Impl::loadModels() {
   for (const ModelInstance& instance : source->instances()) {
     CharacterDraw draw;
     draw.instance = std::make_unique<CharacterInstance>(uploaded[size_t(instance.asset)]);
-    if (skinPrograms) draw.instance->useSkinCache(skinPrograms.get());
     draw.instance->setPose(instance.pose);
     draw.desc = instance.desc;
     if (skinModeOverride) {
       draw.desc.dualQuat = *skinModeOverride == SkinMode::DualQuat;
       draw.desc.unskinned = *skinModeOverride == SkinMode::None;
+    }
+    if (usesSkinCache(draw.instance->asset().model, draw.desc)) {
+      if (!skinPrograms) skinPrograms = std::make_unique<SkinPrograms>(shaderDir);
+      draw.instance->useSkinCache(skinPrograms.get());
     }
     draw.world = instance.world;
     draw.localCenter = instance.boundsCenter;

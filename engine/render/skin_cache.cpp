@@ -12,8 +12,9 @@ namespace {
 constexpr std::size_t kDeformedVertexBytes = 3 * 4 * sizeof(float);
 constexpr GLuint kGroupSize = 64;  // skin.comp's local_size_x
 
-void bindSource(unsigned binding, const GpuPrimitive& prim, int index) {
-  if (index >= 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, prim.buffers[size_t(index)].id());
+// Source attribute `index` of `prim` (-1: absent) as skin.comp reads it.
+gl::Texture sourceTexture(const GpuPrimitive& prim, int index, GLenum format) {
+  return index >= 0 ? gl::Texture::ofBuffer(prim.buffers[size_t(index)], format) : gl::Texture{};
 }
 
 }  // namespace
@@ -70,6 +71,13 @@ SkinCache SkinCache::create(const ModelData& model, const GpuModel& gpu) {
                                         nullptr, 0);
       entry.vao = gl::VertexArray::create();
       attachAttributes(source, entry.vao, &entry.output);
+      // In skin.comp's unit order: positions, normals, tangents, joints (4 uint16
+      // a texel), weights (4 floats a texel).
+      entry.sources = {sourceTexture(source, source.sources.positions, GL_RGB32F),
+                       sourceTexture(source, source.sources.normals, GL_RGB32F),
+                       sourceTexture(source, source.sources.tangents, GL_RGBA32F),
+                       sourceTexture(source, source.sources.joints, GL_RGBA16UI),
+                       sourceTexture(source, source.sources.weights, GL_RGBA32F)};
       cache.entries_.push_back(std::move(entry));
     }
   }
@@ -88,13 +96,12 @@ Status SkinCache::run(SkinPrograms& programs, const ModelData& model, const GpuM
   const gl::Program& pr = **program;
   pr.use();
   pr.set("u_vertexCount", prim.vertexCount);
-  bindSource(gl::binding::kSkinPositions, prim, prim.sources.positions);
-  bindSource(gl::binding::kSkinNormals, prim, prim.sources.normals);
-  bindSource(gl::binding::kSkinTangents, prim, prim.sources.tangents);
-  bindSource(gl::binding::kSkinJoints, prim, prim.sources.joints);
-  bindSource(gl::binding::kSkinWeights, prim, prim.sources.weights);
+  constexpr unsigned kUnits[] = {gl::binding::kSkinPositions, gl::binding::kSkinNormals, gl::binding::kSkinTangents,
+                                 gl::binding::kSkinJoints, gl::binding::kSkinWeights};
+  for (size_t i = 0; i < entry.sources.size(); ++i)
+    if (entry.sources[i]) entry.sources[i].bind(kUnits[i]);
   if (skinned) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kSkinBuffer, inputs.skinBuffers[size_t(node.skin)].id());
+    inputs.skinPalettes[size_t(node.skin)].bind(gl::binding::kSkinPalette);
   }
   if (variant.morph) {
     const int first = size_t(entry.node) < inputs.morphFirst.size() ? inputs.morphFirst[size_t(entry.node)] : -1;

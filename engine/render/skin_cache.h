@@ -5,6 +5,7 @@
 // pass (both sun maps, the point light's six faces, the probes, the main view)
 // draws that buffer as a static mesh. Without it each pass skins every vertex
 // again in its vertex shader.
+#include <array>
 #include <map>
 #include <span>
 #include <string>
@@ -48,10 +49,10 @@ class SkinCache {
   // The entries of `model`'s deforming primitives, drawn by `gpu` (needs a context).
   static SkinCache create(const ModelData& model, const GpuModel& gpu);
 
-  // What one update reads: the instance's uploaded skin palettes (one buffer per
-  // skin, in `mode`'s layout) and morph weights.
+  // What one update reads: the instance's uploaded skin palettes (one buffer
+  // texture per skin, in `mode`'s layout) and morph weights.
   struct Inputs {
-    std::span<const gl::Buffer> skinBuffers;
+    std::span<const gl::Texture> skinPalettes;
     SkinMode mode = SkinMode::Linear;
     const gl::Buffer* morphWeights = nullptr;
     std::span<const int> morphFirst;  // per glTF node, -1: no morph
@@ -76,6 +77,7 @@ class SkinCache {
     int primitive = -1;
     gl::Buffer output;
     gl::VertexArray vao;
+    std::array<gl::Texture, 5> sources;  // the primitive's vertex buffers as skin.comp reads them
   };
   const Entry* find(int node, int primitive) const;
   Status run(SkinPrograms& programs, const ModelData& model, const GpuModel& gpu, const Inputs& inputs,

@@ -5,7 +5,7 @@
 // moves; u_morphPositions, u_morphNormals and u_morphTangents say where each block
 // starts (-1: no target moves it). The weights of every morphing node of the
 // model share a second buffer; this node's start at u_morphFirst.
-layout(std430, binding = BUFFER_MORPH_DELTAS) readonly buffer MorphDeltas { vec4 u_morphDeltas[]; };
+layout(binding = UNIT_MORPH_DELTAS) uniform samplerBuffer u_morphDeltas;
 layout(std430, binding = BUFFER_MORPH_WEIGHTS) readonly buffer MorphWeights { float u_morphWeights[]; };
 
 uniform int u_morphTargets;
@@ -19,7 +19,7 @@ uniform int u_morphTangents = -1;
 #define MORPH_VERTEX gl_VertexID
 #endif
 
-vec3 morphDelta(int block, int target) { return u_morphDeltas[block + MORPH_VERTEX * u_morphTargets + target].xyz; }
+vec3 morphDelta(int block, int target) { return texelFetch(u_morphDeltas, block + MORPH_VERTEX * u_morphTargets + target).xyz; }
 
 // base + sum_t w_t * delta_t, target by target as the CPU's MorphJob adds them;
 // targets of zero weight are skipped. The tangent is only morphed for normal maps.

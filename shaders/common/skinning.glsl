@@ -1,13 +1,11 @@
-// GPU skinning. The palette lives in a shader storage buffer, so a skin may have
-// any number of joints. Variants, chosen per mesh by the renderer:
+// GPU skinning. The palette lives in a buffer texture (gl::Texture::ofBuffer says
+// why not a storage buffer), so a skin may have any number of joints. Variants,
+// chosen per mesh by the renderer:
 //   INFLUENCES 4 or 8      joints per vertex (8 when the file has JOINTS_1)
 //   DUAL_QUAT              dual-quaternion skinning instead of linear blend
-#ifdef DUAL_QUAT
-// Two vec4 per joint: the real part (rotation) and the dual part (translation).
-layout(std430, binding = BUFFER_SKIN) readonly buffer SkinDualQuats { vec4 u_dualQuats[]; };
-#else
-layout(std430, binding = BUFFER_SKIN) readonly buffer SkinPalette { mat4 u_palette[]; };
-#endif
+// LBS: a joint's matrix is four texels (its columns); DQS: two, the real part
+// (rotation) and the dual part (translation).
+layout(binding = UNIT_SKIN_PALETTE) uniform samplerBuffer u_palette;
 
 // The vertex's joints and weights: attributes here; skin.comp (SKIN_COMPUTE)
 // defines a_joints0... as reads of the same buffers by invocation.
@@ -24,8 +22,8 @@ layout(location = 6) in vec4 a_weights1;
 // position, the normal and (for normal maps) the tangent: skin() below.
 #ifdef DUAL_QUAT
 void addDualQuat(inout vec4 real, inout vec4 dual, uint joint, float weight) {
-  vec4 r = u_dualQuats[2u * joint];
-  vec4 d = u_dualQuats[2u * joint + 1u];
+  vec4 r = texelFetch(u_palette, int(2u * joint));
+  vec4 d = texelFetch(u_palette, int(2u * joint + 1u));
   // q and -q are the same rotation; keep every one in the hemisphere of the sum
   // so far (as the CPU path does), or opposite signs cancel out.
   if (dot(real, r) < 0.0) weight = -weight;
@@ -69,12 +67,18 @@ struct SkinTransform {
   mat4 m;
 };
 
+mat4 paletteMatrix(uint joint) {
+  int i = int(4u * joint);
+  return mat4(texelFetch(u_palette, i), texelFetch(u_palette, i + 1), texelFetch(u_palette, i + 2),
+              texelFetch(u_palette, i + 3));
+}
+
 SkinTransform skinTransform() {
-  mat4 m = a_weights0.x * u_palette[a_joints0.x] + a_weights0.y * u_palette[a_joints0.y] +
-           a_weights0.z * u_palette[a_joints0.z] + a_weights0.w * u_palette[a_joints0.w];
+  mat4 m = a_weights0.x * paletteMatrix(a_joints0.x) + a_weights0.y * paletteMatrix(a_joints0.y) +
+           a_weights0.z * paletteMatrix(a_joints0.z) + a_weights0.w * paletteMatrix(a_joints0.w);
 #if INFLUENCES == 8
-  m += a_weights1.x * u_palette[a_joints1.x] + a_weights1.y * u_palette[a_joints1.y] +
-       a_weights1.z * u_palette[a_joints1.z] + a_weights1.w * u_palette[a_joints1.w];
+  m += a_weights1.x * paletteMatrix(a_joints1.x) + a_weights1.y * paletteMatrix(a_joints1.y) +
+       a_weights1.z * paletteMatrix(a_joints1.z) + a_weights1.w * paletteMatrix(a_joints1.w);
 #endif
   return SkinTransform(m);
 }

@@ -296,8 +296,9 @@ assert report["first_frame_ms_since_start"] >= report["frame_ms"]["min"], report
 counters = report["last_frame"]
 for key in ("draw_calls", "program_changes", "triangles_all_passes", "objects_drawn", "gpu_ms_world", "gpu_ms_shadow-sun"):
     assert counters.get(key, 0) > 0, f"FAIL: last_frame.{key} = {counters.get(key)}"
-# Vertex skinning (the scene's default) runs no skin cache.
-assert counters["vertices_deformed"] == 0, counters["vertices_deformed"]
+# render.skinning auto: only the dual-quaternion robot (4486 vertices) goes
+# through the skin cache; the LBS robots skin in the vertex shaders.
+assert counters["vertices_deformed"] == 4486, counters["vertices_deformed"]
 PY
     ;;
   imgdiff)
@@ -310,7 +311,10 @@ PY
   describe_demo)
     # The default scene needs every pass: sun shadows, sky, terrain, fog, skinning.
     expect 0 "shadow-sun" -- "$BIN/demo" --describe
-    for want in "sky" "terrain(cdlod" "opaque+fog" "lbs4+textured" "dqs4+depth" "shading: pbr" \
+    # render.skinning auto: the LBS robots skin in the vertex shaders, the DQS one
+    # in the skin cache.
+    for want in "sky" "terrain(cdlod" "opaque+fog" "lbs4+textured" "lbs4+depth" "shading: pbr" \
+                "skinning(skin cache: 1 primitives" "skin-cache variants: dqs4+normals" \
                 "ibl(brdf-lut(32x32) sh9(from cube 128) prefiltered(cube 128, 5 levels 128..8" "ambient ibl (built once in"; do
       grep -qF "$want" "$OUT" || { echo "FAIL: --describe lacks $want"; cat "$OUT"; exit 1; }
     done

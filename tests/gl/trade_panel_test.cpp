@@ -82,8 +82,9 @@ TEST_P(TradePanel, AKnobRebuildsTheRendererOverTheSameScene) {
   EXPECT_NE(described.find("shadow-sun(2048, hard)"), std::string::npos) << described;
   EXPECT_TRUE(game->lastError().empty());
   ASSERT_TRUE(frame(*game, *target, 0.6).ok());
-  // Compute skinning: the robots go through the skin cache, a pass of its own.
-  EXPECT_EQ(described.find("skin cache"), std::string::npos) << described;
+  // The default (auto) sends only the dual-quaternion robot through the skin
+  // cache; compute skinning sends every robot, a pass of its own.
+  EXPECT_NE(described.find("skinning(skin cache: 1 primitives"), std::string::npos) << described;
   options.skinningOverride = Skinning::Compute;
   ASSERT_TRUE(game->applyOptions(options).ok()) << game->lastError();
   ASSERT_TRUE(frame(*game, *target, 0.7).ok());
@@ -149,7 +150,8 @@ TEST_P(TradePanel, TimeControlsTakeOverFromTheRunner) {
   EXPECT_DOUBLE_EQ(game->scene()->time(), 1.05);
 }
 
-// Every pass of demo.json (both sun maps in one, the world, post) has a GPU time
+// Every pass of demo.json (the skin cache of its dual-quaternion robot, both sun
+// maps in one, the world, post) has a GPU time
 // once its query is back; none is negative, and the world costs something.
 TEST_P(TradePanel, PassesReportGpuTimes) {
   auto game = startGame("demo.json");
@@ -164,7 +166,7 @@ TEST_P(TradePanel, PassesReportGpuTimes) {
     names.push_back(p.pass);
     EXPECT_GE(p.gpuMs, 0.0) << p.pass;
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"shadow-sun", "world", "post"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"skinning", "shadow-sun", "world", "post"}));
   for (const auto& p : times) {
     if (p.pass == "world") {
       EXPECT_GT(p.gpuMs, 0.0);

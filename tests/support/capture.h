@@ -13,6 +13,7 @@
 #include "anim/jobs.h"
 #include "anim/model_builder.h"
 #include "core/math.h"
+#include "gl/bindings.h"
 #include "gl/resources.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
@@ -77,9 +78,11 @@ std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim
   p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(inputs.model)))));
   p.set("u_viewProjection", glm::mat4(1.0f));
   gl::Buffer skin;
+  gl::Texture palette;
   if (variant.influences > 0) {
     skin = variant.mode == SkinMode::DualQuat ? gl::Buffer::fromSpan(inputs.dualQuats) : gl::Buffer::fromSpan(inputs.palette);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, skin.id());
+    palette = gl::Texture::ofBuffer(skin, GL_RGBA32F);
+    palette.bind(gl::binding::kSkinPalette);
   }
   gl::Buffer weights;
   if (variant.morph) {
