@@ -106,8 +106,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 1024));
   std::string skinning;
   app.add_option("--skinning", skinning,
-                 "How characters deform: vertex (in every pass's vertex shader) or compute (once per pose into a "
-                 "skin cache that every pass draws); default: the scene's render.skinning, vertex")
+                 "How characters deform: vertex (in every pass's vertex shader), compute (once per pose into a "
+                 "skin cache that every pass draws) or auto (the cache for morph targets, dual quaternions and "
+                 "skins drawn by more than two passes); default: the scene's render.skinning, auto")
       ->check(CLI::IsMember(engine::skinningNames()));
   app.add_option("--terrain-error", render.terrainErrorOverride,
                  "The terrain's LOD target: screen-space error in pixels (default: the scene's terrain.error_pixels)")

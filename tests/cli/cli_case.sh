@@ -333,6 +333,19 @@ PY
     expect 0 "shadow-sun" -- "$BIN/demo" --describe --skinning vertex
     if grep -qF "skin cache" "$OUT"; then echo "FAIL: vertex skinning made a skin cache"; cat "$OUT"; exit 1; fi
     expect 2 "skinning" -- "$BIN/demo" --describe --skinning gpu
+    # auto (the default): the cache for what morphs (the cube's 24 vertices), not for
+    # an LBS robot drawn by the view and one sun map; with a point light's six cube
+    # faces drawing it too, the robot as well (4486 more vertices).
+    cube="$SRC/../shared/gltf-samples/AnimatedMorphCube/glTF-Binary/AnimatedMorphCube.glb"
+    if [ -f "$cube" ]; then
+      lights='{"type": "sun", "direction": [0, 1, 0], "shadows": true}'
+      models="[{\"path\": \"$cube\"}, {\"path\": \"$SRC/assets/models/character.gltf\", \"position\": [3, 0, 0]}]"
+      echo "{\"lights\": [$lights], \"models\": $models}" > auto_sun.json
+      echo "{\"lights\": [$lights, {\"type\": \"point\", \"position\": [0, 3, 0], \"shadows\": true}], \"models\": $models}" > auto_point.json
+      expect 0 "skinning\(skin cache: 1 primitives, 24 vertices" -- "$BIN/demo" auto_sun.json --describe --size 64x64
+      grep "^variants:" "$OUT" | grep -q "lbs4" || { echo "FAIL: auto skinned the robot in the cache under a sun"; cat "$OUT"; exit 1; }
+      expect 0 "skinning\(skin cache: 2 primitives, 4510 vertices" -- "$BIN/demo" auto_point.json --describe --size 64x64
+    fi
     # The other animation knobs: every robot blended by DQS builds no LBS variant.
     expect 0 "dqs4" -- "$BIN/demo" --describe --skin-blend dqs
     if grep "^variants:" "$OUT" | grep -q "lbs"; then echo "FAIL: --skin-blend dqs built an LBS variant"; cat "$OUT"; exit 1; fi
