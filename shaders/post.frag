@@ -28,9 +28,7 @@ vec3 toneMap(vec3 c) {
 #endif
 }
 
-vec3 srgb(vec3 c) {
-  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
+#include "common/output.glsl"
 
 void main() {
 #if SUPERSAMPLE == 1
@@ -42,9 +40,5 @@ void main() {
     for (int x = 0; x < SUPERSAMPLE; ++x) sum += toneMap(texelFetch(u_hdr, base + ivec2(x, y), 0).rgb);
   vec3 c = clamp(sum / float(SUPERSAMPLE * SUPERSAMPLE), 0.0, 1.0);
 #endif
-#ifdef OUTPUT_GAMMA22
-  o_color = vec4(pow(c, vec3(1.0 / 2.2)), 1.0);
-#else
-  o_color = vec4(srgb(c), 1.0);
-#endif
+  o_color = vec4(displayValue(c), 1.0);
 }

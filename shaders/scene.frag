@@ -35,6 +35,7 @@ uniform float u_reflection;
 uniform vec3 u_emissive;
 
 layout(location = 0) out vec4 o_color;
+#include "common/output.glsl"
 
 #ifdef DEBUG_VIEW
 // The viewer's debug views (render/scene_renderer.h's DebugView, by number): one
@@ -77,7 +78,7 @@ void main() {
 #ifdef FOG
   unlit = applyFog(unlit, length(v_position), u_fog.rgb, u_fog.w);
 #endif
-  o_color = vec4(unlit, base.a);
+  o_color = targetColor(unlit, base.a);
   return;
 #endif
   // Planes and double-sided meshes: a back face is lit as the other side (normal,
@@ -123,5 +124,5 @@ void main() {
 #ifdef FOG
   color = applyFog(color, length(v_position), u_fog.rgb, u_fog.w);
 #endif
-  o_color = vec4(color, base.a);
+  o_color = targetColor(color, base.a);
 }

@@ -9,6 +9,7 @@
 #include "common/shadows.glsl"
 #include "common/direct_light.glsl"
 #include "common/fog.glsl"
+#include "common/output.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -53,5 +54,5 @@ void main() {
 #ifdef FOG
   color = applyFog(color, length(v_position), u_fog.rgb, u_fog.w);
 #endif
-  o_color = vec4(color, 1.0);
+  o_color = targetColor(color, 1.0);
 }

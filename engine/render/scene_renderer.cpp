@@ -99,6 +99,14 @@ struct CharacterDraw {
   double localRadius = 1.0;
 };
 
+// common/output.glsl's displayValue on the CPU (the direct path's clear colour).
+glm::vec3 displayValue(glm::vec3 c, OutputCurve curve) {
+  c = glm::clamp(c, 0.0f, 1.0f);
+  if (curve == OutputCurve::Gamma22) return glm::pow(c, glm::vec3(1.0f / 2.2f));
+  const glm::vec3 high = 1.055f * glm::pow(c, glm::vec3(1.0f / 2.4f)) - 0.055f;
+  return glm::mix(c * 12.92f, high, glm::step(glm::vec3(0.0031308f), c));
+}
+
 SkinMode skinModeOf(const ModelDesc& desc) {
   return desc.unskinned ? SkinMode::None : desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
 }
@@ -207,7 +215,10 @@ struct SceneRenderer::Impl {
   std::vector<gl::Texture> materialTextures;  // empty texture = none
   std::vector<CharacterDraw> characters;
   FrameBlock frame;
-  // HDR target.
+  // HDR target; or, with directOutput, the display values' RGBA8 target, which
+  // the fragment shaders write through common/output.glsl and is copied out with
+  // no post pass.
+  bool directOutput = false;
   int targetWidth = 0, targetHeight = 0;
   gl::Texture hdr;
   gl::Renderbuffer msaaColor, depth;
@@ -304,6 +315,8 @@ struct SceneRenderer::Impl {
   Status renderPointShadow(const glm::dvec3& cameraPosition);
   Status renderFrame(const Camera& camera, int width, int height);
   Status deformCharacters();
+  bool needsNoHdrTarget() const;
+  Status makePost();
   bool usesSkinCache(const ModelData& model, const ModelDesc& desc) const;
   std::string describeSkinCache() const;
   void fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection);
@@ -368,17 +381,15 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
   if (auto s = makeProbes(); !s) return s;
   if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
+  directOutput = !options.hdrTarget && needsNoHdrTarget();
+  if (directOutput) {
+    defines.push_back("DIRECT_OUTPUT 1");
+    if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
+  }
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
   if (auto s = makeSky(); !s) return s;
-  // The one post variant these settings need (post.frag says why not uniforms).
-  std::vector<std::string> postDefines{"SUPERSAMPLE " + std::to_string(render.supersample),
-                                       "TONE_MAP " + std::to_string(int(render.toneMap))};
-  if (render.output == OutputCurve::Gamma22) postDefines.push_back("OUTPUT_GAMMA22 1");
-  auto postProgram =
-      gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}}, postDefines);
-  if (!postProgram) return postProgram.error();
-  post = std::move(postProgram).value();
+  if (auto s = makePost(); !s) return s;
   emptyVao = gl::VertexArray::create();
   frameUbo = gl::Buffer::create(sizeof(FrameBlock));
   if (auto s = makeEnvironmentLighting(); !s) return s;
@@ -436,6 +447,19 @@ Status SceneRenderer::Impl::makeSky() {
   auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
   if (!program) return program.error();
   sky = std::move(program).value();
+  return Ok{};
+}
+
+// The one post variant these settings need (post.frag says why not uniforms);
+// none where the fragment shaders write display values themselves.
+Status SceneRenderer::Impl::makePost() {
+  if (directOutput) return Ok{};
+  std::vector<std::string> defines{"SUPERSAMPLE " + std::to_string(render.supersample),
+                                   "TONE_MAP " + std::to_string(int(render.toneMap))};
+  if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
+  auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}}, defines);
+  if (!program) return program.error();
+  post = std::move(program).value();
   return Ok{};
 }
 
@@ -560,6 +584,23 @@ Status SceneRenderer::Impl::loadMaterials() {
   return Ok{};
 }
 
+// Whether the frame can skip the HDR target and the post pass (issue 14: a scene
+// with no HDR effect pays for none): nothing to tone map or expose, no samples to
+// resolve or average, and nothing that reads or blends the linear image (the sky
+// and probes are drawn linear for the environment too, blending and transmission
+// read what is behind). The fragment shaders then write display values
+// (common/output.glsl); the bytes differ from the post pass's by at most one level,
+// where it rounded the radiance to half floats first (SceneRenderer.DirectOutput...).
+bool SceneRenderer::Impl::needsNoHdrTarget() const {
+  if (render.toneMap != ToneMap::None || render.exposure != 1.0f || render.msaa > 1 || render.supersample > 1) return false;
+  if (scene.sky.enabled || !probes.empty() || debugView != DebugView::None) return false;
+  for (const auto& asset : source->assets()) {
+    for (const MaterialData& m : asset->model.materials)
+      if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
+  }
+  return true;
+}
+
 // Whether an instance deforms in the skin cache. render.skinning auto sends it
 // there where each vertex would otherwise be deformed again at a price in every
 // pass that draws it (measured: bench/morph_cost, bench/skinning_cost): morph
@@ -671,7 +712,7 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
   if (w == targetWidth && h == targetHeight) return Ok{};
   targetWidth = w;
   targetHeight = h;
-  hdr = gl::Texture::create2D(GL_RGBA16F, w, h, 1);
+  hdr = gl::Texture::create2D(directOutput ? GL_RGBA8 : GL_RGBA16F, w, h, 1);
   hdr.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   hdr.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   const int samples = render.msaa > 1 ? render.msaa : 0;
@@ -686,7 +727,7 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
     drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
   }
   drawFbo.attach(GL_DEPTH_ATTACHMENT, depth);
-  if (auto s = drawFbo.check("scene-hdr"); !s) return s;
+  if (auto s = drawFbo.check(directOutput ? "scene-display" : "scene-hdr"); !s) return s;
   if (transmissionPass) {
     const int levels = 1 + int(std::floor(std::log2(double(std::max(w, h)))));
     transmissionSource = gl::Texture::create2D(GL_RGBA16F, w, h, levels);
@@ -1271,7 +1312,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   glViewport(0, 0, targetWidth, targetHeight);
   glDisable(GL_FRAMEBUFFER_SRGB);
   applyPassState(opaquePassFor(scene.camera.leftHanded));  // depth writes on, for the clear
-  const glm::vec3 background = scene.sky.background;
+  const glm::vec3 background = directOutput ? displayValue(scene.sky.background, render.output) : scene.sky.background;
   glClearColor(background.r, background.g, background.b, 1.0f);
   glClearDepth(0.0);  // reverse-Z: far is 0
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -1286,6 +1327,16 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   const Status world = drawWorld(mainView, -1, true);
   endTimer();
   if (!world) return world;
+  if (directOutput) {
+    // Display values already: copied as they are into the caller's framebuffer.
+    glClearDepth(1.0);
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
+    glViewport(0, 0, width, height);
+    glBlitNamedFramebuffer(drawFbo.id(), GLuint(callerFramebuffer), 0, 0, targetWidth, targetHeight, 0, 0, width,
+                           height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    applyPassState(kCallerState);
+    return Ok{};
+  }
   beginTimer("post");
 
   if (render.msaa > 1) {
@@ -1372,7 +1423,11 @@ std::string SceneRenderer::describe() const {
   if (s.scene.fog.enabled) out << "+fog";
   if (s.transmissionPass) out << " transmission(copy + mips)";
   if (s.blendPass) out << " blend(sorted)";
-  out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
+  if (s.directOutput) {
+    out << " direct(display values from the fragment shaders, RGBA8, no post pass)";
+  } else {
+    out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
+  }
   if (s.debugView != DebugView::None) out << "\ndebug view: " << debugViewName(s.debugView) << " (no exposure, no tone map)";
   out << "\nshading: " << (s.render.shading == Shading::Classic ? "classic" : "pbr");
   if (s.render.shading == Shading::Pbr) {

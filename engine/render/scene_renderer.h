@@ -56,6 +56,9 @@ struct SceneRenderOptions {
   // How the rasterizer's poses interpolate rotation keys: slerp (exact) or nlerp.
   QuatInterpolation rotations = QuatInterpolation::Slerp;
   DebugView debugView = DebugView::None;
+  // Keeps the HDR target and the post pass where the scene could do without them
+  // (directOutput in scene_renderer.cpp): the reference that path is tested against.
+  bool hdrTarget = false;
 };
 
 struct SceneStats {

@@ -110,6 +110,9 @@ int main(int argc, char** argv) {
                  "skin cache that every pass draws) or auto (the cache for morph targets, dual quaternions and "
                  "skins drawn by more than two passes); default: the scene's render.skinning, auto")
       ->check(CLI::IsMember(engine::skinningNames()));
+  app.add_flag("--hdr-target", render.hdrTarget,
+               "Keep the HDR target and the post pass where the scene needs neither (no tone map, exposure 1, "
+               "no MSAA, supersampling, sky, probes, blending or transmission): the reference for the direct path");
   app.add_option("--terrain-error", render.terrainErrorOverride,
                  "The terrain's LOD target: screen-space error in pixels (default: the scene's terrain.error_pixels)")
       ->check(CLI::Range(0.05, 64.0));

@@ -1,0 +1,108 @@
+// A scene with no HDR effect skips the HDR target and the post pass: its fragment
+// shaders write display values (common/output.glsl) into an RGBA8 target that is
+// copied out. The post pass rounded the radiance to half floats before the same
+// curve, so the two paths may differ by one level, and by no more.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+
+#include "../support/gl_test.h"
+#include "asset/scene_file.h"
+#include "render/render_target.h"
+#include "render/scene_renderer.h"
+
+using namespace engine;
+using engine::test::GlTest;
+
+namespace {
+
+// Classic and PBR shading, a texture-less robot, shapes, a sun's shadow and a
+// point light; no sky, tone map or MSAA: what directOutput asks.
+constexpr const char* kDirectOutputScene = R"({
+  "camera": {"position": [0, 2.2, 5], "target": [0, 0.8, 0], "fovy": 50},
+  "lights": [{"type": "sun", "direction": [-0.4, 1, 0.3], "intensity": 1.5, "shadows": true},
+             {"type": "point", "position": [1.5, 2, 1.5], "intensity": 3}],
+  "materials": {"ground": {"color": [0.6, 0.6, 0.55]}, "red": {"color": [0.9, 0.1, 0.1]}},
+  "primitives": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "ground"},
+                 {"type": "sphere", "center": [1.2, 0.5, 0], "radius": 0.5, "material": "red"}],
+  "models": [{"path": "../models/character.gltf", "position": [-0.5, 0, 0], "clip": "Walk"}],
+  "sky": {"enabled": false, "background": [0.3, 0.5, 0.8]},
+  "render": {"tonemap": "none", "shading": "%s", "output": "%s"}
+})";
+
+struct DirectFrame {
+  Image image;
+  std::string described;
+};
+
+DirectFrame renderDirectOrPost(const SceneDesc& scene, bool hdrTarget) {
+  SceneRenderOptions options;
+  options.shaderDir = test::shaderDir();
+  options.hdrTarget = hdrTarget;
+  auto renderer = SceneRenderer::create(scene, options);
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  if (!renderer) return {};
+  EXPECT_TRUE((*renderer)->update(0.4).ok());
+  auto target = RenderTarget::create(192, 128, 1);
+  EXPECT_TRUE(target.ok());
+  target->bind();
+  const Status status = (*renderer)->render((*renderer)->initialCamera(), 192, 128);
+  EXPECT_TRUE(status.ok()) << status.error().message;
+  return {target->readPixels(), (*renderer)->describe()};
+}
+
+std::string directOutputScene(const char* shading, const char* output) {
+  char text[4096];
+  std::snprintf(text, sizeof(text), kDirectOutputScene, shading, output);
+  return text;
+}
+
+}  // namespace
+
+class DirectOutput : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(DirectOutput);
+
+TEST_P(DirectOutput, DiffersFromThePostPassByAtMostOneLevel) {
+  for (const char* shading : {"classic", "pbr"}) {
+    for (const char* output : {"srgb", "gamma2.2"}) {
+      SCOPED_TRACE(std::string(shading) + ", " + output);
+      auto scene = parseScene(directOutputScene(shading, output), std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/direct.json");
+      ASSERT_TRUE(scene.ok()) << scene.error().message;
+      const DirectFrame direct = renderDirectOrPost(*scene, false), post = renderDirectOrPost(*scene, true);
+      EXPECT_NE(direct.described.find("direct("), std::string::npos) << direct.described;
+      EXPECT_NE(post.described.find("post("), std::string::npos) << post.described;
+      ASSERT_EQ(direct.image.pixels.size(), post.image.pixels.size());
+      int largest = 0;
+      size_t differing = 0;
+      for (size_t i = 0; i < direct.image.pixels.size(); ++i) {
+        const int d = std::abs(int(direct.image.pixels[i]) - int(post.image.pixels[i]));
+        largest = std::max(largest, d);
+        differing += d != 0;
+      }
+      EXPECT_LE(largest, 1);
+      // Only values near a level's boundary move with the half-float rounding:
+      // measured 0.4 % (sRGB) and 5.6-6.3 % (gamma 2.2) of the channels (RGBA;
+      // alpha never). A broken curve (linear values, or the curve applied twice)
+      // moves nearly all of them, and by far more than one level.
+      std::printf("%s, %s: %zu of %zu channels differ by one level\n", shading, output, differing,
+                  direct.image.pixels.size());
+      EXPECT_LT(differing, direct.image.pixels.size() / 8);
+    }
+  }
+}
+
+// What needs the linear image keeps the HDR target: a tone map, MSAA, a sky.
+TEST_P(DirectOutput, ScenesThatNeedTheHdrTargetKeepIt) {
+  const std::string base = directOutputScene("pbr", "srgb");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\"tonemap\": \"none\"", "\"tonemap\": \"aces\""},
+                                 {"\"tonemap\": \"none\"", "\"tonemap\": \"none\", \"msaa\": 4"},
+                                 {"\"enabled\": false", "\"enabled\": true"}}) {
+    std::string text = base;
+    text.replace(text.find(from), from.size(), to);
+    auto scene = parseScene(text, std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/direct.json");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_NE(renderDirectOrPost(*scene, false).described.find("post("), std::string::npos) << to;
+  }
+}
