@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "core/image.h"
 
 namespace engine::gl {
@@ -193,6 +195,53 @@ bool Framebuffer::complete(GLenum* status) const {
   const GLenum s = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
   if (status) *status = s;
   return s == GL_FRAMEBUFFER_COMPLETE;
+}
+
+namespace {
+
+GLint attachmentParameter(GLuint framebuffer, GLenum attachment, GLenum name) {
+  GLint value = 0;
+  glGetNamedFramebufferAttachmentParameteriv(framebuffer, attachment, name, &value);
+  return value;
+}
+
+// The width and height of the image attached at `attachment` (level 0 or the
+// attached level of a texture).
+glm::ivec2 attachmentSize(GLuint framebuffer, GLenum attachment) {
+  const GLint type = attachmentParameter(framebuffer, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE);
+  const auto object = GLuint(attachmentParameter(framebuffer, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME));
+  glm::ivec2 size(0);
+  if (type == GL_RENDERBUFFER) {
+    glGetNamedRenderbufferParameteriv(object, GL_RENDERBUFFER_WIDTH, &size.x);
+    glGetNamedRenderbufferParameteriv(object, GL_RENDERBUFFER_HEIGHT, &size.y);
+  } else if (type == GL_TEXTURE) {
+    const GLint level = attachmentParameter(framebuffer, attachment, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL);
+    glGetTextureLevelParameteriv(object, level, GL_TEXTURE_WIDTH, &size.x);
+    glGetTextureLevelParameteriv(object, level, GL_TEXTURE_HEIGHT, &size.y);
+  }
+  return size;
+}
+
+}  // namespace
+
+FramebufferLayout framebufferLayout(GLuint framebuffer) {
+  FramebufferLayout l;
+  if (framebuffer == 0) return l;
+  glGetNamedFramebufferParameteriv(framebuffer, GL_SAMPLES, &l.samples);
+  if (attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_NONE) {
+    const glm::ivec2 size = attachmentSize(framebuffer, GL_COLOR_ATTACHMENT0);
+    l.width = size.x;
+    l.height = size.y;
+    const GLenum bits[4] = {GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE,
+                            GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE};
+    for (int c = 0; c < 4; ++c) l.colorBits[c] = attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, bits[c]);
+    l.colorType = GLenum(attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE));
+  }
+  if (attachmentParameter(framebuffer, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_NONE) {
+    l.depthBits = attachmentParameter(framebuffer, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE);
+    l.depthType = GLenum(attachmentParameter(framebuffer, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE));
+  }
+  return l;
 }
 
 }  // namespace engine::gl

@@ -133,6 +133,19 @@ class Framebuffer : public Object<FramebufferDeleter> {
   using Object::Object;
 };
 
+// What a framebuffer object someone else made holds: enough to tell whether a
+// renderer may draw into it as it is. Zero sizes where an attachment is missing;
+// the default framebuffer (0) reads as all zeros.
+struct FramebufferLayout {
+  int width = 0, height = 0;  // of colour attachment 0
+  int samples = 0;
+  int colorBits[4] = {0, 0, 0, 0};
+  GLenum colorType = GL_NONE;  // GL_UNSIGNED_NORMALIZED, GL_FLOAT...
+  int depthBits = 0;
+  GLenum depthType = GL_NONE;
+};
+FramebufferLayout framebufferLayout(GLuint framebuffer);
+
 // A query object (primitives generated, time elapsed...) of one target.
 class Query : public Object<QueryDeleter> {
  public:

@@ -107,6 +107,19 @@ glm::vec3 displayValue(glm::vec3 c, OutputCurve curve) {
   return glm::mix(c * 12.92f, high, glm::step(glm::vec3(0.0031308f), c));
 }
 
+// The direct path draws into the caller's framebuffer itself, with no target of its
+// own and no copy, when that is a single-sample framebuffer object of the frame's
+// size with 8-bit normalised colour (RGBA8 or SRGB8_ALPHA8: with GL_FRAMEBUFFER_SRGB
+// off both store the shader's bytes as they are) and 32-bit float depth (the
+// reverse-Z depth every pass tests against; fixed-point depth would move bytes).
+// On llvmpipe the copy was a shader pass over every pixel: 1-2 ms at 1280x720.
+bool takesDirectFrame(const gl::FramebufferLayout& l, int width, int height) {
+  const bool color8 = l.colorType == GL_UNSIGNED_NORMALIZED && l.colorBits[0] == 8 && l.colorBits[1] == 8 &&
+                      l.colorBits[2] == 8 && l.colorBits[3] == 8;
+  return l.samples == 0 && l.width == width && l.height == height && color8 && l.depthBits == 32 &&
+         l.depthType == GL_FLOAT;
+}
+
 SkinMode skinModeOf(const ModelDesc& desc) {
   return desc.unskinned ? SkinMode::None : desc.dualQuat ? SkinMode::DualQuat : SkinMode::Linear;
 }
@@ -709,7 +722,7 @@ Status SceneRenderer::Impl::buildVariants() {
 
 Status SceneRenderer::Impl::makeTarget(int width, int height) {
   const int w = width * render.supersample, h = height * render.supersample;
-  if (w == targetWidth && h == targetHeight) return Ok{};
+  if (w == targetWidth && h == targetHeight && drawFbo) return Ok{};
   targetWidth = w;
   targetHeight = h;
   hdr = gl::Texture::create2D(directOutput ? GL_RGBA8 : GL_RGBA16F, w, h, 1);
@@ -1256,7 +1269,16 @@ Status SceneRenderer::Impl::deformCharacters() {
 }
 
 Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int height) {
-  if (auto status = makeTarget(width, height); !status) return status;
+  GLint callerFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  const bool intoCaller =
+      directOutput && takesDirectFrame(gl::framebufferLayout(GLuint(callerFramebuffer)), width, height);
+  if (intoCaller) {
+    targetWidth = width;
+    targetHeight = height;
+  } else if (auto status = makeTarget(width, height); !status) {
+    return status;
+  }
   const glm::dvec3 cameraPosition = camera.position;
   const double aspect = double(width) / double(height);
   const double fovy = glm::radians(camera.fovyDegrees);
@@ -1266,8 +1288,6 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   glm::dvec4 planes[6];
   frustumPlanes(viewProjection, planes);
 
-  GLint callerFramebuffer = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
   placeCharacters(cameraPosition);
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
@@ -1308,7 +1328,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   }
   fillFrame(cameraPosition, glm::mat4(viewProjection));
 
-  drawFbo.bind();
+  glBindFramebuffer(GL_FRAMEBUFFER, intoCaller ? GLuint(callerFramebuffer) : drawFbo.id());
   glViewport(0, 0, targetWidth, targetHeight);
   glDisable(GL_FRAMEBUFFER_SRGB);
   applyPassState(opaquePassFor(scene.camera.leftHanded));  // depth writes on, for the clear
@@ -1328,12 +1348,16 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   endTimer();
   if (!world) return world;
   if (directOutput) {
-    // Display values already: copied as they are into the caller's framebuffer.
+    // Display values already: drawn into the caller's framebuffer, or copied into it
+    // as they are.
     glClearDepth(1.0);
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
     glViewport(0, 0, width, height);
-    glBlitNamedFramebuffer(drawFbo.id(), GLuint(callerFramebuffer), 0, 0, targetWidth, targetHeight, 0, 0, width,
-                           height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    if (!intoCaller) {
+      stats->frameCopies = 1;
+      glBlitNamedFramebuffer(drawFbo.id(), GLuint(callerFramebuffer), 0, 0, targetWidth, targetHeight, 0, 0, width,
+                             height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
     applyPassState(kCallerState);
     return Ok{};
   }
@@ -1346,6 +1370,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   // Post: into the framebuffer the caller bound. It receives display values, so
   // sRGB encoding on write is off (the shader applies the output curve itself).
   applyPassState(kPostPass);
+  stats->frameCopies = 1;
   glClearDepth(1.0);
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
   glViewport(0, 0, width, height);
@@ -1424,7 +1449,8 @@ std::string SceneRenderer::describe() const {
   if (s.transmissionPass) out << " transmission(copy + mips)";
   if (s.blendPass) out << " blend(sorted)";
   if (s.directOutput) {
-    out << " direct(display values from the fragment shaders, RGBA8, no post pass)";
+    out << " direct(display values from the fragment shaders, RGBA8, no post pass; into the caller's framebuffer"
+           " when it is single-sample RGBA8 with float depth, else copied)";
   } else {
     out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   }

@@ -71,6 +71,9 @@ struct SceneStats {
   int objectsDrawn = 0;
   int terrainTriangles = 0;
   long long verticesDeformed = 0;  // by the skin cache's compute (render.skinning compute)
+  // Full-frame copies into the caller's framebuffer: the post pass, or the direct
+  // path's copy when the caller's framebuffer could not be drawn into (0 or 1).
+  int frameCopies = 0;
   // CPU time: the last update's posing (the scene layer's sampling and the copy of
   // its poses), this frame's collecting and sorting of draw items (culling
   // included), and its submission of them.

@@ -209,6 +209,7 @@ engine::Game::Counters SceneGame::frameCounters() {
                     {"objects_culled", s.objectsCulled},
                     {"terrain_triangles", s.terrainTriangles},
                     {"vertices_deformed", double(s.verticesDeformed)},
+                    {"frame_copies", s.frameCopies},
                     {"triangles_all_passes", double(renderer_->lastFrameTriangles())},
                     {"cpu_ms_animation", s.animationMs},
                     {"cpu_ms_cull", s.cullMs},

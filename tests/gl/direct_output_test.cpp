@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include "../support/gl_test.h"
 #include "asset/scene_file.h"
@@ -105,4 +106,74 @@ TEST_P(DirectOutput, ScenesThatNeedTheHdrTargetKeepIt) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_NE(renderDirectOrPost(*scene, false).described.find("post("), std::string::npos) << to;
   }
+}
+
+namespace {
+
+// The bytes of the bound read framebuffer's colour, bottom row first.
+std::vector<unsigned char> readColour(GLuint framebuffer, int width, int height) {
+  std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return pixels;
+}
+
+struct CallerFramebuffer {
+  gl::Texture color;
+  gl::Renderbuffer depth;
+  gl::Framebuffer framebuffer;
+};
+
+CallerFramebuffer callerFramebuffer(GLenum depthFormat, int width, int height) {
+  CallerFramebuffer c{gl::Texture::create2D(GL_RGBA8, width, height, 1),
+                      gl::Renderbuffer::create(depthFormat, width, height), gl::Framebuffer::create()};
+  c.framebuffer.attach(GL_COLOR_ATTACHMENT0, c.color);
+  c.framebuffer.attach(GL_DEPTH_ATTACHMENT, c.depth);
+  return c;
+}
+
+}  // namespace
+
+// The direct path draws straight into a caller's framebuffer that can hold its frame
+// (RenderTarget's SRGB8_ALPHA8, or RGBA8, with float depth), and into a target of its
+// own copied out where it cannot (fixed-point depth): the same bytes either way, from
+// one renderer switching between the two.
+TEST_P(DirectOutput, DrawsIntoTheCallersFramebufferOrCopiesTheSameBytes) {
+  auto scene = parseScene(directOutputScene("pbr", "srgb"), std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/direct.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  SceneRenderOptions options;
+  options.shaderDir = test::shaderDir();
+  auto renderer = SceneRenderer::create(*scene, options);
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  ASSERT_TRUE((*renderer)->update(0.4).ok());
+  constexpr int kW = 192, kH = 128;
+  auto render = [&](GLuint framebuffer) {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    const Status status = (*renderer)->render((*renderer)->initialCamera(), kW, kH);
+    EXPECT_TRUE(status.ok()) << status.error().message;
+    return (*renderer)->stats().frameCopies;
+  };
+  auto target = RenderTarget::create(kW, kH, 1);
+  ASSERT_TRUE(target.ok());
+  const CallerFramebuffer fixedDepth = callerFramebuffer(GL_DEPTH_COMPONENT24, kW, kH);
+  const CallerFramebuffer floatDepth = callerFramebuffer(GL_DEPTH_COMPONENT32F, kW, kH);
+  ASSERT_TRUE(fixedDepth.framebuffer.complete() && floatDepth.framebuffer.complete());
+
+  target->bind();  // as the runners bind it: GL_FRAMEBUFFER_SRGB on
+  GLint targetFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &targetFramebuffer);
+  EXPECT_EQ(render(GLuint(targetFramebuffer)), 0);
+  EXPECT_EQ(render(fixedDepth.framebuffer.id()), 1);
+  EXPECT_EQ(render(floatDepth.framebuffer.id()), 0);
+  GLint drawn = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
+  EXPECT_EQ(GLuint(drawn), floatDepth.framebuffer.id()) << "the caller's framebuffer is bound again";
+
+  Image fromTarget = target->readPixels();
+  flipVertically(fromTarget);  // back to GL's bottom row first
+  const std::vector<unsigned char> copied = readColour(fixedDepth.framebuffer.id(), kW, kH);
+  EXPECT_TRUE(fromTarget.pixels == copied) << "RenderTarget against the copy";
+  EXPECT_TRUE(readColour(floatDepth.framebuffer.id(), kW, kH) == copied) << "RGBA8 caller against the copy";
 }
