@@ -90,30 +90,110 @@ float nearestDistance(const TriangleGrid& grid, const std::vector<glm::vec3>& po
 
 // The farthest any vertex of the full mesh lies from `level`'s surface, exactly
 // (vertices the level keeps are on it). `low`, `high`: the mesh's bounds.
-float farthestFromLevel(const PrimitiveData& p, const std::vector<std::uint32_t>& level, glm::vec3 low, glm::vec3 high) {
-  const TriangleGrid grid(p.positions, level, low, high);
-  std::vector<bool> kept(p.positions.size(), false);
+float farthestFromLevel(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& level,
+                        glm::vec3 low, glm::vec3 high) {
+  const TriangleGrid grid(positions, level, low, high);
+  std::vector<bool> kept(positions.size(), false);
   for (std::uint32_t i : level) kept[i] = true;
   float worst = 0.0f;
-  for (size_t v = 0; v < p.positions.size(); ++v) {
+  for (size_t v = 0; v < positions.size(); ++v) {
     if (kept[v]) continue;
     // Only a vertex farther than the worst so far can change the answer.
-    worst = std::max(worst, nearestDistance(grid, p.positions, level, p.positions[v], worst));
+    worst = std::max(worst, nearestDistance(grid, positions, level, positions[v], worst));
   }
   return worst;
 }
 
+// The other way: the farthest a point of the level's triangles lies from the full
+// mesh's surface, where a coarse triangle bridges what the mesh left open (between
+// an arm and the body). Sampled at the points of a 4 x 4 barycentric grid over
+// each triangle (its corners are the mesh's own vertices, on its surface).
+float farthestLevelPoint(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices,
+                         const std::vector<std::uint32_t>& level, glm::vec3 low, glm::vec3 high) {
+  const TriangleGrid grid(positions, indices, low, high);
+  float worst = 0.0f;
+  for (size_t t = 0; t + 2 < level.size(); t += 3)
+    for (const glm::vec3& w : levelSamples()) {
+      const glm::vec3 x = w.x * positions[level[t]] + w.y * positions[level[t + 1]] + w.z * positions[level[t + 2]];
+      worst = std::max(worst, nearestDistance(grid, positions, indices, x, worst));
+    }
+  return worst;
+}
+
+struct Box {
+  glm::vec3 low, high;
+};
+Box boundsOf(const std::vector<glm::vec3>& positions) {
+  Box b{positions[0], positions[0]};
+  for (const glm::vec3& v : positions) {
+    b.low = glm::min(b.low, v);
+    b.high = glm::max(b.high, v);
+  }
+  return b;
+}
+
+// A level's error in one shape of the primitive: both ways, the larger.
+float departure(const std::vector<glm::vec3>& shape, const std::vector<std::uint32_t>& indices,
+                const std::vector<std::uint32_t>& level) {
+  const Box b = boundsOf(shape);
+  return std::max(farthestFromLevel(shape, level, b.low, b.high),
+                  farthestLevelPoint(shape, indices, level, b.low, b.high));
+}
+
+// Each vertex's normal from the full mesh's faces around it (area-weighted), for
+// telling which way a surface faces whether or not the file has normals.
+std::vector<glm::vec3> faceNormalsAtVertices(const PrimitiveData& p) {
+  std::vector<glm::vec3> normals(p.positions.size(), glm::vec3(0.0f));
+  for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+    const glm::vec3 a = p.positions[p.indices[t]], b = p.positions[p.indices[t + 1]], c = p.positions[p.indices[t + 2]];
+    const glm::vec3 n = glm::cross(b - a, c - a);
+    for (int k = 0; k < 3; ++k) normals[p.indices[t + size_t(k)]] += n;
+  }
+  return normals;
+}
+
+// Whether some triangle of the level faces against the full mesh around its
+// corners: the simplifier (0.18) can fold one over through a series of collapses
+// (meshoptimizer issue 346), and a back-facing triangle is culled, which opens a
+// hole where the full mesh has surface.
+bool foldsOver(const PrimitiveData& p, const std::vector<glm::vec3>& vertexNormals,
+               const std::vector<std::uint32_t>& level) {
+  for (size_t t = 0; t + 2 < level.size(); t += 3) {
+    const glm::vec3 a = p.positions[level[t]], b = p.positions[level[t + 1]], c = p.positions[level[t + 2]];
+    const glm::vec3 around = vertexNormals[level[t]] + vertexNormals[level[t + 1]] + vertexNormals[level[t + 2]];
+    if (glm::dot(glm::cross(b - a, c - a), around) < 0.0f) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-std::vector<MeshLod> simplifiedLevels(const PrimitiveData& p, int minTriangles, float maxError) {
+const std::vector<glm::vec3>& levelSamples() {
+  static const std::vector<glm::vec3> samples = [] {
+    constexpr int kSteps = 4;
+    std::vector<glm::vec3> out;
+    for (int i = 0; i <= kSteps; ++i)
+      for (int j = 0; i + j <= kSteps; ++j) {
+        const int k = kSteps - i - j;
+        if (i == kSteps || j == kSteps || k == kSteps) continue;  // the corners
+        out.emplace_back(float(i) / kSteps, float(j) / kSteps, float(k) / kSteps);
+      }
+    return out;
+  }();
+  return samples;
+}
+
+std::vector<MeshLod> simplifiedLevels(const PrimitiveData& p, std::span<const std::vector<glm::vec3>> shapes,
+                                      float scale, int minTriangles, float maxError) {
   std::vector<MeshLod> levels;
   if (p.mode != 4 || p.indices.size() < size_t(minTriangles) * 3 || p.positions.empty()) return levels;
-  glm::vec3 low = p.positions[0], high = p.positions[0];
-  for (const glm::vec3& v : p.positions) {
-    low = glm::min(low, v);
-    high = glm::max(high, v);
+  const std::span<const std::vector<glm::vec3>> own(&p.positions, 1);
+  if (shapes.empty()) {
+    const Box b = boundsOf(p.positions);
+    shapes = own;
+    scale = 1.0f / std::max({b.high.x - b.low.x, b.high.y - b.low.y, b.high.z - b.low.z, 1e-30f});
   }
-  const float extent = std::max({high.x - low.x, high.y - low.y, high.z - low.z, 1e-30f});
+  const std::vector<glm::vec3> vertexNormals = faceNormalsAtVertices(p);
   size_t previous = p.indices.size();
   for (;;) {
     MeshLod level;
@@ -126,10 +206,12 @@ std::vector<MeshLod> simplifiedLevels(const PrimitiveData& p, int minTriangles, 
                                           previous / 2 / 3 * 3, maxError, 0, &estimate);
     if (count == 0 || count > previous * 4 / 5) break;
     level.indices.resize(count);
+    if (foldsOver(p, vertexNormals, level.indices)) break;  // and coarser levels would too, or worse
     // The simplifier's estimate (a quadric's: the distance to the planes of the
     // collapsed faces) understates the distance to the new surface, by 2-3.5x on
-    // the tests' surfaces; the error stated is measured instead.
-    level.error = farthestFromLevel(p, level.indices, low, high) / extent;
+    // the tests' surfaces, and knows no pose; the error stated is measured instead.
+    for (const std::vector<glm::vec3>& shape : shapes)
+      level.error = std::max(level.error, departure(shape, p.indices, level.indices) * scale);
     // Kept non-decreasing: a coarser level never claims to be closer.
     if (!levels.empty()) level.error = std::max(level.error, levels.back().error);
     levels.push_back(std::move(level));

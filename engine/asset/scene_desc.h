@@ -152,6 +152,10 @@ struct RenderDesc {
   std::optional<Ambient> ambient;
   int iblSize = 128;  // texels a side of the environment's cube map (render.ibl_size)
   Skinning skinning = Skinning::Auto;  // render.skinning: "vertex", "compute" or "auto"
+  // render.lod_pixels: models' levels of detail (asset/mesh_lod.h) are drawn where
+  // their error is within this many pixels on screen; 0, the default, draws every
+  // mesh in full.
+  double lodPixels = 0.0;
 };
 
 struct TerrainDesc {

@@ -6,8 +6,15 @@
 
 namespace engine {
 
-Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(std::shared_ptr<const ModelAsset> source) {
-  auto gpu = GpuModel::upload(source->model);
+Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(std::shared_ptr<const ModelAsset> source,
+                                                                     bool levelsOfDetail) {
+  ModelAsset::LevelsOfDetail levels;
+  if (levelsOfDetail) {
+    auto made = source->levelsOfDetail();
+    if (!made) return made.error();
+    levels = std::move(made).value();
+  }
+  auto gpu = GpuModel::upload(source->model, UploadOptions{levelsOfDetail ? &levels : nullptr});
   if (!gpu) return gpu.error();
   const ModelAsset& m = *source;
   return std::shared_ptr<const CharacterAsset>(
@@ -138,6 +145,7 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   frame.morphFirst = asset_->animated.morphs.first;
   frame.skinCache = skinCache();
   frame.setUniforms = setUniforms;
+  frame.lodBudget = lodBudget_;
   return frame;
 }
 

@@ -24,8 +24,10 @@ struct CharacterAsset {
   const AnimatedModel& animated;
   GpuModel gpu;
 
-  // Uploads the model (needs a context).
-  static Result<std::shared_ptr<const CharacterAsset>> create(std::shared_ptr<const ModelAsset> source);
+  // Uploads the model (needs a context), with its levels of detail when asked
+  // (ModelAsset::levelsOfDetail, made here).
+  static Result<std::shared_ptr<const CharacterAsset>> create(std::shared_ptr<const ModelAsset> source,
+                                                              bool levelsOfDetail = false);
   // ModelAsset::create, then the upload.
   static Result<std::shared_ptr<const CharacterAsset>> create(ModelData model);
   using Bounds = ModelAsset::Bounds;
@@ -52,6 +54,9 @@ class CharacterInstance {
   // stay precise. Touches no joint: the palettes stay in model space and the root
   // reaches the shader as its model matrix.
   void place(const glm::dmat4& world, const glm::dvec3& cameraPosition);
+  // The error every later draw's levels of detail may have, relative to a mesh's
+  // extent (ModelFrame::lodBudget); 0, the default, draws every mesh in full.
+  void setLodBudget(float budget) { lodBudget_ = budget; }
   // From now on deforms through a skin cache (render/skin_cache.h) with
   // `programs`, which must outlive the instance; nullptr goes back to skinning in
   // each pass's vertex shader.
@@ -107,6 +112,7 @@ class CharacterInstance {
   gl::Buffer morphBuffer_;           // the same on the GPU
   SkinPrograms* skinPrograms_ = nullptr;
   std::optional<SkinCache> cache_;
+  float lodBudget_ = 0.0f;
   bool palettesCurrent_ = false;  // palettes and weights uploaded (and deformed) since the last pose
   SkinMode uploadedMode_ = SkinMode::Linear;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/sheen_table.h"
@@ -225,7 +226,18 @@ void uploadMorphTargets(const PrimitiveData& data, GpuPrimitive& prim) {
   prim.morphDeltaTexture = gl::Texture::ofBuffer(prim.morphDeltas, GL_RGBA32F);
 }
 
-GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
+// The full mesh's indices, then each level's.
+std::vector<std::uint32_t> indicesWithLevels(const PrimitiveData& data, const std::vector<MeshLod>& levels,
+                                             GpuPrimitive& prim) {
+  std::vector<std::uint32_t> indices = data.indices;
+  for (const MeshLod& level : levels) {
+    prim.levels.push_back({GLsizei(indices.size()), GLsizei(level.indices.size()), level.error});
+    indices.insert(indices.end(), level.indices.begin(), level.indices.end());
+  }
+  return indices;
+}
+
+GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLod>* levels) {
   GpuPrimitive prim;
   prim.vertexCount = static_cast<GLsizei>(data.positions.size());
   prim.influences = data.influences;
@@ -245,7 +257,7 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data) {
   if (!data.tangents.empty()) in.tangents = addBuffer(prim, data.tangents);
   prim.hasTangents = in.tangents >= 0;
   if (!data.indices.empty()) {
-    in.indices = addBuffer(prim, data.indices);
+    in.indices = addBuffer(prim, levels ? indicesWithLevels(data, *levels, prim) : data.indices);
     prim.indexCount = static_cast<GLsizei>(data.indices.size());
   }
   prim.vao = gl::VertexArray::create();
@@ -296,10 +308,23 @@ void flipFrontFace() {
   glFrontFace(face == GL_CCW ? GL_CW : GL_CCW);
 }
 
-// One draw of the bound vertex array: indexed or not.
-void drawMesh(const GpuPrimitive& prim, GLenum mode) {
+// The coarsest level of detail within `budget`: its first index and count (the
+// full mesh's where none is).
+std::pair<GLsizei, GLsizei> levelWithin(const GpuPrimitive& prim, float budget) {
+  std::vector<float> errors;
+  for (const GpuPrimitive::Level& l : prim.levels) errors.push_back(l.error);
+  const int level = coarsestWithin(errors, budget);
+  if (level < 0) return {0, prim.indexCount};
+  return {prim.levels[size_t(level)].firstIndex, prim.levels[size_t(level)].indexCount};
+}
+
+// One draw of the bound vertex array: indexed or not, at the level of detail the
+// budget allows.
+void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget) {
   if (prim.indexCount > 0) {
-    glDrawElements(mode, prim.indexCount, GL_UNSIGNED_INT, nullptr);
+    const auto [first, count] = levelWithin(prim, lodBudget);
+    glDrawElements(mode, count, GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(std::uintptr_t(first) * sizeof(std::uint32_t)));
   } else {
     glDrawArrays(mode, 0, prim.vertexCount);
   }
@@ -367,7 +392,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     // flipped for the draw (NegativeScaleTest's scale -1 row) and put back.
     const bool mirrored = glm::determinant(glm::mat3(model4)) < 0.0f;
     if (mirrored) flipFrontFace();
-    drawMesh(prim, GLenum(data.mode));
+    drawMesh(prim, GLenum(data.mode), frame.lodBudget);
     if (mirrored) flipFrontFace();
   }
   if (twoSided) glEnable(GL_CULL_FACE);
@@ -479,11 +504,14 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
   return v;
 }
 
-Result<GpuModel> GpuModel::upload(const ModelData& model) {
+Result<GpuModel> GpuModel::upload(const ModelData& model, const UploadOptions& options) {
   GpuModel gpu;
-  for (const MeshData& mesh : model.meshes) {
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
     std::vector<GpuPrimitive> prims;
-    for (const PrimitiveData& p : mesh.primitives) prims.push_back(uploadPrimitive(p));
+    for (size_t k = 0; k < model.meshes[m].primitives.size(); ++k) {
+      const std::vector<MeshLod>* levels = options.levels ? &(*options.levels)[m][k] : nullptr;
+      prims.push_back(uploadPrimitive(model.meshes[m].primitives[k], levels));
+    }
     gpu.meshes_.push_back(std::move(prims));
   }
   std::vector<char> srgb(model.images.size(), 0), linear(model.images.size(), 0);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "asset/mesh_lod.h"
 #include "asset/model_data.h"
 #include "core/result.h"
 #include "gl/resources.h"
@@ -118,6 +119,20 @@ struct GpuPrimitive {
   int morphPositions = -1;
   int morphNormals = -1;
   int morphTangents = -1;
+  // Coarser levels of detail (asset/mesh_lod.h), finest first, their indices after
+  // the full mesh's in the same index buffer; empty unless uploaded with them.
+  struct Level {
+    GLsizei firstIndex = 0;
+    GLsizei indexCount = 0;
+    float error = 0.0f;  // MeshLod::error
+  };
+  std::vector<Level> levels;
+};
+
+struct UploadOptions {
+  // Levels of detail to upload, [mesh][primitive] (ModelAsset::levelsOfDetail),
+  // drawn where ModelFrame::lodBudget allows; none without.
+  const std::vector<std::vector<std::vector<MeshLod>>>* levels = nullptr;
 };
 
 class GpuModel {
@@ -125,7 +140,7 @@ class GpuModel {
   // Uploads every mesh and image of `model`. An image is uploaded as sRGB when a
   // material uses it for colour (base colour, emissive) and as linear data when
   // one uses it for normals, metallic-roughness or occlusion; both when both.
-  static Result<GpuModel> upload(const ModelData& model);
+  static Result<GpuModel> upload(const ModelData& model, const UploadOptions& options = {});
 
   const std::vector<std::vector<GpuPrimitive>>& meshes() const { return meshes_; }
   // The texture of `image` in the wanted colour space, or a white one (no image).
@@ -193,6 +208,9 @@ struct ModelFrame {
   // Sets what the program needs besides the mesh and material (lights, shadows).
   std::function<void(const gl::Program&)> setUniforms;
   bool depthOnly = false;  // shadow passes: no material, depth-only variant
+  // The largest error a level of detail may have, relative to a mesh's extent (the
+  // coarsest level within it is drawn); 0: every mesh in full.
+  float lodBudget = 0.0f;
   // Whether drawModel also draws the BLEND primitives (after the others, back to
   // front, blending on). A scene turns it off and sorts them across all models.
   bool includeBlend = true;

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "gl/bindings.h"
@@ -323,6 +324,8 @@ struct SceneRenderer::Impl {
   Status makeProbes();
   Status renderProbes(const glm::dvec3& cameraPosition);
   void placeCharacters(const glm::dvec3& cameraPosition);
+  void chooseLevelsOfDetail(const glm::dvec3& cameraPosition, double fovy, int height, double nearPlane);
+  std::string describeLevelsOfDetail() const;
   Status renderSunShadow(const ShadowSphere& nearSphere, const ShadowSphere& farSphere, double fovy,
                          int viewportHeight);
   Status renderPointShadow(const glm::dvec3& cameraPosition);
@@ -340,6 +343,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   render = scene.render;
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
   render.skinning = options.skinningOverride.value_or(render.skinning);
+  render.lodPixels = options.lodPixelsOverride.value_or(render.lodPixels);
   render.shading = options.shadingOverride.value_or(render.shading);
   if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
   render.toneMap = options.toneMapOverride.value_or(render.toneMap);
@@ -640,7 +644,7 @@ bool SceneRenderer::Impl::usesSkinCache(const ModelData& model, const ModelDesc&
 Status SceneRenderer::Impl::loadModels() {
   std::vector<std::shared_ptr<const CharacterAsset>> uploaded;
   for (const auto& asset : source->assets()) {
-    auto created = CharacterAsset::create(asset);
+    auto created = CharacterAsset::create(asset, render.lodPixels > 0.0);
     if (!created) return makeError(scene.path + ": " + asset->model.path + ": " + created.error().message);
     uploaded.push_back(std::move(created).value());
   }
@@ -1122,6 +1126,46 @@ void SceneRenderer::Impl::placeCharacters(const glm::dvec3& cameraPosition) {
   for (auto& c : characters) c.instance->place(c.world, cameraPosition);
 }
 
+// Each character's level-of-detail budget, from the main camera and for every pass
+// of the frame: a shadow cast by another level than the one drawn would not fit
+// its caster. Levels state their error relative to the diagonal of the bounds of
+// every pose (ModelAsset::levelsOfDetail), the instance's bounding sphere's
+// diameter: on screen, at most that error times the diameter's size in pixels at
+// the sphere's nearest point.
+void SceneRenderer::Impl::chooseLevelsOfDetail(const glm::dvec3& cameraPosition, double fovy, int height,
+                                               double nearPlane) {
+  const double pixelsAtOne = double(height) / (2.0 * std::tan(fovy / 2.0));
+  for (CharacterDraw& c : characters) {
+    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0));
+    const double distance = std::max(glm::length(center - cameraPosition) - c.localRadius, nearPlane);
+    const double diameterPixels = 2.0 * c.localRadius * pixelsAtOne / distance;
+    c.instance->setLodBudget(render.lodPixels > 0.0 ? float(render.lodPixels / diameterPixels) : 0.0f);
+  }
+}
+
+// "lod(within 1 px: 4672 triangles > 2336 (0.0012) > 1168 (0.0094))": each
+// primitive with levels, its triangles and each level's, with its error (relative
+// to the model's size in any pose).
+std::string SceneRenderer::Impl::describeLevelsOfDetail() const {
+  std::ostringstream out;
+  out << "lod(within " << render.lodPixels << " px:";
+  std::set<const CharacterAsset*> seen;
+  int described = 0;
+  for (const CharacterDraw& c : characters) {
+    if (!seen.insert(&c.instance->asset()).second) continue;
+    for (const auto& mesh : c.instance->asset().gpu.meshes())
+      for (const GpuPrimitive& p : mesh) {
+        if (p.levels.empty()) continue;
+        out << (described++ ? ";" : "") << " " << p.indexCount / 3 << " triangles";
+        for (const GpuPrimitive::Level& l : p.levels)
+          out << " > " << l.indexCount / 3 << " (" << std::setprecision(2) << l.error << ")";
+      }
+  }
+  if (described == 0) out << " no mesh has levels";
+  out << ")";
+  return out.str();
+}
+
 // Each probe's six faces, seen from the mirror's centre without the mirror itself.
 // Positions stay camera-relative, now to the probe's centre. The sun's maps are
 // drawn again around the probe: the camera's maps cover what the camera sees, and
@@ -1289,6 +1333,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   frustumPlanes(viewProjection, planes);
 
   placeCharacters(cameraPosition);
+  chooseLevelsOfDetail(cameraPosition, fovy, targetHeight, camera.nearPlane);
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
   glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
@@ -1443,6 +1488,7 @@ std::string SceneRenderer::describe() const {
   }
   if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
   if (s.skinPrograms) out << " " << s.describeSkinCache();
+  if (s.render.lodPixels > 0.0) out << " " << s.describeLevelsOfDetail();
   if (s.terrain) out << " terrain(cdlod, " << s.terrainError << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";

@@ -46,6 +46,7 @@ struct SceneRenderOptions {
   int iblSizeOverride = 0;                 // > 0 replaces render.ibl_size
   std::optional<Skinning> skinningOverride;  // replaces render.skinning
   double terrainErrorOverride = 0.0;         // > 0 replaces terrain.error_pixels (the LOD target)
+  std::optional<double> lodPixelsOverride;   // replaces render.lod_pixels (models' levels of detail)
   // Replaces every model's skinning (lbs, dqs, none: the bind pose).
   std::optional<SkinMode> skinModeOverride;
   // Replace render.shading, render.exposure (> 0), render.tonemap, render.output.

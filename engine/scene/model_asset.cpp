@@ -66,14 +66,18 @@ std::vector<double> boundsSampleTimes(const Clip& clip, int samples) {
   return times;
 }
 
-// Grows `b` by every vertex of `asset` in `pose`.
-Status addPoseToBounds(const ModelAsset& asset, const Pose& pose, ModelAsset::Bounds& b) {
+// Every (node, instance, primitive) of `asset` posed on the CPU in `pose`, handed to
+// `visit(mesh, primitive, positions)`.
+Status forEachPosedPrimitive(const ModelAsset& asset, const Pose& pose,
+                             const std::function<void(int, int, std::vector<glm::vec3>&)>& visit) {
   const ModelData& model = asset.model;
   std::vector<glm::vec3> posed;
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const NodeData& node = model.nodes[n];
     if (node.mesh < 0) continue;
-    for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
+    const auto& primitives = model.meshes[size_t(node.mesh)].primitives;
+    for (size_t k = 0; k < primitives.size(); ++k) {
+      const PrimitiveData& prim = primitives[k];
       const bool skinned = node.skin >= 0 && prim.influences > 0;
       const glm::mat4& world = pose.joints[size_t(asset.animated.skeleton.jointOfRaw(int(n)))];
       // Every EXT_mesh_gpu_instancing instance (world * instance), or the node once.
@@ -84,39 +88,79 @@ Status addPoseToBounds(const ModelAsset& asset, const Pose& pose, ModelAsset::Bo
         posed.resize(prim.positions.size());
         if (!posePrimitive(prim, primPose, posed))
           return makeError(model.path + ": node " + std::to_string(n) + ": morphing or skinning rejected its inputs");
-        for (const glm::vec3& p : posed) {
-          b.min = glm::min(b.min, p);
-          b.max = glm::max(b.max, p);
-        }
+        visit(node.mesh, int(k), posed);
       }
     }
   }
   return Ok{};
 }
 
+// Grows `b` by every vertex of `asset` in `pose`.
+Status addPoseToBounds(const ModelAsset& asset, const Pose& pose, ModelAsset::Bounds& b) {
+  return forEachPosedPrimitive(asset, pose, [&](int, int, std::vector<glm::vec3>& posed) {
+    for (const glm::vec3& p : posed) {
+      b.min = glm::min(b.min, p);
+      b.max = glm::max(b.max, p);
+    }
+  });
+}
+
 }  // namespace
 
 // Clip times are sampled as they are, not wrapped: the last sample is the clip's
 // end, which wrapping would turn back into its start.
-Result<ModelAsset::Bounds> ModelAsset::boundsOfAllPoses(int samples) const {
-  Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
+Status ModelAsset::forEachSampledPose(int samples, const std::function<Status(const Pose&)>& visit) const {
   const Skeleton& skeleton = animated.skeleton;
   std::vector<Srt> locals(skeleton.restPose().begin(), skeleton.restPose().end());
   Pose pose{std::vector<glm::mat4>(locals.size()), animated.morphs.restWeights};
-  if (auto s = jointsFromLocals(*this, locals, pose.joints); !s) return s.error();
-  if (auto s = addPoseToBounds(*this, pose, b); !s) return s.error();
+  if (auto s = jointsFromLocals(*this, locals, pose.joints); !s) return s;
+  if (auto s = visit(pose); !s) return s;
   for (const Clip& clip : animated.clips) {
     for (const double time : boundsSampleTimes(clip, samples)) {
       const std::string where = model.path + ": clip " + clip.name();
-      if (auto s = runJob(SamplingJob{&clip, time, skeleton.restPose(), locals}, where); !s) return s.error();
+      if (auto s = runJob(SamplingJob{&clip, time, skeleton.restPose(), locals}, where); !s) return s;
       if (auto s = runJob(MorphSamplingJob{&clip, time, animated.morphs.restWeights, pose.morphWeights}, where); !s)
-        return s.error();
-      if (auto s = jointsFromLocals(*this, locals, pose.joints); !s) return s.error();
-      if (auto s = addPoseToBounds(*this, pose, b); !s) return s.error();
+        return s;
+      if (auto s = jointsFromLocals(*this, locals, pose.joints); !s) return s;
+      if (auto s = visit(pose); !s) return s;
     }
   }
+  return Ok{};
+}
+
+Result<ModelAsset::Bounds> ModelAsset::boundsOfAllPoses(int samples) const {
+  Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
+  if (auto s = forEachSampledPose(samples, [&](const Pose& pose) { return addPoseToBounds(*this, pose, b); }); !s)
+    return s.error();
   if (b.min.x > b.max.x) b = Bounds{};
   return b;
+}
+
+Result<ModelAsset::LevelsOfDetail> ModelAsset::levelsOfDetail(int samples) const {
+  auto bounds = boundsOfAllPoses();
+  if (!bounds) return bounds.error();
+  const float diagonal = glm::length(bounds->max - bounds->min);
+  // shapes[mesh][primitive]: the primitive's positions in every pose of every node
+  // (and instance) that draws it.
+  std::vector<std::vector<std::vector<std::vector<glm::vec3>>>> shapes(model.meshes.size());
+  for (size_t m = 0; m < model.meshes.size(); ++m) shapes[m].resize(model.meshes[m].primitives.size());
+  auto addShapes = [&](const Pose& pose) -> Status {
+    return forEachPosedPrimitive(*this, pose, [&](int mesh, int primitive, std::vector<glm::vec3>& posed) {
+      shapes[size_t(mesh)][size_t(primitive)].push_back(posed);
+    });
+  };
+  if (auto s = forEachSampledPose(samples, addShapes); !s) return s.error();
+  LevelsOfDetail levels(model.meshes.size());
+  for (size_t m = 0; m < model.meshes.size(); ++m)
+    for (size_t k = 0; k < model.meshes[m].primitives.size(); ++k) {
+      const auto& posed = shapes[m][k];
+      if (posed.empty()) {  // drawn by no node: measured as it is
+        levels[m].push_back(simplifiedLevels(model.meshes[m].primitives[k]));
+      } else {
+        levels[m].push_back(simplifiedLevels(model.meshes[m].primitives[k], posed, 1.0f / std::max(diagonal, 1e-30f)));
+      }
+    }
+  return levels;
 }
 
 }  // namespace engine

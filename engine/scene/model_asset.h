@@ -3,6 +3,7 @@
 // instances a scene places: the file's data, its runtime skeleton, clips, skins and
 // morph layout, and the one way a pose of it is sampled. GL-free: the rasterizer
 // uploads it (render/character.h), the tracers skin it on the CPU.
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -11,10 +12,13 @@
 #include "anim/clip.h"
 #include "anim/model_builder.h"
 #include "anim/player.h"
+#include "asset/mesh_lod.h"
 #include "asset/model_data.h"
 #include "core/result.h"
 
 namespace engine {
+
+struct Pose;
 
 struct ModelAsset {
   ModelData model;
@@ -31,6 +35,16 @@ struct ModelAsset {
     glm::vec3 min{0.0f}, max{0.0f};
   };
   Result<Bounds> boundsOfAllPoses(int samples = 24) const;
+  // Every mesh primitive's levels of detail (asset/mesh_lod.h), [mesh][primitive],
+  // their errors measured in the rest pose and `samples` + 1 poses of every clip
+  // (and every morph key), relative to the diagonal of boundsOfAllPoses: the size a
+  // renderer sees an instance by. Made on demand: it costs a simplification and a
+  // distance search per level and pose.
+  using LevelsOfDetail = std::vector<std::vector<std::vector<MeshLod>>>;
+  Result<LevelsOfDetail> levelsOfDetail(int samples = 8) const;
+  // Calls `visit` with the rest pose, then `samples` + 1 poses of every clip and its
+  // morph keys: what the bounds and the levels of detail are measured over.
+  Status forEachSampledPose(int samples, const std::function<Status(const Pose&)>& visit) const;
 };
 
 // A pose of a model: every runtime joint's matrix in model space (the instance's

@@ -110,6 +110,11 @@ int main(int argc, char** argv) {
                  "skin cache that every pass draws) or auto (the cache for morph targets, dual quaternions and "
                  "skins drawn by more than two passes); default: the scene's render.skinning, auto")
       ->check(CLI::IsMember(engine::skinningNames()));
+  double lodPixels = -1.0;
+  app.add_option("--lod-pixels", lodPixels,
+                 "Models' levels of detail (simplified meshes, made at load): drawn where their error is within "
+                 "this many pixels on screen; 0 draws every mesh in full; default: the scene's render.lod_pixels, 0")
+      ->check(CLI::Range(0.0, 64.0));
   app.add_flag("--hdr-target", render.hdrTarget,
                "Keep the HDR target and the post pass where the scene needs neither (no tone map, exposure 1, "
                "no MSAA, supersampling, sky, probes, blending or transmission): the reference for the direct path");
@@ -184,6 +189,7 @@ int main(int argc, char** argv) {
   render.shaderDir = options.shaderDir;
   if (!ambient.empty()) render.ambientOverride = engine::ambientNames().at(ambient);
   if (!skinning.empty()) render.skinningOverride = engine::skinningNames().at(skinning);
+  if (lodPixels >= 0.0) render.lodPixelsOverride = lodPixels;
   if (!skinBlend.empty()) {
     render.skinModeOverride = skinBlend == "dqs"    ? engine::SkinMode::DualQuat
                               : skinBlend == "none" ? engine::SkinMode::None

@@ -309,6 +309,7 @@ def main(out):
     write("scene_position_null.json", json.dumps({"camera": {"position": [1, None, 3]}}))
     write("scene_msaa_string.json", json.dumps({"render": {"msaa": "four"}}))
     write("scene_skinning_unknown.json", json.dumps({"render": {"skinning": "gpu"}}))
+    write("scene_lod_negative.json", json.dumps({"render": {"lod_pixels": -1}}))
     write("scene_unknown_key.json", json.dumps({"origin": [0, 0, 0]}))
     write("scene_not_object.json", json.dumps([1, 2, 3]))
 
