@@ -106,6 +106,7 @@ engine::SceneRenderOptions effective(const engine::SceneRenderOptions& o, const 
   if (e.iblSizeOverride <= 0) e.iblSizeOverride = r.iblSize;
   if (!e.ambientOverride) e.ambientOverride = engine::ambientOf(scene);
   if (!e.skinningOverride) e.skinningOverride = r.skinning;
+  if (!e.lodPixelsOverride) e.lodPixelsOverride = r.lodPixels;
   if (e.terrainErrorOverride <= 0.0) e.terrainErrorOverride = scene.terrain.errorPixels;
   if (!e.shadingOverride) e.shadingOverride = r.shading;
   if (e.exposureOverride <= 0.0f) e.exposureOverride = r.exposure;
@@ -136,6 +137,7 @@ void knobs(SceneGame& game) {
   if (!scene.models.empty()) {
     changed |= pickNamed("skinning", o.skinningOverride, engine::skinningNames());
     changed |= pickNamed("skin blend", o.skinModeOverride, skinModeNames());
+    changed |= pickDouble("model LOD (px)", *o.lodPixelsOverride, {0.0, 1.0, 2.0, 4.0, 8.0});
     std::optional<engine::QuatInterpolation> rotations = o.rotations;
     changed |= pickNamed("rotations", rotations, rotationNames());
     o.rotations = *rotations;
@@ -297,6 +299,12 @@ engine::Status SceneGame::parseKnob(const std::string& assignment, engine::Scene
     }
     return engine::makeError("--panel-set exposure=" + value + ": expected one of 0.25, 0.5, 1, 2, 4");
   }
+  if (name == "model-lod") {
+    auto px = knobInt(name, value, {0, 1, 2, 4, 8});
+    if (!px) return px.error();
+    o.lodPixelsOverride = *px;
+    return engine::Ok{};
+  }
   if (name == "terrain-error") {
     auto px = knobInt(name, value, {1, 2, 4, 8});
     if (!px) return px.error();
@@ -304,7 +312,8 @@ engine::Status SceneGame::parseKnob(const std::string& assignment, engine::Scene
     return engine::Ok{};
   }
   return engine::makeError("--panel-set " + name + ": no such knob; knobs are msaa, supersample, shadow-map, pcf, "
-                           "probe, shading, ambient, ibl-size, exposure, tonemap, output, skinning, skin-blend, rotations, terrain-error");
+                           "probe, shading, ambient, ibl-size, exposure, tonemap, output, skinning, skin-blend, rotations, model-lod, "
+                           "terrain-error");
 }
 
 void SceneGame::drawUi() {
