@@ -11,30 +11,12 @@
 
 #include "asset/gltf_loader.h"
 #include "asset/mesh_lod.h"
+#include "core/closest_point.h"
 
 namespace engine {
 namespace {
 
-// Ericson's closest point on triangle abc to p (Real-Time Collision Detection 5.1.5).
-glm::dvec3 closestOnTriangle(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
-  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const glm::dvec3 bp = p - b;
-  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const glm::dvec3 cp = p - c;
-  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
+glm::dvec3 at(const PrimitiveData& p, std::uint32_t i) { return glm::dvec3(p.positions[i]); }
 
 // The farthest any vertex of the full mesh lies from the level's surface.
 double farthestVertex(const PrimitiveData& p, const std::vector<std::uint32_t>& level) {
@@ -42,7 +24,7 @@ double farthestVertex(const PrimitiveData& p, const std::vector<std::uint32_t>& 
   for (const glm::vec3& v : p.positions) {
     double nearest = std::numeric_limits<double>::infinity();
     for (size_t t = 0; t + 2 < level.size() && nearest > 0.0; t += 3) {
-      const glm::dvec3 q = closestOnTriangle(v, p.positions[level[t]], p.positions[level[t + 1]], p.positions[level[t + 2]]);
+      const glm::dvec3 q = closestOnTriangle(glm::dvec3(v), at(p, level[t]), at(p, level[t + 1]), at(p, level[t + 2]));
       nearest = std::min(nearest, glm::length(glm::dvec3(v) - q));
     }
     worst = std::max(worst, nearest);
@@ -62,7 +44,7 @@ double farthestLevelPoint(const PrimitiveData& p, const std::vector<std::uint32_
       double nearest = std::numeric_limits<double>::infinity();
       for (size_t u = 0; u + 2 < p.indices.size() && nearest > 0.0; u += 3) {
         const glm::dvec3 q =
-            closestOnTriangle(x, p.positions[p.indices[u]], p.positions[p.indices[u + 1]], p.positions[p.indices[u + 2]]);
+            closestOnTriangle(x, at(p, p.indices[u]), at(p, p.indices[u + 1]), at(p, p.indices[u + 2]));
         nearest = std::min(nearest, glm::length(x - q));
       }
       worst = std::max(worst, nearest);
