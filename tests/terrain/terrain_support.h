@@ -19,6 +19,15 @@ inline LodCamera makeCamera(const glm::dvec3& position, const glm::dvec3& target
   return c;
 }
 
+// selectLod until every block near enough to set one of the view's ranges has its
+// errors measured (each call measures kMeasureBudget): the view's settled selection,
+// the one that the ranges of the errors as measured give.
+inline LodSelection settledSelection(const Terrain& t, const LodCamera& camera, double pixels) {
+  LodSelection s = selectLod(t, camera, pixels);
+  while (s.stats.blocksPending > 0) s = selectLod(t, camera, pixels);
+  return s;
+}
+
 inline TerrainSettings noiseSettings(double size, double heightScale, glm::dvec3 origin = glm::dvec3(0.0)) {
   TerrainSettings s;
   s.seed = 7;
