@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -46,12 +47,11 @@ LodCamera cameraOver(const Terrain& t, double u, double v, double above) {
   return c;
 }
 
-// Selections of a view until every block near enough to matter has its errors
-// measured (a one-time cost per field, spread over a few frames by kMeasureBudget):
-// the benchmarks time and tabulate the view's settled selection.
+// Every block near enough to set the view's ranges measured (a one-time cost per
+// field, which a renderer spreads over a few frames): the benchmarks time and
+// tabulate the view's settled selection.
 void measureView(const Terrain& t, const LodCamera& camera, double pixels) {
-  while (selectLod(t, camera, pixels).stats.blocksPending > 0) {
-  }
+  measureBlocks(t, camera, pixels, SIZE_MAX);
 }
 
 void BM_TerrainLodSelect16km(benchmark::State& state) {

@@ -70,6 +70,9 @@ struct SceneStats {
   int objectsCulled = 0;
   int objectsDrawn = 0;
   int terrainTriangles = 0;
+  // Terrain blocks whose errors are still to be measured for this view (a few a
+  // frame): until none are, the terrain's level of detail may still coarsen.
+  int terrainBlocksPending = 0;
   long long verticesDeformed = 0;  // by the skin cache's compute (render.skinning compute)
   // CPU time: the last update's posing (the scene layer's sampling and the copy of
   // its poses), this frame's collecting and sorting of draw items (culling

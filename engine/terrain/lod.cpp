@@ -22,6 +22,11 @@ constexpr double kPruneSafety = 2.0;
 
 glm::dvec4 row(const glm::mat4& m, int r) { return {m[0][r], m[1][r], m[2][r], m[3][r]}; }
 
+// Pixels per metre of error at distance 1.
+double pixelsPerMetre(const LodCamera& camera) {
+  return camera.viewportHeight / (2.0 * std::tan(camera.fovY * 0.5));
+}
+
 struct Selector {
   const Terrain& terrain;
   const LodCamera& camera;
@@ -103,15 +108,16 @@ struct Selector {
   }
 
   // Measures up to `budget` of the unmeasured blocks within reach of the finest
-  // measured level, nearest first; returns how many are left.
-  std::size_t measureBlocks(double metresPerPixel, int budget) const {
+  // measured level, nearest first; returns how many are left (with a budget of 0,
+  // counts them).
+  std::size_t measureNearest(double metresPerPixel, std::size_t budget) const {
     const int level = std::min(kExactErrorLevels, terrain.levelCount() - 1);
     if (level < 1) return 0;
     std::vector<std::pair<double, PageKey>> unmeasured;
-    forNodesWithin(1, root(), reach(level, metresPerPixel), [&](const PageKey& n, double d, double) {
+    forBlocksWithin(root(), reach(level, metresPerPixel), [&](const PageKey& n, double d, double) {
       if (!terrain.errorsMeasured(n)) unmeasured.emplace_back(d, n);
     });
-    const std::size_t now = std::min(unmeasured.size(), std::size_t(std::max(budget, 0)));
+    const std::size_t now = std::min(unmeasured.size(), budget);
     std::partial_sort(unmeasured.begin(), unmeasured.begin() + std::ptrdiff_t(now), unmeasured.end(),
                       [](const auto& a, const auto& b) { return a.first < b.first; });
     for (std::size_t i = 0; i < now; ++i) terrain.measureErrors(unmeasured[i].second);
@@ -121,32 +127,34 @@ struct Selector {
   PageKey root() const { return {terrain.levelCount() - 1, 0, 0}; }
 
   // The distance beyond which the level-`level` mesh's error projects under target
-  // (`metresPerPixel`: metres of error a pixel at distance 1) in every visible
-  // level-1 node (block) that it would cover: a block needs the mesh kept beyond
+  // (`metresPerPixel`: metres of error a pixel at distance 1) in every block
+  // (level-1 node) that it would cover: a block needs the mesh kept beyond
   // the distance r of its own error, unless it lies wholly beyond r already, or
   // wholly within it (then finer levels cover it).
   double neededStart(int level, double metresPerPixel) const {
     double needed = 0.0;
-    forNodesWithin(1, root(), reach(level, metresPerPixel), [&](const PageKey& n, double d, double far) {
+    forBlocksWithin(root(), reach(level, metresPerPixel), [&](const PageKey& n, double d, double far) {
       const double r = terrain.meshError(level, n) / metresPerPixel;
       if (d < r) needed = std::max(needed, std::min(r, far));
     });
     return needed;
   }
 
-  // Calls f(node, nearest, farthest) for each visible level-`level` node under
-  // `node` that is nearer than `reach`.
+  // Calls f(block, nearest, farthest) for each block (level-1 node) under `node`
+  // nearer than `reach`, in view or not: ranges that hung on the view's direction
+  // would change the mesh as the camera turns, and give the sun's maps, culled to
+  // another box, other ranges than the view whose surface they shadow.
   template <typename F>
-  void forNodesWithin(int level, const PageKey& node, double reach, F&& f) const {
+  void forBlocksWithin(const PageKey& node, double reach, F&& f) const {
     const int span = kNodeQuads * Terrain::stride(node.level);
     const int x0 = node.nx * span, z0 = node.nz * span;
     if (x0 >= terrain.cellsX() || z0 >= terrain.cellsZ()) return;
     const int x1 = std::min(x0 + span, terrain.cellsX()), z1 = std::min(z0 + span, terrain.cellsZ());
     const double d = distance(x0, z0, x1, z1);
-    if (d >= reach || !visible(node.level, x0, z0, span)) return;
-    if (node.level == level) return f(node, d, farthest(x0, z0, x1, z1));
+    if (d >= reach || node.level < 1) return;  // (a one-node field has no blocks)
+    if (node.level == 1) return f(node, d, farthest(x0, z0, x1, z1));
     for (int q = 0; q < 4; ++q)
-      forNodesWithin(level, PageKey{node.level - 1, node.nx * 2 + (q & 1), node.nz * 2 + (q >> 1)}, reach, f);
+      forBlocksWithin(PageKey{node.level - 1, node.nx * 2 + (q & 1), node.nz * 2 + (q >> 1)}, reach, f);
   }
 };
 
@@ -158,14 +166,12 @@ double morphStartFor(const Selector& selector, int level, double metresPerPixel)
   return selector.terrain.geometricError(level) / metresPerPixel;
 }
 
-void computeRanges(const Selector& selector, double errorPixels, int measureBudget, LodSelection& out) {
+void computeRanges(const Selector& selector, double errorPixels, LodSelection& out) {
   const Terrain& terrain = selector.terrain;
-  const LodCamera& camera = selector.camera;
   const int top = terrain.levelCount() - 1;
-  // Pixels per metre of error at distance 1.
-  const double k = camera.viewportHeight / (2.0 * std::tan(camera.fovY * 0.5));
+  const double k = pixelsPerMetre(selector.camera);
   const double target = std::max(errorPixels, 1e-6);
-  out.stats.blocksPending = selector.measureBlocks(target / k, measureBudget);
+  out.stats.blocksPending = selector.measureNearest(target / k, 0);
   for (int level = 0; level < top; ++level) {
     // Morphing toward level + 1 starts where that level's error projects to the target
     // (at least a sample away: the morph needs a range of positive length).
@@ -209,10 +215,9 @@ bool Frustum::intersects(const glm::dvec3& lo, const glm::dvec3& hi) const {
 
 namespace {
 
-// selectLod, measuring at most `measureBudget` blocks.
-LodSelection selectMeasuring(const Terrain& terrain, const LodCamera& camera, double errorPixels,
-                             int measureBudget) {
-  LodSelection out;
+// The camera's place in the field, as the selection and the shaders read it; the
+// camera's (x, z) in samples from the origin.
+glm::dvec2 placeCamera(const Terrain& terrain, const LodCamera& camera, LodSelection& out) {
   const double s = terrain.spacing();
   // Clamped so that the integer cell and the float fraction stay meaningful for a
   // camera absurdly far away; such a camera sees only the root anyway.
@@ -230,11 +235,28 @@ LodSelection selectMeasuring(const Terrain& terrain, const LodCamera& camera, do
   out.morphDy2 = float(dy * dy);
   out.spacing = float(s);
   out.cells = {terrain.cellsX(), terrain.cellsZ()};
+  return cam;
+}
 
-  Selector selector{terrain, camera, out, Frustum::fromViewProjection(camera.viewProjection, camera.zeroToOneDepth), cam,
-                    // The selection uses the same squared height as the vertices.
-                    double(out.morphDy2)};
-  computeRanges(selector, errorPixels, measureBudget, out);
+Selector makeSelector(const Terrain& terrain, const LodCamera& camera, LodSelection& out) {
+  const glm::dvec2 cam = placeCamera(terrain, camera, out);
+  // The selection uses the same squared height as the vertices.
+  return Selector{terrain, camera, out, Frustum::fromViewProjection(camera.viewProjection, camera.zeroToOneDepth),
+                  cam, double(out.morphDy2)};
+}
+
+}  // namespace
+
+std::size_t measureBlocks(const Terrain& terrain, const LodCamera& camera, double errorPixels, std::size_t budget) {
+  LodSelection placed;
+  const Selector selector = makeSelector(terrain, camera, placed);
+  return selector.measureNearest(std::max(errorPixels, 1e-6) / pixelsPerMetre(camera), budget);
+}
+
+LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels) {
+  LodSelection out;
+  Selector selector = makeSelector(terrain, camera, out);
+  computeRanges(selector, errorPixels, out);
   if (!selector.select(selector.root())) selector.addNode(selector.root());
 
   out.stats.patches = out.patches.size();
@@ -251,12 +273,6 @@ LodSelection selectMeasuring(const Terrain& terrain, const LodCamera& camera, do
   return out;
 }
 
-}  // namespace
-
-LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels) {
-  return selectMeasuring(terrain, camera, errorPixels, kMeasureBudget);
-}
-
 // 1.25^64: a target a million times the asked one; ranges are at their floor long before.
 constexpr int kMaxCoarsenings = 64;
 
@@ -267,9 +283,7 @@ LodSelection selectLodWithin(const Terrain& terrain, const LodCamera& camera, do
   double target = errorPixels;
   while (s.stats.pages > maxPages) {
     target *= kCoarsenStep;
-    // Measuring only in the first selection keeps the steps comparable: each sees
-    // the same errors.
-    LodSelection coarser = selectMeasuring(terrain, camera, target, 0);
+    LodSelection coarser = selectLod(terrain, camera, target);
     ++coarsenings;
     // Ranges have a floor (each level's at least its nodes' reach), so past some
     // target nothing changes: stop there rather than loop forever.

@@ -13,12 +13,12 @@
 // level, (b) a finer patch is fully morphed where it meets a coarser one and
 // (c) the coarser one is not morphed there at all (see lod.cpp).
 //
-// The ranges depend on the view: a level's mesh first shows where morphing toward
-// it starts, so that distance is the farthest at which some visible block near the
-// camera still has that mesh's own error (Terrain::meshError, measured per block)
-// projecting over target, not where the level-wide maximum, set by the roughest
-// block of the whole field, would. They stay one per level, so the morph (and the
-// shaders reading morphStart and morphEnd per level) is unchanged.
+// The ranges depend on where the camera is: a level's mesh first shows where
+// morphing toward it starts, so that distance is the farthest at which some block
+// near the camera still has that mesh's own error (Terrain::meshError, measured per
+// block by measureBlocks) projecting over target, not where the level-wide maximum,
+// set by the roughest block of the whole field, would. They stay one per level, so
+// the morph (and the shaders reading morphStart and morphEnd per level) is unchanged.
 #include <array>
 #include <cstdint>
 #include <cstddef>
@@ -36,7 +36,7 @@ namespace engine::terrain {
 // trades only the morph's width against how far the finer level reaches: 0.75
 // draws 8% fewer triangles than 0.7 in micro_bench's table, and still spreads the
 // morph over a quarter of the range.
-inline constexpr double kMorphStartRatio = 0.75;
+inline constexpr double kMorphStartRatio = 0.8;
 inline constexpr double kMorphEndRatio = 0.999;
 
 struct LodCamera {
@@ -80,9 +80,9 @@ struct LodStats {
   std::size_t pages = 0;     // distinct height pages (nodes) the patches read
   double targetPixels = 0;   // the error target the selection was made for
   int coarsenings = 0;       // times selectLodWithin raised the target to fit a page budget
-  // Blocks near enough to set a range whose exact errors are still unmeasured
-  // (each selectLod measures up to kMeasureBudget, nearest first): ranges rest on
-  // the level-wide estimate there, so a later selection of the view may be finer.
+  // Blocks near enough to set a range whose errors measureBlocks has not measured
+  // yet: ranges rest on the level-wide estimate there, so once they are measured
+  // the view's selection may be coarser, still within target.
   std::size_t blocksPending = 0;
 };
 
@@ -101,11 +101,21 @@ struct LodSelection {
   LodStats stats;
 };
 
-// Blocks (Terrain::measureErrors) one selectLod may measure: about 2 ms each on a
-// noise field, so a first view over a large field costs a few frames' time more,
-// not seconds, and its ranges tighten over the next selections.
-inline constexpr int kMeasureBudget = 32;
+// Blocks measureBlocks measures by default: about 2 ms each on a noise field, so a
+// renderer measuring once a frame spends a few frames' time more on a new view,
+// not seconds, and its ranges tighten over the next frames.
+inline constexpr std::size_t kMeasureBudget = 32;
 
+// Measures (Terrain::measureErrors), nearest first, up to `budget` of the blocks
+// that can set this camera's ranges at this target and are not measured yet;
+// returns how many are left. The ranges depend on the camera's position, field of
+// view and viewport alone (not its direction or culling), so every selection from
+// there sees the same errors until this is called again.
+std::size_t measureBlocks(const Terrain& terrain, const LodCamera& camera, double errorPixels,
+                          std::size_t budget = kMeasureBudget);
+
+// The patches to draw, with ranges from the blocks measured so far (elsewhere from
+// the level-wide estimate, which keeps the finer levels out farther).
 LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels);
 
 // Each step of selectLodWithin multiplies the error target by this.
@@ -115,8 +125,7 @@ inline constexpr double kCoarsenStep = 1.25;
 // the target is raised by kCoarsenStep and the selection made again (counted in
 // stats.coarsenings; stats.targetPixels is the target used). If coarsening stops
 // shrinking the page count first, the last selection is returned as it is and the
-// caller sees stats.pages > maxPages. Only the first selection measures blocks, so
-// every step sees the same errors.
+// caller sees stats.pages > maxPages.
 LodSelection selectLodWithin(const Terrain& terrain, const LodCamera& camera, double errorPixels,
                              std::size_t maxPages);
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -286,6 +287,49 @@ TEST(Lod, FinerTargetsDrawMoreAndErrOnlyWithinTarget) {
       EXPECT_LE(t->meshError(p.level + 1, area) * k, pixels * 1.0001 * morphing) << "level " << p.level;
     }
   }
+}
+
+// The sun's maps select with the light's box for culling and must morph as the
+// view does; and turning the camera must not change the mesh.
+TEST(Lod, RangesDependOnThePositionNotTheDirectionOrCulling) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(1500.0, t->heightAt(1500.0, 2200.0) + 25.0, 2200.0);
+  LodCamera ahead = makeCamera(eye, eye + glm::dvec3(1, -0.1, 0.3));
+  measureBlocks(*t, ahead, 1.0, 40);  // part measured: the mix must agree too
+  LodCamera behind = makeCamera(eye, eye + glm::dvec3(-0.2, -0.4, -1));
+  LodCamera all = ahead;
+  all.cull = false;
+  const LodSelection a = selectLod(*t, ahead, 1.0), b = selectLod(*t, behind, 1.0), c = selectLod(*t, all, 1.0);
+  EXPECT_GT(a.stats.blocksPending, 0u);
+  EXPECT_EQ(a.stats.blocksPending, b.stats.blocksPending);
+  for (const LodSelection* other : {&b, &c}) {
+    EXPECT_EQ(a.range, other->range);
+    EXPECT_EQ(a.morphStart, other->morphStart);
+    EXPECT_EQ(a.morphEnd, other->morphEnd);
+  }
+  EXPECT_NE(a.patches.size(), b.patches.size());  // different views all the same
+}
+
+// Selections only read the blocks' errors; measuring them, nearest first, takes a
+// view from the level-wide estimate to its settled ranges (here all shorter: most
+// blocks are far smoother than the field's roughest).
+TEST(Lod, MeasuringBlocksSettlesTheRanges) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(2500.0, t->heightAt(2500.0, 1200.0) + 15.0, 1200.0);
+  const LodCamera camera = makeCamera(eye, eye + glm::dvec3(-1, -0.2, 0.4));
+  const LodSelection estimated = selectLod(*t, camera, 1.0);
+  EXPECT_EQ(selectLod(*t, camera, 1.0).stats.blocksPending, estimated.stats.blocksPending);
+  const std::size_t left = measureBlocks(*t, camera, 1.0, 10);
+  EXPECT_EQ(left, estimated.stats.blocksPending - 10);
+  EXPECT_EQ(selectLod(*t, camera, 1.0).stats.blocksPending, left);
+  EXPECT_EQ(measureBlocks(*t, camera, 1.0, SIZE_MAX), 0u);
+  const LodSelection settled = selectLod(*t, camera, 1.0);
+  EXPECT_EQ(settled.stats.blocksPending, 0u);
+  for (int level = 0; level + 1 < t->levelCount(); ++level)
+    EXPECT_LE(settled.range[std::size_t(level)], estimated.range[std::size_t(level)]) << "level " << level;
+  EXPECT_LT(settled.stats.triangles, estimated.stats.triangles);
 }
 
 TEST(Lod, PageBudgetCoarsensTheTargetInsteadOfDroppingPatches) {

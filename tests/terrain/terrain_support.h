@@ -1,5 +1,7 @@
 #pragma once
 // Shared helpers for the terrain tests: cameras and small terrains.
+#include <cstdint>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "terrain/lod.h"
@@ -19,13 +21,12 @@ inline LodCamera makeCamera(const glm::dvec3& position, const glm::dvec3& target
   return c;
 }
 
-// selectLod until every block near enough to set one of the view's ranges has its
-// errors measured (each call measures kMeasureBudget): the view's settled selection,
-// the one that the ranges of the errors as measured give.
+// selectLod once every block near enough to set one of the view's ranges has its
+// errors measured: the view's settled selection, as a renderer's is after a few
+// frames.
 inline LodSelection settledSelection(const Terrain& t, const LodCamera& camera, double pixels) {
-  LodSelection s = selectLod(t, camera, pixels);
-  while (s.stats.blocksPending > 0) s = selectLod(t, camera, pixels);
-  return s;
+  measureBlocks(t, camera, pixels, SIZE_MAX);
+  return selectLod(t, camera, pixels);
 }
 
 inline TerrainSettings noiseSettings(double size, double heightScale, glm::dvec3 origin = glm::dvec3(0.0)) {
