@@ -198,10 +198,14 @@ Terrain::BlockErrors Terrain::scanBlock(int bx, int bz) const {
   // mesh against them.
   const int x0 = bx * kBlockCells, z0 = bz * kBlockCells;
   const int w = std::min(kBlockCells, cellsX_ - x0), d = std::min(kBlockCells, cellsZ_ - z0);
-  const std::size_t row = std::size_t(w + 1);
-  std::vector<float> heights(row * std::size_t(d + 1));
-  for (int z = 0; z <= d; ++z)
-    for (int x = 0; x <= w; ++x) heights[std::size_t(z) * row + std::size_t(x)] = source_->sample(x0 + x, z0 + z);
+  // Read a coarsest quad beyond the far edges too: a sample there is also the low
+  // edge of the next cell, whose far corners the mesh height reads.
+  const int rw = std::min(w + stride(kExactErrorLevels), cellsX_ - x0);
+  const int rd = std::min(d + stride(kExactErrorLevels), cellsZ_ - z0);
+  const std::size_t row = std::size_t(rw + 1);
+  std::vector<float> heights(row * std::size_t(rd + 1));
+  for (int z = 0; z <= rd; ++z)
+    for (int x = 0; x <= rw; ++x) heights[std::size_t(z) * row + std::size_t(x)] = source_->sample(x0 + x, z0 + z);
   auto at = [&](int x, int z) { return double(heights[std::size_t(z - z0) * row + std::size_t(x - x0)]); };
   BlockErrors errors{};
   for (int level = 1; level <= kExactErrorLevels; ++level) {
