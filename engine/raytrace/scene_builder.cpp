@@ -141,6 +141,9 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
                                     glm::lookAt(glm::dvec3(0.0), c.forward, c.up));
   // No culling: terrain outside the view still casts shadows into it.
   camera.cull = false;
+  // The blocks the rasterizer's first frame measures, so that a still of one matches
+  // a still of the other.
+  terrain::measureBlocks(field, camera, desc.terrain.errorPixels);
   const auto selection = terrain::selectLod(field, camera, desc.terrain.errorPixels);
   // terrain.frag's material: the layers per hit (RtTerrainMaterial), full diffuse,
   // the scene's ambient and a shininess of 24 in the classic model.

@@ -291,6 +291,7 @@ struct SceneRenderer::Impl {
   Status makeEnvironmentLighting();
   Status loadTerrain(const std::vector<std::string>& defines);
   terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
+  void measureTerrain(double fovy, int viewportHeight);
   void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
   struct SunBox {
     glm::dmat4 view{1.0}, projection{1.0};  // camera-relative world -> the light's clip space
@@ -567,6 +568,17 @@ terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullVi
   camera.viewportHeight = viewportHeight;
   return terrain::selectLodWithin(*terrain, camera, terrainError,
                                   std::size_t(terrainRenderer->pageSlots()));
+}
+
+// Some more of the terrain's block errors for the view from `eye` (kMeasureBudget a
+// frame), before any of the frame's selections: they all see the same errors, so
+// the sun's maps keep the view's ranges, which settle over the first frames.
+void SceneRenderer::Impl::measureTerrain(double fovy, int viewportHeight) {
+  terrain::LodCamera camera;
+  camera.position = eye;
+  camera.fovY = fovy;
+  camera.viewportHeight = viewportHeight;
+  stats->terrainBlocksPending = int(terrain::measureBlocks(*terrain, camera, terrainError));
 }
 
 void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
@@ -1334,6 +1346,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
 
   placeCharacters(cameraPosition);
   chooseLevelsOfDetail(cameraPosition, fovy, targetHeight, camera.nearPlane);
+  if (terrain) measureTerrain(fovy, targetHeight);
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
   glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());

@@ -71,6 +71,9 @@ struct SceneStats {
   int objectsCulled = 0;
   int objectsDrawn = 0;
   int terrainTriangles = 0;
+  // Terrain blocks whose errors are still to be measured for this view (a few a
+  // frame): until none are, the terrain's level of detail may still coarsen.
+  int terrainBlocksPending = 0;
   long long verticesDeformed = 0;  // by the skin cache's compute (render.skinning compute)
   // Full-frame copies into the caller's framebuffer: the post pass, or the direct
   // path's copy when the caller's framebuffer could not be drawn into (0 or 1).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <unordered_set>
+#include <utility>
 
 namespace engine::terrain {
 namespace {
@@ -13,8 +14,18 @@ constexpr float kNoMorphStart = 1e30f;
 constexpr float kNoMorphEnd = 2e30f;
 // Relative slack that keeps conditions (b) and (c) true through float rounding.
 constexpr double kRangeSlack = 1.001;
+// Blocks count toward a level's range (and are measured) out to this multiple of
+// the distance where the level-wide error estimate projects to the target: for
+// noise the estimate comes from probes, and has been seen 1.3x under the exact
+// maximum (level 1 of micro_bench's 4 km field).
+constexpr double kPruneSafety = 2.0;
 
 glm::dvec4 row(const glm::mat4& m, int r) { return {m[0][r], m[1][r], m[2][r], m[3][r]}; }
+
+// Pixels per metre of error at distance 1.
+double pixelsPerMetre(const LodCamera& camera) {
+  return camera.viewportHeight / (2.0 * std::tan(camera.fovY * 0.5));
+}
 
 struct Selector {
   const Terrain& terrain;
@@ -56,10 +67,12 @@ struct Selector {
     const int gx = node.nx * kNodeQuads * s + qx * span, gz = node.nz * kNodeQuads * s + qz * span;
     if (gx >= terrain.cellsX() || gz >= terrain.cellsZ()) return;  // wholly outside the field
     if (!visible(level, gx, gz, span)) return;
-    LodPatch p{level, gx, gz, node, terrain.geometricError(level)};
+    LodPatch p{level, gx, gz, node, 0.0f};
+    const PageKey area = patchArea(p);
+    p.error = terrain.meshError(level, area);
     const int top = terrain.levelCount() - 1;
     if (level < top && farthest(gx, gz, gx + span, gz + span) > out.morphStart[std::size_t(level)])
-      p.error = terrain.geometricError(level + 1);
+      p.error = std::max(p.error, terrain.meshError(level + 1, area));
     out.patches.push_back(p);
   }
 
@@ -87,17 +100,82 @@ struct Selector {
     }
     return true;
   }
+
+  // How far blocks can matter to level `level`'s range: beyond, they are taken to be
+  // fine without being measured.
+  double reach(int level, double metresPerPixel) const {
+    return kPruneSafety * terrain.geometricError(level) / metresPerPixel;
+  }
+
+  // Measures up to `budget` of the unmeasured blocks within reach of the finest
+  // measured level, nearest first; returns how many are left (with a budget of 0,
+  // counts them).
+  std::size_t measureNearest(double metresPerPixel, std::size_t budget) const {
+    const int level = std::min(kExactErrorLevels, terrain.levelCount() - 1);
+    if (level < 1) return 0;
+    std::vector<std::pair<double, PageKey>> unmeasured;
+    forBlocksWithin(root(), reach(level, metresPerPixel), [&](const PageKey& n, double d, double) {
+      if (!terrain.errorsMeasured(n)) unmeasured.emplace_back(d, n);
+    });
+    const std::size_t now = std::min(unmeasured.size(), budget);
+    std::partial_sort(unmeasured.begin(), unmeasured.begin() + std::ptrdiff_t(now), unmeasured.end(),
+                      [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < now; ++i) terrain.measureErrors(unmeasured[i].second);
+    return unmeasured.size() - now;
+  }
+
+  PageKey root() const { return {terrain.levelCount() - 1, 0, 0}; }
+
+  // The distance beyond which the level-`level` mesh's error projects under target
+  // (`metresPerPixel`: metres of error a pixel at distance 1) in every block
+  // (level-1 node) that it would cover: a block needs the mesh kept beyond
+  // the distance r of its own error, unless it lies wholly beyond r already, or
+  // wholly within it (then finer levels cover it).
+  double neededStart(int level, double metresPerPixel) const {
+    double needed = 0.0;
+    forBlocksWithin(root(), reach(level, metresPerPixel), [&](const PageKey& n, double d, double far) {
+      const double r = terrain.meshError(level, n) / metresPerPixel;
+      if (d < r) needed = std::max(needed, std::min(r, far));
+    });
+    return needed;
+  }
+
+  // Calls f(block, nearest, farthest) for each block (level-1 node) under `node`
+  // nearer than `reach`, in view or not: ranges that hung on the view's direction
+  // would change the mesh as the camera turns, and give the sun's maps, culled to
+  // another box, other ranges than the view whose surface they shadow.
+  template <typename F>
+  void forBlocksWithin(const PageKey& node, double reach, F&& f) const {
+    const int span = kNodeQuads * Terrain::stride(node.level);
+    const int x0 = node.nx * span, z0 = node.nz * span;
+    if (x0 >= terrain.cellsX() || z0 >= terrain.cellsZ()) return;
+    const int x1 = std::min(x0 + span, terrain.cellsX()), z1 = std::min(z0 + span, terrain.cellsZ());
+    const double d = distance(x0, z0, x1, z1);
+    if (d >= reach || node.level < 1) return;  // (a one-node field has no blocks)
+    if (node.level == 1) return f(node, d, farthest(x0, z0, x1, z1));
+    for (int q = 0; q < 4; ++q)
+      forBlocksWithin(PageKey{node.level - 1, node.nx * 2 + (q & 1), node.nz * 2 + (q >> 1)}, reach, f);
+  }
 };
 
-void computeRanges(const Terrain& terrain, const LodCamera& camera, double errorPixels,
-                   LodSelection& out) {
+// Where morphing toward `level` must start: from the blocks' errors near the
+// camera where the terrain measures them, else where the level-wide error
+// projects to the target.
+double morphStartFor(const Selector& selector, int level, double metresPerPixel) {
+  if (level <= kExactErrorLevels) return selector.neededStart(level, metresPerPixel);
+  return selector.terrain.geometricError(level) / metresPerPixel;
+}
+
+void computeRanges(const Selector& selector, double errorPixels, LodSelection& out) {
+  const Terrain& terrain = selector.terrain;
   const int top = terrain.levelCount() - 1;
-  // Pixels per metre of error at distance 1.
-  const double k = camera.viewportHeight / (2.0 * std::tan(camera.fovY * 0.5));
+  const double k = pixelsPerMetre(selector.camera);
   const double target = std::max(errorPixels, 1e-6);
+  out.stats.blocksPending = selector.measureNearest(target / k, 0);
   for (int level = 0; level < top; ++level) {
-    // Morphing toward level + 1 starts where that level's error projects to the target.
-    const double acceptable = terrain.geometricError(level + 1) * k / target;
+    // Morphing toward level + 1 starts where that level's error projects to the target
+    // (at least a sample away: the morph needs a range of positive length).
+    const double acceptable = std::max(morphStartFor(selector, level + 1, target / k), terrain.spacing());
     double range = acceptable / kMorphStartRatio;
     if (level > 0) {
       // (a) and (c): a level-(L-1) node reaches at most its range plus its diagonal;
@@ -135,9 +213,11 @@ bool Frustum::intersects(const glm::dvec3& lo, const glm::dvec3& hi) const {
   return true;
 }
 
-LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels) {
-  LodSelection out;
-  computeRanges(terrain, camera, errorPixels, out);
+namespace {
+
+// The camera's place in the field, as the selection and the shaders read it; the
+// camera's (x, z) in samples from the origin.
+glm::dvec2 placeCamera(const Terrain& terrain, const LodCamera& camera, LodSelection& out) {
   const double s = terrain.spacing();
   // Clamped so that the integer cell and the float fraction stay meaningful for a
   // camera absurdly far away; such a camera sees only the root anyway.
@@ -155,12 +235,29 @@ LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double e
   out.morphDy2 = float(dy * dy);
   out.spacing = float(s);
   out.cells = {terrain.cellsX(), terrain.cellsZ()};
+  return cam;
+}
 
-  Selector selector{terrain, camera, out, Frustum::fromViewProjection(camera.viewProjection, camera.zeroToOneDepth), cam,
-                    // The selection uses the same squared height as the vertices.
-                    double(out.morphDy2)};
-  const PageKey root{terrain.levelCount() - 1, 0, 0};
-  if (!selector.select(root)) selector.addNode(root);
+Selector makeSelector(const Terrain& terrain, const LodCamera& camera, LodSelection& out) {
+  const glm::dvec2 cam = placeCamera(terrain, camera, out);
+  // The selection uses the same squared height as the vertices.
+  return Selector{terrain, camera, out, Frustum::fromViewProjection(camera.viewProjection, camera.zeroToOneDepth),
+                  cam, double(out.morphDy2)};
+}
+
+}  // namespace
+
+std::size_t measureBlocks(const Terrain& terrain, const LodCamera& camera, double errorPixels, std::size_t budget) {
+  LodSelection placed;
+  const Selector selector = makeSelector(terrain, camera, placed);
+  return selector.measureNearest(std::max(errorPixels, 1e-6) / pixelsPerMetre(camera), budget);
+}
+
+LodSelection selectLod(const Terrain& terrain, const LodCamera& camera, double errorPixels) {
+  LodSelection out;
+  Selector selector = makeSelector(terrain, camera, out);
+  computeRanges(selector, errorPixels, out);
+  if (!selector.select(selector.root())) selector.addNode(selector.root());
 
   out.stats.patches = out.patches.size();
   out.stats.triangles = out.patches.size() * kPatchQuads * kPatchQuads * 2;
@@ -196,6 +293,12 @@ LodSelection selectLodWithin(const Terrain& terrain, const LodCamera& camera, do
   }
   s.stats.coarsenings = coarsenings;
   return s;
+}
+
+PageKey patchArea(const LodPatch& patch) {
+  if (patch.level == 0) return patch.node;
+  const int span = kNodeQuads * Terrain::stride(patch.level - 1);
+  return {patch.level - 1, patch.gx / span, patch.gz / span};
 }
 
 float morphFactor(const LodSelection& sel, int level, int gx, int gz) {

@@ -48,6 +48,32 @@ Status validate(const TerrainSettings& s, const std::string& where) {
   return Ok{};
 }
 
+// Side, in cells, of the blocks whose exact errors Terrain::meshError keeps: one
+// level-1 node, in which every level up to kExactErrorLevels has whole quads.
+constexpr int kBlockCells = 2 * kNodeQuads;
+static_assert(kBlockCells % (1 << kExactErrorLevels) == 0);
+
+std::int64_t blockKey(int bx, int bz) { return std::int64_t(bx) << 32 | std::uint32_t(bz); }
+
+// Height of the level-`level` mesh over full-resolution sample (x, z): its vertices
+// sit every stride samples, clamped to the field's edge as the drawn grid's are,
+// and each quad is split along its (0,0)-(1,1) diagonal, as patchIndices() draws it.
+template <typename At>
+double levelMeshHeight(const At& at, int level, int x, int z, int cellsX, int cellsZ) {
+  const int s = 1 << level;
+  const int x0 = x / s * s, z0 = z / s * s;
+  const int x1 = std::min(x0 + s, cellsX), z1 = std::min(z0 + s, cellsZ);
+  const double u = x1 > x0 ? double(x - x0) / (x1 - x0) : 0.0;
+  const double v = z1 > z0 ? double(z - z0) / (z1 - z0) : 0.0;
+  const double h00 = at(x0, z0), h11 = at(x1, z1);
+  if (u >= v) {
+    const double h10 = at(x1, z0);
+    return h00 + (h10 - h00) * u + (h11 - h10) * v;
+  }
+  const double h01 = at(x0, z1);
+  return h00 + (h11 - h01) * u + (h01 - h00) * v;
+}
+
 int floorPow2(double v) {
   int p = 1;
   while (p <= kMaxCellsPerSide && double(p) * 2.0 <= v) p *= 2;
@@ -100,6 +126,7 @@ Result<Terrain> Terrain::create(const TerrainSettings& settings) {
         }
       });
   t.estimateErrors(!settings.heightmap.empty());
+  t.blockErrors_ = std::make_unique<std::unordered_map<std::int64_t, BlockErrors>>();
   return t;
 }
 
@@ -164,6 +191,59 @@ void Terrain::estimateErrors(bool exact) {
     sum += delta;
     errors_[std::size_t(level)] = float(sum);
   }
+}
+
+Terrain::BlockErrors Terrain::scanBlock(int bx, int bz) const {
+  // The block's samples once (noise costs ~0.1 us a sample), then every level's
+  // mesh against them.
+  const int x0 = bx * kBlockCells, z0 = bz * kBlockCells;
+  const int w = std::min(kBlockCells, cellsX_ - x0), d = std::min(kBlockCells, cellsZ_ - z0);
+  // Read a coarsest quad beyond the far edges too: a sample there is also the low
+  // edge of the next cell, whose far corners the mesh height reads.
+  const int rw = std::min(w + stride(kExactErrorLevels), cellsX_ - x0);
+  const int rd = std::min(d + stride(kExactErrorLevels), cellsZ_ - z0);
+  const std::size_t row = std::size_t(rw + 1);
+  std::vector<float> heights(row * std::size_t(rd + 1));
+  for (int z = 0; z <= rd; ++z)
+    for (int x = 0; x <= rw; ++x) heights[std::size_t(z) * row + std::size_t(x)] = source_->sample(x0 + x, z0 + z);
+  auto at = [&](int x, int z) { return double(heights[std::size_t(z - z0) * row + std::size_t(x - x0)]); };
+  BlockErrors errors{};
+  for (int level = 1; level <= kExactErrorLevels; ++level) {
+    double worst = 0.0;
+    for (int z = z0; z <= z0 + d; ++z)
+      for (int x = x0; x <= x0 + w; ++x)
+        worst = std::max(worst, std::abs(levelMeshHeight(at, level, x, z, cellsX_, cellsZ_) - at(x, z)));
+    errors[std::size_t(level - 1)] = float(worst);
+  }
+  return errors;
+}
+
+bool Terrain::measureErrors(const PageKey& block) const {
+  if (block.nx < 0 || block.nz < 0 || block.nx * kBlockCells >= cellsX_ || block.nz * kBlockCells >= cellsZ_) return false;
+  if (errorsMeasured(block)) return false;
+  blockErrors_->emplace(blockKey(block.nx, block.nz), scanBlock(block.nx, block.nz));
+  return true;
+}
+
+bool Terrain::errorsMeasured(const PageKey& block) const {
+  return blockErrors_->count(blockKey(block.nx, block.nz)) != 0;
+}
+
+float Terrain::meshError(int level, const PageKey& region) const {
+  if (level == 0) return 0.0f;
+  if (level > kExactErrorLevels) return geometricError(level);
+  // A level-0 region lies in one block; a level-L one spans 2^(L-1) a side.
+  const int blocks = region.level == 0 ? 1 : stride(region.level - 1);
+  const int bx0 = region.level == 0 ? region.nx / 2 : region.nx * blocks;
+  const int bz0 = region.level == 0 ? region.nz / 2 : region.nz * blocks;
+  float worst = 0.0f;
+  for (int bz = bz0; bz < bz0 + blocks; ++bz)
+    for (int bx = bx0; bx < bx0 + blocks; ++bx) {
+      if (bx * kBlockCells >= cellsX_ || bz * kBlockCells >= cellsZ_) continue;  // past the field
+      const auto it = blockErrors_->find(blockKey(bx, bz));
+      worst = std::max(worst, it == blockErrors_->end() ? geometricError(level) : it->second[std::size_t(level - 1)]);
+    }
+  return worst;
 }
 
 double Terrain::heightAt(double x, double z) const {

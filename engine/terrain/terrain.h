@@ -7,9 +7,11 @@
 //
 // Sample (ix, iz) sits at world origin + (ix * spacing, h, iz * spacing); a PNG's
 // columns run along +x and its rows along +z.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,6 +26,10 @@ namespace engine::terrain {
 // shader (exact integers below 2^24 after the camera offset) are no longer safe.
 inline constexpr int kMaxCellsPerSide = 65536;
 inline constexpr int kMaxLevels = 16;
+// Levels whose error Terrain::meshError can give per node, measured exactly;
+// coarser ones have only the level-wide estimate. A level-L node is 4^(L-1)
+// blocks (level-1 nodes) to measure, each a scan of its 129^2 samples.
+inline constexpr int kExactErrorLevels = 2;
 
 struct TerrainSettings {
   std::string heightmap;        // PNG (8 or 16 bit); empty: procedural noise
@@ -61,6 +67,17 @@ class Terrain {
   // full-resolution mesh: exact for a PNG, estimated from probes with a safety
   // factor for noise (see terrain.cpp).
   float geometricError(int level) const { return errors_[std::size_t(level)]; }
+  // The level-`level` mesh's largest vertical distance from the full-resolution one
+  // over a node's area (a node of that level or a finer one), for the
+  // view-dependent ranges (lod.cpp): the level-wide maximum is set by the rare
+  // roughest node, most are far smoother. Exact up to kExactErrorLevels over
+  // blocks that measureErrors has measured, geometricError(level) elsewhere.
+  float meshError(int level, const PageKey& region) const;
+  // Measures one block, a level-1 node (scanned at full resolution once, then kept:
+  // 8 bytes a block; about 2 ms on a noise field); false if it already was, or
+  // lies outside the field. Not thread-safe.
+  bool measureErrors(const PageKey& block) const;
+  bool errorsMeasured(const PageKey& block) const;
   // Heights (metres above the origin) of every sample, and rigorous bounds of a node.
   HeightRange heightRange() const { return source_->globalBounds(); }
   HeightRange nodeBounds(const PageKey& node) const;
@@ -77,6 +94,8 @@ class Terrain {
   void fillPage(const PageKey& key, HeightPage& page) const;
   void estimateErrors(bool exact);
   double deltaOverRegion(int level, int gx0, int gz0, int cells) const;
+  using BlockErrors = std::array<float, kExactErrorLevels>;
+  BlockErrors scanBlock(int bx, int bz) const;
 
   std::unique_ptr<HeightSource> source_;
   std::unique_ptr<PageCache> cache_;
@@ -85,6 +104,9 @@ class Terrain {
   int cellsX_ = 0, cellsZ_ = 0;
   int levelCount_ = 1;
   std::vector<float> errors_;
+  // Per level-1 node ("block"), the exact error of levels 1..kExactErrorLevels
+  // over it; behind a pointer so that a const Terrain can fill it and still move.
+  std::unique_ptr<std::unordered_map<std::int64_t, BlockErrors>> blockErrors_;
 };
 
 }  // namespace engine::terrain

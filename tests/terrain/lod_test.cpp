@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -18,6 +19,7 @@
 using namespace engine;
 using namespace engine::terrain;
 using engine::terrain::test::makeCamera;
+using engine::terrain::test::settledSelection;
 
 namespace {
 
@@ -124,7 +126,8 @@ TEST_P(LodCracks, SharedEdgesMatchExactlyAtEveryTransition) {
     for (double pixels : {1.0, 8.0}) {
       LodCamera camera = makeCamera(c.eye, c.target);
       camera.cull = false;  // culled neighbours would leave edges unmatched by design
-      const LodSelection selection = selectLod(*t, camera, pixels);
+      // Settled: the ranges that the measured block errors give, the tightest.
+      const LodSelection selection = settledSelection(*t, camera, pixels);
       const CrackReport r = checkWatertight(*t, selection);
       EXPECT_EQ(r.unmatched, 0u) << c.name << ", " << pixels << " px: " << r.unmatched << " of " << r.edges
                                  << " boundary edges unmatched";
@@ -158,7 +161,7 @@ TEST(Lod, HeightmapWithRaggedEdgesIsWatertight) {
   ASSERT_TRUE(t.ok()) << t.error().message;
   LodCamera camera = makeCamera({500.0, 250.0, 900.0}, {2000.0, 100.0, 1500.0});
   camera.cull = false;
-  const LodSelection selection = selectLod(*t, camera, 1.0);
+  const LodSelection selection = settledSelection(*t, camera, 1.0);
   const CrackReport r = checkWatertight(*t, selection);
   EXPECT_EQ(r.unmatched, 0u) << r.unmatched << " of " << r.edges;
   EXPECT_GE(r.levels.size(), 2u);
@@ -241,24 +244,92 @@ TEST(Lod, PatchNormalsAreTheTerrainsCentralDifferences) {
   EXPECT_GT(checked, 100u);
 }
 
+// Nearest distance from the camera to a patch, in the selection's metric (the
+// horizontal distance and the camera's height outside the height range).
+double nearestToPatch(const Terrain& t, const LodSelection& s, const LodCamera& camera, const LodPatch& p) {
+  const int span = kPatchQuads * Terrain::stride(p.level);
+  const glm::dvec2 cam = glm::dvec2(camera.position.x - t.origin().x, camera.position.z - t.origin().z) / t.spacing();
+  const double dx = std::max({double(p.gx) - cam.x, 0.0, cam.x - std::min(p.gx + span, t.cellsX())});
+  const double dz = std::max({double(p.gz) - cam.y, 0.0, cam.y - std::min(p.gz + span, t.cellsZ())});
+  return std::sqrt((dx * dx + dz * dz) * t.spacing() * t.spacing() + double(s.morphDy2));
+}
+
+// Whether any of the patch's vertices morph: the farthest point is a corner.
+bool morphsAnywhere(const LodSelection& s, const LodPatch& p) {
+  const int span = kPatchQuads * Terrain::stride(p.level);
+  for (int c = 0; c < 4; ++c)
+    if (morphFactor(s, p.level, p.gx + (c & 1) * span, p.gz + (c >> 1) * span) > 0.0f) return true;
+  return false;
+}
+
 TEST(Lod, FinerTargetsDrawMoreAndErrOnlyWithinTarget) {
   auto t = makeNoise(glm::dvec3(0.0));
   ASSERT_TRUE(t.ok());
   const glm::dvec3 eye(1000.0, t->heightAt(1000.0, 1000.0) + 10.0, 1000.0);
   const LodCamera camera = makeCamera(eye, eye + glm::dvec3(1, -0.1, 1));
+  settledSelection(*t, camera, 0.5);  // the finest target's reach holds every other's
   std::size_t previous = SIZE_MAX;
   for (double pixels : {0.5, 1.0, 2.0, 4.0, 8.0}) {
     const LodSelection s = selectLod(*t, camera, pixels);
+    EXPECT_EQ(s.stats.blocksPending, 0u);
     EXPECT_LE(s.stats.triangles, previous) << pixels;
     previous = s.stats.triangles;
-    // Each level is used only beyond the distance where the next finer level's
-    // error projects under target: error * pixelsPerMetreAt1m / distance <= target.
+    // Each patch's mesh error projects under target wherever it shows: its own
+    // level's from its nearest point on, the next level's (where it morphs) not
+    // before the morph starts: error * pixelsPerMetreAt1m <= target * distance.
     const double k = camera.viewportHeight / (2.0 * std::tan(camera.fovY / 2));
-    for (int level = 0; level + 1 < t->levelCount(); ++level) {
-      const double d = s.morphStart[std::size_t(level)];
-      EXPECT_LE(t->geometricError(level + 1) * k / d, pixels * 1.0001) << "level " << level;
+    for (const LodPatch& p : s.patches) {
+      const double d = nearestToPatch(*t, s, camera, p);
+      const PageKey area = patchArea(p);
+      EXPECT_LE(t->meshError(p.level, area) * k, pixels * 1.0001 * d) << "level " << p.level;
+      if (p.level + 1 >= t->levelCount() || !morphsAnywhere(s, p)) continue;
+      const double morphing = std::max(d, double(s.morphStart[std::size_t(p.level)]));
+      EXPECT_LE(t->meshError(p.level + 1, area) * k, pixels * 1.0001 * morphing) << "level " << p.level;
     }
   }
+}
+
+// The sun's maps select with the light's box for culling and must morph as the
+// view does; and turning the camera must not change the mesh.
+TEST(Lod, RangesDependOnThePositionNotTheDirectionOrCulling) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(1500.0, t->heightAt(1500.0, 2200.0) + 25.0, 2200.0);
+  LodCamera ahead = makeCamera(eye, eye + glm::dvec3(1, -0.1, 0.3));
+  measureBlocks(*t, ahead, 1.0, 40);  // part measured: the mix must agree too
+  LodCamera behind = makeCamera(eye, eye + glm::dvec3(-0.2, -0.4, -1));
+  LodCamera all = ahead;
+  all.cull = false;
+  const LodSelection a = selectLod(*t, ahead, 1.0), b = selectLod(*t, behind, 1.0), c = selectLod(*t, all, 1.0);
+  EXPECT_GT(a.stats.blocksPending, 0u);
+  EXPECT_EQ(a.stats.blocksPending, b.stats.blocksPending);
+  for (const LodSelection* other : {&b, &c}) {
+    EXPECT_EQ(a.range, other->range);
+    EXPECT_EQ(a.morphStart, other->morphStart);
+    EXPECT_EQ(a.morphEnd, other->morphEnd);
+  }
+  EXPECT_NE(a.patches.size(), b.patches.size());  // different views all the same
+}
+
+// Selections only read the blocks' errors; measuring them, nearest first, takes a
+// view from the level-wide estimate to its settled ranges (here all shorter: most
+// blocks are far smoother than the field's roughest).
+TEST(Lod, MeasuringBlocksSettlesTheRanges) {
+  auto t = makeNoise(glm::dvec3(0.0));
+  ASSERT_TRUE(t.ok());
+  const glm::dvec3 eye(2500.0, t->heightAt(2500.0, 1200.0) + 15.0, 1200.0);
+  const LodCamera camera = makeCamera(eye, eye + glm::dvec3(-1, -0.2, 0.4));
+  const LodSelection estimated = selectLod(*t, camera, 1.0);
+  EXPECT_EQ(selectLod(*t, camera, 1.0).stats.blocksPending, estimated.stats.blocksPending);
+  const std::size_t left = measureBlocks(*t, camera, 1.0, 10);
+  EXPECT_EQ(left, estimated.stats.blocksPending - 10);
+  EXPECT_EQ(selectLod(*t, camera, 1.0).stats.blocksPending, left);
+  EXPECT_EQ(measureBlocks(*t, camera, 1.0, SIZE_MAX), 0u);
+  const LodSelection settled = selectLod(*t, camera, 1.0);
+  EXPECT_EQ(settled.stats.blocksPending, 0u);
+  for (int level = 0; level + 1 < t->levelCount(); ++level)
+    EXPECT_LE(settled.range[std::size_t(level)], estimated.range[std::size_t(level)]) << "level " << level;
+  EXPECT_LT(settled.stats.triangles, estimated.stats.triangles);
 }
 
 TEST(Lod, PageBudgetCoarsensTheTargetInsteadOfDroppingPatches) {
@@ -266,7 +337,8 @@ TEST(Lod, PageBudgetCoarsensTheTargetInsteadOfDroppingPatches) {
   ASSERT_TRUE(t.ok());
   const glm::dvec3 eye(1000.0, t->heightAt(1000.0, 1000.0) + 10.0, 1000.0);
   const LodCamera camera = makeCamera(eye, eye + glm::dvec3(1, -0.1, 1));
-  const LodSelection fine = selectLod(*t, camera, 0.5);
+  // Settled first, so that every selection below sees the same block errors.
+  const LodSelection fine = settledSelection(*t, camera, 0.5);
   // stats.pages counts distinct nodes.
   std::set<std::array<int, 3>> nodes;
   for (const LodPatch& p : fine.patches) nodes.insert({p.node.level, p.node.nx, p.node.nz});

@@ -1,5 +1,7 @@
 #pragma once
 // Shared helpers for the terrain tests: cameras and small terrains.
+#include <cstdint>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "terrain/lod.h"
@@ -17,6 +19,14 @@ inline LodCamera makeCamera(const glm::dvec3& position, const glm::dvec3& target
   const glm::mat4 view = glm::lookAt(glm::vec3(0.0f), glm::vec3(target - position), glm::vec3(0, 1, 0));
   c.viewProjection = projection * view;
   return c;
+}
+
+// selectLod once every block near enough to set one of the view's ranges has its
+// errors measured: the view's settled selection, as a renderer's is after a few
+// frames.
+inline LodSelection settledSelection(const Terrain& t, const LodCamera& camera, double pixels) {
+  measureBlocks(t, camera, pixels, SIZE_MAX);
+  return selectLod(t, camera, pixels);
 }
 
 inline TerrainSettings noiseSettings(double size, double heightScale, glm::dvec3 origin = glm::dvec3(0.0)) {
