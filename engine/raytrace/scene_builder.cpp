@@ -1,6 +1,7 @@
 #include "raytrace/scene_builder.h"
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -141,9 +142,9 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
                                     glm::lookAt(glm::dvec3(0.0), c.forward, c.up));
   // No culling: terrain outside the view still casts shadows into it.
   camera.cull = false;
-  // The blocks the rasterizer's first frame measures, so that a still of one matches
-  // a still of the other.
-  terrain::measureBlocks(field, camera, desc.terrain.errorPixels);
+  // Every block the view's ranges need, as the rasterizer measures them, so that a
+  // still of one matches a still of the other.
+  terrain::measureBlocks(field, camera, desc.terrain.errorPixels, std::numeric_limits<std::size_t>::max());
   const auto selection = terrain::selectLod(field, camera, desc.terrain.errorPixels);
   // terrain.frag's material: the layers per hit (RtTerrainMaterial), full diffuse,
   // the scene's ambient and a shininess of 24 in the classic model.
