@@ -57,8 +57,8 @@ engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& sc
   camera.viewProjection = viewProjection;
   camera.fovY = glm::radians(scene.camera.fovyDegrees);
   camera.viewportHeight = height;
-  // Settled, as the renderer's selection is after its first frames.
-  engine::terrain::measureBlocks(*field, camera, scene.terrain.errorPixels, SIZE_MAX);
+  // The block errors the view needs, as the renderer measures them.
+  engine::terrain::measureBlocks(*field, camera, scene.terrain.errorPixels);
   const auto selection = engine::terrain::selectLod(*field, camera, scene.terrain.errorPixels);
   const std::vector<std::uint32_t> indices = engine::terrain::patchIndices();
   for (const auto& patch : selection.patches) {

@@ -5,13 +5,12 @@
 // Markdown table: patches and triangles drawn, the largest stated geometric error,
 // the largest screen-space error measured against the full-resolution grid, and
 // the median and 90th-percentile frame time (render + glFinish), frames of all
-// targets interleaved, timed once every renderer has measured the terrain's block
-// errors for the view (its level of detail settled).
+// targets interleaved, after warm-up frames (in which each renderer also measures the
+// terrain's block errors for the view).
 //   build/bin/terrain_frames [--frames N] [--size WxH] [--targets P,P,...] [--shadows on|off]
 //                            [--backend egl|osmesa]
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -172,21 +171,9 @@ int main(int argc, char** argv) {
   }
   target.bind();
   std::vector<std::vector<double>> ms(renderers.size());
-  // Warm-up rounds (pages, shaders) until every renderer has measured the terrain's
-  // blocks for the view (a few a frame), so that the frames timed are settled ones.
-  int warmUp = 0;
-  for (bool settled = false; !settled || warmUp < 2; ++warmUp) {
-    settled = true;
-    for (auto& renderer : renderers) {
-      if (auto s = renderer->render(camera, options.width, options.height); !s) {
-        std::fprintf(stderr, "terrain_frames: %s\n", s.error().message.c_str());
-        return 1;
-      }
-      glFinish();
-      settled = settled && renderer->stats().terrainBlocksPending == 0;
-    }
-  }
-  for (int i = 0; i < options.frames; ++i) {
+  // Two rounds to warm up: pages, shaders, and the terrain's block errors, which each
+  // renderer measures on its first frame of the view.
+  for (int i = -2; i < options.frames; ++i) {
     for (std::size_t r = 0; r < renderers.size(); ++r) {
       const auto t0 = std::chrono::steady_clock::now();
       if (auto s = renderers[r]->render(camera, options.width, options.height); !s) {
@@ -195,7 +182,7 @@ int main(int argc, char** argv) {
       }
       glFinish();
       const auto t1 = std::chrono::steady_clock::now();
-      ms[r].push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      if (i >= 0) ms[r].push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     }
   }
 
@@ -211,7 +198,7 @@ int main(int argc, char** argv) {
     lod.viewProjection = glm::mat4(glm::perspectiveRH_ZO(lod.fovY, aspect, camera.farPlane, camera.nearPlane) *
                                    glm::lookAt(glm::dvec3(0.0), camera.forward(), glm::dvec3(0, 1, 0)));
     lod.zeroToOneDepth = true;
-    terrain::measureBlocks(*field, lod, pixels, SIZE_MAX);  // settled, as the renderer's now is
+    terrain::measureBlocks(*field, lod, pixels);  // as the renderer did
     const terrain::LodSelection selection = terrain::selectLod(*field, lod, pixels);
     const int drawn = renderers[r]->stats().terrainTriangles;
     if (std::size_t(drawn) != selection.stats.triangles)
@@ -222,9 +209,9 @@ int main(int argc, char** argv) {
                 terrain::bench::measuredScreenError(*field, selection, lod), percentile(ms[r], 0.5),
                 percentile(ms[r], 0.9));
   }
-  std::printf("\n%s, %dx%d, sun shadows %s, %d frames per target taken round-robin after %d warm-up rounds; "
+  std::printf("\n%s, %dx%d, sun shadows %s, %d frames per target taken round-robin after 2 warm-up rounds; "
               "command: %s\n",
               (*context)->renderer().c_str(), options.width, options.height, options.shadows ? "on" : "off",
-              options.frames, warmUp, options.command.c_str());
+              options.frames, options.command.c_str());
   return 0;
 }

@@ -69,38 +69,6 @@ float nearestDistance(const TriangleGrid& grid, const std::vector<glm::vec3>& po
   return best;
 }
 
-// The farthest any vertex of the full mesh lies from `level`'s surface, exactly
-// (vertices the level keeps are on it). `low`, `high`: the mesh's bounds.
-float farthestFromLevel(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& level,
-                        glm::vec3 low, glm::vec3 high) {
-  const TriangleGrid grid(positions, level, low, high);
-  std::vector<bool> kept(positions.size(), false);
-  for (std::uint32_t i : level) kept[i] = true;
-  float worst = 0.0f;
-  for (size_t v = 0; v < positions.size(); ++v) {
-    if (kept[v]) continue;
-    // Only a vertex farther than the worst so far can change the answer.
-    worst = std::max(worst, nearestDistance(grid, positions, level, positions[v], worst));
-  }
-  return worst;
-}
-
-// The other way: the farthest a point of the level's triangles lies from the full
-// mesh's surface, where a coarse triangle bridges what the mesh left open (between
-// an arm and the body). Sampled at the points of a 4 x 4 barycentric grid over
-// each triangle (its corners are the mesh's own vertices, on its surface).
-float farthestLevelPoint(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices,
-                         const std::vector<std::uint32_t>& level, glm::vec3 low, glm::vec3 high) {
-  const TriangleGrid grid(positions, indices, low, high);
-  float worst = 0.0f;
-  for (size_t t = 0; t + 2 < level.size(); t += 3)
-    for (const glm::vec3& w : levelSamples()) {
-      const glm::vec3 x = w.x * positions[level[t]] + w.y * positions[level[t + 1]] + w.z * positions[level[t + 2]];
-      worst = std::max(worst, nearestDistance(grid, positions, indices, x, worst));
-    }
-  return worst;
-}
-
 struct Box {
   glm::vec3 low, high;
 };
@@ -113,12 +81,49 @@ Box boundsOf(const std::vector<glm::vec3>& positions) {
   return b;
 }
 
-// A level's error in one shape of the primitive: both ways, the larger.
-float departure(const std::vector<glm::vec3>& shape, const std::vector<std::uint32_t>& indices,
-                const std::vector<std::uint32_t>& level) {
-  const Box b = boundsOf(shape);
-  return std::max(farthestFromLevel(shape, level, b.low, b.high),
-                  farthestLevelPoint(shape, indices, level, b.low, b.high));
+// The farthest any vertex of the full mesh lies from `level`'s surface, exactly
+// (vertices the level keeps are on it). `bounds`: the mesh's.
+float farthestFromLevel(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& level,
+                        const Box& bounds) {
+  const TriangleGrid grid(positions, level, bounds.low, bounds.high);
+  std::vector<bool> kept(positions.size(), false);
+  for (std::uint32_t i : level) kept[i] = true;
+  float worst = 0.0f;
+  for (size_t v = 0; v < positions.size(); ++v) {
+    if (kept[v]) continue;
+    // Only a vertex farther than the worst so far can change the answer.
+    worst = std::max(worst, nearestDistance(grid, positions, level, positions[v], worst));
+  }
+  return worst;
+}
+
+// The other way: the farthest a point of the level's triangles lies from the full
+// mesh's surface (`full`: its triangles, `indices`, in a grid), where a coarse
+// triangle bridges what the mesh left open (between an arm and the body). Sampled
+// at the points of a 4 x 4 barycentric grid over each triangle (its corners are the
+// mesh's own vertices, on its surface).
+float farthestLevelPoint(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices,
+                         const TriangleGrid& full, const std::vector<std::uint32_t>& level) {
+  float worst = 0.0f;
+  for (size_t t = 0; t + 2 < level.size(); t += 3)
+    for (const glm::vec3& w : levelSamples()) {
+      const glm::vec3 x = w.x * positions[level[t]] + w.y * positions[level[t + 1]] + w.z * positions[level[t + 2]];
+      worst = std::max(worst, nearestDistance(full, positions, indices, x, worst));
+    }
+  return worst;
+}
+
+// Raises each level's error to its departure in one shape of the primitive, both
+// ways, times `scale`; the full mesh's grid is made once for all the levels.
+void measureIn(const std::vector<glm::vec3>& shape, const std::vector<std::uint32_t>& indices, float scale,
+               std::vector<MeshLod>& levels) {
+  const Box bounds = boundsOf(shape);
+  const TriangleGrid full(shape, indices, bounds.low, bounds.high);
+  for (MeshLod& level : levels) {
+    const float departure = std::max(farthestFromLevel(shape, level.indices, bounds),
+                                     farthestLevelPoint(shape, indices, full, level.indices));
+    level.error = std::max(level.error, departure * scale);
+  }
 }
 
 // Each vertex's normal from the full mesh's faces around it (area-weighted), for
@@ -188,25 +193,17 @@ std::vector<MeshLod> simplifiedLevels(const PrimitiveData& p, std::span<const st
     if (count == 0 || count > previous * 4 / 5) break;
     level.indices.resize(count);
     if (foldsOver(p, vertexNormals, level.indices)) break;  // and coarser levels would too, or worse
-    // The simplifier's estimate (a quadric's: the distance to the planes of the
-    // collapsed faces) understates the distance to the new surface, by 2-3.5x on
-    // the tests' surfaces, and knows no pose; the error stated is measured instead.
-    for (const std::vector<glm::vec3>& shape : shapes)
-      level.error = std::max(level.error, departure(shape, p.indices, level.indices) * scale);
-    // Kept non-decreasing: a coarser level never claims to be closer.
-    if (!levels.empty()) level.error = std::max(level.error, levels.back().error);
     levels.push_back(std::move(level));
     previous = count;
     if (count < size_t(minTriangles) * 3 / 4) break;
   }
+  // The simplifier's estimate (a quadric's: the distance to the planes of the
+  // collapsed faces) understates the distance to the new surface, by 2-3.5x on the
+  // tests' surfaces, and knows no pose; the error stated is measured instead.
+  for (const std::vector<glm::vec3>& shape : shapes) measureIn(shape, p.indices, scale, levels);
+  // Kept non-decreasing: a coarser level never claims to be closer.
+  for (size_t i = 1; i < levels.size(); ++i) levels[i].error = std::max(levels[i].error, levels[i - 1].error);
   return levels;
-}
-
-int coarsestWithin(const std::vector<float>& errors, float budget) {
-  int chosen = -1;
-  if (budget <= 0.0f) return chosen;
-  for (size_t i = 0; i < errors.size() && errors[i] <= budget; ++i) chosen = int(i);
-  return chosen;
 }
 
 }  // namespace engine

@@ -40,8 +40,18 @@ std::vector<MeshLod> simplifiedLevels(const PrimitiveData& primitive,
 // a 4 x 4 grid, corners left out.
 const std::vector<glm::vec3>& levelSamples();
 
-// The coarsest of `levels` whose error is within `budget` (relative), or -1 for
+// The index of the coarsest of `levels` (finest first, each with an `error`:
+// MeshLod, or a renderer's record of one) whose error is within `budget`, or -1 for
 // the full mesh (a budget of 0 or less always gives -1).
-int coarsestWithin(const std::vector<float>& errors, float budget);
+template <typename Levels>
+int coarsestWithin(const Levels& levels, float budget) {
+  int chosen = -1;
+  if (budget <= 0.0f) return chosen;
+  for (const auto& level : levels) {
+    if (level.error > budget) break;
+    ++chosen;
+  }
+  return chosen;
+}
 
 }  // namespace engine

@@ -1,7 +1,6 @@
 #include "raytrace/scene_builder.h"
 
 #include <algorithm>
-#include <limits>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -144,7 +143,7 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
   camera.cull = false;
   // Every block the view's ranges need, as the rasterizer measures them, so that a
   // still of one matches a still of the other.
-  terrain::measureBlocks(field, camera, desc.terrain.errorPixels, std::numeric_limits<std::size_t>::max());
+  terrain::measureBlocks(field, camera, desc.terrain.errorPixels);
   const auto selection = terrain::selectLod(field, camera, desc.terrain.errorPixels);
   // terrain.frag's material: the layers per hit (RtTerrainMaterial), full diffuse,
   // the scene's ambient and a shininess of 24 in the classic model.

@@ -54,8 +54,8 @@ class CharacterInstance {
   // stay precise. Touches no joint: the palettes stay in model space and the root
   // reaches the shader as its model matrix.
   void place(const glm::dmat4& world, const glm::dvec3& cameraPosition);
-  // The error every later draw's levels of detail may have, relative to a mesh's
-  // extent (ModelFrame::lodBudget); 0, the default, draws every mesh in full.
+  // The error every later draw's levels of detail may have, as MeshLod::error states
+  // it (ModelFrame::lodBudget); 0, the default, draws every mesh in full.
   void setLodBudget(float budget) { lodBudget_ = budget; }
   // From now on deforms through a skin cache (render/skin_cache.h) with
   // `programs`, which must outlive the instance; nullptr goes back to skinning in

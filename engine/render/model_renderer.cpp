@@ -311,9 +311,7 @@ void flipFrontFace() {
 // The coarsest level of detail within `budget`: its first index and count (the
 // full mesh's where none is).
 std::pair<GLsizei, GLsizei> levelWithin(const GpuPrimitive& prim, float budget) {
-  std::vector<float> errors;
-  for (const GpuPrimitive::Level& l : prim.levels) errors.push_back(l.error);
-  const int level = coarsestWithin(errors, budget);
+  const int level = coarsestWithin(prim.levels, budget);
   if (level < 0) return {0, prim.indexCount};
   return {prim.levels[size_t(level)].firstIndex, prim.levels[size_t(level)].indexCount};
 }

@@ -208,7 +208,7 @@ struct ModelFrame {
   // Sets what the program needs besides the mesh and material (lights, shadows).
   std::function<void(const gl::Program&)> setUniforms;
   bool depthOnly = false;  // shadow passes: no material, depth-only variant
-  // The largest error a level of detail may have, relative to a mesh's extent (the
+  // The largest error a level of detail may have, as MeshLod::error states it (the
   // coarsest level within it is drawn); 0: every mesh in full.
   float lodBudget = 0.0f;
   // Whether drawModel also draws the BLEND primitives (after the others, back to

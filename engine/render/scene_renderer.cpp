@@ -8,7 +8,6 @@
 #include <iomanip>
 #include <map>
 #include <optional>
-#include <limits>
 #include <set>
 #include <sstream>
 
@@ -114,7 +113,7 @@ glm::vec3 displayValue(glm::vec3 c, OutputCurve curve) {
 // size with 8-bit normalised colour (RGBA8 or SRGB8_ALPHA8: with GL_FRAMEBUFFER_SRGB
 // off both store the shader's bytes as they are) and 32-bit float depth (the
 // reverse-Z depth every pass tests against; fixed-point depth would move bytes).
-// On llvmpipe the copy was a shader pass over every pixel: 1-2 ms at 1280x720.
+// On llvmpipe the copy was a shader pass over every pixel: about 3 ms at 1280x720.
 bool takesDirectFrame(const gl::FramebufferLayout& l, int width, int height) {
   const bool color8 = l.colorType == GL_UNSIGNED_NORMALIZED && l.colorBits[0] == 8 && l.colorBits[1] == 8 &&
                       l.colorBits[2] == 8 && l.colorBits[3] == 8;
@@ -571,19 +570,17 @@ terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullVi
                                   std::size_t(terrainRenderer->pageSlots()));
 }
 
-// Some more of the terrain's block errors for the view from `eye` (kMeasureBudget a
-// frame), before any of the frame's selections: they all see the same errors, so
-// the sun's maps keep the view's ranges, which settle over the first frames.
+// Every terrain block error the view from `eye` needs, before any of the frame's
+// selections: they all see the same errors, so the sun's maps keep the view's
+// ranges; and a frame's image depends on its camera alone, not on which frames came
+// before (a window and an offscreen run of another length give the same bytes). A
+// new view pays about 2 ms a block, once.
 void SceneRenderer::Impl::measureTerrain(double fovy, int viewportHeight) {
   terrain::LodCamera camera;
   camera.position = eye;
   camera.fovY = fovy;
   camera.viewportHeight = viewportHeight;
-  // Every block the view's ranges need, now: a frame's image then depends on its
-  // camera alone, not on which frames came before (a window and an offscreen run of
-  // another length give the same bytes). A new view pays about 2 ms a block once.
-  stats->terrainBlocksPending =
-      int(terrain::measureBlocks(*terrain, camera, terrainError, std::numeric_limits<std::size_t>::max()));
+  stats->terrainBlocksPending = int(terrain::measureBlocks(*terrain, camera, terrainError));
 }
 
 void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {

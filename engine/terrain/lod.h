@@ -101,18 +101,15 @@ struct LodSelection {
   LodStats stats;
 };
 
-// Blocks measureBlocks measures by default: about 2 ms each on a noise field, so a
-// renderer measuring once a frame spends a few frames' time more on a new view,
-// not seconds, and its ranges tighten over the next frames.
-inline constexpr std::size_t kMeasureBudget = 32;
-
-// Measures (Terrain::measureErrors), nearest first, up to `budget` of the blocks
-// that can set this camera's ranges at this target and are not measured yet;
-// returns how many are left. The ranges depend on the camera's position, field of
-// view and viewport alone (not its direction or culling), so every selection from
-// there sees the same errors until this is called again.
+// Measures (Terrain::measureErrors), nearest first, up to `budget` (by default all)
+// of the blocks that can set this camera's ranges at this target and are not
+// measured yet, about 2 ms each on a noise field; returns how many are left. The
+// ranges depend on the camera's position, field of view and viewport alone (not its
+// direction or culling), so every selection from there sees the same errors until
+// this is called again. A smaller budget spreads a new view's cost over frames, at
+// the price of ranges (and images) that depend on the frames before.
 std::size_t measureBlocks(const Terrain& terrain, const LodCamera& camera, double errorPixels,
-                          std::size_t budget = kMeasureBudget);
+                          std::size_t budget = SIZE_MAX);
 
 // The patches to draw, with ranges from the blocks measured so far (elsewhere from
 // the level-wide estimate, which keeps the finer levels out farther).

@@ -156,13 +156,13 @@ TEST(MeshLod, PrimitivesThatCannotBeSimplifiedHaveNoLevels) {
 }
 
 TEST(MeshLod, TheCoarsestLevelWithinTheBudget) {
-  const std::vector<float> errors = {0.001f, 0.004f, 0.02f};
+  const std::vector<MeshLod> errors = {{{}, 0.001f}, {{}, 0.004f}, {{}, 0.02f}};
   EXPECT_EQ(coarsestWithin(errors, 0.0f), -1);
   EXPECT_EQ(coarsestWithin(errors, 0.0005f), -1);
   EXPECT_EQ(coarsestWithin(errors, 0.001f), 0);
   EXPECT_EQ(coarsestWithin(errors, 0.01f), 1);
   EXPECT_EQ(coarsestWithin(errors, 1.0f), 2);
-  EXPECT_EQ(coarsestWithin({}, 1.0f), -1);
+  EXPECT_EQ(coarsestWithin(std::vector<MeshLod>{}, 1.0f), -1);
 }
 
 }  // namespace engine
