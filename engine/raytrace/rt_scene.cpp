@@ -8,6 +8,7 @@
 #include <cassert>
 #include <chrono>
 #include <string>
+#include <type_traits>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -333,6 +334,7 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
 void RtScene::addSphere(const glm::dvec3& center, double radius, int material) {
   spheresD_.push_back(Sphere<double>{center, radius, material});
   spheresF_.push_back(Sphere<float>{glm::vec3(center), float(radius), material});
+  packs_.setSpheres(spheresF_);
 }
 
 void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent) {
@@ -342,6 +344,7 @@ void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int ma
   const double d = glm::dot(n, point);
   planesD_.push_back(Plane<double>{n, d, material});
   planesF_.push_back(Plane<float>{glm::vec3(n), float(d), material});
+  packs_.setPlanes(planesF_);
 }
 
 int RtScene::addGroup() {
@@ -511,11 +514,23 @@ SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<
 }
 
 template <typename T>
-std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) const {
-  Ray<T> ray = rayIn;
-  // Which shape won: 0 none, 1 sphere, 2 plane, 3 mesh; shapes shorten tMax as they hit.
+int RtScene::nearestShape(Ray<T>& ray, std::size_t& index) const {
   int kind = 0;
-  std::size_t index = 0;
+  if constexpr (std::is_same_v<T, float>) {
+    if (const int sphere = packs_.nearestSphere(ray, ray.tMax); sphere >= 0) {
+      kind = 1;
+      index = std::size_t(sphere);
+    }
+    packs_.forEachPlaneHit(ray, ray.tMax, [&](std::size_t plane, float t) {
+      if (t < ray.tMax && onPlaneSquare(plane, ray, t)) {
+        ray.tMax = t;
+        kind = 2;
+        index = plane;
+      }
+      return false;
+    });
+    return kind;
+  }
   const auto& sphereList = spheres<T>();
   for (std::size_t i = 0; i < sphereList.size(); ++i) {
     if (auto t = sphereList[i].intersect(ray)) {
@@ -532,6 +547,33 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
       index = i;
     }
   }
+  return kind;
+}
+
+template <typename T>
+bool RtScene::anyShape(const Ray<T>& ray) const {
+  if constexpr (std::is_same_v<T, float>) {
+    return packs_.anySphere(ray) ||
+           packs_.forEachPlaneHit(ray, ray.tMax, [&](std::size_t plane, float t) { return onPlaneSquare(plane, ray, t); });
+  }
+  for (const auto& s : spheres<T>()) {
+    if (s.intersect(ray)) return true;
+  }
+  const auto& planeList = planes<T>();
+  for (std::size_t i = 0; i < planeList.size(); ++i) {
+    if (auto t = planeList[i].intersect(ray); t && onPlaneSquare(i, ray, *t)) return true;
+  }
+  return false;
+}
+
+template <typename T>
+std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) const {
+  // Member by member: a copy of the whole struct read it back in 16-byte loads over the
+  // caller's narrower stores of it, a store-forwarding stall on every ray.
+  Ray<T> ray{rayIn.o, rayIn.d, rayIn.tMax};
+  // Which shape won: 0 none, 1 sphere, 2 plane, 3 mesh; shapes shorten tMax as they hit.
+  std::size_t index = 0;
+  const int kind = nearestShape(ray, index);
   // Each group's root box is tested against the shortened tMax first, so groups the
   // ray misses, or that lie behind the nearest hit so far, cost one box test rather
   // than a traversal's setup and its root node's eight boxes.
@@ -546,38 +588,38 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
       hitGroup = &group;
     }
   }
-  if (hitGroup) return meshInteraction(*hitGroup, *meshHit);
+  std::optional<SurfaceInteraction<T>> result;
+  if (hitGroup) {
+    result = meshInteraction(*hitGroup, *meshHit);
+    return result;
+  }
   if (kind == 1) {
-    SurfaceInteraction<T> si = sphereList[index].interaction(ray, ray.tMax);
+    const auto& sphereList = spheres<T>();
+    SurfaceInteraction<T>& si = result.emplace();
+    sphereList[index].fillInteraction(ray, ray.tMax, si);
     const float scale = materials_[size_t(si.material)].textureScale;
     si.uv = sphereUv(glm::dvec3(si.n)) * scale;
     // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
     si.uvPerMetre = scale / (float(std::numbers::pi) * std::sqrt(2.0f) * float(sphereList[index].radius));
     si.uv1 = si.uv;
-    return si;
+    return result;
   }
   if (kind == 2) {
-    SurfaceInteraction<T> si = planeList[index].interaction(ray, ray.tMax);
+    SurfaceInteraction<T>& si = result.emplace();
+    planes<T>()[index].fillInteraction(ray, ray.tMax, si);
     const PlaneUv& q = planeUvs_[index];
     const glm::dvec3 local = glm::dvec3(si.p) - q.point;
     si.uv = glm::vec2(glm::dvec2(glm::dot(local, q.axisU) + q.extent, glm::dot(local, q.axisV) + q.extent) *
                       double(materials_[size_t(si.material)].textureScale));
     si.uvPerMetre = materials_[size_t(si.material)].textureScale;
     si.uv1 = si.uv;
-    return si;
   }
-  return std::nullopt;
+  return result;
 }
 
 template <typename T>
 bool RtScene::intersectAny(const Ray<T>& ray) const {
-  for (const auto& s : spheres<T>()) {
-    if (s.intersect(ray)) return true;
-  }
-  const auto& planeList = planes<T>();
-  for (std::size_t i = 0; i < planeList.size(); ++i) {
-    if (auto t = planeList[i].intersect(ray); t && onPlaneSquare(i, ray, *t)) return true;
-  }
+  if (anyShape(ray)) return true;
   const BoundsRay<T> boxes(ray);
   for (const Group& group : groups_) {
     if (boxes.hits(group.bvh.bounds(), ray) && group.bvh.intersectAny(ray)) return true;

@@ -28,6 +28,7 @@
 #include "raytrace/bvh.h"
 #include "raytrace/environment.h"
 #include "raytrace/ray.h"
+#include "raytrace/shape_packs.h"
 #include "raytrace/shapes.h"
 #include "raytrace/terrain_material.h"
 #include "raytrace/texture.h"
@@ -285,6 +286,13 @@ class RtScene {
   SurfaceInteraction<T> meshInteraction(const Group& group, const BvhHit<T>& hit) const;
   template <typename T>
   bool onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const;
+  // The nearest sphere and plane hits (kind 1 or 2, or 0) with ray.tMax shortened to
+  // them, and whether any exists: four shapes at a time for float rays, one at a time
+  // for double.
+  template <typename T>
+  int nearestShape(Ray<T>& ray, std::size_t& index) const;
+  template <typename T>
+  bool anyShape(const Ray<T>& ray) const;
   Status checkMaterial(int material) const;  // an error naming it when out of range
   struct MaterialExtras;
   Status attachTexture(int material, int MaterialExtras::*slot, RtTexture texture);
@@ -341,6 +349,8 @@ class RtScene {
   std::vector<Sphere<double>> spheresD_;
   std::vector<Plane<float>> planesF_;
   std::vector<Plane<double>> planesD_;
+  // The float shapes again, four to a pack, for float rays (shape_packs.h).
+  ShapePacks packs_;
 
   struct Group {
     std::vector<std::uint32_t> meshes;

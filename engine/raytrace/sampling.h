@@ -47,9 +47,12 @@ inline glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
   const glm::vec2 o = 2.0f * u - 1.0f;
   glm::vec2 d(0.0f);
   if (o.x != 0.0f || o.y != 0.0f) {
+    // Each branch's operations chosen by selects, not jumps: which axis is major is a
+    // coin toss per sample, and a jump on it was mispredicted half the time.
     const bool xMajor = std::abs(o.x) > std::abs(o.y);
-    const float r = xMajor ? o.x : o.y;
-    const float theta = xMajor ? (kPi / 4.0f) * (o.y / o.x) : kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
+    const float r = xMajor ? o.x : o.y, other = xMajor ? o.y : o.x;
+    const float angle = (kPi / 4.0f) * (other / r);
+    const float theta = xMajor ? angle : kPi / 2.0f - angle;
     d = r * glm::vec2(std::cos(theta), std::sin(theta));
   }
   const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));

@@ -73,6 +73,13 @@ struct Sphere {
 
   SurfaceInteraction<T> interaction(const Ray<T>& ray, T t) const {
     SurfaceInteraction<T> si;
+    fillInteraction(ray, t, si);
+    return si;
+  }
+  // The same into a default record the caller holds: RtScene fills the one it returns
+  // in place, as a record built aside and copied stalled on every hit (its fields'
+  // narrow stores read back as wide loads).
+  void fillInteraction(const Ray<T>& ray, T t, SurfaceInteraction<T>& si) const {
     si.t = t;
     // Reproject onto the surface: the error is then that of the reprojection only,
     // bounded by the magnitudes of the centre and the radius.
@@ -82,7 +89,6 @@ struct Sphere {
     si.pError = gamma<T>(8) * (glm::abs(center) + Vec3<T>(radius));
     si.ns = si.n;
     si.material = material;
-    return si;
   }
 };
 
@@ -103,6 +109,13 @@ struct Plane {
 
   SurfaceInteraction<T> interaction(const Ray<T>& ray, T t) const {
     SurfaceInteraction<T> si;
+    fillInteraction(ray, t, si);
+    return si;
+  }
+  // The same into a default record the caller holds: RtScene fills the one it returns
+  // in place, as a record built aside and copied stalled on every hit (its fields'
+  // narrow stores read back as wide loads).
+  void fillInteraction(const Ray<T>& ray, T t, SurfaceInteraction<T>& si) const {
     si.t = t;
     const Vec3<T> p = ray(t);
     // Reprojecting onto the plane leaves an error of a few roundings of |p| and |d|.
@@ -111,7 +124,6 @@ struct Plane {
     si.n = normal;
     si.ns = normal;
     si.material = material;
-    return si;
   }
 };
 

@@ -1,0 +1,66 @@
+#pragma once
+// The analytic shapes (spheres and planes) in float, tested four at a time with SSE
+// (part of every x86-64): structure-of-arrays copies of RtScene's shape lists, so a
+// ray meets the course room's 3 spheres in one pass and its 5 planes in two, not one
+// std::optional at a time. Each lane runs Sphere<float>::intersect and
+// Plane<float>::intersect operation for operation (no fused multiply-add: the library
+// builds with -ffp-contract=off), so every lane's distance is the scalar one bit for
+// bit, and the nearest of several (the lower index on a tie) is the one the scalar
+// loop, which shortens tMax as it goes, would keep.
+#include <cstdint>
+#include <vector>
+
+#include "raytrace/shapes.h"
+
+namespace engine::rt {
+
+class ShapePacks {
+ public:
+  // Rebuilt whenever a shape is added.
+  void setSpheres(const std::vector<Sphere<float>>& spheres);
+  void setPlanes(const std::vector<Plane<float>>& planes);
+
+  // The nearest sphere hit in (0, ray.tMax): its index, with tMax shortened to it;
+  // -1 (tMax unchanged) when none.
+  int nearestSphere(const Ray<float>& ray, float& tMax) const;
+  bool anySphere(const Ray<float>& ray) const;
+
+  // Every plane hit in (0, tMax), as what the caller filters further (the square a
+  // plane is bounded to): forEachPlaneHit calls visit(index, t) in index order and
+  // stops when it returns true.
+  template <typename Visit>
+  bool forEachPlaneHit(const Ray<float>& ray, float tMax, Visit&& visit) const {
+    const RayLanes lanes(ray);
+    for (std::size_t pack = 0; pack < planes_.size(); ++pack) {
+      alignas(16) float t[4];
+      for (int mask = planeHits(planes_[pack], lanes, tMax, t); mask != 0; mask &= mask - 1) {
+        const int lane = __builtin_ctz(unsigned(mask));
+        if (visit(4 * pack + std::size_t(lane), t[lane])) return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  struct alignas(16) SpherePack {
+    float cx[4], cy[4], cz[4], radius[4];
+    int count = 0;
+  };
+  struct alignas(16) PlanePack {
+    float nx[4], ny[4], nz[4], d[4];
+    int count = 0;
+  };
+  // The ray's scalars every lane shares.
+  struct RayLanes {
+    explicit RayLanes(const Ray<float>& ray);
+    float o[3], d[3];
+    float dd;  // dot(d, d), as glm sums it
+  };
+  static int sphereHits(const SpherePack& pack, const RayLanes& ray, float tMax, float t[4]);
+  static int planeHits(const PlanePack& pack, const RayLanes& ray, float tMax, float t[4]);
+
+  std::vector<SpherePack> spheres_;
+  std::vector<PlanePack> planes_;
+};
+
+}  // namespace engine::rt

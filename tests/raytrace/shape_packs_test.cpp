@@ -1,0 +1,169 @@
+// RtScene's float rays test spheres and planes four at a time (shape_packs.h). Every
+// answer must be the scalar loop's bit for bit: which shape, and its distance. Swept
+// over random scenes at scales from 1e-3 to 1e5, with the rays where the two could
+// part: grazing a sphere within a few ulps, starting on a surface, parallel to a
+// plane, ending exactly at a hit, shapes repeated (ties), planes bounded to squares.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+#include "raytrace/rt_scene.h"
+
+namespace rt = engine::rt;
+
+namespace {
+
+struct ScalarAnswer {
+  int material = -1;  // -1: no hit
+  float t = 0.0f;
+};
+
+// The loop RtScene ran before the packs: one shape at a time, tMax shortened as it goes.
+ScalarAnswer scalarNearest(const rt::RtScene& scene, rt::Ray<float> ray) {
+  ScalarAnswer answer;
+  for (const auto& sphere : scene.floatSpheres()) {
+    if (auto t = sphere.intersect(ray)) {
+      ray.tMax = *t;
+      answer = {sphere.material, *t};
+    }
+  }
+  for (std::size_t i = 0; i < scene.planeCount(); ++i) {
+    const auto& plane = scene.floatPlanes()[i];
+    const auto& square = scene.planeSquare(i);
+    auto t = plane.intersect(ray);
+    if (!t) continue;
+    const glm::dvec3 local = glm::dvec3(ray(*t)) - square.point;
+    if (square.extent > 0.0 && (std::abs(glm::dot(local, square.axisU)) > square.extent ||
+                                std::abs(glm::dot(local, square.axisV)) > square.extent)) {
+      continue;
+    }
+    ray.tMax = *t;
+    answer = {plane.material, *t};
+  }
+  return answer;
+}
+
+class RandomShapes {
+ public:
+  explicit RandomShapes(std::uint32_t seed) : rng_(seed) {}
+
+  rt::RtScene scene() {
+    rt::RtScene scene;
+    scale_ = std::pow(10.0, uniform(-3.0, 5.0));
+    centre_ = randomUnit() * scale_ * uniform(0.0, 3.0);
+    const int spheres = int(uniform(0.0, 11.99)), planes = int(uniform(0.0, 11.99));
+    for (int i = 0; i < spheres; ++i) {
+      // A repeat of the last sphere now and then: equal distances, the lower index wins.
+      if (i > 0 && uniform(0.0, 1.0) < 0.15) {
+        const auto& last = scene.floatSpheres().back();
+        scene.addSphere(glm::dvec3(last.center), double(last.radius), scene.addMaterial({}));
+        continue;
+      }
+      scene.addSphere(centre_ + randomUnit() * scale_ * uniform(0.0, 2.0), scale_ * uniform(0.01, 1.0),
+                      scene.addMaterial({}));
+    }
+    for (int i = 0; i < planes; ++i) {
+      const glm::dvec3 normal = uniform(0.0, 1.0) < 0.5 ? axis() : randomUnit();
+      const double extent = uniform(0.0, 1.0) < 0.4 ? scale_ * uniform(0.1, 2.0) : 0.0;
+      scene.addPlane(centre_ + randomUnit() * scale_ * uniform(0.0, 2.0), normal, scene.addMaterial({}), extent);
+    }
+    return scene;
+  }
+
+  // One of the kinds of ray that tell the two apart, if anything does.
+  rt::Ray<float> ray(const rt::RtScene& scene) {
+    rt::Ray<float> ray;
+    ray.o = glm::vec3(centre_ + randomUnit() * scale_ * uniform(0.0, 4.0));
+    ray.d = glm::vec3(randomUnit() * std::pow(10.0, uniform(-2.0, 2.0)));  // not unit
+    const int kind = int(uniform(0.0, 5.99));
+    if (kind == 1 && scene.sphereCount() > 0) graze(scene, ray);
+    if (kind == 2 && scene.sphereCount() > 0) startOnSphere(scene, ray);
+    if (kind == 3 && scene.planeCount() > 0) alongPlane(scene, ray);
+    if (kind == 4) ray.d[int(uniform(0.0, 2.99))] = 0.0f;
+    if (kind == 5) endAtAHit(scene, ray);
+    return ray;
+  }
+
+ private:
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  glm::dvec3 randomUnit() {
+    std::normal_distribution<double> n;
+    glm::dvec3 v;
+    do {
+      v = glm::dvec3(n(rng_), n(rng_), n(rng_));
+    } while (glm::length(v) < 1e-6);
+    return glm::normalize(v);
+  }
+  glm::dvec3 axis() {
+    glm::dvec3 a(0.0);
+    a[int(uniform(0.0, 2.99))] = uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+    return a;
+  }
+  const rt::Sphere<float>& anySphere(const rt::RtScene& scene) {
+    return scene.floatSpheres()[std::size_t(uniform(0.0, double(scene.sphereCount()) - 1e-9))];
+  }
+  // Tangent to a sphere, its distance from the centre the radius give or take a few ulps.
+  void graze(const rt::RtScene& scene, rt::Ray<float>& ray) {
+    const auto& s = anySphere(scene);
+    const glm::dvec3 n = randomUnit();
+    glm::dvec3 tangent = glm::cross(n, randomUnit());
+    tangent = glm::normalize(tangent);
+    const double ulps = std::round(uniform(-8.0, 8.0));
+    const double r = double(s.radius) * (1.0 + ulps * 6e-8);
+    const glm::dvec3 touch = glm::dvec3(s.center) + n * r;
+    ray.o = glm::vec3(touch - tangent * double(s.radius) * uniform(0.5, 10.0));
+    ray.d = glm::vec3(tangent);
+  }
+  void startOnSphere(const rt::RtScene& scene, rt::Ray<float>& ray) {
+    const auto& s = anySphere(scene);
+    ray.o = glm::vec3(glm::dvec3(s.center) + randomUnit() * double(s.radius));
+  }
+  // Parallel to a plane (a zero denominator for axis normals), in it or beside it.
+  void alongPlane(const rt::RtScene& scene, rt::Ray<float>& ray) {
+    const auto& p = scene.floatPlanes()[std::size_t(uniform(0.0, double(scene.planeCount()) - 1e-9))];
+    const glm::vec3 d = ray.d - p.normal * glm::dot(ray.d, p.normal);
+    if (glm::length(d) > 0.0f) ray.d = d;
+    if (uniform(0.0, 1.0) < 0.5) ray.o = ray.o - p.normal * (glm::dot(ray.o, p.normal) - p.d);
+  }
+  // tMax exactly at the scalar loop's hit, or one ulp either side of it.
+  void endAtAHit(const rt::RtScene& scene, rt::Ray<float>& ray) {
+    const ScalarAnswer hit = scalarNearest(scene, ray);
+    if (hit.material < 0) return;
+    const int step = int(uniform(0.0, 2.99)) - 1;
+    ray.tMax = step == 0 ? hit.t : std::nextafter(hit.t, step > 0 ? INFINITY : 0.0f);
+  }
+
+  std::mt19937 rng_;
+  double scale_ = 1.0;
+  glm::dvec3 centre_{0.0};
+};
+
+TEST(ShapePacks, FourAtATimeIsTheScalarLoopBitForBit) {
+  std::uint64_t rays = 0, hits = 0, multiPackScenes = 0;
+  for (std::uint32_t seed = 1; seed <= 200; ++seed) {
+    RandomShapes random(seed);
+    const rt::RtScene scene = random.scene();
+    for (int i = 0; i < 10000; ++i, ++rays) {
+      const rt::Ray<float> ray = random.ray(scene);
+      const ScalarAnswer expected = scalarNearest(scene, ray);
+      const auto hit = scene.intersect(ray);
+      ASSERT_EQ(hit.has_value(), expected.material >= 0) << "seed " << seed << " ray " << i;
+      ASSERT_EQ(scene.intersectAny(ray), expected.material >= 0) << "seed " << seed << " ray " << i;
+      if (!hit) continue;
+      ++hits;
+      ASSERT_EQ(hit->material, expected.material) << "seed " << seed << " ray " << i;
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(hit->t), std::bit_cast<std::uint32_t>(expected.t))
+          << "seed " << seed << " ray " << i << ": " << hit->t << " against " << expected.t;
+    }
+    multiPackScenes += scene.sphereCount() + scene.planeCount() > 4 ? 1 : 0;
+  }
+  // The sweep must reach both answers and scenes of more than one pack.
+  EXPECT_GT(hits, rays / 4);
+  EXPECT_LT(hits, rays - rays / 8);
+  EXPECT_GT(multiPackScenes, 100u);
+}
+
+}  // namespace
