@@ -46,6 +46,19 @@ class Bvh {
   template <typename T>
   bool intersectAny(const Ray<T>& ray) const;
 
+  // Eight rays at once, each answered as intersect() answers it: the same nearest
+  // distance bit for bit (of triangles at an equal distance, either may be named).
+  // For coherent rays, such as a camera's 4 x 2 pixels (bvh_packet.cpp): the eight go
+  // through the tree together. Rays that differ in a direction component's sign or in
+  // their largest axis, or have a zero component, and every packet without AVX2, are
+  // traced one at a time. Returns the mask of the rays that hit; hits[i] is set for those.
+  static constexpr int kPacketSize = 8;
+  std::uint32_t intersect8(std::span<const Ray<float>, kPacketSize> rays,
+                           std::span<BvhHit<float>, kPacketSize> hits) const;
+  // intersect8's packet traversal alone (AVX2 only; tests call it to know it ran):
+  // false, and nothing traced, when the eight rays cannot share a traversal.
+  bool tracePacket8(const Ray<float>* rays, BvhHit<float>* hits, std::uint32_t& hitMask) const;
+
   bool empty() const { return triangleCount_ == 0; }
   std::size_t nodeCount() const { return nodes_.size(); }
   std::size_t triangleCount() const { return triangleCount_; }
