@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "asset/vertex_cache.h"
 #include "core/sheen_table.h"
 #include "gl/bindings.h"
 #include "render/skin_cache.h"
@@ -226,18 +227,23 @@ void uploadMorphTargets(const PrimitiveData& data, GpuPrimitive& prim) {
   prim.morphDeltaTexture = gl::Texture::ofBuffer(prim.morphDeltas, GL_RGBA32F);
 }
 
-// The full mesh's indices, then each level's.
-std::vector<std::uint32_t> indicesWithLevels(const PrimitiveData& data, const std::vector<MeshLod>& levels,
+// The full mesh's indices, then each level's; each in vertex cache order when
+// `reorder` (asset/vertex_cache.h).
+std::vector<std::uint32_t> indicesWithLevels(const PrimitiveData& data, const std::vector<MeshLod>* levels, bool reorder,
                                              GpuPrimitive& prim) {
-  std::vector<std::uint32_t> indices = data.indices;
-  for (const MeshLod& level : levels) {
+  const auto ordered = [&](const std::vector<std::uint32_t>& indices) {
+    return reorder ? orderForVertexCache(indices, data.positions.size()) : indices;
+  };
+  std::vector<std::uint32_t> indices = ordered(data.indices);
+  for (const MeshLod& level : levels ? *levels : std::vector<MeshLod>{}) {
     prim.levels.push_back({GLsizei(indices.size()), GLsizei(level.indices.size()), level.error});
-    indices.insert(indices.end(), level.indices.begin(), level.indices.end());
+    const std::vector<std::uint32_t> levelIndices = ordered(level.indices);
+    indices.insert(indices.end(), levelIndices.begin(), levelIndices.end());
   }
   return indices;
 }
 
-GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLod>* levels) {
+GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLod>* levels, bool reorder) {
   GpuPrimitive prim;
   prim.vertexCount = static_cast<GLsizei>(data.positions.size());
   prim.influences = data.influences;
@@ -257,7 +263,7 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLo
   if (!data.tangents.empty()) in.tangents = addBuffer(prim, data.tangents);
   prim.hasTangents = in.tangents >= 0;
   if (!data.indices.empty()) {
-    in.indices = addBuffer(prim, levels ? indicesWithLevels(data, *levels, prim) : data.indices);
+    in.indices = addBuffer(prim, indicesWithLevels(data, levels, reorder, prim));
     prim.indexCount = static_cast<GLsizei>(data.indices.size());
   }
   prim.vao = gl::VertexArray::create();
@@ -508,7 +514,8 @@ Result<GpuModel> GpuModel::upload(const ModelData& model, const UploadOptions& o
     std::vector<GpuPrimitive> prims;
     for (size_t k = 0; k < model.meshes[m].primitives.size(); ++k) {
       const std::vector<MeshLod>* levels = options.levels ? &(*options.levels)[m][k] : nullptr;
-      prims.push_back(uploadPrimitive(model.meshes[m].primitives[k], levels));
+      const PrimitiveData& data = model.meshes[m].primitives[k];
+      prims.push_back(uploadPrimitive(data, levels, mayReorderTriangles(model, data)));
     }
     gpu.meshes_.push_back(std::move(prims));
   }
