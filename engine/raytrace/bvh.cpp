@@ -236,10 +236,12 @@ Bounds3f Bvh::childBounds(std::uint32_t ref) const {
       for (int v = 0; v < 3; ++v) b.extend(leaf.vertex(v, int(lane)));
     }
   } else {
+    // Each slot as a box: an empty slot's (min +inf, max -inf) then changes nothing,
+    // where its two corners taken as points would span all of space.
     const Node& kid = nodes_[ref];
     for (int j = 0; j < kWidth; ++j) {
-      b.extend(glm::vec3(kid.box[0][j], kid.box[1][j], kid.box[2][j]));
-      b.extend(glm::vec3(kid.box[3][j], kid.box[4][j], kid.box[5][j]));
+      b.extend(Bounds3f{glm::vec3(kid.box[0][j], kid.box[1][j], kid.box[2][j]),
+                        glm::vec3(kid.box[3][j], kid.box[4][j], kid.box[5][j])});
     }
   }
   return b;
