@@ -143,6 +143,12 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   return tracer;
 }
 
+const rt::GpuSceneLayout& GpuTracer::layout() const { return state_->layout; }
+
+GpuRefit::Targets GpuTracer::buffers() const {
+  return GpuRefit::Targets{state_->nodes.id(), state_->leaves.id(), state_->triangles.id(), state_->instances.id()};
+}
+
 std::vector<RayAnswer> GpuTracer::trace(std::span<const RayQuery> rays) const {
   std::vector<RayAnswer> answers(rays.size());
   if (rays.empty()) return answers;

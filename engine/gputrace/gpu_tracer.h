@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/result.h"
+#include "gputrace/gpu_refit.h"
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
 
@@ -50,6 +51,11 @@ class GpuTracer {
   // The image Integrator(scene, settings).render() makes (Whitted only: check
   // unsupported() first). `seconds` is the GPU's time, the upload excluded.
   Result<rt::RenderResult> render(const rt::RenderSettings& settings) const;
+
+  // The flattened scene it traces, and the buffers it lives in: a GpuRefit made from
+  // this layout refits a group of it in place.
+  const rt::GpuSceneLayout& layout() const;
+  GpuRefit::Targets buffers() const;
 
   GpuTracer(GpuTracer&&) noexcept;
   GpuTracer& operator=(GpuTracer&&) noexcept;

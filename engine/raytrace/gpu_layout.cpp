@@ -170,4 +170,68 @@ GpuSceneLayout flattenScene(const RtScene& scene, int width) {
   return out;
 }
 
+namespace {
+
+// Each of the group's meshes' first vertex in the group's array (meshes in the order
+// their triangles come); -1 for meshes of other groups.
+std::vector<std::int64_t> vertexBases(const RtScene& scene, int group, std::uint32_t& count) {
+  std::vector<std::int64_t> base(scene.meshes().size(), -1);
+  count = 0;
+  for (const std::uint32_t mesh : scene.groupTriangleMeshes(group)) {
+    if (base[mesh] >= 0) continue;
+    base[mesh] = count;
+    count += std::uint32_t(scene.meshes()[mesh].positions.size());
+  }
+  return base;
+}
+
+// The group's triangle (local index) as its three vertices in the group's array.
+glm::uvec4 corners(const RtScene& scene, int group, const std::vector<std::int64_t>& base, std::uint32_t triangle) {
+  const std::uint32_t mesh = scene.groupTriangleMeshes(group)[triangle];
+  const RtMesh& m = scene.meshes()[mesh];
+  const std::size_t first = 3 * std::size_t(triangle - scene.meshFirstTriangle(MeshId(mesh)));
+  const auto at = [&](int v) { return std::uint32_t(base[mesh] + m.indices[first + std::size_t(v)]); };
+  return glm::uvec4(at(0), at(1), at(2), m.normals.empty() ? 0u : 1u);
+}
+
+// Every node below `ref` by its depth (the first level 0).
+void nodesByDepth(const GpuSceneLayout& layout, std::uint32_t ref, std::size_t depth,
+                  std::vector<std::vector<std::uint32_t>>& out) {
+  if (ref == Bvh::kNoChild || Bvh::isLeaf(ref)) return;
+  if (out.size() <= depth) out.resize(depth + 1);
+  out[depth].push_back(ref);
+  if (layout.width == 4) {
+    for (int k = 0; k < 4; ++k) nodesByDepth(layout, layout.nodes4[ref].child[k], depth + 1, out);
+  } else {
+    for (int k = 0; k < 8; ++k) nodesByDepth(layout, layout.nodes[ref].child[k / 4][k % 4], depth + 1, out);
+  }
+}
+
+}  // namespace
+
+GpuRefitPlan refitPlan(const RtScene& scene, const GpuSceneLayout& layout, int group) {
+  GpuRefitPlan plan;
+  const std::vector<std::int64_t> base = vertexBases(scene, group, plan.vertexCount);
+  plan.firstTriangle = layout.firstTriangle[std::size_t(group)];
+  const auto triangles = std::uint32_t(scene.groupTriangleMeshes(group).size());
+  for (std::uint32_t t = 0; t < triangles; ++t) plan.triangleCorners.push_back(corners(scene, group, base, t));
+  for (int g = 0; g < group; ++g) {
+    plan.firstLeaf += std::uint32_t(scene.bvh(g).leafCount());
+    if (!scene.bvh(g).empty()) ++plan.instance;
+  }
+  if (scene.bvh(group).empty()) {
+    plan.instance = -1;
+    return plan;
+  }
+  ++plan.instance;
+  for (std::size_t slot = 0; slot < 4 * scene.bvh(group).leafCount(); ++slot) {
+    const std::uint32_t id = layout.order[4 * plan.firstLeaf + slot];
+    plan.leafCorners.push_back(id == Bvh::kNoChild ? glm::uvec4(0) : corners(scene, group, base, id - plan.firstTriangle));
+    if (id != Bvh::kNoChild) plan.leafCorners.back().w = 1;
+  }
+  nodesByDepth(layout, layout.instances[std::size_t(plan.instance)].root.x, 0, plan.levels);
+  std::reverse(plan.levels.begin(), plan.levels.end());
+  return plan;
+}
+
 }  // namespace engine::rt

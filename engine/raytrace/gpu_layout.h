@@ -89,4 +89,20 @@ struct GpuSceneLayout {
 // The scene's groups (already built) and analytic shapes, flattened; `width` 8 or 4.
 GpuSceneLayout flattenScene(const RtScene& scene, int width = 8);
 
+// What refitting one group in place on the GPU takes (gputrace/gpu_refit.h), given the
+// group's vertices in one array: its meshes' vertices one mesh after another, in the
+// order the group's triangles list them. Indices below are into that array.
+struct GpuRefitPlan {
+  int instance = -1;  // the group's GpuInstance; -1 when its BVH is empty
+  std::uint32_t firstLeaf = 0;
+  std::vector<glm::uvec4> leafCorners;  // 4 per leaf: the lane's three vertices, w 1 (0: an empty lane)
+  std::uint32_t firstTriangle = 0;
+  std::vector<glm::uvec4> triangleCorners;  // per triangle (global id order): its vertices, w 1 when the mesh has normals
+  // The group's nodes (indices into nodes or nodes4) by depth, deepest first: a
+  // level's boxes are made from the level below it.
+  std::vector<std::vector<std::uint32_t>> levels;
+  std::uint32_t vertexCount = 0;
+};
+GpuRefitPlan refitPlan(const RtScene& scene, const GpuSceneLayout& layout, int group);
+
 }  // namespace engine::rt

@@ -10,34 +10,7 @@
 // gamma(n) in float as RT_GAMMA2 .. RT_GAMMA8 and RT_WIDEN = 1 + 2 gamma(3), computed
 // by the C++ compiler, so that no GPU division rounds them differently.
 
-// Four children per vec4: one side for a 4-wide node, two for an 8-wide one.
-#define RT_SIDES (RT_WIDTH / 4)
-
-struct RtNode {
-  vec4 box[6 * RT_SIDES];  // box[RT_SIDES * row + side]: row min x, y, z, max x, y, z of children 4 side .. 4 side + 3
-  uvec4 child[RT_SIDES];
-};
-struct RtLeaf {
-  vec4 p[9];  // p[3 * vertex + axis][lane]
-};
-struct RtInstance {
-  vec4 boundsMin;
-  vec4 boundsMax;
-  uvec4 root;
-};
-struct RtSphere {
-  vec4 centerRadius;
-  ivec4 material;
-};
-struct RtPlane {
-  vec4 normalD;
-  vec4 pointExtent;
-  vec4 axisU;  // w: material
-  vec4 axisV;
-};
-struct RtTriangle {
-  vec4 n[3];  // n[0].w material, n[1].w 1 with vertex normals
-};
+#include "rt/layout.glsl"
 
 layout(std430, binding = BUFFER_RT_NODES) readonly buffer RtNodes { RtNode rtNodes[]; };
 layout(std430, binding = BUFFER_RT_LEAVES) readonly buffer RtLeaves { RtLeaf rtLeaves[]; };
@@ -52,9 +25,6 @@ uniform int u_instanceCount;
 uniform int u_sphereCount;
 uniform int u_planeCount;
 
-const uint RT_LEAF_BIT = 0x80000000u;
-const uint RT_NO_CHILD = 0xffffffffu;
-const uint RT_MAX_TRIANGLES = 0x10000000u;
 const int RT_NONE = 0;
 const int RT_SPHERE = 1;
 const int RT_PLANE = 2;
