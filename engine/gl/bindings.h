@@ -80,12 +80,13 @@ inline constexpr unsigned kRtMaterials = 7;
 inline constexpr unsigned kRtLights = 8;
 inline constexpr unsigned kRtInput = 9;
 inline constexpr unsigned kRtOutput = 10;
+inline constexpr unsigned kRtEnvironment = 11;  // the path tracer's environment tables
 
 struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 52> kDefines{{
+inline constexpr std::array<Define, 53> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -138,6 +139,7 @@ inline constexpr std::array<Define, 52> kDefines{{
     {"BUFFER_RT_LIGHTS", kRtLights},
     {"BUFFER_RT_INPUT", kRtInput},
     {"BUFFER_RT_OUTPUT", kRtOutput},
+    {"BUFFER_RT_ENVIRONMENT", kRtEnvironment},
 }};
 
 }  // namespace engine::gl::binding
