@@ -401,17 +401,19 @@ PY
     expect 2 "--device gpu: double precision is not supported" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" \
       --mode raytrace --device gpu --rt-precision double --offscreen --size 64x48 --screenshot rtg.png ;;
   pathtrace_gpu)
-    # The GPU path tracer draws the CPU's image of both rooms (the same PNG bytes on
-    # llvmpipe: the same paths from the same random numbers; tests/gl/gpu_path_test.cpp
-    # says how far a GPU that rounds otherwise may be), says so in --bench, and
-    # refuses what it cannot draw yet with exit 2 and one line.
+    # The GPU path tracer draws the CPU's image of both rooms, says so in --bench, and
+    # refuses what it cannot draw yet with exit 2 and one line. llvmpipe gives the
+    # same bytes at this size (the same paths from the same random numbers; at
+    # 640x360 a few pixels by up to 5 levels); a mean of one level allows a GPU that
+    # rounds otherwise a few diverged paths. tests/gl/gpu_path_test.cpp judges the
+    # images themselves.
     for room in cornell cornell_soft; do
       rm -f ptc.png ptg.png ptg.json
       expect 0 "path traced 64x48, spp 4" -- "$BIN/demo" "$SRC/assets/scenes/$room.json" --mode pathtrace --offscreen \
         --size 64x48 --spp 4 --screenshot ptc.png
       expect 0 "path traced on the GPU 64x48, spp 4" -- "$BIN/demo" "$SRC/assets/scenes/$room.json" --mode pathtrace \
         --device gpu --offscreen --size 64x48 --spp 4 --screenshot ptg.png --bench ptg.json
-      cmp -s ptc.png ptg.png || { echo "FAIL: the GPU's image of $room differs from the CPU's"; exit 1; }
+      "$BIN/imgdiff" --max-mean 1 ptc.png ptg.png || { echo "FAIL: the GPU's image of $room differs from the CPU's"; exit 1; }
       grep -q '"device": "gpu"' ptg.json && grep -q '"mode": "pathtrace"' ptg.json && grep -q '"mrays_per_second"' ptg.json ||
         { echo "FAIL: the bench file does not say pathtrace on the gpu"; cat ptg.json; exit 1; }
     done
