@@ -160,8 +160,9 @@ ENGINE_INSTANTIATE_OFFSCREEN(GpuPath);
 // 160 x 90, 4 samples per pixel, up to 16 bounces: the room with its area light,
 // point light, sun, mirror, box and smooth patch on the black background in the
 // course's classic shading (Lambert and the mirror), then pbrRoom(). Measured on
-// llvmpipe: the same image bit for bit, and the same ray counts (see README.md,
-// "GPU ray tracing (compute)").
+// llvmpipe: the same ray counts (shadow and bounce rays too), RMSE 1e-5 and 3e-6 of
+// the seed-to-seed noise, 83 % and 11 % of the pixels the same bits, the rest off in
+// the last bits (README.md, "GPU ray tracing (compute)").
 TEST_P(GpuPath, RendersTheCpusImageOfTheRoom) {
   for (const bool pbr : {false, true}) {
     SCOPED_TRACE(pbr ? "pbr" : "classic");
