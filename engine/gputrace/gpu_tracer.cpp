@@ -159,26 +159,30 @@ void GpuTracer::State::setView(const gl::Program& p, const rt::RenderSettings& s
   p.set("u_fogDensity", scene->fog().density);
 }
 
-rt::RenderResult GpuTracer::State::runPerPixel(int w, int h) const {
+rt::RenderResult GpuTracer::State::runPerPixel(int w, int h, int batches, const std::function<void(int)>& prepare) const {
   const gl::Buffer image = gl::Buffer::create(std::size_t(w) * std::size_t(h) * sizeof(glm::vec4));
   const std::uint32_t zeros[4] = {0, 0, 0, 0};
   const gl::Buffer counters = gl::Buffer::create(sizeof(zeros), zeros);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtInput, counters.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtOutput, image.id());
-  glFinish();
-  const auto start = std::chrono::steady_clock::now();
-  glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glFinish();
   rt::RenderResult result;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (int batch = 0; batch < batches; ++batch) {
+    if (prepare) prepare(batch);
+    glNamedBufferSubData(counters.id(), 0, sizeof(zeros), zeros);
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glFinish();
+    result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::uint32_t rays[4];
+    glGetNamedBufferSubData(counters.id(), 0, sizeof(rays), rays);
+    result.rays += rt::RayCounters{rays[0], rays[1], rays[2]};
+  }
   std::vector<glm::vec4> pixels(std::size_t(w) * std::size_t(h));
   glGetNamedBufferSubData(image.id(), 0, GLsizeiptr(pixels.size() * sizeof(glm::vec4)), pixels.data());
-  std::uint32_t rays[4];
-  glGetNamedBufferSubData(counters.id(), 0, sizeof(rays), rays);
   result.image = rt::Framebuffer(w, h);
   for (std::size_t i = 0; i < pixels.size(); ++i) result.image.pixels[i] = glm::vec3(pixels[i]);
-  result.rays = rt::RayCounters{rays[0], rays[1], rays[2]};
   return result;
 }
 

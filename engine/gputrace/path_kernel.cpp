@@ -1,7 +1,8 @@
 // GpuTracer's path tracer (shaders/rt/pathtrace.comp): the lights and the
 // environment's sampling tables as the CPU's path tracer prepares them
-// (raytrace/path_tracer.h's preparePathLights), uploaded, and one dispatch of a
-// batch of samples per pixel.
+// (raytrace/path_tracer.h's preparePathLights), uploaded, and the samples in
+// batches, a dispatch each, every batch adding to the pixels' sums.
+#include <algorithm>
 #include <cstddef>
 #include <span>
 
@@ -56,6 +57,18 @@ std::vector<float> environmentTables(const rt::EnvironmentLight& environment) {
   return out;
 }
 
+// Samples per dispatch: few enough that a dispatch's ray counters (32 bits, what a
+// shader's atomics add) cannot overflow, even if every path went the whole depth
+// with a shadow ray per light and the environment at every vertex, and that no
+// dispatch runs for minutes (a GPU's watchdog ends those).
+int samplesPerBatch(const rt::RenderSettings& settings, std::size_t lights) {
+  constexpr double kCounterLimit = 4.0e9;
+  constexpr int kMostPerBatch = 16;
+  const double raysPerSample = double(std::max(0, settings.maxDepth) + 2) * double(lights + 2);
+  const double pixels = double(settings.width) * double(settings.height);
+  return std::clamp(int(kCounterLimit / (pixels * raysPerSample)), 1, kMostPerBatch);
+}
+
 }  // namespace
 
 Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& settings) const {
@@ -76,8 +89,6 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtEnvironment, environment.id());
   s.setView(p, settings);
   p.set("u_lightCount", int(lights->lights.size()));
-  p.set("u_firstSample", settings.firstSample);
-  p.set("u_spp", settings.samplesPerPixel);
   p.set("u_maxDepth", settings.maxDepth);
   p.set("u_rouletteDepth", settings.rouletteDepth);
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);
@@ -85,7 +96,17 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   const rt::Distribution2D& d = lights->environment.distribution();
   glUniform2i(p.location("u_envSize"), d.width(), d.height());
   p.set("u_envBlack", lights->environment.black() ? 1 : 0);
-  return s.runPerPixel(settings.width, settings.height);
+  // Samples [first, first + spp) in batches; the kernel adds each to the pixel's sum
+  // in the CPU's order, and the mean is taken here as renderPixel takes it.
+  const int first = std::max(0, settings.firstSample), spp = std::max(1, settings.samplesPerPixel);
+  const int batch = samplesPerBatch(settings, lights->lights.size());
+  rt::RenderResult result = s.runPerPixel(settings.width, settings.height, (spp + batch - 1) / batch, [&](int b) {
+    p.set("u_firstSample", first + b * batch);
+    p.set("u_spp", std::min(batch, spp - b * batch));
+    p.set("u_accumulate", b > 0 ? 1 : 0);
+  });
+  for (glm::vec3& pixel : result.image.pixels) pixel /= float(spp);
+  return result;
 }
 
 }  // namespace engine::gpurt

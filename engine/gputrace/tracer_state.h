@@ -1,6 +1,7 @@
 #pragma once
 // GpuTracer's insides, shared by the files of its kernels (gpu_tracer.cpp: ray queries
 // and the Whitted integrator; path_kernel.cpp: the path tracer). Not an interface.
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -41,9 +42,13 @@ struct GpuTracer::State {
   // What both integrators read alike: the image size, the camera (rt/camera.glsl),
   // the sky (rt/sky.glsl), the fog and the seed.
   void setView(const gl::Program& program, const rt::RenderSettings& settings) const;
-  // One invocation per pixel in 8 x 8 groups, timed from dispatch to glFinish; the
-  // image and the three ray counters (primary, shadow, reflection or bounce) read back.
-  rt::RenderResult runPerPixel(int width, int height) const;
+  // `batches` dispatches of one invocation per pixel in 8 x 8 groups, `prepare(batch)`
+  // setting each one's uniforms first; timed from dispatch to glFinish. The image is
+  // read back after the last (a kernel may add to what the one before wrote), the
+  // three ray counters (primary, shadow, reflection or bounce) after each, summed in
+  // 64 bits.
+  rt::RenderResult runPerPixel(int width, int height, int batches = 1,
+                               const std::function<void(int)>& prepare = {}) const;
 };
 
 }  // namespace engine::gpurt

@@ -39,12 +39,14 @@ struct PtLight {
 };
 
 layout(std430, binding = BUFFER_RT_LIGHTS) readonly buffer PtLights { PtLight ptLights[]; };
-layout(std430, binding = BUFFER_RT_OUTPUT) writeonly buffer Image { vec4 pixels[]; };
+// The sums of the samples so far; the CPU divides by their number.
+layout(std430, binding = BUFFER_RT_OUTPUT) buffer Image { vec4 pixels[]; };
 // Rays traced: primary, shadow, bounce.
 layout(std430, binding = BUFFER_RT_INPUT) buffer Counters { uint rayCounters[3]; };
 
 uniform int u_lightCount;
-uniform int u_firstSample, u_spp;  // samples [first, first + spp) of each pixel
+uniform int u_firstSample, u_spp;  // this batch: samples [first, first + spp) of each pixel
+uniform int u_accumulate;          // add to the sums of the batches before
 uniform int u_maxDepth, u_rouletteDepth;
 uniform int u_pbr;                 // Shading::Pbr
 uniform int u_coneSun;             // PathLights::coneSun: the camera sees no sky disk
@@ -260,7 +262,8 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng, out float firstHit) {
 vec3 finiteOr0(vec3 c) { return any(isnan(c)) || any(isinf(c)) ? vec3(0.0) : c; }
 
 // PathTracer::renderPixel: samples [first, first + spp) at the R2 sequence's points
-// turned by the pixel's random offset, each with a random stream of its own.
+// turned by the pixel's random offset, each with a random stream of its own, summed
+// in the CPU's order onto the batches before.
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= u_size.x || pixel.y >= u_size.y) return;
@@ -269,7 +272,8 @@ void main() {
   double offsetY = double(pcgUniform(pixelRng));
   vec3 origin = vec3(u_cameraPosition);
   int first = max(0, u_firstSample), spp = max(1, u_spp);
-  vec3 sum = vec3(0.0);
+  int index = pixel.y * u_size.x + pixel.x;
+  vec3 sum = u_accumulate != 0 ? pixels[index].xyz : vec3(0.0);
   for (int k = first; k < first + spp; ++k) {
     precise double jx = offsetX + 0.75487766624669276lf * double(k);
     precise double jy = offsetY + 0.56984029099805327lf * double(k);
@@ -282,7 +286,7 @@ void main() {
     if (distance >= 0.0 && u_fog != 0) c = mix(u_fogColor, c, clamp(exp(-u_fogDensity * distance), 0.0, 1.0));
     sum += finiteOr0(c);
   }
-  pixels[pixel.y * u_size.x + pixel.x] = vec4(sum / float(spp), 1.0);
+  pixels[index] = vec4(sum, 1.0);
   atomicAdd(rayCounters[0], primaryRays);
   atomicAdd(rayCounters[1], shadowRays);
   atomicAdd(rayCounters[2], bounceRays);

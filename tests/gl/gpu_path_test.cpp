@@ -175,6 +175,34 @@ TEST_P(GpuPath, RendersTheCpusImageOfTheRoom) {
   }
 }
 
+// Many samples go in batches of at most 16, a dispatch each, each adding to the sums
+// of the ones before: samples [3, 23) of the classic room (batches of 16 and 4) are
+// the CPU's samples [3, 23).
+TEST_P(GpuPath, SamplesInBatchesAreTheCpusSamples) {
+  const rt::RtScene scene = test::roomWithMeshes();
+  rt::RenderSettings settings = pathSettings();
+  settings.width = 48;
+  settings.height = 27;
+  settings.firstSample = 3;
+  settings.samplesPerPixel = 20;
+  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
+  ASSERT_TRUE(tracer) << tracer.error().message;
+  auto gpu = tracer->render(settings);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const rt::RenderResult cpu = rt::Integrator(scene, settings).render();
+  settings.seed = 2;
+  const rt::RenderResult cpu2 = rt::Integrator(scene, settings).render();
+  const PathAgreement a = comparePaths(*gpu, cpu, cpu2);
+  EXPECT_TRUE(a.agrees()) << "RMSE " << a.rmse << " against " << a.noise << ", mean gap " << a.meanGap.x;
+  EXPECT_EQ(gpu->rays.primary, 48u * 27u * 20u);
+  std::printf("gpu path, 20 samples from the 4th in two batches: RMSE %.3g against the CPU's noise %.3g; %d of %zu "
+              "pixels identical; rays GPU %llu/%llu/%llu, CPU %llu/%llu/%llu\n",
+              a.rmse, a.noise, a.identicalPixels, cpu.image.pixels.size(), (unsigned long long)gpu->rays.primary,
+              (unsigned long long)gpu->rays.shadow, (unsigned long long)gpu->rays.reflection,
+              (unsigned long long)cpu.rays.primary, (unsigned long long)cpu.rays.shadow,
+              (unsigned long long)cpu.rays.reflection);
+}
+
 // The comparison is not blind: the GPU drawing the open room without its sun fails it.
 TEST_P(GpuPath, TheComparisonCatchesAMissingLight) {
   const PathAgreement a = gpuAgainstCpu(pbrRoom(0.0f), pbrRoom(), "pbr room, the GPU without the sun");
