@@ -1,8 +1,9 @@
 // The GPU ray tracer (engine/gputrace) against the CPU's, in one run, on the same
 // scene, size and samples:
-//  - Whitted: Integrator::render (TBB, every core) and GpuTracer::render, rays per
-//    second as each counts them (the same rays: the GpuWhitted test holds the counts
-//    equal). The GPU's time is the dispatch to glFinish; its first run, which includes
+//  - Whitted and path tracer: Integrator::render (TBB, every core) and
+//    GpuTracer::render, rays per second as each counts them (the same rays: the
+//    GpuWhitted and GpuPath tests hold the counts equal; the path tracer's row prints
+//    both). The GPU's time is the dispatch to glFinish; its first run, which includes
 //    the driver's compile of the kernel, is reported apart and left out.
 //  - Ray queries on a triangle scene (--queries, default demo.json: terrain and
 //    characters): the camera's primary rays, closest hit and any hit each, through
@@ -10,7 +11,7 @@
 //    included) with both GPU layouts, the CPU's 8-wide nodes and the 4-wide ones.
 // Medians of --runs runs, and the ratio GPU / CPU.
 //
-//   build/bin/gpu_trace [--runs N] [--size WxH] [--spp N] [--offscreen egl|osmesa]
+//   build/bin/gpu_trace [--runs N] [--size WxH] [--spp N] [--pt-spp N] [--offscreen egl|osmesa]
 //                       [--queries scene.json] [scene.json ...]
 #include <algorithm>
 #include <chrono>
@@ -47,21 +48,27 @@ int fail(const std::string& message) {
 struct Options {
   int runs = 5;
   int spp = 1;
+  int pathSpp = 1;
   int shadowSamples = 4;
   std::string queries;
   std::vector<std::string> scenes;
 };
 
-engine::Status benchWhitted(const std::string& path, const Options& o, int width, int height, const std::string& shaderDir) {
+// One integrator on one scene, CPU against GPU: a row of the table.
+engine::Status benchRender(const std::string& path, const Options& o, rt::Method method, int width, int height,
+                           const std::string& shaderDir) {
   auto desc = engine::loadSceneFile(path);
   if (!desc) return desc.error();
   auto scene = rt::buildRtScene(*desc, 0.0, height);
   if (!scene) return scene.error();
+  const bool pathTraced = method == rt::Method::Path;
   rt::RenderSettings settings;
+  settings.method = method;
   settings.width = width;
   settings.height = height;
-  settings.samplesPerPixel = o.spp;
+  settings.samplesPerPixel = pathTraced ? o.pathSpp : o.spp;
   settings.shadowSamples = o.shadowSamples;
+  if (pathTraced) settings.maxDepth = 16;  // demo --mode pathtrace's default
   if (const std::string why = engine::gpurt::unsupported(*scene, settings); !why.empty()) {
     return engine::makeError(path + ": --device gpu: " + why);
   }
@@ -70,19 +77,22 @@ engine::Status benchWhitted(const std::string& path, const Options& o, int width
   auto first = tracer->render(settings);
   if (!first) return first.error();
   std::vector<double> cpu, gpu;
-  std::uint64_t rays = 0;
+  rt::RayCounters cpuRays, gpuRays;
   for (int i = 0; i < o.runs; ++i) {
     const rt::RenderResult c = rt::Integrator(*scene, settings).render();
     cpu.push_back(double(c.rays.total()) / c.seconds / 1e6);
     auto g = tracer->render(settings);
     if (!g) return g.error();
     gpu.push_back(double(g->rays.total()) / g->seconds / 1e6);
-    rays = g->rays.total();
+    cpuRays = c.rays;
+    gpuRays = g->rays;
   }
   const double cpuM = median(cpu), gpuM = median(gpu);
-  std::printf("whitted %s %dx%d spp %d: %llu rays; CPU %.2f Mrays/s, GPU %.2f Mrays/s (first run, compile included: "
-              "%.2f s), GPU / CPU %.2f\n",
-              path.c_str(), width, height, o.spp, (unsigned long long)rays, cpuM, gpuM, first->seconds, gpuM / cpuM);
+  std::printf("%s %s %dx%d spp %d: %llu rays (CPU %llu); CPU %.2f Mrays/s, GPU %.2f Mrays/s (first run, compile "
+              "included: %.2f s), GPU / CPU %.2f\n",
+              pathTraced ? "pathtrace" : "whitted", path.c_str(), width, height, settings.samplesPerPixel,
+              (unsigned long long)gpuRays.total(), (unsigned long long)cpuRays.total(), cpuM, gpuM, first->seconds,
+              gpuM / cpuM);
   return engine::Ok{};
 }
 
@@ -133,12 +143,14 @@ engine::Status benchQueries(const std::string& path, const Options& o, int width
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"The GPU ray tracer against the CPU's: Whitted images and ray queries, Mrays/s.", "gpu_trace"};
+  CLI::App app{"The GPU ray tracer against the CPU's: Whitted and path-traced images and ray queries, Mrays/s.",
+               "gpu_trace"};
   engine::CommonOptions common;
   Options o;
-  app.add_option("scenes", o.scenes, "Whitted scenes (default: cornell.json cornell_soft.json)");
+  app.add_option("scenes", o.scenes, "Whitted and path-traced scenes (default: cornell.json cornell_soft.json)");
   app.add_option("--runs", o.runs, "Runs per measurement (median)")->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--spp", o.spp, "Whitted samples per pixel")->check(CLI::Range(1, 4096))->capture_default_str();
+  app.add_option("--pt-spp", o.pathSpp, "Path tracer samples per pixel")->check(CLI::Range(1, 4096))->capture_default_str();
   app.add_option("--shadow-samples", o.shadowSamples, "N x N shadow rays per area light")->check(CLI::Range(1, 64))->capture_default_str();
   app.add_option("--queries", o.queries, "Triangle scene for the ray queries (default demo.json; 'none' skips)");
   engine::addCommonOptions(app, common);
@@ -153,8 +165,11 @@ int main(int argc, char** argv) {
   auto gl = engine::createContext(engine::chosenBackend(common), context);
   if (!gl) return fail(gl.error().message);
   std::printf("%s\n", common.run.command.c_str());
-  for (const std::string& scene : o.scenes) {
-    if (auto s = benchWhitted(scene, o, common.run.width, common.run.height, common.shaderDir); !s) return fail(s.error().message);
+  for (const rt::Method method : {rt::Method::Whitted, rt::Method::Path}) {
+    for (const std::string& scene : o.scenes) {
+      if (auto s = benchRender(scene, o, method, common.run.width, common.run.height, common.shaderDir); !s)
+        return fail(s.error().message);
+    }
   }
   if (o.queries != "none") {
     if (auto s = benchQueries(o.queries, o, common.run.width, common.run.height, common.shaderDir); !s) return fail(s.error().message);

@@ -1,6 +1,7 @@
 #pragma once
 // GGX sampling that the path tracer (raytrace/sampling.h, whose chi-square tests
-// cover these) and the split-sum BRDF table (core/ibl_tables.cpp) share. Local
+// cover these) and the split-sum BRDF table (core/ibl_tables.cpp) share; the GPU path
+// tracer's transcription is shaders/rt/sampling.glsl. Local
 // frame: the normal along +z.
 #include <algorithm>
 #include <cmath>

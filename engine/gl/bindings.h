@@ -80,6 +80,7 @@ inline constexpr unsigned kRtMaterials = 7;
 inline constexpr unsigned kRtLights = 8;
 inline constexpr unsigned kRtInput = 9;
 inline constexpr unsigned kRtOutput = 10;
+inline constexpr unsigned kRtEnvironment = 11;  // the path tracer's environment tables
 // rt/refit.comp's plan (gputrace/gpu_refit.h).
 inline constexpr unsigned kRtRefitPlan = 15;
 
@@ -87,7 +88,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 53> kDefines{{
+inline constexpr std::array<Define, 54> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -140,6 +141,7 @@ inline constexpr std::array<Define, 53> kDefines{{
     {"BUFFER_RT_LIGHTS", kRtLights},
     {"BUFFER_RT_INPUT", kRtInput},
     {"BUFFER_RT_OUTPUT", kRtOutput},
+    {"BUFFER_RT_ENVIRONMENT", kRtEnvironment},
     {"BUFFER_RT_REFIT_PLAN", kRtRefitPlan},
 }};
 

@@ -4,25 +4,14 @@
 #include <bit>
 #include <chrono>
 #include <cstdio>
-#include <map>
 #include <optional>
 
 #include "gl/bindings.h"
-#include "gl/resources.h"
-#include "gl/shader.h"
-#include "raytrace/gpu_layout.h"
+#include "gputrace/tracer_state.h"
 #include "raytrace/tile_render.h"
 
 namespace engine::gpurt {
 namespace {
-
-// A storage buffer of `items`; an empty array gets 16 bytes, as GL wants a size, and
-// the shader's count uniform keeps it unread.
-template <typename T>
-gl::Buffer storage(const std::vector<T>& items) {
-  if (items.empty()) return gl::Buffer::create(16);
-  return gl::Buffer::create(items.size() * sizeof(T), items.data());
-}
 
 std::string floatDefine(const char* name, float value) {
   char text[96];
@@ -30,23 +19,13 @@ std::string floatDefine(const char* name, float value) {
   return text;
 }
 
-// The constants trace.glsl takes from the C++ compiler (see there).
-std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout) {
-  return {"RT_WIDTH " + std::to_string(layout.width), "RT_STACK_SIZE " + std::to_string(layout.stackSize()),
-          floatDefine("RT_GAMMA2", rt::gamma<float>(2)),
-          floatDefine("RT_GAMMA3", rt::gamma<float>(3)),
-          floatDefine("RT_GAMMA5", rt::gamma<float>(5)),
-          floatDefine("RT_GAMMA7", rt::gamma<float>(7)),
-          floatDefine("RT_GAMMA8", rt::gamma<float>(8)),
-          floatDefine("RT_WIDEN", 1.0f + 2.0f * rt::gamma<float>(3))};
-}
-
-// std430 twins of whitted.comp's RtMaterial and RtLight.
+// std430 twins of rt/materials.glsl's RtMaterial and whitted.comp's RtLight.
 struct GpuMaterial {
   glm::vec4 colorAmbient;
   glm::vec4 diffuseSpecularShininessReflection;
   glm::vec4 metallicRoughnessUnlit;
   glm::vec4 emission;
+  glm::vec4 dielectric;  // f0, f90
 };
 struct GpuLight {
   glm::ivec4 typeShadowsFalloff;
@@ -59,7 +38,8 @@ std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene) {
     // materialAt with no texture is the MaterialDesc's own weights.
     const rt::HitMaterial m = scene.materialAt(int(i), rt::HitUv(glm::vec2(0.0f), glm::vec2(0.0f)), 0.0f, 0.0, glm::vec3(0, 1, 0));
     out.push_back(GpuMaterial{glm::vec4(m.albedo, m.ambient), glm::vec4(m.diffuse, m.specular, m.shininess, m.reflection),
-                              glm::vec4(m.metallic, m.roughness, m.unlit ? 1.0f : 0.0f, 0.0f), glm::vec4(m.emission, 0.0f)});
+                              glm::vec4(m.metallic, m.roughness, m.unlit ? 1.0f : 0.0f, 0.0f), glm::vec4(m.emission, 0.0f),
+                              glm::vec4(m.dielectricF0, m.dielectricF90)});
   }
   return out;
 }
@@ -75,10 +55,42 @@ std::vector<GpuLight> lightsOf(const rt::RtScene& scene) {
   return out;
 }
 
+// The glTF material layers some material of the scene has that the GPU path tracer
+// does not draw (it draws KHR_materials_ior and _specular: the dielectric's f0 and
+// f90), as "KHR_materials_clearcoat, _sheen"; empty when none.
+std::string undrawnLayers(const std::vector<MaterialDesc>& materials) {
+  const auto any = [&](auto has) { return std::any_of(materials.begin(), materials.end(), [&](const MaterialDesc& m) { return has(m.layers); }); };
+  const std::pair<const char*, bool> layers[] = {
+      {"clearcoat", any([](const MaterialLayers& l) { return l.clearcoat > 0.0f; })},
+      {"transmission", any([](const MaterialLayers& l) { return l.transmissive(); })},
+      {"sheen", any([](const MaterialLayers& l) { return l.sheen(); })},
+      {"anisotropy", any([](const MaterialLayers& l) { return l.anisotropy != 0.0f; })},
+      {"iridescence", any([](const MaterialLayers& l) { return l.iridescence > 0.0f; })}};
+  std::string names;
+  for (const auto& [name, present] : layers) {
+    if (present) names += (names.empty() ? "KHR_materials_" : ", _") + std::string(name);
+  }
+  return names;
+}
+
 }  // namespace
 
+namespace detail {
+
+std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout) {
+  return {"RT_WIDTH " + std::to_string(layout.width), "RT_STACK_SIZE " + std::to_string(layout.stackSize()),
+          floatDefine("RT_GAMMA2", rt::gamma<float>(2)),
+          floatDefine("RT_GAMMA3", rt::gamma<float>(3)),
+          floatDefine("RT_GAMMA5", rt::gamma<float>(5)),
+          floatDefine("RT_GAMMA7", rt::gamma<float>(7)),
+          floatDefine("RT_GAMMA8", rt::gamma<float>(8)),
+          floatDefine("RT_WIDEN", 1.0f + 2.0f * rt::gamma<float>(3))};
+}
+
+}  // namespace detail
+
 std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings) {
-  if (settings.method != rt::Method::Whitted) return "the path tracer is not supported yet";
+  const bool path = settings.method == rt::Method::Path;
   if (settings.precision != rt::Precision::Float) return "double precision is not supported";
   if (scene.hasTextures()) return "textures are not supported yet";
   if (scene.hasTransparency()) return "alpha (MASK, BLEND) is not supported yet";
@@ -88,34 +100,91 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
   if (std::any_of(meshes.begin(), meshes.end(), [](const rt::RtMesh& m) { return !m.colors.empty(); }))
     return "vertex colours (COLOR_0) are not supported yet";
   const auto& materials = scene.materials();
+  if (path) {
+    if (const std::string layers = undrawnLayers(materials); !layers.empty())
+      return "the path tracer's material layers " + layers + " are not supported yet";
+    return {};
+  }
   if (std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return !m.layers.isDefault(); }))
     return "glTF's material layers (KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen, "
            "_anisotropy) are not supported yet";
   return {};
 }
 
-struct GpuTracer::State {
-  const rt::RtScene* scene = nullptr;
-  std::string shaderDir;
-  rt::GpuSceneLayout layout;
-  gl::Buffer nodes, leaves, order, instances, spheres, planes, triangles, materials, lights;
-  gl::Program hits;
-  mutable std::map<int, gl::Program> whitted;  // by maxDepth, built on first use
+void GpuTracer::State::bindScene(const gl::Program& program) const {
+  const std::pair<unsigned, const gl::Buffer*> buffers[] = {
+      {gl::binding::kRtNodes, &nodes},         {gl::binding::kRtLeaves, &leaves},
+      {gl::binding::kRtOrder, &order},         {gl::binding::kRtInstances, &instances},
+      {gl::binding::kRtSpheres, &spheres},     {gl::binding::kRtPlanes, &planes},
+      {gl::binding::kRtTriangles, &triangles}, {gl::binding::kRtMaterials, &materials},
+      {gl::binding::kRtLights, &lights}};
+  for (const auto& [unit, buffer] : buffers) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, unit, buffer->id());
+  program.use();
+  program.set("u_instanceCount", int(layout.instances.size()));
+  program.set("u_sphereCount", int(layout.spheres.size()));
+  program.set("u_planeCount", int(layout.planes.size()));
+}
 
-  void bindScene(const gl::Program& program) const {
-    const std::pair<unsigned, const gl::Buffer*> buffers[] = {
-        {gl::binding::kRtNodes, &nodes},         {gl::binding::kRtLeaves, &leaves},
-        {gl::binding::kRtOrder, &order},         {gl::binding::kRtInstances, &instances},
-        {gl::binding::kRtSpheres, &spheres},     {gl::binding::kRtPlanes, &planes},
-        {gl::binding::kRtTriangles, &triangles}, {gl::binding::kRtMaterials, &materials},
-        {gl::binding::kRtLights, &lights}};
-    for (const auto& [unit, buffer] : buffers) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, unit, buffer->id());
-    program.use();
-    program.set("u_instanceCount", int(layout.instances.size()));
-    program.set("u_sphereCount", int(layout.spheres.size()));
-    program.set("u_planeCount", int(layout.planes.size()));
+void GpuTracer::State::setView(const gl::Program& p, const rt::RenderSettings& settings) const {
+  const int w = settings.width, h = settings.height;
+  const CameraDesc& camera = scene->camera();
+  // PinholeCamera's basis and scales, in double.
+  const glm::dvec3 forward = glm::normalize(camera.forward);
+  const glm::dvec3 up = glm::normalize(camera.up - glm::dot(camera.up, forward) * forward);
+  const double yScale = std::tan(glm::radians(camera.fovyDegrees) * 0.5);
+  const auto set3d = [&](const char* name, const glm::dvec3& v) { glUniform3d(p.location(name), v.x, v.y, v.z); };
+  set3d("u_cameraPosition", camera.position);
+  set3d("u_cameraRight", camera.right());
+  set3d("u_cameraUp", up);
+  set3d("u_cameraForward", forward);
+  glUniform2d(p.location("u_cameraScale"), yScale * double(w) / double(h), yScale);
+  glUniform1d(p.location("u_farPlane"), camera.farPlane);
+  glUniform2i(p.location("u_size"), w, h);
+  glUniform2ui(p.location("u_seed"), GLuint(settings.seed & 0xffffffffu), GLuint(settings.seed >> 32));
+  const SkyDesc& sky = scene->sky();
+  p.set("u_skyKind", scene->environment().isConstant() ? 0 : 1);
+  p.set("u_background", sky.background);
+  p.set("u_zenith", sky.zenith);
+  p.set("u_horizon", sky.horizon);
+  p.set("u_ground", sky.ground);
+  // The gradient's disk is toward the last sun light (RtScene::sunDirection).
+  std::optional<glm::vec3> sun;
+  for (const LightDesc& l : scene->lights()) {
+    if (l.type == LightType::Sun) sun = glm::normalize(glm::vec3(l.direction));
   }
-};
+  p.set("u_sunDisk", sky.sunDisk && sun ? 1 : 0);
+  p.set("u_sun", sun.value_or(glm::vec3(0, 1, 0)));
+  p.set("u_fog", scene->fog().enabled ? 1 : 0);
+  p.set("u_fogColor", scene->fog().color);
+  p.set("u_fogDensity", scene->fog().density);
+}
+
+rt::RenderResult GpuTracer::State::runPerPixel(int w, int h, int batches, const std::function<void(int)>& prepare) const {
+  const gl::Buffer image = gl::Buffer::create(std::size_t(w) * std::size_t(h) * sizeof(glm::vec4));
+  const std::uint32_t zeros[4] = {0, 0, 0, 0};
+  const gl::Buffer counters = gl::Buffer::create(sizeof(zeros), zeros);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtInput, counters.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtOutput, image.id());
+  rt::RenderResult result;
+  for (int batch = 0; batch < batches; ++batch) {
+    if (prepare) prepare(batch);
+    glNamedBufferSubData(counters.id(), 0, sizeof(zeros), zeros);
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glFinish();
+    result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::uint32_t rays[4];
+    glGetNamedBufferSubData(counters.id(), 0, sizeof(rays), rays);
+    result.rays += rt::RayCounters{rays[0], rays[1], rays[2]};
+  }
+  std::vector<glm::vec4> pixels(std::size_t(w) * std::size_t(h));
+  glGetNamedBufferSubData(image.id(), 0, GLsizeiptr(pixels.size() * sizeof(glm::vec4)), pixels.data());
+  result.image = rt::Framebuffer(w, h);
+  for (std::size_t i = 0; i < pixels.size(); ++i) result.image.pixels[i] = glm::vec3(pixels[i]);
+  return result;
+}
 
 GpuTracer::GpuTracer() : state_(std::make_unique<State>()) {}
 GpuTracer::GpuTracer(GpuTracer&&) noexcept = default;
@@ -123,6 +192,7 @@ GpuTracer& GpuTracer::operator=(GpuTracer&&) noexcept = default;
 GpuTracer::~GpuTracer() = default;
 
 Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string& shaderDir, int width) {
+  using detail::storage;
   GpuTracer tracer;
   State& s = *tracer.state_;
   s.scene = &scene;
@@ -137,7 +207,7 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   s.triangles = storage(s.layout.triangles);
   s.materials = storage(materialsOf(scene));
   s.lights = storage(lightsOf(scene));
-  auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, traceDefines(s.layout));
+  auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, detail::traceDefines(s.layout));
   if (!hits) return hits.error();
   s.hits = std::move(hits).value();
   return tracer;
@@ -166,84 +236,36 @@ std::vector<RayAnswer> GpuTracer::trace(std::span<const RayQuery> rays) const {
 }
 
 Result<rt::RenderResult> GpuTracer::render(const rt::RenderSettings& settings) const {
+  if (const std::string why = unsupported(*state_->scene, settings); !why.empty()) return makeError(why);
+  return settings.method == rt::Method::Path ? renderPath(settings) : renderWhitted(settings);
+}
+
+Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& settings) const {
   const State& s = *state_;
   const rt::RtScene& scene = *s.scene;
-  if (const std::string why = unsupported(scene, settings); !why.empty()) return makeError(why);
   const int maxDepth = std::max(0, settings.maxDepth);
   auto found = s.whitted.find(maxDepth);
   if (found == s.whitted.end()) {
-    std::vector<std::string> defines = traceDefines(s.layout);
+    std::vector<std::string> defines = detail::traceDefines(s.layout);
     defines.push_back("RT_MAX_DEPTH " + std::to_string(maxDepth));
     auto program = gl::Program::build(s.shaderDir, {{GL_COMPUTE_SHADER, "rt/whitted.comp"}}, defines);
     if (!program) return program.error();
     found = s.whitted.emplace(maxDepth, std::move(program).value()).first;
   }
   const gl::Program& p = found->second;
-  const int w = settings.width, h = settings.height;
-  const gl::Buffer image = gl::Buffer::create(std::size_t(w) * std::size_t(h) * sizeof(glm::vec4));
-  const std::uint32_t zeros[4] = {0, 0, 0, 0};
-  const gl::Buffer counters = gl::Buffer::create(sizeof(zeros), zeros);
   s.bindScene(p);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtInput, counters.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtOutput, image.id());
-
-  const CameraDesc& camera = scene.camera();
-  // PinholeCamera's basis and scales, in double.
-  const glm::dvec3 forward = glm::normalize(camera.forward);
-  const glm::dvec3 up = glm::normalize(camera.up - glm::dot(camera.up, forward) * forward);
-  const double yScale = std::tan(glm::radians(camera.fovyDegrees) * 0.5);
-  const auto set3d = [&](const char* name, const glm::dvec3& v) { glUniform3d(p.location(name), v.x, v.y, v.z); };
-  const auto set3f = [&](const char* name, const glm::vec3& v) { glUniform3f(p.location(name), v.x, v.y, v.z); };
-  set3d("u_cameraPosition", camera.position);
-  set3d("u_cameraRight", camera.right());
-  set3d("u_cameraUp", up);
-  set3d("u_cameraForward", forward);
-  glUniform2d(p.location("u_cameraScale"), yScale * double(w) / double(h), yScale);
-  glUniform1d(p.location("u_farPlane"), camera.farPlane);
+  s.setView(p, settings);
   const int spp = std::max(1, settings.samplesPerPixel);
   const glm::ivec2 strata = rt::detail::strataFor(spp);
-  glUniform2i(p.location("u_size"), w, h);
   glUniform2i(p.location("u_strata"), strata.x, strata.y);
   p.set("u_spp", spp);
   p.set("u_maxDepth", maxDepth);
   p.set("u_shadowSamples", settings.shadowSamples);
   p.set("u_lightCount", int(scene.lights().size()));
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);
-  glUniform2ui(p.location("u_seed"), GLuint(settings.seed & 0xffffffffu), GLuint(settings.seed >> 32));
-  const SkyDesc& sky = scene.sky();
-  p.set("u_skyKind", scene.environment().isConstant() ? 0 : 1);
-  set3f("u_background", sky.background);
-  set3f("u_zenith", sky.zenith);
-  set3f("u_horizon", sky.horizon);
-  set3f("u_ground", sky.ground);
-  // The gradient's disk is toward the last sun light (RtScene::sunDirection).
-  std::optional<glm::vec3> sun;
-  for (const LightDesc& l : scene.lights()) {
-    if (l.type == LightType::Sun) sun = glm::normalize(glm::vec3(l.direction));
-  }
-  p.set("u_sunDisk", sky.sunDisk && sun ? 1 : 0);
-  set3f("u_sun", sun.value_or(glm::vec3(0, 1, 0)));
-  set3f("u_ambientSky", scene.ambientSky());
-  set3f("u_ambientGround", scene.ambientGround());
-  p.set("u_fog", scene.fog().enabled ? 1 : 0);
-  set3f("u_fogColor", scene.fog().color);
-  p.set("u_fogDensity", scene.fog().density);
-
-  glFinish();
-  const auto start = std::chrono::steady_clock::now();
-  glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glFinish();
-  rt::RenderResult result;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<glm::vec4> pixels(std::size_t(w) * std::size_t(h));
-  glGetNamedBufferSubData(image.id(), 0, GLsizeiptr(pixels.size() * sizeof(glm::vec4)), pixels.data());
-  std::uint32_t rays[4];
-  glGetNamedBufferSubData(counters.id(), 0, sizeof(rays), rays);
-  result.image = rt::Framebuffer(w, h);
-  for (std::size_t i = 0; i < pixels.size(); ++i) result.image.pixels[i] = glm::vec3(pixels[i]);
-  result.rays = rt::RayCounters{rays[0], rays[1], rays[2]};
-  return result;
+  p.set("u_ambientSky", scene.ambientSky());
+  p.set("u_ambientGround", scene.ambientGround());
+  return s.runPerPixel(settings.width, settings.height);
 }
 
 }  // namespace engine::gpurt

@@ -1,8 +1,9 @@
 #pragma once
 // The CPU tracer's scene traced on the GPU in GL 4.5 compute shaders (shaders/rt/):
 // the scene flattened by raytrace/gpu_layout.h into shader storage buffers, ray
-// queries (closest and any hit, what the tests compare with the CPU's), and the
-// Whitted integrator of raytrace/integrator.h. Above both raytrace/ (which never
+// queries (closest and any hit, what the tests compare with the CPU's), the
+// Whitted integrator of raytrace/integrator.h and the path tracer of
+// raytrace/path_tracer.h. Above both raytrace/ (which never
 // touches GL) and gl/; needs a current GL 4.5 context.
 #include <cstdint>
 #include <memory>
@@ -35,8 +36,9 @@ struct RayAnswer {
 };
 static_assert(sizeof(RayAnswer) == 16);
 
-// Why the GPU Whitted tracer cannot draw this scene with these settings yet, as the
-// one line a command line prints after "--device gpu: "; empty when it can.
+// Why the GPU tracer (Whitted or path, by settings.method) cannot draw this scene
+// with these settings yet, as the one line a command line prints after "--device
+// gpu: "; empty when it can.
 std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings);
 
 class GpuTracer {
@@ -48,8 +50,8 @@ class GpuTracer {
 
   // Each ray's closest hit and any hit.
   std::vector<RayAnswer> trace(std::span<const RayQuery> rays) const;
-  // The image Integrator(scene, settings).render() makes (Whitted only: check
-  // unsupported() first). `seconds` is the GPU's time, the upload excluded.
+  // The image Integrator(scene, settings).render() makes, Whitted or path traced
+  // (check unsupported() first). `seconds` is the GPU's time, the upload excluded.
   Result<rt::RenderResult> render(const rt::RenderSettings& settings) const;
 
   // The flattened scene it traces, and the buffers it lives in: a GpuRefit made from
@@ -63,6 +65,9 @@ class GpuTracer {
 
  private:
   GpuTracer();
+  Result<rt::RenderResult> renderWhitted(const rt::RenderSettings& settings) const;
+  // path_kernel.cpp.
+  Result<rt::RenderResult> renderPath(const rt::RenderSettings& settings) const;
   struct State;
   std::unique_ptr<State> state_;
 };

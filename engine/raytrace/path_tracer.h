@@ -46,6 +46,8 @@ class EnvironmentLight {
   glm::vec3 sample(glm::vec2 u, float* pdf) const;
   float pdf(const glm::vec3& dir) const;
   bool black() const { return black_; }
+  // Over the lat-long grid (uv, not solid angle); empty when black.
+  const Distribution2D& distribution() const { return distribution_; }
 
  private:
   RadianceFn radiance_;

@@ -1,7 +1,9 @@
 #pragma once
 // The path tracer's sampling routines, each with the density it draws from: the
 // estimator divides by exactly that pdf, and tests/raytrace/sampling_test.cpp checks
-// every pair with a chi-square test. Directions are in a local frame with the normal
+// every pair with a chi-square test. shaders/rt/sampling.glsl and
+// environment_light.glsl transcribe what the GPU path tracer uses of them: a change
+// here is a change there (tests/gl/gpu_path_test.cpp compares the two tracers). Directions are in a local frame with the normal
 // along +z (Frame maps to and from the world); solid-angle densities throughout.
 #include <algorithm>
 #include <cmath>
@@ -117,6 +119,9 @@ class Distribution1D {
   float pdf(int index) const { return integral_ > 0.0f ? func_[std::size_t(index)] / integral_ : 0.0f; }
   float integral() const { return integral_; }  // mean weight: the weights' integral over [0, 1)
   int size() const { return int(func_.size()); }
+  // The tables as sample() and pdf() read them (the GPU path tracer uploads them).
+  std::span<const float> func() const { return func_; }
+  std::span<const float> cdf() const { return cdf_; }
 
  private:
   std::vector<float> func_;
@@ -134,6 +139,8 @@ class Distribution2D {
   float pdf(glm::vec2 p) const;
   int width() const { return width_; }
   int height() const { return height_; }
+  const Distribution1D& marginal() const { return marginal_; }
+  const Distribution1D& row(int y) const { return rows_[std::size_t(y)]; }
 
  private:
   std::vector<Distribution1D> rows_;

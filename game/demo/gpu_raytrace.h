@@ -1,7 +1,7 @@
 #pragma once
-// `demo --mode raytrace --device gpu --offscreen`: the scene built as the CPU tracer
-// builds it, traced by the GPU Whitted integrator (engine/gputrace) on an offscreen
-// context, tone mapped by the CPU's own code.
+// `demo --mode raytrace|pathtrace --device gpu --offscreen`: the scene built as the
+// CPU tracer builds it, traced by the GPU Whitted integrator or path tracer
+// (engine/gputrace) on an offscreen context, tone mapped by the CPU's own code.
 #include <string>
 
 #include "app/runner.h"

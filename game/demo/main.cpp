@@ -167,8 +167,8 @@ int main(int argc, char** argv) {
   app.add_option("--rt-precision", rt.precision, "Ray tracing: float or double")
       ->check(CLI::IsMember({"float", "double"}))->capture_default_str();
   app.add_option("--device", rt.device,
-                 "Ray tracing: cpu, or gpu (raytrace --offscreen only: the Whitted tracer in a compute shader, "
-                 "through the --offscreen backend)")
+                 "Ray tracing: cpu, or gpu (raytrace and pathtrace, --offscreen only: the Whitted tracer or "
+                 "the path tracer in a compute shader, through the --offscreen backend)")
       ->check(CLI::IsMember({"cpu", "gpu"}))->capture_default_str();
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
 

@@ -10,6 +10,7 @@
 
 #include "../support/gl_test.h"
 #include "../support/rt_queries.h"
+#include "../support/rt_room.h"
 #include "asset/scene_file.h"
 #include "gputrace/gpu_tracer.h"
 #include "raytrace/integrator.h"
@@ -19,14 +20,6 @@ using namespace engine;
 using engine::test::GlTest;
 
 namespace {
-
-rt::RtScene cornell(const std::string& file = "cornell.json") {
-  auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + file);
-  EXPECT_TRUE(desc) << desc.error().message;
-  auto scene = rt::RtScene::fromSceneDesc(*desc);
-  EXPECT_TRUE(scene) << scene.error().message;
-  return std::move(scene).value();
-}
 
 std::vector<gpurt::RayQuery> queriesOf(const std::vector<rt::Ray<float>>& rays) {
   std::vector<gpurt::RayQuery> out;
@@ -92,7 +85,7 @@ TEST_P(GpuTrace, HitsEqualTheCpuBvhsOnAMeshScene) {
 
 // The course room: spheres and planes, rays from inside it in every direction.
 TEST_P(GpuTrace, HitsEqualTheCpusInTheCornellRoom) {
-  const rt::RtScene scene = cornell();
+  const rt::RtScene scene = test::cornellScene();
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> x(-2.4f, 2.4f), y(0.1f, 2.9f), z(-2.9f, 4.9f), dir(-1.0f, 1.0f);
   std::vector<rt::Ray<float>> rays;
@@ -129,52 +122,8 @@ ImageAgreement compareImages(const rt::Framebuffer& cpu, const rt::Framebuffer& 
 class GpuWhitted : public GlTest {};
 ENGINE_INSTANTIATE_OFFSCREEN(GpuWhitted);
 
-// The room of cornell_soft.json with triangles in it: a box on the floor (12 flat
-// triangles, through the scene file) and, in a BVH group of its own, a smooth bumpy
-// patch with vertex normals on the left wall; and the point light of cornell.json.
-rt::RtScene roomWithMeshes() {
-  auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell_soft.json");
-  EXPECT_TRUE(desc) << desc.error().message;
-  PrimitiveDesc box;
-  box.type = PrimitiveType::Box;
-  box.min = {-0.4, 0.0, 0.6};
-  box.max = {0.3, 0.5, 1.1};
-  box.material = 5;
-  desc->primitives.push_back(box);
-  auto built = rt::RtScene::fromSceneDesc(*desc);
-  EXPECT_TRUE(built) << built.error().message;
-  rt::RtScene scene = std::move(built).value();
-  const rt::RtScene pointLit = cornell("cornell.json");
-  for (const LightDesc& light : pointLit.lights()) scene.addLight(light);
-  LightDesc sun;  // through the open front, onto the floor near the camera
-  sun.direction = glm::normalize(glm::dvec3(0.2, 0.5, -1.0));
-  sun.intensity = 0.5f;
-  scene.addLight(sun);
-  rt::RtMesh patch;
-  constexpr int kSide = 12;
-  for (int j = 0; j <= kSide; ++j) {
-    for (int i = 0; i <= kSide; ++i) {
-      const float u = float(i) / kSide, v = float(j) / kSide;
-      const float bump = 0.15f * std::sin(6.0f * u) * std::sin(5.0f * v);
-      patch.positions.emplace_back(-2.2f + bump, 0.6f + 1.6f * v, 1.8f + 2.2f * u);
-      patch.normals.push_back(glm::normalize(glm::vec3(1.0f, -0.75f * std::sin(6.0f * u) * std::cos(5.0f * v),
-                                                       -0.9f * std::cos(6.0f * u) * std::sin(5.0f * v))));
-    }
-  }
-  for (int j = 0; j < kSide; ++j) {
-    for (int i = 0; i < kSide; ++i) {
-      const auto a = std::uint32_t(j * (kSide + 1) + i), b = a + 1, c = a + kSide + 1, d = c + 1;
-      patch.indices.insert(patch.indices.end(), {a, d, b, a, c, d});  // facing +x, as the normals
-    }
-  }
-  patch.material = 0;
-  patch.group = scene.addGroup();
-  EXPECT_TRUE(scene.addMesh(std::move(patch)));
-  scene.build();
-  return scene;
-}
-
-// The same image as the CPU's Whitted tracer at 160 x 90: the room above with its
+// The same image as the CPU's Whitted tracer at 160 x 90: the room of
+// support/rt_room.h with its
 // area light (2 x 2 jittered shadow rays), point light, sun, mirror sphere, box and
 // smooth patch, two jittered samples per pixel (the per-pixel random streams must
 // agree); in the course's classic shading on a black background, then in PBR with
@@ -187,7 +136,7 @@ rt::RtScene roomWithMeshes() {
 // hundredth of an 8-bit level), and at most 0.5 % of the pixels (72) more than one
 // level off. llvmpipe rounds as the CPU does: errors of 1e-7 and no pixel off.
 TEST_P(GpuWhitted, RendersTheCpusImageOfTheRoom) {
-  rt::RtScene scene = roomWithMeshes();
+  rt::RtScene scene = test::roomWithMeshes();
   ASSERT_GT(scene.triangleCount(), 12u);
   rt::RenderSettings settings;
   settings.width = 160;
