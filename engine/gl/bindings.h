@@ -67,6 +67,17 @@ inline constexpr unsigned kSkinJoints = 3;
 inline constexpr unsigned kSkinWeights = 4;
 inline constexpr unsigned kSkinOutput = 8;
 inline constexpr unsigned kFrameBlock = 0;
+// GPU culling (render/gpu_cull.h): the hierarchical-Z pyramid's build
+// (cull/hiz.comp: the level read, the level written) and the cull (cull/cull.comp:
+// the pyramid, the clusters, jobs, commands and counters). It runs inside the
+// main view's pass, so its texture units are ones no scene program samples.
+inline constexpr unsigned kHiZSource = 28;
+inline constexpr unsigned kHiZLevelImage = 1;
+inline constexpr unsigned kHiZ = 29;
+inline constexpr unsigned kCullClusters = 12;
+inline constexpr unsigned kCullJobs = 13;
+inline constexpr unsigned kCullCommands = 14;
+inline constexpr unsigned kCullCounters = 15;
 // The GPU ray tracer (shaders/rt/): the flattened scene (raytrace/gpu_layout.h),
 // its materials and lights, and what a kernel reads and writes.
 inline constexpr unsigned kRtNodes = 0;
@@ -85,7 +96,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 52> kDefines{{
+inline constexpr std::array<Define, 59> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -127,6 +138,13 @@ inline constexpr std::array<Define, 52> kDefines{{
     {"UNIT_SKIN_WEIGHTS", kSkinWeights},
     {"BUFFER_SKIN_OUTPUT", kSkinOutput},
     {"BLOCK_FRAME", kFrameBlock},
+    {"UNIT_HIZ_SOURCE", kHiZSource},
+    {"IMAGE_HIZ_LEVEL", kHiZLevelImage},
+    {"UNIT_HIZ", kHiZ},
+    {"BUFFER_CULL_CLUSTERS", kCullClusters},
+    {"BUFFER_CULL_JOBS", kCullJobs},
+    {"BUFFER_CULL_COMMANDS", kCullCommands},
+    {"BUFFER_CULL_COUNTERS", kCullCounters},
     {"BUFFER_RT_NODES", kRtNodes},
     {"BUFFER_RT_LEAVES", kRtLeaves},
     {"BUFFER_RT_ORDER", kRtOrder},
