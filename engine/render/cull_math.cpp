@@ -43,8 +43,8 @@ HiZ HiZ::build(std::span<const float> depth, int width, int height) {
   HiZ hiz;
   hiz.width = width;
   hiz.height = height;
-  hiz.levels.emplace_back(depth.begin(), depth.end());
-  for (int level = 1; level < hizLevelCount(width, height); ++level) {
+  for (int level = 1; level <= hizLevelCount(width, height); ++level) {
+    const std::span<const float> source = level == 1 ? depth : std::span<const float>(hiz.levels.back());
     const int sw = hiz.levelWidth(level - 1), sh = hiz.levelHeight(level - 1);
     const int dw = hiz.levelWidth(level), dh = hiz.levelHeight(level);
     std::vector<float> next(size_t(dw) * size_t(dh));
@@ -52,9 +52,9 @@ HiZ HiZ::build(std::span<const float> depth, int width, int height) {
       for (int x = 0; x < dw; ++x) {
         // The last column and row take everything up to the edge (hiz.comp alike).
         const int x1 = x == dw - 1 ? sw - 1 : 2 * x + 1, y1 = y == dh - 1 ? sh - 1 : 2 * y + 1;
-        float farthest = hiz.at(level - 1, std::min(2 * x, sw - 1), std::min(2 * y, sh - 1));
+        float farthest = source[size_t(std::min(2 * y, sh - 1) * sw + std::min(2 * x, sw - 1))];
         for (int yy = 2 * y; yy <= y1; ++yy)
-          for (int xx = 2 * x; xx <= x1; ++xx) farthest = std::min(farthest, hiz.at(level - 1, xx, yy));
+          for (int xx = 2 * x; xx <= x1; ++xx) farthest = std::min(farthest, source[size_t(yy * sw + xx)]);
         next[size_t(y * dw + x)] = farthest;
       }
     hiz.levels.push_back(std::move(next));
@@ -95,7 +95,7 @@ int pixel(float ndc, int size, int widen) {
 // -Z; a linear-fractional function over a box peaks at a corner) against the
 // farthest of the 2 x 2 texels of the first level where its pixel rectangle,
 // widened by a pixel each way, spans at most two texels a side.
-bool hidden(const glm::vec4 (&c)[8], const HiZ& hiz) {
+bool hidden(const glm::vec4 (&c)[8], const HiZ& hiz, float depthMargin) {
   float nearest = 0.0f;
   glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const glm::vec4& p : c) {
@@ -107,27 +107,27 @@ bool hidden(const glm::vec4 (&c)[8], const HiZ& hiz) {
   }
   const int x0 = pixel(lo.x, hiz.width, -1), x1 = pixel(hi.x, hiz.width, 1);
   const int y0 = pixel(lo.y, hiz.height, -1), y1 = pixel(hi.y, hiz.height, 1);
-  const int last = int(hiz.levels.size()) - 1;
-  int level = 0;
+  const int last = int(hiz.levels.size());
+  int level = 1;
   while (level < last && ((x1 >> level) - (x0 >> level) > 1 || (y1 >> level) - (y0 >> level) > 1)) ++level;
   const int w = hiz.levelWidth(level), h = hiz.levelHeight(level);
   const int tx0 = std::min(x0 >> level, w - 1), tx1 = std::min(x1 >> level, w - 1);
   const int ty0 = std::min(y0 >> level, h - 1), ty1 = std::min(y1 >> level, h - 1);
   const float farthest = std::min(std::min(hiz.at(level, tx0, ty0), hiz.at(level, tx1, ty0)),
                                   std::min(hiz.at(level, tx0, ty1), hiz.at(level, tx1, ty1)));
-  return nearest * (1.0f + kDepthMargin) < farthest;
+  return nearest * (1.0f + depthMargin) < farthest;
 }
 
 }  // namespace
 
-Verdict testBox(const glm::mat4& viewProjection, const glm::mat4& model, glm::vec3 lo, glm::vec3 hi, const HiZ* hiz) {
+Verdict testBox(const View& view, const glm::mat4& model, glm::vec3 lo, glm::vec3 hi) {
   glm::vec4 corners[8];
   for (int i = 0; i < 8; ++i) {
     const glm::vec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-    corners[i] = viewProjection * (model * glm::vec4(p, 1.0f));  // scene.vert's order
+    corners[i] = view.viewProjection * (model * glm::vec4(p, 1.0f));  // scene.vert's order
   }
   if (outsideFrustum(corners)) return Verdict::Frustum;
-  if (hiz && hidden(corners, *hiz)) return Verdict::Occluded;
+  if (view.hiz && hidden(corners, *view.hiz, view.depthMargin)) return Verdict::Occluded;
   return Verdict::Visible;
 }
 
@@ -140,7 +140,7 @@ void cullJobs(std::span<const Job> jobs, std::span<const Cluster> clusters, cons
     ++counters.instancesTested;
     if (job.sphere.w >= 0.0f) {
       const glm::vec3 c(job.sphere), r(job.sphere.w);
-      const Verdict v = testBox(view.viewProjection, glm::mat4(1.0f), c - r, c + r, view.hiz);
+      const Verdict v = testBox(view, glm::mat4(1.0f), c - r, c + r);
       if (v == Verdict::Frustum) ++counters.instancesFrustum;
       if (v == Verdict::Occluded) ++counters.instancesOccluded;
       if (v != Verdict::Visible) continue;
@@ -154,7 +154,7 @@ void cullJobs(std::span<const Job> jobs, std::span<const Cluster> clusters, cons
     for (std::uint32_t i = 0; i < job.clusterCount; ++i) {
       const Cluster& c = clusters[job.firstCluster + i];
       ++counters.clustersTested;
-      const Verdict v = testBox(view.viewProjection, job.model, c.lo, c.hi, view.hiz);
+      const Verdict v = testBox(view, job.model, c.lo, c.hi);
       if (v == Verdict::Frustum) ++counters.clustersFrustum;
       if (v == Verdict::Occluded) ++counters.clustersOccluded;
       visible[i] = v == Verdict::Visible;

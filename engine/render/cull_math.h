@@ -86,22 +86,26 @@ struct Counters {
 };
 static_assert(sizeof(Counters) == 32);
 
-// A hierarchical-Z pyramid of a reverse-Z depth buffer: level 0 the depth itself,
-// each further level (GL's mip sizes, max(1, size >> k)) the least (farthest)
-// depth of the texels below it; a last row or column of odd length folds into its
-// neighbour, so every texel of level k covers at least pixels [x << k, (x + 1) << k)
-// and the last texels the rest: no pixel is left out of any level.
+// A hierarchical-Z pyramid of a reverse-Z depth buffer of width x height pixels:
+// level k (GL's mip sizes, max(1, size >> k)) holds the least (farthest) depth of
+// the texels of level k - 1 below it; a last row or column of odd length folds
+// into its neighbour, so every texel of level k covers at least pixels [x << k,
+// (x + 1) << k) and the last texels the rest: no pixel is left out of any level.
+// Level 0, the depth itself, is not kept: copying it cost llvmpipe as much as
+// reducing it (10 ms at 1280x720), and a test never needs it (a box spanning
+// at most two pixels a side is rare and cheap to draw).
 struct HiZ {
   int width = 0, height = 0;
-  std::vector<std::vector<float>> levels;  // row-major, bottom row first (GL's)
+  std::vector<std::vector<float>> levels;  // levels[k - 1] is level k; row-major, bottom row first (GL's)
   static HiZ build(std::span<const float> depth, int width, int height);
   int levelWidth(int level) const { return std::max(1, width >> level); }
   int levelHeight(int level) const { return std::max(1, height >> level); }
-  float at(int level, int x, int y) const { return levels[size_t(level)][size_t(y * levelWidth(level) + x)]; }
+  float at(int level, int x, int y) const { return levels[size_t(level - 1)][size_t(y * levelWidth(level) + x)]; }
 };
+// The levels kept, 1 to this (at least one: the 1 x 1 top).
 inline int hizLevelCount(int width, int height) {
   int levels = 1;
-  while ((std::max(width, height) >> levels) > 0) ++levels;
+  while ((std::max(width, height) >> (levels + 1)) > 0) ++levels;
   return levels;
 }
 
@@ -114,16 +118,19 @@ inline constexpr float kDepthMargin = 1e-4f;
 
 enum class Verdict : std::uint32_t { Visible = 0, Frustum = 1, Occluded = 2 };
 
-// A mesh-space box through `model` and `viewProjection`: outside the frustum
-// (every corner beyond one clip plane), hidden (every pixel it could cover has a
-// nearer depth in `hiz`; null: frustum only), or possibly visible.
-Verdict testBox(const glm::mat4& viewProjection, const glm::mat4& model, glm::vec3 lo, glm::vec3 hi, const HiZ* hiz);
-
 // The view a dispatch culls for.
 struct View {
   glm::mat4 viewProjection{1.0f};  // camera-relative world -> clip (zero-to-one depth, reverse-Z)
   const HiZ* hiz = nullptr;        // null: frustum culling only
+  // Tests only: a negative margin culls what is a little in front of the depth
+  // (non-conservative on purpose), which the image comparisons must catch.
+  float depthMargin = kDepthMargin;
 };
+
+// A mesh-space box through `model` and the view: outside the frustum (every
+// corner beyond one clip plane), hidden (every pixel it could cover has a nearer
+// depth in the view's pyramid; none: frustum only), or possibly visible.
+Verdict testBox(const View& view, const glm::mat4& model, glm::vec3 lo, glm::vec3 hi);
 
 // cull.comp on the CPU: writes every command of `jobs` into `commands` (sized by
 // the caller to cover every job's firstCommand + commandCount) and adds to

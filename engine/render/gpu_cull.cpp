@@ -37,7 +37,8 @@ void HiZPyramid::resize(int width, int height) {
   depth_.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   depth_.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   depthFbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
-  pyramid_ = gl::Texture::create2D(GL_R32F, width, height, levels_);
+  // Levels 1 to levels_ as the texture's mips 0 to levels_ - 1.
+  pyramid_ = gl::Texture::create2D(GL_R32F, std::max(1, width >> 1), std::max(1, height >> 1), levels_);
   pyramid_.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
   pyramid_.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
@@ -47,15 +48,14 @@ void HiZPyramid::build(GLuint framebuffer, int width, int height) {
   glBlitNamedFramebuffer(framebuffer, depthFbo_.id(), 0, 0, width, height, 0, 0, width, height,
                          GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   program_.use();
-  for (int level = 0; level < levels_; ++level) {
+  for (int level = 1; level <= levels_; ++level) {
     const glm::ivec2 size(std::max(1, width >> level), std::max(1, height >> level));
-    const glm::ivec2 source(std::max(1, width >> std::max(level - 1, 0)), std::max(1, height >> std::max(level - 1, 0)));
-    // Level 0 reads the copied depth; every other level the one below it, which
+    const glm::ivec2 source(std::max(1, width >> (level - 1)), std::max(1, height >> (level - 1)));
+    // Level 1 reads the copied depth; every other level the one below it, which
     // the barrier after the previous dispatch made visible to texel fetches.
-    glBindTextureUnit(gl::binding::kHiZSource, level == 0 ? depth_.id() : pyramid_.id());
-    glBindImageTexture(gl::binding::kHiZLevelImage, pyramid_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    program_.set("u_copy", level == 0 ? 1 : 0);
-    program_.set("u_sourceLevel", std::max(level - 1, 0));
+    glBindTextureUnit(gl::binding::kHiZSource, level == 1 ? depth_.id() : pyramid_.id());
+    glBindImageTexture(gl::binding::kHiZLevelImage, pyramid_.id(), level - 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    program_.set("u_sourceLevel", std::max(level - 2, 0));
     glProgramUniform2i(program_.id(), program_.location("u_sourceSize"), source.x, source.y);
     glProgramUniform2i(program_.id(), program_.location("u_size"), size.x, size.y);
     glDispatchCompute((GLuint(size.x) + kHiZGroup - 1) / kHiZGroup, (GLuint(size.y) + kHiZGroup - 1) / kHiZGroup, 1);
@@ -69,9 +69,10 @@ cull::HiZ HiZPyramid::read() const {
   cull::HiZ hiz;
   hiz.width = width_;
   hiz.height = height_;
-  for (int level = 0; level < levels_; ++level) {
+  for (int level = 1; level <= levels_; ++level) {
     std::vector<float> texels(size_t(hiz.levelWidth(level)) * size_t(hiz.levelHeight(level)));
-    glGetTextureImage(pyramid_.id(), level, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    glGetTextureImage(pyramid_.id(), level - 1, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
+                      texels.data());
     hiz.levels.push_back(std::move(texels));
   }
   return hiz;
@@ -124,9 +125,11 @@ void GpuCuller::upload() {
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commandBuffer_.id());
 }
 
-void GpuCuller::cull(std::size_t first, std::size_t end, const glm::mat4& viewProjection, const HiZPyramid* hiz) {
+void GpuCuller::cull(std::size_t first, std::size_t end, const glm::mat4& viewProjection, const HiZPyramid* hiz,
+                     float depthMargin) {
   if (end <= first) return;
   program_.use();
+  program_.set("u_depthMargin", depthMargin);
   program_.set("u_viewProjection", viewProjection);
   program_.set("u_levels", hiz ? hiz->levels() : 0);
   glProgramUniform2i(program_.id(), program_.location("u_size"), hiz ? hiz->width() : 1, hiz ? hiz->height() : 1);

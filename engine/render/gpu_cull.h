@@ -59,7 +59,9 @@ class GpuCuller {
   void upload();
   // Culls jobs [first, end) for a view (camera-relative world -> clip, reverse-Z),
   // against `hiz`, or the frustum only (null). Commands are ready for drawing.
-  void cull(std::size_t first, std::size_t end, const glm::mat4& viewProjection, const HiZPyramid* hiz);
+  // `depthMargin`: cull::View's (tests only change it).
+  void cull(std::size_t first, std::size_t end, const glm::mat4& viewProjection, const HiZPyramid* hiz,
+            float depthMargin = cull::kDepthMargin);
 
   // Reads back (waits for the GL): the counters since the last upload, every command.
   cull::Counters counters() const;

@@ -277,6 +277,7 @@ struct SceneRenderer::Impl {
   // mesh's clusters; where each mesh's clusters start in its table.
   std::unique_ptr<GpuCuller> culler;
   std::unique_ptr<HiZPyramid> hiz;
+  float cullDepthMargin = cull::kDepthMargin;
   std::map<const GpuMesh*, std::uint32_t> shapeClusterBase;
   std::map<const GpuPrimitive*, std::uint32_t> primitiveClusterBase;
   Status makeCuller();
@@ -366,6 +367,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   render.skinning = options.skinningOverride.value_or(render.skinning);
   render.lodPixels = options.lodPixelsOverride.value_or(render.lodPixels);
   render.gpuCulling = options.gpuCullingOverride.value_or(render.gpuCulling);
+  cullDepthMargin = options.gpuCullingDepthMargin;
   render.shading = options.shadingOverride.value_or(render.shading);
   if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
   render.toneMap = options.toneMapOverride.value_or(render.toneMap);
@@ -1247,7 +1249,7 @@ void SceneRenderer::Impl::cullPhase(std::size_t firstJob, std::size_t endJob, co
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     hiz->build(GLuint(framebuffer), targetWidth, targetHeight);
   }
-  culler->cull(firstJob, endJob, glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr);
+  culler->cull(firstJob, endJob, glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
   ++stats->cullDispatches;
   stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -48,6 +48,9 @@ struct SceneRenderOptions {
   double terrainErrorOverride = 0.0;         // > 0 replaces terrain.error_pixels (the LOD target)
   std::optional<double> lodPixelsOverride;   // replaces render.lod_pixels (models' levels of detail)
   std::optional<bool> gpuCullingOverride;    // replaces render.gpu_culling (render/gpu_cull.h)
+  // Tests only: GPU culling's depth margin (cull::View::depthMargin); a negative
+  // one culls what is in front, and the culled image must then differ.
+  float gpuCullingDepthMargin = cull::kDepthMargin;
   // Replaces every model's skinning (lbs, dqs, none: the bind pose).
   std::optional<SkinMode> skinModeOverride;
   // Replace render.shading, render.exposure (> 0), render.tonemap, render.output.

@@ -39,14 +39,14 @@ layout(std430, binding = BUFFER_CULL_COUNTERS) buffer Counters { uint counters[8
 layout(binding = UNIT_HIZ) uniform sampler2D u_hiz;
 
 uniform mat4 u_viewProjection;  // camera-relative world -> clip (zero-to-one, reverse-Z)
-uniform ivec2 u_size;           // the pyramid's level 0
-uniform int u_levels;           // 0: frustum only
+uniform ivec2 u_size;           // the depth's (level 0, not kept: the texture's mip k - 1 is level k)
+uniform int u_levels;           // levels 1 to u_levels; 0: frustum only
 uniform uint u_firstJob;
+uniform float u_depthMargin;    // cull::kDepthMargin (tests break it on purpose: cull::View)
 
 const uint kInstanceOnly = 1u;
 const uint kMergeChunk = 1024u;
 const float kClipMargin = 1e-4;
-const float kDepthMargin = 1e-4;
 const uint kVisible = 0u, kFrustum = 1u, kOccluded = 2u;
 
 shared uint s_visible[kMergeChunk];
@@ -73,7 +73,7 @@ int pixelOf(float ndc, int size, int widen) {
   return clamp(int(floor(window)) + widen, 0, size - 1);
 }
 
-float hizAt(int level, int x, int y) { return texelFetch(u_hiz, ivec2(x, y), level).r; }
+float hizAt(int level, int x, int y) { return texelFetch(u_hiz, ivec2(x, y), level - 1).r; }
 
 bool hidden(vec4 c[8]) {
   float nearest = 0.0;
@@ -88,15 +88,15 @@ bool hidden(vec4 c[8]) {
   }
   const int x0 = pixelOf(lo.x, u_size.x, -1), x1 = pixelOf(hi.x, u_size.x, 1);
   const int y0 = pixelOf(lo.y, u_size.y, -1), y1 = pixelOf(hi.y, u_size.y, 1);
-  const int last = u_levels - 1;
-  int level = 0;
+  const int last = u_levels;
+  int level = 1;
   while (level < last && ((x1 >> level) - (x0 >> level) > 1 || (y1 >> level) - (y0 >> level) > 1)) ++level;
   const int w = max(1, u_size.x >> level), h = max(1, u_size.y >> level);
   const int tx0 = min(x0 >> level, w - 1), tx1 = min(x1 >> level, w - 1);
   const int ty0 = min(y0 >> level, h - 1), ty1 = min(y1 >> level, h - 1);
   const float farthest = min(min(hizAt(level, tx0, ty0), hizAt(level, tx1, ty0)),
                              min(hizAt(level, tx0, ty1), hizAt(level, tx1, ty1)));
-  return nearest * (1.0 + kDepthMargin) < farthest;
+  return nearest * (1.0 + u_depthMargin) < farthest;
 }
 
 uint testBox(mat4 model, vec3 lo, vec3 hi) {

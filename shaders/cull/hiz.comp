@@ -1,7 +1,7 @@
 #version 450 core
 // One level of the hierarchical-Z pyramid (render/gpu_cull.h, render/cull_math.h's
-// HiZ::build is its CPU twin): level 0 copies the view's depth; each further level
-// keeps the least depth (reverse-Z: the farthest) of the texels below it, its last
+// HiZ::build is its CPU twin): each level keeps the least depth (reverse-Z: the
+// farthest) of the texels below it, level 1 of the view's depth itself, its last
 // column and row taking everything up to the edge of an odd-sized level, so that
 // no pixel of the view is left out of any level.
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -12,15 +12,10 @@ layout(binding = IMAGE_HIZ_LEVEL, r32f) writeonly uniform image2D u_level;
 uniform int u_sourceLevel;    // the level of u_source read
 uniform ivec2 u_sourceSize;   // its size
 uniform ivec2 u_size;         // the size of the level written
-uniform bool u_copy;          // level 0: the depth as it is
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, u_size))) return;
-  if (u_copy) {
-    imageStore(u_level, p, vec4(texelFetch(u_source, p, 0).r));
-    return;
-  }
   const ivec2 last = ivec2(p.x == u_size.x - 1 ? u_sourceSize.x - 1 : 2 * p.x + 1,
                            p.y == u_size.y - 1 ? u_sourceSize.y - 1 : 2 * p.y + 1);
   float farthest = texelFetch(u_source, min(2 * p, u_sourceSize - 1), u_sourceLevel).r;
