@@ -164,9 +164,11 @@ void cullJobs(std::span<const Job> jobs, std::span<const Cluster> clusters, cons
     for (std::uint32_t i = 0; i < job.clusterCount; ++i) {
       const std::uint32_t end = std::min(job.clusterCount, (i / kMergeChunk + 1) * kMergeChunk);
       if (!visible[i] || (i % kMergeChunk > 0 && visible[i - 1])) continue;
-      std::uint32_t count = 0;
-      for (std::uint32_t j = i; j < end && visible[j]; ++j) count += clusters[job.firstCluster + j].indexCount;
-      out[i] = {count, 1, clusters[job.firstCluster + i].firstIndex, 0, 0};
+      std::uint32_t count = 0, run = 0;
+      for (std::uint32_t j = i; j < end && visible[j]; ++j, ++run) count += clusters[job.firstCluster + j].indexCount;
+      const Cluster& head = clusters[job.firstCluster + i];
+      out[i] = job.flags & kInstances ? Command{head.indexCount, run, head.firstIndex, 0, job.firstInstance + i}
+                                      : Command{count, 1, head.firstIndex, 0, 0};
     }
   }
 }

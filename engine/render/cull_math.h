@@ -58,11 +58,17 @@ struct Job {
   std::uint32_t clusterCount = 0;  // its whole-range entry follows them
   std::uint32_t firstCommand = 0;
   std::uint32_t flags = 0;
+  std::uint32_t firstInstance = 0;  // kInstances: the instance of its first cluster
+  std::uint32_t pad[3] = {0, 0, 0};
 };
-static_assert(sizeof(Job) == 96);
+static_assert(sizeof(Job) == 112);
 // The mesh deforms (skinned, morphed): its clusters' bounds do not hold, so the
 // instance's sphere alone is tested and one command draws the whole range.
 inline constexpr std::uint32_t kInstanceOnly = 1;
+// The clusters are instances of one mesh (the terrain's patches: each the same
+// grid, its own box): a run of visible ones is one instanced command, of the
+// first's indices, as many instances as the run, from firstInstance + its index.
+inline constexpr std::uint32_t kInstances = 2;
 
 // glMultiDrawElementsIndirect's command.
 struct Command {

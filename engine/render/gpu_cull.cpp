@@ -94,6 +94,11 @@ std::uint32_t GpuCuller::addClusters(std::span<const cull::Cluster> clusters) {
   return first;
 }
 
+void GpuCuller::clearClusters() {
+  clusters_.clear();
+  clustersUploaded_ = false;
+}
+
 void GpuCuller::clearJobs() {
   jobs_.clear();
   commandTotal_ = 0;
@@ -113,8 +118,8 @@ IndirectDraw GpuCuller::commandsOf(std::size_t job) const {
 
 void GpuCuller::upload() {
   if (!clustersUploaded_) {
-    clusterBuffer_ = gl::Buffer::create(std::max<std::size_t>(1, clusters_.size() * sizeof(cull::Cluster)),
-                                        clusters_.empty() ? nullptr : clusters_.data(), 0);
+    reserve(clusterBuffer_, clusters_.size() * sizeof(cull::Cluster));
+    if (!clusters_.empty()) clusterBuffer_.upload(0, clusters_.size() * sizeof(cull::Cluster), clusters_.data());
     clustersUploaded_ = true;
   }
   reserve(jobBuffer_, jobs_.size() * sizeof(cull::Job));

@@ -46,6 +46,8 @@ class GpuCuller {
   // At load: appends a mesh's clusters (cull::appendClusters) to the table and
   // returns where they start (to add to their ClusterRange::first).
   std::uint32_t addClusters(std::span<const cull::Cluster> clusters);
+  // Drops the table (a terrain's patches change every frame).
+  void clearClusters();
 
   // Each frame: the jobs (an instance of a mesh each) in the order they will be
   // drawn; addJob assigns each its commands and returns its index.

@@ -276,6 +276,7 @@ struct SceneRenderer::Impl {
   // GPU culling (render.gpu_culling, render/gpu_cull.h): made at load with every
   // mesh's clusters; where each mesh's clusters start in its table.
   std::unique_ptr<GpuCuller> culler;
+  std::unique_ptr<GpuCuller> terrainCuller;  // the terrain's patches, a table of their own each frame
   std::unique_ptr<HiZPyramid> hiz;
   float cullDepthMargin = cull::kDepthMargin;
   std::map<const GpuMesh*, std::uint32_t> shapeClusterBase;
@@ -284,7 +285,9 @@ struct SceneRenderer::Impl {
   ItemCommands queueJobs(const std::vector<DrawItem>& items);
   std::vector<IndirectDraw> queueShapeJob(const ShapeDraw& shape);
   std::vector<IndirectDraw> queueCharacterJobs(const DrawItem& item);
-  void cullPhase(std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion);
+  void cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion);
+  std::vector<cull::Cluster> terrainPatchBoxes(const terrain::LodSelection& selection) const;
+  void drawTerrainCulled(const View& view);
   Status drawCulled(const View& view, const DrawLists& lists, bool useProbes);
   terrain::Terrain* terrain = nullptr;  // the scene's, when it has one
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
@@ -1149,7 +1152,11 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
     drawSky(view.viewProjection);
   }
   applyPassState(opaquePassFor(view.mirrored));
-  if (terrain) drawTerrain(view.viewProjection, view.fovy, view.height);
+  if (terrain && terrainCuller && view.main) {
+    drawTerrainCulled(view);
+  } else if (terrain) {
+    drawTerrain(view.viewProjection, view.fovy, view.height);
+  }
   auto lists = collectDraws(view.planes, false, skipShape);
   if (!lists) return lists.error();
   if (culler && view.main) return drawCulled(view, *lists, useProbes);
@@ -1172,6 +1179,11 @@ Status SceneRenderer::Impl::makeCuller() {
   auto made = GpuCuller::create(shaderDir);
   if (!made) return makeError(scene.path + ": /render/gpu_culling: " + made.error().message);
   culler = std::make_unique<GpuCuller>(std::move(made).value());
+  if (terrain) {
+    auto forTerrain = GpuCuller::create(shaderDir);
+    if (!forTerrain) return makeError(scene.path + ": /render/gpu_culling: " + forTerrain.error().message);
+    terrainCuller = std::make_unique<GpuCuller>(std::move(forTerrain).value());
+  }
   auto pyramid = HiZPyramid::create(shaderDir);
   if (!pyramid) return makeError(scene.path + ": /render/gpu_culling: " + pyramid.error().message);
   hiz = std::make_unique<HiZPyramid>(std::move(pyramid).value());
@@ -1238,7 +1250,8 @@ ItemCommands SceneRenderer::Impl::queueJobs(const std::vector<DrawItem>& items) 
 // drawn into the bound framebuffer so far, or the frustum alone. The depth only
 // ever comes nearer during the view's pass (GL_GREATER, no clears), so what it
 // hides now stays hidden for the rest of the pass.
-void SceneRenderer::Impl::cullPhase(std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion) {
+void SceneRenderer::Impl::cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view,
+                                    bool occlusion) {
   if (endJob <= firstJob) return;
   // The pyramid needs the depth drawn so far, which llvmpipe rasterises only when
   // flushed: waited for here, so that the time below is the culling's own.
@@ -1249,7 +1262,7 @@ void SceneRenderer::Impl::cullPhase(std::size_t firstJob, std::size_t endJob, co
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     hiz->build(GLuint(framebuffer), targetWidth, targetHeight);
   }
-  culler->cull(firstJob, endJob, glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
+  with.cull(firstJob, endJob, glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
   ++stats->cullDispatches;
   stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -1276,10 +1289,10 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   const ItemCommands blendCommands = queueJobs(lists.blend);
   culler->upload();
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
-  cullPhase(0, firstJobs, view, occlusion && terrain);
+  cullPhase(*culler, 0, firstJobs, view, occlusion && terrain);
   Status status = drawItems(first, pass, &firstCommands);
   if (status) {
-    cullPhase(firstJobs, culler->jobCount(), view, occlusion);
+    cullPhase(*culler, firstJobs, culler->jobCount(), view, occlusion);
     status = drawItems(rest, pass, &restCommands);
   }
   if (status && lists.refracts) {
@@ -1293,6 +1306,64 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   return status;
+}
+
+// The boxes of the terrain's drawn patches, camera-relative as terrain.vert places
+// their vertices (sample indices clamped to the field, relative to the camera's
+// cell and fraction; heights within the bounds of the patch's samples, which the
+// morph only interpolates between): the terrain culler's clusters, one a patch.
+std::vector<cull::Cluster> SceneRenderer::Impl::terrainPatchBoxes(const terrain::LodSelection& selection) const {
+  std::vector<cull::Cluster> out;
+  const auto relative = [&selection](glm::ivec2 g) {
+    const glm::ivec2 clamped = glm::min(g, selection.cells);
+    return (glm::dvec2(clamped - selection.cameraCell) - glm::dvec2(selection.cameraFraction)) * double(selection.spacing);
+  };
+  const auto count = std::uint32_t(terrain::TerrainRenderer::indexCount());
+  for (const terrain::LodPatch& p : terrainRenderer->patches()) {
+    const int side = terrain::kPatchQuads << p.level;
+    const terrain::HeightRange h = terrain->regionBounds(p.gx, p.gz, p.gx + side, p.gz + side);
+    const glm::dvec2 a = relative({p.gx, p.gz}), b = relative({p.gx + side, p.gz + side});
+    out.push_back({glm::vec3(glm::dvec3(a.x, double(h.min) - selection.cameraHeight, a.y)), 0,
+                   glm::vec3(glm::dvec3(b.x, double(h.max) - selection.cameraHeight, b.y)), count});
+  }
+  return out;
+}
+
+// The main view's terrain with GPU culling: its selection (CPU-culled to the
+// frustum by the CDLOD traversal, as without) in two halves of the drawing order,
+// the first culled against the frustum alone (nothing is drawn before the
+// terrain), the second against a pyramid of the first's depth. Each command is a
+// run of the instance buffer's patches (cull::kInstances), so they are drawn in
+// the same order as the one instanced draw.
+void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
+  const auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
+  const auto prepared = terrainRenderer->prepare(selection);
+  stats->drawCalls += 1;
+  stats->terrainTriangles = int(prepared.trianglesDrawn);
+  const auto patches = std::uint32_t(terrainRenderer->patches().size());
+  if (patches == 0) return;
+  terrainCuller->clearClusters();
+  terrainCuller->clearJobs();
+  const std::uint32_t first = terrainCuller->addClusters(terrainPatchBoxes(selection));
+  const std::uint32_t split = patches / 2;
+  cull::Job job;
+  job.sphere = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+  job.flags = cull::kInstances;
+  job.firstCluster = first;
+  job.clusterCount = split;
+  const std::size_t near = terrainCuller->addJob(job);
+  job.firstCluster = first + split;
+  job.clusterCount = patches - split;
+  job.firstInstance = split;
+  const std::size_t far = terrainCuller->addJob(job);
+  terrainCuller->upload();
+  const auto uniforms = [this](const gl::Program& p) { setUniforms(p); };
+  for (const std::size_t j : {near, far}) {
+    cullPhase(*terrainCuller, j, j + 1, view, j == far && render.msaa <= 1);
+    const IndirectDraw commands = terrainCuller->commandsOf(j);
+    terrainRenderer->drawIndirect(selection, eye, uniforms, commands.offset, commands.count);
+  }
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 
 // What the transmissive draws refract: the view's colour so far (sky, terrain and
@@ -1627,6 +1698,12 @@ CullStats SceneRenderer::cullStats() const {
   out.clustersTested = c.clustersTested;
   out.clustersFrustum = c.clustersFrustum;
   out.clustersOccluded = c.clustersOccluded;
+  if (impl_->terrainCuller) {
+    const cull::Counters t = impl_->terrainCuller->counters();
+    out.patchesTested = t.clustersTested;
+    out.patchesFrustum = t.clustersFrustum;
+    out.patchesOccluded = t.clustersOccluded;
+  }
   return out;
 }
 
@@ -1693,7 +1770,8 @@ std::string SceneRenderer::describe() const {
   if (s.scene.fog.enabled) out << "+fog";
   if (s.culler) {
     out << " gpu-culling(" << s.culler->clusters().size() << " clusters of <= " << cull::kClusterTriangles
-        << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, two phases") << ")";
+        << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, two phases")
+        << (s.terrainCuller ? "; terrain patches too" : "") << ")";
   }
   if (s.transmissionPass) out << " transmission(copy + mips)";
   if (s.blendPass) out << " blend(sorted)";

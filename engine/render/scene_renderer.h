@@ -101,6 +101,8 @@ struct CullStats {
   bool enabled = false;
   long long instancesTested = 0, instancesFrustum = 0, instancesOccluded = 0;
   long long clustersTested = 0, clustersFrustum = 0, clustersOccluded = 0;
+  // The terrain's CDLOD patches (the main view's selection).
+  long long patchesTested = 0, patchesFrustum = 0, patchesOccluded = 0;
 };
 
 // One pass's GPU time (a GL_TIME_ELAPSED query), from the latest frame whose

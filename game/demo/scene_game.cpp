@@ -223,6 +223,9 @@ engine::Game::Counters SceneGame::frameCounters() {
                                      {"cull_clusters_tested", double(c.clustersTested)},
                                      {"cull_clusters_frustum", double(c.clustersFrustum)},
                                      {"cull_clusters_occluded", double(c.clustersOccluded)},
+                                     {"cull_terrain_patches_tested", double(c.patchesTested)},
+                                     {"cull_terrain_patches_frustum", double(c.patchesFrustum)},
+                                     {"cull_terrain_patches_occluded", double(c.patchesOccluded)},
                                      {"cull_dispatches", double(s.cullDispatches)},
                                      {"cpu_ms_gpu_cull", s.gpuCullMs}});
   }

@@ -22,6 +22,8 @@ struct Job {
   uint clusterCount;  // the whole range's entry follows them
   uint firstCommand;
   uint flags;
+  uint firstInstance;  // kInstances: the instance of its first cluster
+  uint pad0, pad1, pad2;
 };
 struct Command {
   uint count;
@@ -45,6 +47,7 @@ uniform uint u_firstJob;
 uniform float u_depthMargin;    // cull::kDepthMargin (tests break it on purpose: cull::View)
 
 const uint kInstanceOnly = 1u;
+const uint kInstances = 2u;  // clusters are instances of one mesh (the terrain's patches)
 const uint kMergeChunk = 1024u;
 const float kClipMargin = 1e-4;
 const uint kVisible = 0u, kFrustum = 1u, kOccluded = 2u;
@@ -148,9 +151,12 @@ void main() {
     for (uint i = tid; i < n; i += gl_WorkGroupSize.x) {
       Command command = Command(0u, 0u, 0u, 0, 0u);
       if (s_visible[i] != 0u && (i == 0u || s_visible[i - 1u] == 0u)) {
-        uint total = 0u;
-        for (uint j = i; j < n && s_visible[j] != 0u; ++j) total += clusters[job.firstCluster + chunk + j].indexCount;
-        command = Command(total, 1u, clusters[job.firstCluster + chunk + i].firstIndex, 0, 0u);
+        uint total = 0u, run = 0u;
+        for (uint j = i; j < n && s_visible[j] != 0u; ++j, ++run) total += clusters[job.firstCluster + chunk + j].indexCount;
+        const Cluster head = clusters[job.firstCluster + chunk + i];
+        command = (job.flags & kInstances) != 0u
+                      ? Command(head.indexCount, run, head.firstIndex, 0, job.firstInstance + chunk + i)
+                      : Command(total, 1u, head.firstIndex, 0, 0u);
       }
       commands[job.firstCommand + chunk + i] = command;
     }

@@ -6,6 +6,7 @@
 // that a non-conservative culling test does change an image.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <tuple>
 
 #include "app/runner.h"
@@ -80,7 +81,15 @@ TEST_P(GpuCullingGolden, CulledImageIsTheUnculledOneBitForBit) {
   ASSERT_EQ(on.height, off.height);
   size_t differing = 0;
   for (size_t i = 0; i < off.pixels.size(); ++i) differing += on.pixels[i] != off.pixels[i];
-  EXPECT_EQ(differing, 0u) << c.name << ": culling changed " << differing << " bytes";
+  EXPECT_EQ(differing, 0u) << c.name << ": culling changed " << differing
+                           << " bytes; both images written to build/golden-failures/";
+  if (differing > 0) {
+    const std::filesystem::path out = std::filesystem::path(ENGINE_BINARY_DIR) / "golden-failures";
+    std::filesystem::create_directories(out);
+    const std::string stem = std::string("culling_") + c.name + "_" + std::string(backendName(backend));
+    (void)writePng((out / (stem + "_off.png")).string(), off);
+    (void)writePng((out / (stem + "_on.png")).string(), on);
+  }
 }
 
 std::string cullingCaseName(const ::testing::TestParamInfo<CullingParam>& info) {
