@@ -93,8 +93,8 @@ int pixel(float ndc, int size, int widen) {
 // Whether the box, in front of the camera, is behind what the pyramid holds at
 // every pixel its projection could touch: its nearest depth (the largest, reverse
 // -Z; a linear-fractional function over a box peaks at a corner) against the
-// farthest of the 2 x 2 texels of the first level where its pixel rectangle,
-// widened by a pixel each way, spans at most two texels a side.
+// farthest of the texels of the first level where its pixel rectangle, widened by
+// a pixel each way, spans at most kHiZSpan texels a side.
 bool hidden(const glm::vec4 (&c)[8], const HiZ& hiz, float depthMargin) {
   float nearest = 0.0f;
   glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -109,12 +109,14 @@ bool hidden(const glm::vec4 (&c)[8], const HiZ& hiz, float depthMargin) {
   const int y0 = pixel(lo.y, hiz.height, -1), y1 = pixel(hi.y, hiz.height, 1);
   const int last = int(hiz.levels.size());
   int level = 1;
-  while (level < last && ((x1 >> level) - (x0 >> level) > 1 || (y1 >> level) - (y0 >> level) > 1)) ++level;
+  while (level < last && ((x1 >> level) - (x0 >> level) >= kHiZSpan || (y1 >> level) - (y0 >> level) >= kHiZSpan))
+    ++level;
   const int w = hiz.levelWidth(level), h = hiz.levelHeight(level);
   const int tx0 = std::min(x0 >> level, w - 1), tx1 = std::min(x1 >> level, w - 1);
   const int ty0 = std::min(y0 >> level, h - 1), ty1 = std::min(y1 >> level, h - 1);
-  const float farthest = std::min(std::min(hiz.at(level, tx0, ty0), hiz.at(level, tx1, ty0)),
-                                  std::min(hiz.at(level, tx0, ty1), hiz.at(level, tx1, ty1)));
+  float farthest = hiz.at(level, tx0, ty0);
+  for (int ty = ty0; ty <= ty1; ++ty)
+    for (int tx = tx0; tx <= tx1; ++tx) farthest = std::min(farthest, hiz.at(level, tx, ty));
   return nearest * (1.0f + depthMargin) < farthest;
 }
 

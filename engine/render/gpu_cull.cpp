@@ -25,6 +25,9 @@ Result<HiZPyramid> HiZPyramid::create(const std::string& shaderDir) {
   HiZPyramid hiz;
   hiz.program_ = std::move(program).value();
   hiz.depthFbo_ = gl::Framebuffer::create();
+  // Depth only: an occluder prepass draws into it with no colour.
+  glNamedFramebufferDrawBuffer(hiz.depthFbo_.id(), GL_NONE);
+  glNamedFramebufferReadBuffer(hiz.depthFbo_.id(), GL_NONE);
   return hiz;
 }
 
@@ -43,10 +46,14 @@ void HiZPyramid::resize(int width, int height) {
   pyramid_.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
-void HiZPyramid::build(GLuint framebuffer, int width, int height) {
+void HiZPyramid::copyDepth(GLuint framebuffer, int width, int height) {
   resize(width, height);
   glBlitNamedFramebuffer(framebuffer, depthFbo_.id(), 0, 0, width, height, 0, 0, width, height,
                          GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+}
+
+void HiZPyramid::reduce() {
+  const int width = width_, height = height_;
   program_.use();
   for (int level = 1; level <= levels_; ++level) {
     const glm::ivec2 size(std::max(1, width >> level), std::max(1, height >> level));

@@ -23,7 +23,15 @@ class HiZPyramid {
   static Result<HiZPyramid> create(const std::string& shaderDir);
   // From the depth of `framebuffer` (32-bit float, single-sample) of width x
   // height pixels: copied by a blit (the depth may be a renderbuffer), then reduced.
-  void build(GLuint framebuffer, int width, int height);
+  void build(GLuint framebuffer, int width, int height) {
+    copyDepth(framebuffer, width, height);
+    reduce();
+  }
+  // The two steps apart, so that more may be drawn into the copy between them (an
+  // occluder prepass): the copy's framebuffer, depth only, is depthFramebuffer().
+  void copyDepth(GLuint framebuffer, int width, int height);
+  GLuint depthFramebuffer() const { return depthFbo_.id(); }
+  void reduce();
   const gl::Texture& texture() const { return pyramid_; }
   int width() const { return width_; }
   int height() const { return height_; }

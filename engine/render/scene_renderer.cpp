@@ -1,6 +1,7 @@
 #include "render/scene_renderer.h"
 
 #include <algorithm>
+#include <iterator>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -279,16 +280,23 @@ struct SceneRenderer::Impl {
   std::unique_ptr<GpuCuller> terrainCuller;  // the terrain's patches, a table of their own each frame
   std::unique_ptr<HiZPyramid> hiz;
   float cullDepthMargin = cull::kDepthMargin;
+  // The pyramid the terrain's second half was culled with, this frame: without
+  // occluders the draws are culled with it (the depth has only come nearer
+  // since), which saves a build and a wait.
+  bool terrainPyramid = false;
   std::map<const GpuMesh*, std::uint32_t> shapeClusterBase;
   std::map<const GpuPrimitive*, std::uint32_t> primitiveClusterBase;
   Status makeCuller();
   ItemCommands queueJobs(const std::vector<DrawItem>& items);
   std::vector<IndirectDraw> queueShapeJob(const ShapeDraw& shape);
   std::vector<IndirectDraw> queueCharacterJobs(const DrawItem& item);
-  void cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion);
+  void cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion,
+                 bool rebuild = true);
   std::vector<cull::Cluster> terrainPatchBoxes(const terrain::LodSelection& selection) const;
   void drawTerrainCulled(const View& view);
   Status drawCulled(const View& view, const DrawLists& lists, bool useProbes);
+  bool isOccluder(const DrawItem& item) const;
+  void buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders);
   terrain::Terrain* terrain = nullptr;  // the scene's, when it has one
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
@@ -1251,13 +1259,14 @@ ItemCommands SceneRenderer::Impl::queueJobs(const std::vector<DrawItem>& items) 
 // ever comes nearer during the view's pass (GL_GREATER, no clears), so what it
 // hides now stays hidden for the rest of the pass.
 void SceneRenderer::Impl::cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view,
-                                    bool occlusion) {
+                                    bool occlusion, bool rebuild) {
   if (endJob <= firstJob) return;
+  rebuild = rebuild && occlusion;
   // The pyramid needs the depth drawn so far, which llvmpipe rasterises only when
   // flushed: waited for here, so that the time below is the culling's own.
-  if (occlusion) glFinish();
+  if (rebuild) glFinish();
   const auto start = std::chrono::steady_clock::now();
-  if (occlusion) {
+  if (rebuild) {
     GLint framebuffer = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     hiz->build(GLuint(framebuffer), targetWidth, targetHeight);
@@ -1267,34 +1276,72 @@ void SceneRenderer::Impl::cullPhase(GpuCuller& with, std::size_t firstJob, std::
   stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The main view's draws with GPU culling, in the order drawWorld draws them. The
-// Hi-Z source is the depth drawn before each half (two phases within the frame,
-// never the last frame's): the first half of the opaque draws is culled against
-// the terrain's depth (the frustum alone without a terrain), the rest, the
-// transmissive and blended draws against everything drawn before them. So a
-// single frame and every frame of a window run cull only what that very frame
-// hides. The sort's order (program, material, near to far) puts near draws of a
-// program first, which then hide the far ones. MSAA: the frustum only (the
-// pyramid would need every sample's depth).
+// Whether an opaque item can stand in the occluder prepass: a shape, or a model
+// primitive that neither deforms (the prepass would need its skinning) nor cuts
+// holes (MASK); either way one drawn in this very pass, so the depth it leaves in
+// the prepass is depth the pass's own depth buffer will hold.
+bool SceneRenderer::Impl::isOccluder(const DrawItem& item) const {
+  if (item.source == DrawItem::Source::Shape) return true;
+  const CharacterDraw& c = characters[size_t(item.object)];
+  const ModelData& model = c.instance->asset().model;
+  const NodeData& node = model.nodes[size_t(item.node)];
+  const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[size_t(item.primitive)];
+  const MaterialData* material = data.material >= 0 ? &model.materials[size_t(data.material)] : nullptr;
+  return !skinnedBy(node, data.influences, skinModeOf(c.desc)) && data.morphTargets == 0 &&
+         !(material && material->alphaMode != AlphaMode::Opaque);
+}
+
+// The pyramid the main view's draws are culled against: the depth drawn so far
+// (the terrain's), and the occluders' depth drawn over a copy of it, depth only
+// (the occluder prepass). Why that is safe though the occluders come later in the
+// pass: an item whose every pixel has, in the end, a strictly nearer depth is
+// never the nearest fragment anywhere, and with GL_GREATER the image and the
+// depth are the first nearest fragment's; removing a fragment that is not the
+// nearest changes neither. Every occluder is an opaque draw of this pass, and the
+// pass's final depth is at least the prepass's (up to float rounding between two
+// programs' vertex shaders, far inside cull::kDepthMargin). Without occluders the
+// terrain's pyramid, made for its second half, serves as it is.
+void SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders) {
+  GLint framebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+  hiz->copyDepth(GLuint(framebuffer), targetWidth, targetHeight);
+  if (!occluders.empty()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, hiz->depthFramebuffer());
+    const glm::mat4 viewProjection(view.viewProjection);
+    (void)drawItems(occluders, {true, viewProjection, viewProjection, false});
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
+  }
+  hiz->reduce();
+}
+
+// The main view's draws with GPU culling, in the order drawWorld draws them, every
+// one culled in one dispatch against the occluder pyramid (above). A window's
+// frames and a single offscreen frame cull alike: the pyramid is this frame's own,
+// never the last frame's. MSAA, or no terrain and no occluder: the frustum only
+// (MSAA's pyramid would need every sample's depth).
 Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists, bool useProbes) {
-  const bool occlusion = render.msaa <= 1;
-  const auto split = std::ptrdiff_t(lists.opaque.size() / 2);
-  const std::vector<DrawItem> first(lists.opaque.begin(), lists.opaque.begin() + split);
-  const std::vector<DrawItem> rest(lists.opaque.begin() + split, lists.opaque.end());
   culler->clearJobs();
-  const ItemCommands firstCommands = queueJobs(first);
-  const std::size_t firstJobs = culler->jobCount();
-  const ItemCommands restCommands = queueJobs(rest);
+  const ItemCommands opaqueCommands = queueJobs(lists.opaque);
   const ItemCommands transmissiveCommands = queueJobs(lists.transmissive);
   const ItemCommands blendCommands = queueJobs(lists.blend);
   culler->upload();
-  const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
-  cullPhase(*culler, 0, firstJobs, view, occlusion && terrain);
-  Status status = drawItems(first, pass, &firstCommands);
-  if (status) {
-    cullPhase(*culler, firstJobs, culler->jobCount(), view, occlusion);
-    status = drawItems(rest, pass, &restCommands);
+  std::vector<DrawItem> occluders;
+  std::copy_if(lists.opaque.begin(), lists.opaque.end(), std::back_inserter(occluders),
+               [this](const DrawItem& item) { return isOccluder(item); });
+  const bool occlusion = render.msaa <= 1 && (terrain || !occluders.empty());
+  // The occluders' depth waits for what is drawn before it: timed from there.
+  if (occlusion && !(terrainPyramid && occluders.empty())) glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  if (occlusion && !(terrainPyramid && occluders.empty())) {
+    buildOccluderPyramid(view, occluders);
+    applyPassState(opaquePassFor(view.mirrored));
   }
+  terrainPyramid = false;
+  culler->cull(0, culler->jobCount(), glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
+  ++stats->cullDispatches;
+  stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
+  Status status = drawItems(lists.opaque, pass, &opaqueCommands);
   if (status && lists.refracts) {
     copyTransmissionSource();
     transmissionSource.bind(gl::binding::kTransmissionSource);
@@ -1360,6 +1407,7 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   const auto uniforms = [this](const gl::Program& p) { setUniforms(p); };
   for (const std::size_t j : {near, far}) {
     cullPhase(*terrainCuller, j, j + 1, view, j == far && render.msaa <= 1);
+    terrainPyramid = j == far && render.msaa <= 1;
     const IndirectDraw commands = terrainCuller->commandsOf(j);
     terrainRenderer->drawIndirect(selection, eye, uniforms, commands.offset, commands.count);
   }

@@ -51,6 +51,7 @@ const uint kInstances = 2u;  // clusters are instances of one mesh (the terrain'
 const uint kMergeChunk = 1024u;
 const float kClipMargin = 1e-4;
 const uint kVisible = 0u, kFrustum = 1u, kOccluded = 2u;
+const int kHiZSpan = 8;  // cull::kHiZSpan: texels a side read at most
 
 shared uint s_visible[kMergeChunk];
 
@@ -93,12 +94,14 @@ bool hidden(vec4 c[8]) {
   const int y0 = pixelOf(lo.y, u_size.y, -1), y1 = pixelOf(hi.y, u_size.y, 1);
   const int last = u_levels;
   int level = 1;
-  while (level < last && ((x1 >> level) - (x0 >> level) > 1 || (y1 >> level) - (y0 >> level) > 1)) ++level;
+  while (level < last && ((x1 >> level) - (x0 >> level) >= kHiZSpan || (y1 >> level) - (y0 >> level) >= kHiZSpan))
+    ++level;
   const int w = max(1, u_size.x >> level), h = max(1, u_size.y >> level);
   const int tx0 = min(x0 >> level, w - 1), tx1 = min(x1 >> level, w - 1);
   const int ty0 = min(y0 >> level, h - 1), ty1 = min(y1 >> level, h - 1);
-  const float farthest = min(min(hizAt(level, tx0, ty0), hizAt(level, tx1, ty0)),
-                             min(hizAt(level, tx0, ty1), hizAt(level, tx1, ty1)));
+  float farthest = hizAt(level, tx0, ty0);
+  for (int ty = ty0; ty <= ty1; ++ty)
+    for (int tx = tx0; tx <= tx1; ++tx) farthest = min(farthest, hizAt(level, tx, ty));
   return nearest * (1.0 + u_depthMargin) < farthest;
 }
 
