@@ -1818,7 +1818,7 @@ std::string SceneRenderer::describe() const {
   if (s.scene.fog.enabled) out << "+fog";
   if (s.culler) {
     out << " gpu-culling(" << s.culler->clusters().size() << " clusters of <= " << cull::kClusterTriangles
-        << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, two phases")
+        << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, occluder prepass")
         << (s.terrainCuller ? "; terrain patches too" : "") << ")";
   }
   if (s.transmissionPass) out << " transmission(copy + mips)";
