@@ -19,6 +19,7 @@
 #include "render/character.h"
 #include "render/frame_block.h"
 #include "render/gpu_cull.h"
+#include "render/terrain_cull.h"
 #include "render/ibl.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
@@ -1355,24 +1356,12 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   return status;
 }
 
-// The boxes of the terrain's drawn patches, camera-relative as terrain.vert places
-// their vertices (sample indices clamped to the field, relative to the camera's
-// cell and fraction; heights within the bounds of the patch's samples, which the
-// morph only interpolates between): the terrain culler's clusters, one a patch.
+// The boxes of the terrain's drawn patches (terrainPatchBox): the terrain
+// culler's clusters, one a patch.
 std::vector<cull::Cluster> SceneRenderer::Impl::terrainPatchBoxes(const terrain::LodSelection& selection) const {
   std::vector<cull::Cluster> out;
-  const auto relative = [&selection](glm::ivec2 g) {
-    const glm::ivec2 clamped = glm::min(g, selection.cells);
-    return (glm::dvec2(clamped - selection.cameraCell) - glm::dvec2(selection.cameraFraction)) * double(selection.spacing);
-  };
   const auto count = std::uint32_t(terrain::TerrainRenderer::indexCount());
-  for (const terrain::LodPatch& p : terrainRenderer->patches()) {
-    const int side = terrain::kPatchQuads << p.level;
-    const terrain::HeightRange h = terrain->regionBounds(p.gx, p.gz, p.gx + side, p.gz + side);
-    const glm::dvec2 a = relative({p.gx, p.gz}), b = relative({p.gx + side, p.gz + side});
-    out.push_back({glm::vec3(glm::dvec3(a.x, double(h.min) - selection.cameraHeight, a.y)), 0,
-                   glm::vec3(glm::dvec3(b.x, double(h.max) - selection.cameraHeight, b.y)), count});
-  }
+  for (const terrain::LodPatch& p : terrainRenderer->patches()) out.push_back(terrainPatchBox(*terrain, selection, p, count));
   return out;
 }
 

@@ -68,7 +68,7 @@ TEST_P(GpuCull, HiZPyramidEqualsItsCpuTwin) {
 }
 
 // Random jobs over random clusters: instances with and without spheres, instance
-// only, one of 2,500 clusters (three of cull.comp's merge chunks); the commands
+// only, instanced, one of 2,500 clusters (three of cull.comp's merge chunks); the commands
 // and counters the compute writes are the twin's, against the pyramid and the
 // frustum alone.
 TEST_P(GpuCull, CullEqualsItsCpuTwin) {
@@ -99,7 +99,9 @@ TEST_P(GpuCull, CullEqualsItsCpuTwin) {
     const glm::vec3 at(40.0f * (u(rng) - 0.5f), 20.0f * (u(rng) - 0.5f), -2.0f - 60.0f * u(rng));
     job.model = glm::rotate(glm::translate(glm::mat4(1.0f), at), 6.0f * u(rng), glm::normalize(glm::vec3(u(rng), u(rng), 0.1f)));
     job.sphere = j % 3 == 0 ? glm::vec4(0, 0, 0, -1) : glm::vec4(at, 4.0f * u(rng) + 1.0f);
-    job.flags = j % 5 == 0 ? cull::kInstanceOnly : 0u;
+    // Every fifth instance only, every seventh instanced (the terrain's patches).
+    job.flags = j % 5 == 0 ? cull::kInstanceOnly : j % 7 == 0 ? cull::kInstances : 0u;
+    job.firstInstance = std::uint32_t(j);
     culler->addJob(job);
   }
   const std::vector<cull::Job> jobs = culler->jobs();  // with their commands assigned

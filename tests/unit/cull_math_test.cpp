@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "render/cull_math.h"
+#include "render/terrain_cull.h"
+#include "terrain/lod.h"
 
 using namespace engine;
 using namespace engine::cull;
@@ -196,6 +198,74 @@ TEST(CullMath, CullJobsMergesVisibleRunsAndEmptiesCulledInstances) {
   EXPECT_EQ(counters.instancesFrustum, 1u);
   EXPECT_EQ(counters.clustersTested, 4u);
   EXPECT_EQ(counters.clustersFrustum, 2u);
+}
+
+}  // namespace
+
+namespace {
+
+// Instanced jobs (the terrain's patches): a run of visible clusters is one
+// command of as many instances, from the job's first instance plus its index.
+TEST(CullMath, InstancedJobsDrawRunsOfInstances) {
+  View view;
+  view.viewProjection = cullTestViewProjection(1.0f);
+  std::vector<Cluster> clusters;
+  for (int i = 0; i < 5; ++i) {
+    const float x0 = i == 2 ? -60.0f : -2.0f + float(i) * 0.8f;  // the middle one off to the left
+    clusters.push_back({{x0, -0.5f, -5.5f}, 0, {x0 + 0.5f, 0.5f, -4.5f}, 6144});
+  }
+  clusters.push_back({{-60, -0.5f, -5.5f}, 0, {2, 0.5f, -4.5f}, 6144});
+  Job job;
+  job.sphere = {0, 0, 0, -1};
+  job.clusterCount = 5;
+  job.flags = kInstances;
+  job.firstInstance = 10;
+  std::vector<Command> commands(5);
+  Counters counters;
+  cullJobs(std::span<const Job>(&job, 1), clusters, view, commands, counters);
+  EXPECT_EQ(commands[0].count, 6144u);
+  EXPECT_EQ(commands[0].instanceCount, 2u);
+  EXPECT_EQ(commands[0].baseInstance, 10u);
+  EXPECT_EQ(commands[1].instanceCount, 0u);
+  EXPECT_EQ(commands[2].instanceCount, 0u);
+  EXPECT_EQ(commands[3].instanceCount, 2u);
+  EXPECT_EQ(commands[3].baseInstance, 13u);
+  EXPECT_EQ(commands[4].instanceCount, 0u);
+  EXPECT_EQ(counters.clustersFrustum, 1u);
+}
+
+// Every vertex terrain.vert places (its CPU mirror, patchVertices) lies in its
+// patch's box, for every patch of a few views of a rough field.
+TEST(CullMath, TerrainPatchBoxesHoldEveryVertex) {
+  terrain::TerrainSettings settings;
+  settings.seed = 7;
+  settings.size = 1024.0;
+  settings.spacing = 1.0;
+  settings.heightScale = 150.0;
+  settings.origin = glm::dvec3(-300.0, -20.0, 100.0);
+  auto field = terrain::Terrain::create(settings);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  int patches = 0;
+  double worst = 0.0;
+  for (const glm::dvec3 eye : {glm::dvec3(0.0, 120.0, 400.0), glm::dvec3(200.0, 40.0, 900.0), glm::dvec3(-250.0, 300.0, 150.0)}) {
+    terrain::LodCamera camera;
+    camera.position = eye;
+    camera.viewProjection = glm::perspective(1.0f, 16.0f / 9.0f, 0.5f, 10000.0f) *
+                            glm::lookAt(glm::vec3(0.0f), glm::vec3(0.3f, -0.4f, -1.0f), glm::vec3(0, 1, 0));
+    const terrain::LodSelection selection = terrain::selectLod(*field, camera, 2.0);
+    for (const terrain::LodPatch& patch : selection.patches) {
+      const Cluster box = terrainPatchBox(*field, selection, patch, 6144);
+      ++patches;
+      for (const glm::vec3& v : terrain::patchVertices(*field, selection, patch)) {
+        const glm::vec3 below = box.lo - v, above = v - box.hi;
+        worst = std::max({worst, double(below.x), double(below.y), double(below.z), double(above.x), double(above.y),
+                          double(above.z)});
+      }
+    }
+  }
+  EXPECT_GT(patches, 50);
+  // Outside by float rounding at most: far below the cull's relative margin.
+  EXPECT_LE(worst, 1e-3) << "a vertex lies " << worst << " m outside its patch's box";
 }
 
 }  // namespace
