@@ -291,8 +291,7 @@ struct SceneRenderer::Impl {
   ItemCommands queueJobs(const std::vector<DrawItem>& items);
   std::vector<IndirectDraw> queueShapeJob(const ShapeDraw& shape);
   std::vector<IndirectDraw> queueCharacterJobs(const DrawItem& item);
-  void cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion,
-                 bool rebuild = true);
+  void cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion);
   std::vector<cull::Cluster> terrainPatchBoxes(const terrain::LodSelection& selection) const;
   void drawTerrainCulled(const View& view);
   Status drawCulled(const View& view, const DrawLists& lists, bool useProbes);
@@ -1260,14 +1259,13 @@ ItemCommands SceneRenderer::Impl::queueJobs(const std::vector<DrawItem>& items) 
 // ever comes nearer during the view's pass (GL_GREATER, no clears), so what it
 // hides now stays hidden for the rest of the pass.
 void SceneRenderer::Impl::cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view,
-                                    bool occlusion, bool rebuild) {
+                                    bool occlusion) {
   if (endJob <= firstJob) return;
-  rebuild = rebuild && occlusion;
   // The pyramid needs the depth drawn so far, which llvmpipe rasterises only when
   // flushed: waited for here, so that the time below is the culling's own.
-  if (rebuild) glFinish();
+  if (occlusion) glFinish();
   const auto start = std::chrono::steady_clock::now();
-  if (rebuild) {
+  if (occlusion) {
     GLint framebuffer = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     hiz->build(GLuint(framebuffer), targetWidth, targetHeight);
