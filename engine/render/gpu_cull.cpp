@@ -90,7 +90,8 @@ Result<GpuCuller> GpuCuller::create(const std::string& shaderDir) {
   if (!program) return program.error();
   GpuCuller culler;
   culler.program_ = std::move(program).value();
-  culler.counterBuffer_ = gl::Buffer::create(sizeof(cull::Counters), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const cull::Counters zero;  // read back before any frame: zeros, not whatever the GL left
+  culler.counterBuffer_ = gl::Buffer::create(sizeof(cull::Counters), &zero, GL_DYNAMIC_STORAGE_BIT);
   return culler;
 }
 

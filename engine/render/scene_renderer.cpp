@@ -1375,9 +1375,13 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   stats->drawCalls += 1;
   stats->terrainTriangles = int(prepared.trianglesDrawn);
   const auto patches = std::uint32_t(terrainRenderer->patches().size());
-  if (patches == 0) return;
   terrainCuller->clearClusters();
   terrainCuller->clearJobs();
+  if (patches == 0) {
+    terrainCuller->upload();  // this frame's counters: zero
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    return;
+  }
   const std::uint32_t first = terrainCuller->addClusters(terrainPatchBoxes(selection));
   const std::uint32_t split = patches / 2;
   cull::Job job;
