@@ -156,6 +156,11 @@ struct RenderDesc {
   // their error is within this many pixels on screen; 0, the default, draws every
   // mesh in full.
   double lodPixels = 0.0;
+  // render.gpu_culling: the main view's meshes culled per instance and per cluster
+  // of 128 triangles in a compute shader, against the frustum and the depth drawn
+  // so far (render/gpu_cull.h). Changes no pixel; off by default (README: GPU
+  // culling, what it costs and saves on llvmpipe).
+  bool gpuCulling = false;
 };
 
 struct TerrainDesc {

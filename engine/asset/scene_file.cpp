@@ -335,7 +335,7 @@ namespace {
 
 Status readRender(const Node& n, RenderDesc& r) {
   TRY(n.expectObject({"msaa", "supersample", "shading", "shadow_map", "shadow_filter", "pcf_kernel", "exposure", "tonemap", "output",
-                          "reflection_probe", "ambient", "ibl_size", "skinning", "lod_pixels"}));
+                          "reflection_probe", "ambient", "ibl_size", "skinning", "lod_pixels", "gpu_culling"}));
   TRY(readInt(n, "msaa", r.msaa, 1, 16));
   if (r.msaa & (r.msaa - 1)) return n.at("msaa").error("expected 1, 2, 4, 8 or 16");
   TRY(readInt(n, "supersample", r.supersample, 1, 4));
@@ -353,6 +353,7 @@ Status readRender(const Node& n, RenderDesc& r) {
   TRY(readInt(n, "ibl_size", r.iblSize, 16, 1024));
   TRY(readEnum(n, "skinning", r.skinning, skinningNames()));
   TRY(readNumber(n, "lod_pixels", r.lodPixels, 0.0, 64.0));
+  TRY(readBool(n, "gpu_culling", r.gpuCulling));
   TRY(readFloat(n, "exposure", r.exposure, 1e-6, 1e6));
   TRY(readEnum(n, "tonemap", r.toneMap, toneMapNames()));
   TRY(readEnum(n, "output", r.output, outputNames()));

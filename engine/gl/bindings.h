@@ -67,6 +67,17 @@ inline constexpr unsigned kSkinJoints = 3;
 inline constexpr unsigned kSkinWeights = 4;
 inline constexpr unsigned kSkinOutput = 8;
 inline constexpr unsigned kFrameBlock = 0;
+// GPU culling (render/gpu_cull.h): the hierarchical-Z pyramid's build
+// (cull/hiz.comp: the level read, the level written) and the cull (cull/cull.comp:
+// the pyramid, the clusters, jobs, commands and counters). It runs inside the
+// main view's pass, so its texture units are ones no scene program samples.
+inline constexpr unsigned kHiZSource = 28;
+inline constexpr unsigned kHiZLevelImage = 1;
+inline constexpr unsigned kHiZ = 29;
+inline constexpr unsigned kCullClusters = 12;
+inline constexpr unsigned kCullJobs = 13;
+inline constexpr unsigned kCullCommands = 14;
+inline constexpr unsigned kCullCounters = 15;
 // The GPU ray tracer (shaders/rt/): the flattened scene (raytrace/gpu_layout.h),
 // its materials and lights, and what a kernel reads and writes.
 inline constexpr unsigned kRtNodes = 0;
@@ -82,13 +93,13 @@ inline constexpr unsigned kRtInput = 9;
 inline constexpr unsigned kRtOutput = 10;
 inline constexpr unsigned kRtEnvironment = 11;  // the path tracer's environment tables
 // rt/refit.comp's plan (gputrace/gpu_refit.h).
-inline constexpr unsigned kRtRefitPlan = 15;
+inline constexpr unsigned kRtRefitPlan = 16;
 
 struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 54> kDefines{{
+inline constexpr std::array<Define, 61> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -130,6 +141,13 @@ inline constexpr std::array<Define, 54> kDefines{{
     {"UNIT_SKIN_WEIGHTS", kSkinWeights},
     {"BUFFER_SKIN_OUTPUT", kSkinOutput},
     {"BLOCK_FRAME", kFrameBlock},
+    {"UNIT_HIZ_SOURCE", kHiZSource},
+    {"IMAGE_HIZ_LEVEL", kHiZLevelImage},
+    {"UNIT_HIZ", kHiZ},
+    {"BUFFER_CULL_CLUSTERS", kCullClusters},
+    {"BUFFER_CULL_JOBS", kCullJobs},
+    {"BUFFER_CULL_COMMANDS", kCullCommands},
+    {"BUFFER_CULL_COUNTERS", kCullCounters},
     {"BUFFER_RT_NODES", kRtNodes},
     {"BUFFER_RT_LEAVES", kRtLeaves},
     {"BUFFER_RT_ORDER", kRtOrder},

@@ -161,11 +161,21 @@ Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewPr
 
 Status CharacterInstance::drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                                         const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly,
-                                        int node, int primitive) {
+                                        int node, int primitive, std::span<const IndirectDraw> indirect) {
   auto f = frame(viewProjection, mode, setUniforms);
   if (!f) return f.error();
   f->depthOnly = depthOnly;
+  f->indirect = indirect;
   return drawModelPrimitive(variants, asset_->model, asset_->gpu, *f, node, primitive);
+}
+
+std::vector<glm::mat4> CharacterInstance::instanceModels(SkinMode mode, int node, int influences) const {
+  ModelFrame f;
+  f.cameraPosition = glm::dvec3(0.0);  // as frame(): the root is camera-relative already
+  f.root = root_;
+  f.nodeWorlds = nodeWorlds_;
+  f.skinMode = mode;
+  return primitiveInstanceModels(asset_->model, f, node, influences);
 }
 
 std::vector<BlendPrimitive> CharacterInstance::blendPrimitives() const {
@@ -174,9 +184,10 @@ std::vector<BlendPrimitive> CharacterInstance::blendPrimitives() const {
 
 Status CharacterInstance::drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                                     const std::function<void(const gl::Program&)>& setUniforms,
-                                    const BlendPrimitive& primitive) {
+                                    const BlendPrimitive& primitive, std::span<const IndirectDraw> indirect) {
   auto f = frame(viewProjection, mode, setUniforms);
   if (!f) return f.error();
+  f->indirect = indirect;
   return drawBlendPrimitive(variants, asset_->model, asset_->gpu, *f, primitive);
 }
 

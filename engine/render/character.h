@@ -76,11 +76,17 @@ class CharacterInstance {
   // place, for a scene to sort with those of other models.
   std::vector<BlendPrimitive> blendPrimitives() const;
   Status drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-                   const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive);
-  // One primitive, in whatever pass state the caller set (a scene's draw items).
+                   const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive,
+                   std::span<const IndirectDraw> indirect = {});
+  // One primitive, in whatever pass state the caller set (a scene's draw items);
+  // with `indirect`, from GPU culling's commands (ModelFrame::indirect).
   Status drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                        const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly, int node,
-                       int primitive);
+                       int primitive, std::span<const IndirectDraw> indirect = {});
+  // The u_model of each instance of node `node`'s primitives with `influences`
+  // joints, placed for the last place() view (primitiveInstanceModels).
+  std::vector<glm::mat4> instanceModels(SkinMode mode, int node, int influences) const;
+  float lodBudget() const { return lodBudget_; }
   // The same with lit.frag's lighting uniforms (the viewer).
   Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
               const Lighting& lighting);

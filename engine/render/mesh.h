@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gl/resources.h"
+#include "render/cull_math.h"
 #include "scene/shapes.h"
 
 namespace engine {
@@ -18,13 +19,22 @@ class GpuMesh {
  public:
   explicit GpuMesh(const ShapeData& data);
   void draw() const;
+  // GPU culling's commands for it (render/gpu_cull.h) in the bound
+  // GL_DRAW_INDIRECT_BUFFER: `count` commands from byte `offset`.
+  void drawIndirect(GLintptr offset, GLsizei count) const;
   GLsizei indexCount() const { return indexCount_; }
+  // Its indices in runs of at most 128 triangles with their bounds, then the whole
+  // (cull::appendClusters), made at load.
+  const std::vector<cull::Cluster>& clusters() const { return clusters_; }
+  cull::ClusterRange clusterRange() const { return clusterRange_; }
 
  private:
   gl::Buffer vertices_;
   gl::Buffer indices_;
   gl::VertexArray vao_;
   GLsizei indexCount_ = 0;
+  std::vector<cull::Cluster> clusters_;
+  cull::ClusterRange clusterRange_;
 };
 
 }  // namespace engine

@@ -236,11 +236,22 @@ std::vector<std::uint32_t> indicesWithLevels(const PrimitiveData& data, const st
   };
   std::vector<std::uint32_t> indices = ordered(data.indices);
   for (const MeshLod& level : levels ? *levels : std::vector<MeshLod>{}) {
-    prim.levels.push_back({GLsizei(indices.size()), GLsizei(level.indices.size()), level.error});
+    prim.levels.push_back({GLsizei(indices.size()), GLsizei(level.indices.size()), level.error, {}});
     const std::vector<std::uint32_t> levelIndices = ordered(level.indices);
     indices.insert(indices.end(), levelIndices.begin(), levelIndices.end());
   }
   return indices;
+}
+
+// GPU culling's clusters (render/cull_math.h): the full mesh's indices, then each
+// level's, as they lie in the one index buffer. Bounded by the rest positions:
+// a deforming mesh is culled by its instance's bounds alone.
+void addClusters(const PrimitiveData& data, const std::vector<std::uint32_t>& indices, GpuPrimitive& prim) {
+  prim.fullClusters = cull::appendClusters(data.positions, indices, 0, std::uint32_t(prim.indexCount), prim.clusters);
+  for (GpuPrimitive::Level& level : prim.levels) {
+    level.clusters = cull::appendClusters(data.positions, indices, std::uint32_t(level.firstIndex),
+                                          std::uint32_t(level.indexCount), prim.clusters);
+  }
 }
 
 GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLod>* levels, bool reorder) {
@@ -263,8 +274,10 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLo
   if (!data.tangents.empty()) in.tangents = addBuffer(prim, data.tangents);
   prim.hasTangents = in.tangents >= 0;
   if (!data.indices.empty()) {
-    in.indices = addBuffer(prim, indicesWithLevels(data, levels, reorder, prim));
+    const std::vector<std::uint32_t> indices = indicesWithLevels(data, levels, reorder, prim);
+    in.indices = addBuffer(prim, indices);
     prim.indexCount = static_cast<GLsizei>(data.indices.size());
+    if (data.mode == GL_TRIANGLES) addClusters(data, indices, prim);
   }
   prim.vao = gl::VertexArray::create();
   attachAttributes(prim, prim.vao, nullptr);
@@ -317,15 +330,19 @@ void flipFrontFace() {
 // The coarsest level of detail within `budget`: its first index and count (the
 // full mesh's where none is).
 std::pair<GLsizei, GLsizei> levelWithin(const GpuPrimitive& prim, float budget) {
-  const int level = coarsestWithin(prim.levels, budget);
+  const int level = levelIndexWithin(prim, budget);
   if (level < 0) return {0, prim.indexCount};
   return {prim.levels[size_t(level)].firstIndex, prim.levels[size_t(level)].indexCount};
 }
 
 // One draw of the bound vertex array: indexed or not, at the level of detail the
-// budget allows.
-void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget) {
-  if (prim.indexCount > 0) {
+// budget allows; or GPU culling's commands for it (the level was chosen with the
+// same budget when they were made).
+void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget, const IndirectDraw* indirect) {
+  if (indirect) {
+    glMultiDrawElementsIndirect(mode, GL_UNSIGNED_INT, reinterpret_cast<const void*>(indirect->offset),
+                                indirect->count, 0);
+  } else if (prim.indexCount > 0) {
     const auto [first, count] = levelWithin(prim, lodBudget);
     glDrawElements(mode, count, GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(std::uintptr_t(first) * sizeof(std::uint32_t)));
@@ -338,14 +355,10 @@ void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget) {
 // state is set.
 Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu, const ModelFrame& frame,
                      size_t n, size_t p) {
-  // Camera-relative rendering: the camera offset is applied in double before the
-  // matrices become float.
-  const glm::dmat4 toCamera = glm::translate(glm::dmat4(1.0), -frame.cameraPosition);
   const NodeData& node = model.nodes[n];
   const GpuPrimitive& prim = gpu.meshes()[size_t(node.mesh)][p];
   const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[p];
   const gl::VertexArray* cached = frame.skinCache ? frame.skinCache->vertexArray(int(n), int(p)) : nullptr;
-  const bool skinned = skinnedBy(node, data.influences, frame.skinMode);
   const ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly, cached != nullptr);
   const MaterialData* material = materialOf(model, prim.material);
   auto program = variants.get(variant);
@@ -386,9 +399,10 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   // sorted scene draw items then work unchanged; the cost is one draw call per
   // instance, which is fine for the sample's 125 boxes but not for forests.
   // Skinned nodes have no instances (the loader drops them), so they draw once.
-  const glm::dmat4 placed = skinned ? toCamera * frame.root : toCamera * glm::dmat4(frame.nodeWorlds[n]);
-  for (const glm::mat4& instance : meshInstances(node)) {
-    const glm::mat4 model4 = glm::mat4(placed * glm::dmat4(instance));
+  const std::vector<glm::mat4> models = primitiveInstanceModels(model, frame, int(n), data.influences);
+  const bool indirect = !frame.indirect.empty() && hasClusters(prim, GLenum(data.mode));
+  for (size_t i = 0; i < models.size(); ++i) {
+    const glm::mat4& model4 = models[i];
     pr.set("u_model", model4);
     pr.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model4)))));
     // glTF: a world transform with a negative determinant mirrors the mesh, which
@@ -396,7 +410,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     // flipped for the draw (NegativeScaleTest's scale -1 row) and put back.
     const bool mirrored = glm::determinant(glm::mat3(model4)) < 0.0f;
     if (mirrored) flipFrontFace();
-    drawMesh(prim, GLenum(data.mode), frame.lodBudget);
+    drawMesh(prim, GLenum(data.mode), frame.lodBudget, indirect ? &frame.indirect[i] : nullptr);
     if (mirrored) flipFrontFace();
   }
   if (twoSided) glEnable(GL_CULL_FACE);
@@ -405,6 +419,21 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
 }
 
 }  // namespace
+
+int levelIndexWithin(const GpuPrimitive& prim, float budget) { return coarsestWithin(prim.levels, budget); }
+
+std::vector<glm::mat4> primitiveInstanceModels(const ModelData& model, const ModelFrame& frame, int node,
+                                               int influences) {
+  const NodeData& n = model.nodes[size_t(node)];
+  // Camera-relative rendering: the camera offset is applied in double before the
+  // matrices become float.
+  const glm::dmat4 toCamera = glm::translate(glm::dmat4(1.0), -frame.cameraPosition);
+  const bool skinned = skinnedBy(n, influences, frame.skinMode);
+  const glm::dmat4 placed = skinned ? toCamera * frame.root : toCamera * glm::dmat4(frame.nodeWorlds[size_t(node)]);
+  std::vector<glm::mat4> out;
+  for (const glm::mat4& instance : meshInstances(n)) out.push_back(glm::mat4(placed * glm::dmat4(instance)));
+  return out;
+}
 
 void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, const gl::Buffer* deformed) {
   const GpuPrimitive::Sources& in = prim.sources;

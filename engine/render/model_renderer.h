@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "asset/mesh_lod.h"
+#include "render/cull_math.h"
 #include "asset/model_data.h"
 #include "core/result.h"
 #include "gl/resources.h"
@@ -125,9 +126,27 @@ struct GpuPrimitive {
     GLsizei firstIndex = 0;
     GLsizei indexCount = 0;
     float error = 0.0f;  // MeshLod::error
+    cull::ClusterRange clusters;  // its clusters in `clusters`
   };
   std::vector<Level> levels;
+  // GPU culling (render/gpu_cull.h): an indexed triangle mesh's indices split into
+  // runs of at most 128 triangles with their bounds (cull::appendClusters), the
+  // full mesh's then each level's; empty for other primitives.
+  std::vector<cull::Cluster> clusters;
+  cull::ClusterRange fullClusters;
 };
+
+// Where one draw's glMultiDrawElementsIndirect commands lie in the bound
+// GL_DRAW_INDIRECT_BUFFER (GPU culling's, render/gpu_cull.h).
+struct IndirectDraw {
+  GLintptr offset = 0;
+  GLsizei count = 0;
+};
+
+// The level of detail drawn within `budget` (-1: the full mesh), as drawMesh picks it.
+int levelIndexWithin(const GpuPrimitive& prim, float budget);
+// Whether GPU culling can draw `prim` from its clusters: indexed triangles.
+inline bool hasClusters(const GpuPrimitive& prim, int mode) { return mode == GL_TRIANGLES && !prim.clusters.empty(); }
 
 struct UploadOptions {
   // Levels of detail to upload, [mesh][primitive] (ModelAsset::levelsOfDetail),
@@ -214,7 +233,15 @@ struct ModelFrame {
   // Whether drawModel also draws the BLEND primitives (after the others, back to
   // front, blending on). A scene turns it off and sorts them across all models.
   bool includeBlend = true;
+  // GPU culling: the commands of each instance of the one primitive drawn
+  // (drawModelPrimitive), in primitiveInstanceModels' order; empty: plain draws.
+  std::span<const IndirectDraw> indirect;
 };
+
+// The u_model of every instance drawPrimitive draws of node `node`'s primitives
+// (EXT_mesh_gpu_instancing's instances, or the node once): what GPU culling
+// transforms their clusters by, bit for bit.
+std::vector<glm::mat4> primitiveInstanceModels(const ModelData& model, const ModelFrame& frame, int node, int influences);
 
 // A BLEND primitive of a model and its distance from the camera (the centre of
 // its bounds), for sorting back to front.

@@ -1,6 +1,7 @@
 #include "render/scene_renderer.h"
 
 #include <algorithm>
+#include <iterator>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +18,8 @@
 #include "core/linear_image.h"
 #include "render/character.h"
 #include "render/frame_block.h"
+#include "render/gpu_cull.h"
+#include "render/terrain_cull.h"
 #include "render/ibl.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
@@ -75,6 +78,11 @@ struct PassInputs {
   glm::mat4 viewProjection{1.0f};
   bool useProbes = false;  // mirrors show their reflection probe
 };
+
+// GPU culling's commands for each item of a draw list, aligned with it: one per
+// instance drawn (a shape's one, a glTF node's mesh instances); empty for a plain
+// draw (culling off, or a primitive without clusters).
+using ItemCommands = std::vector<std::vector<IndirectDraw>>;
 
 // The opaque and the blended draws of one view; the opaque ones of transmissive
 // materials (KHR_materials_transmission) apart, as they refract the others.
@@ -267,6 +275,28 @@ struct SceneRenderer::Impl {
   gl::Texture transmissionSource;
   gl::Framebuffer transmissionFbo;
   void copyTransmissionSource();
+  // GPU culling (render.gpu_culling, render/gpu_cull.h): made at load with every
+  // mesh's clusters; where each mesh's clusters start in its table.
+  std::unique_ptr<GpuCuller> culler;
+  std::unique_ptr<GpuCuller> terrainCuller;  // the terrain's patches, a table of their own each frame
+  std::unique_ptr<HiZPyramid> hiz;
+  float cullDepthMargin = cull::kDepthMargin;
+  // The pyramid the terrain's second half was culled with, this frame: without
+  // occluders the draws are culled with it (the depth has only come nearer
+  // since), which saves a build and a wait.
+  bool terrainPyramid = false;
+  std::map<const GpuMesh*, std::uint32_t> shapeClusterBase;
+  std::map<const GpuPrimitive*, std::uint32_t> primitiveClusterBase;
+  Status makeCuller();
+  ItemCommands queueJobs(const std::vector<DrawItem>& items);
+  std::vector<IndirectDraw> queueShapeJob(const ShapeDraw& shape);
+  std::vector<IndirectDraw> queueCharacterJobs(const DrawItem& item);
+  void cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion);
+  std::vector<cull::Cluster> terrainPatchBoxes(const terrain::LodSelection& selection) const;
+  void drawTerrainCulled(const View& view);
+  Status drawCulled(const View& view, const DrawLists& lists, bool useProbes);
+  bool isOccluder(const DrawItem& item) const;
+  void buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders);
   terrain::Terrain* terrain = nullptr;  // the scene's, when it has one
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
@@ -316,10 +346,12 @@ struct SceneRenderer::Impl {
   Result<DrawLists> collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape = -1);
   Status collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists);
   Status collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists);
-  Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass);
-  Status submitItems(const std::vector<DrawItem>& items, const PassInputs& pass);
+  Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands = nullptr);
+  Status submitItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands);
   double animationMs = 0.0;  // the last update's
-  void drawShape(const ShapeDraw& shape, const gl::Program& program, const PassInputs& pass);
+  void drawShape(const ShapeDraw& shape, const gl::Program& program, const PassInputs& pass,
+                 const IndirectDraw* indirect);
+  glm::mat4 shapeModel(const ShapeDraw& shape) const;
   void drawSky(const glm::dmat4& viewProjection, bool sunDisk = true);
   Status drawWorld(const View& view, int skipShape, bool useProbes);
   Status makeProbes();
@@ -345,6 +377,8 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
   render.skinning = options.skinningOverride.value_or(render.skinning);
   render.lodPixels = options.lodPixelsOverride.value_or(render.lodPixels);
+  render.gpuCulling = options.gpuCullingOverride.value_or(render.gpuCulling);
+  cullDepthMargin = options.gpuCullingDepthMargin;
   render.shading = options.shadingOverride.value_or(render.shading);
   if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
   render.toneMap = options.toneMapOverride.value_or(render.toneMap);
@@ -417,6 +451,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (auto s = loadModels(); !s) return s;
   addShapes();
   for (int i = 0; i < int(probes.size()); ++i) shapes[size_t(probes[size_t(i)].shape)].probe = i;
+  if (auto s = makeCuller(); !s) return s;
 
   if (sunShadows) {
     sunShadowSize = render.shadowMapSize;
@@ -899,12 +934,18 @@ Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bo
   return lists;
 }
 
-void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, const PassInputs& pass) {
-  const MaterialDesc& m = scene.materials[size_t(s.material)];
-  // Camera-relative: the offset is taken in double, then the matrix goes to float.
+// A shape's u_model, camera-relative: the offset is taken in double, then the
+// matrix goes to float. GPU culling transforms its clusters by the same matrix.
+glm::mat4 SceneRenderer::Impl::shapeModel(const ShapeDraw& s) const {
   glm::dmat4 relative = s.world;
   relative[3] -= glm::dvec4(eye, 0.0);
-  const glm::mat4 model(relative);
+  return glm::mat4(relative);
+}
+
+void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, const PassInputs& pass,
+                                    const IndirectDraw* indirect) {
+  const MaterialDesc& m = scene.materials[size_t(s.material)];
+  const glm::mat4 model = shapeModel(s);
   p.set("u_model", model);
   p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model)))));
   p.set("u_uvScale", s.uvScale * (s.mesh == quad.get() ? 1.0f : m.textureScale));
@@ -932,7 +973,11 @@ void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, co
   // would cull every caster drawn after it, as the sort order falls).
   const bool twoSided = s.twoSided && glIsEnabled(GL_CULL_FACE);
   if (twoSided) glDisable(GL_CULL_FACE);
-  s.mesh->draw();
+  if (indirect) {
+    s.mesh->drawIndirect(indirect->offset, indirect->count);
+  } else {
+    s.mesh->draw();
+  }
   if (twoSided) glEnable(GL_CULL_FACE);
 }
 
@@ -940,14 +985,16 @@ void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, co
 // uniforms (shadow parameters) are set when the pass first binds it, and each
 // change of program is counted: sorting keeps the count near the number of
 // programs the view needs.
-Status SceneRenderer::Impl::drawItems(const std::vector<DrawItem>& items, const PassInputs& pass) {
+Status SceneRenderer::Impl::drawItems(const std::vector<DrawItem>& items, const PassInputs& pass,
+                                      const ItemCommands* commands) {
   const auto start = std::chrono::steady_clock::now();
-  const Status status = submitItems(items, pass);
+  const Status status = submitItems(items, pass, commands);
   stats->submitMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return status;
 }
 
-Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, const PassInputs& pass) {
+Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, const PassInputs& pass,
+                                        const ItemCommands* commands) {
   std::vector<std::uint32_t> programs;
   for (const DrawItem& item : items) programs.push_back(item.program);
   std::sort(programs.begin(), programs.end());
@@ -960,7 +1007,10 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
     setUniforms(p);
     if (pass.depthOnly) p.set("u_lightViewProjection", pass.lightViewProjection);
   };
-  for (const DrawItem& item : items) {
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const DrawItem& item = items[k];
+    const std::span<const IndirectDraw> indirect =
+        commands ? std::span<const IndirectDraw>((*commands)[k]) : std::span<const IndirectDraw>();
     ++stats->drawCalls;
     if (item.source == DrawItem::Source::Shape) {
       const ShapeDraw& shape = shapes[size_t(item.object)];
@@ -969,12 +1019,12 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
       if (!program) return program.error();
       (*program)->use();
       set(**program);
-      drawShape(shape, **program, pass);
+      drawShape(shape, **program, pass, indirect.empty() ? nullptr : &indirect[0]);
       continue;
     }
     CharacterDraw& c = characters[size_t(item.object)];
     if (auto s = c.instance->drawPrimitive(*variants, pass.viewProjection, skinModeOf(c.desc), set, pass.depthOnly,
-                                           item.node, item.primitive);
+                                           item.node, item.primitive, indirect);
         !s) {
       return s;
     }
@@ -1110,9 +1160,14 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
     drawSky(view.viewProjection);
   }
   applyPassState(opaquePassFor(view.mirrored));
-  if (terrain) drawTerrain(view.viewProjection, view.fovy, view.height);
+  if (terrain && terrainCuller && view.main) {
+    drawTerrainCulled(view);
+  } else if (terrain) {
+    drawTerrain(view.viewProjection, view.fovy, view.height);
+  }
   auto lists = collectDraws(view.planes, false, skipShape);
   if (!lists) return lists.error();
+  if (culler && view.main) return drawCulled(view, *lists, useProbes);
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
   if (auto s = drawItems(lists->opaque, pass); !s) return s;
   if (lists->refracts) {
@@ -1123,6 +1178,231 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   if (lists->blend.empty()) return Ok{};
   applyPassState(blendPassFor(view.mirrored));
   return drawItems(lists->blend, pass);
+}
+
+// GPU culling's programs and cluster table: every shape mesh's and every model
+// primitive's clusters (made when they were uploaded), once per mesh.
+Status SceneRenderer::Impl::makeCuller() {
+  if (!render.gpuCulling) return Ok{};
+  auto made = GpuCuller::create(shaderDir);
+  if (!made) return makeError(scene.path + ": /render/gpu_culling: " + made.error().message);
+  culler = std::make_unique<GpuCuller>(std::move(made).value());
+  if (terrain) {
+    auto forTerrain = GpuCuller::create(shaderDir);
+    if (!forTerrain) return makeError(scene.path + ": /render/gpu_culling: " + forTerrain.error().message);
+    terrainCuller = std::make_unique<GpuCuller>(std::move(forTerrain).value());
+  }
+  auto pyramid = HiZPyramid::create(shaderDir);
+  if (!pyramid) return makeError(scene.path + ": /render/gpu_culling: " + pyramid.error().message);
+  hiz = std::make_unique<HiZPyramid>(std::move(pyramid).value());
+  for (const GpuMesh* mesh : {sphere.get(), cube.get(), quad.get()})
+    if (mesh) shapeClusterBase[mesh] = culler->addClusters(mesh->clusters());
+  for (const CharacterDraw& c : characters)
+    for (const auto& mesh : c.instance->asset().gpu.meshes())
+      for (const GpuPrimitive& p : mesh)
+        if (!p.clusters.empty() && !primitiveClusterBase.count(&p)) primitiveClusterBase[&p] = culler->addClusters(p.clusters);
+  return Ok{};
+}
+
+// A shape's job: its own matrix and clusters, its bounding sphere (none for a plane).
+std::vector<IndirectDraw> SceneRenderer::Impl::queueShapeJob(const ShapeDraw& s) {
+  cull::Job job;
+  job.model = shapeModel(s);
+  job.sphere = s.radius < 0.0 ? glm::vec4(0.0f, 0.0f, 0.0f, -1.0f) : glm::vec4(glm::vec3(s.center - eye), float(s.radius));
+  const cull::ClusterRange range = s.mesh->clusterRange();
+  job.firstCluster = shapeClusterBase.at(s.mesh) + range.first;
+  job.clusterCount = range.count;
+  return {culler->commandsOf(culler->addJob(job))};
+}
+
+// A character primitive's jobs, one per mesh instance, in the order drawPrimitive
+// draws them: the clusters of the level of detail it will draw, the character's
+// bounding sphere (of every pose: the bounds collectCharacters culls by). A
+// skinned or morphed primitive's vertices move away from the rest positions its
+// clusters were bounded by, so only its sphere is tested (cull::kInstanceOnly).
+std::vector<IndirectDraw> SceneRenderer::Impl::queueCharacterJobs(const DrawItem& item) {
+  const CharacterDraw& c = characters[size_t(item.object)];
+  const ModelData& model = c.instance->asset().model;
+  const NodeData& node = model.nodes[size_t(item.node)];
+  const GpuPrimitive& prim = c.instance->asset().gpu.meshes()[size_t(node.mesh)][size_t(item.primitive)];
+  const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[size_t(item.primitive)];
+  if (!hasClusters(prim, data.mode)) return {};
+  const SkinMode mode = skinModeOf(c.desc);
+  const int level = levelIndexWithin(prim, c.instance->lodBudget());
+  const cull::ClusterRange range = level < 0 ? prim.fullClusters : prim.levels[size_t(level)].clusters;
+  cull::Job job;
+  const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
+  job.sphere = glm::vec4(glm::vec3(center), float(c.localRadius));
+  job.firstCluster = primitiveClusterBase.at(&prim) + range.first;
+  job.clusterCount = range.count;
+  job.flags = skinnedBy(node, data.influences, mode) || data.morphTargets > 0 ? cull::kInstanceOnly : 0u;
+  std::vector<IndirectDraw> out;
+  for (const glm::mat4& m : c.instance->instanceModels(mode, item.node, data.influences)) {
+    job.model = m;
+    out.push_back(culler->commandsOf(culler->addJob(job)));
+  }
+  return out;
+}
+
+ItemCommands SceneRenderer::Impl::queueJobs(const std::vector<DrawItem>& items) {
+  ItemCommands out;
+  out.reserve(items.size());
+  for (const DrawItem& item : items) {
+    out.push_back(item.source == DrawItem::Source::Shape ? queueShapeJob(shapes[size_t(item.object)])
+                                                         : queueCharacterJobs(item));
+  }
+  return out;
+}
+
+// Culls jobs [firstJob, endJob) for the main view: against a pyramid of the depth
+// drawn into the bound framebuffer so far, or the frustum alone. The depth only
+// ever comes nearer during the view's pass (GL_GREATER, no clears), so what it
+// hides now stays hidden for the rest of the pass.
+void SceneRenderer::Impl::cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view,
+                                    bool occlusion) {
+  if (endJob <= firstJob) return;
+  // The pyramid needs the depth drawn so far, which llvmpipe rasterises only when
+  // flushed: waited for here, so that the time below is the culling's own.
+  if (occlusion) glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  if (occlusion) {
+    GLint framebuffer = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    hiz->build(GLuint(framebuffer), targetWidth, targetHeight);
+  }
+  with.cull(firstJob, endJob, glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
+  ++stats->cullDispatches;
+  stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Whether an opaque item can stand in the occluder prepass: a shape, or a model
+// primitive that neither deforms (the prepass would need its skinning) nor cuts
+// holes (MASK); either way one drawn in this very pass, so the depth it leaves in
+// the prepass is depth the pass's own depth buffer will hold.
+bool SceneRenderer::Impl::isOccluder(const DrawItem& item) const {
+  if (item.source == DrawItem::Source::Shape) return true;
+  const CharacterDraw& c = characters[size_t(item.object)];
+  const ModelData& model = c.instance->asset().model;
+  const NodeData& node = model.nodes[size_t(item.node)];
+  const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[size_t(item.primitive)];
+  const MaterialData* material = data.material >= 0 ? &model.materials[size_t(data.material)] : nullptr;
+  return !skinnedBy(node, data.influences, skinModeOf(c.desc)) && data.morphTargets == 0 &&
+         !(material && material->alphaMode != AlphaMode::Opaque);
+}
+
+// The pyramid the main view's draws are culled against: the depth drawn so far
+// (the terrain's), and the occluders' depth drawn over a copy of it, depth only
+// (the occluder prepass). Why that is safe though the occluders come later in the
+// pass: an item whose every pixel has, in the end, a strictly nearer depth is
+// never the nearest fragment anywhere, and with GL_GREATER the image and the
+// depth are the first nearest fragment's; removing a fragment that is not the
+// nearest changes neither. Every occluder is an opaque draw of this pass, and the
+// pass's final depth is at least the prepass's (up to float rounding between two
+// programs' vertex shaders, far inside cull::kDepthMargin). Without occluders the
+// terrain's pyramid, made for its second half, serves as it is.
+void SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders) {
+  GLint framebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+  hiz->copyDepth(GLuint(framebuffer), targetWidth, targetHeight);
+  if (!occluders.empty()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, hiz->depthFramebuffer());
+    const glm::mat4 viewProjection(view.viewProjection);
+    (void)drawItems(occluders, {true, viewProjection, viewProjection, false});
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
+  }
+  hiz->reduce();
+}
+
+// The main view's draws with GPU culling, in the order drawWorld draws them, every
+// one culled in one dispatch against the occluder pyramid (above). A window's
+// frames and a single offscreen frame cull alike: the pyramid is this frame's own,
+// never the last frame's. MSAA, or no terrain and no occluder: the frustum only
+// (MSAA's pyramid would need every sample's depth).
+Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists, bool useProbes) {
+  culler->clearJobs();
+  const ItemCommands opaqueCommands = queueJobs(lists.opaque);
+  const ItemCommands transmissiveCommands = queueJobs(lists.transmissive);
+  const ItemCommands blendCommands = queueJobs(lists.blend);
+  culler->upload();
+  std::vector<DrawItem> occluders;
+  std::copy_if(lists.opaque.begin(), lists.opaque.end(), std::back_inserter(occluders),
+               [this](const DrawItem& item) { return isOccluder(item); });
+  const bool occlusion = render.msaa <= 1 && (terrain || !occluders.empty());
+  // The occluders' depth waits for what is drawn before it: timed from there.
+  if (occlusion && !(terrainPyramid && occluders.empty())) glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  if (occlusion && !(terrainPyramid && occluders.empty())) {
+    buildOccluderPyramid(view, occluders);
+    applyPassState(opaquePassFor(view.mirrored));
+  }
+  terrainPyramid = false;
+  culler->cull(0, culler->jobCount(), glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
+  ++stats->cullDispatches;
+  stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
+  Status status = drawItems(lists.opaque, pass, &opaqueCommands);
+  if (status && lists.refracts) {
+    copyTransmissionSource();
+    transmissionSource.bind(gl::binding::kTransmissionSource);
+    status = drawItems(lists.transmissive, pass, &transmissiveCommands);
+  }
+  if (status && !lists.blend.empty()) {
+    applyPassState(blendPassFor(view.mirrored));
+    status = drawItems(lists.blend, pass, &blendCommands);
+  }
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  return status;
+}
+
+// The boxes of the terrain's drawn patches (terrainPatchBox): the terrain
+// culler's clusters, one a patch.
+std::vector<cull::Cluster> SceneRenderer::Impl::terrainPatchBoxes(const terrain::LodSelection& selection) const {
+  std::vector<cull::Cluster> out;
+  const auto count = std::uint32_t(terrain::TerrainRenderer::indexCount());
+  for (const terrain::LodPatch& p : terrainRenderer->patches()) out.push_back(terrainPatchBox(*terrain, selection, p, count));
+  return out;
+}
+
+// The main view's terrain with GPU culling: its selection (CPU-culled to the
+// frustum by the CDLOD traversal, as without) in two halves of the drawing order,
+// the first culled against the frustum alone (nothing is drawn before the
+// terrain), the second against a pyramid of the first's depth. Each command is a
+// run of the instance buffer's patches (cull::kInstances), so they are drawn in
+// the same order as the one instanced draw.
+void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
+  const auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
+  const auto prepared = terrainRenderer->prepare(selection);
+  stats->drawCalls += 1;
+  stats->terrainTriangles = int(prepared.trianglesDrawn);
+  const auto patches = std::uint32_t(terrainRenderer->patches().size());
+  terrainCuller->clearClusters();
+  terrainCuller->clearJobs();
+  if (patches == 0) {
+    terrainCuller->upload();  // this frame's counters: zero
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    return;
+  }
+  const std::uint32_t first = terrainCuller->addClusters(terrainPatchBoxes(selection));
+  const std::uint32_t split = patches / 2;
+  cull::Job job;
+  job.sphere = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+  job.flags = cull::kInstances;
+  job.firstCluster = first;
+  job.clusterCount = split;
+  const std::size_t near = terrainCuller->addJob(job);
+  job.firstCluster = first + split;
+  job.clusterCount = patches - split;
+  job.firstInstance = split;
+  const std::size_t far = terrainCuller->addJob(job);
+  terrainCuller->upload();
+  const auto uniforms = [this](const gl::Program& p) { setUniforms(p); };
+  for (const std::size_t j : {near, far}) {
+    cullPhase(*terrainCuller, j, j + 1, view, j == far && render.msaa <= 1);
+    terrainPyramid = j == far && render.msaa <= 1;
+    const IndirectDraw commands = terrainCuller->commandsOf(j);
+    terrainRenderer->drawIndirect(selection, eye, uniforms, commands.offset, commands.count);
+  }
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 
 // What the transmissive draws refract: the view's colour so far (sky, terrain and
@@ -1446,6 +1726,26 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   return Ok{};
 }
 
+CullStats SceneRenderer::cullStats() const {
+  CullStats out;
+  if (!impl_->culler) return out;
+  const cull::Counters c = impl_->culler->counters();
+  out.enabled = true;
+  out.instancesTested = c.instancesTested;
+  out.instancesFrustum = c.instancesFrustum;
+  out.instancesOccluded = c.instancesOccluded;
+  out.clustersTested = c.clustersTested;
+  out.clustersFrustum = c.clustersFrustum;
+  out.clustersOccluded = c.clustersOccluded;
+  if (impl_->terrainCuller) {
+    const cull::Counters t = impl_->terrainCuller->counters();
+    out.patchesTested = t.clustersTested;
+    out.patchesFrustum = t.clustersFrustum;
+    out.patchesOccluded = t.clustersOccluded;
+  }
+  return out;
+}
+
 long long SceneRenderer::lastFrameTriangles() const {
   return impl_->primitivesValid ? static_cast<long long>(impl_->primitives.result()) : 0;
 }
@@ -1507,6 +1807,11 @@ std::string SceneRenderer::describe() const {
   if (s.terrain) out << " terrain(cdlod, " << s.terrainError << " px)";
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
+  if (s.culler) {
+    out << " gpu-culling(" << s.culler->clusters().size() << " clusters of <= " << cull::kClusterTriangles
+        << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, occluder prepass")
+        << (s.terrainCuller ? "; terrain patches too" : "") << ")";
+  }
   if (s.transmissionPass) out << " transmission(copy + mips)";
   if (s.blendPass) out << " blend(sorted)";
   if (s.directOutput) {

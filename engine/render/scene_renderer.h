@@ -47,6 +47,10 @@ struct SceneRenderOptions {
   std::optional<Skinning> skinningOverride;  // replaces render.skinning
   double terrainErrorOverride = 0.0;         // > 0 replaces terrain.error_pixels (the LOD target)
   std::optional<double> lodPixelsOverride;   // replaces render.lod_pixels (models' levels of detail)
+  std::optional<bool> gpuCullingOverride;    // replaces render.gpu_culling (render/gpu_cull.h)
+  // Tests only: GPU culling's depth margin (cull::View::depthMargin); a negative
+  // one culls what is in front, and the culled image must then differ.
+  float gpuCullingDepthMargin = cull::kDepthMargin;
   // Replaces every model's skinning (lbs, dqs, none: the bind pose).
   std::optional<SkinMode> skinModeOverride;
   // Replace render.shading, render.exposure (> 0), render.tonemap, render.output.
@@ -84,6 +88,21 @@ struct SceneStats {
   double animationMs = 0.0;
   double cullMs = 0.0;
   double submitMs = 0.0;
+  // GPU culling (render.gpu_culling): the CPU time of its passes, the pyramids'
+  // builds and the dispatches, after a glFinish that waits for the depth they read
+  // (the frame would wait for it at its end anyway); and its dispatches.
+  double gpuCullMs = 0.0;
+  int cullDispatches = 0;
+};
+
+// GPU culling's counters of the last frame (render/cull_math.h's Counters):
+// instances and clusters tested, culled by the frustum, culled by occlusion.
+struct CullStats {
+  bool enabled = false;
+  long long instancesTested = 0, instancesFrustum = 0, instancesOccluded = 0;
+  long long clustersTested = 0, clustersFrustum = 0, clustersOccluded = 0;
+  // The terrain's CDLOD patches (the main view's selection).
+  long long patchesTested = 0, patchesFrustum = 0, patchesOccluded = 0;
 };
 
 // One pass's GPU time (a GL_TIME_ELAPSED query), from the latest frame whose
@@ -123,6 +142,9 @@ class SceneRenderer {
   // Triangles the GL processed in the last frame, every pass included (a
   // GL_PRIMITIVES_GENERATED query). Waits for the frame: for benchmarks and tools.
   long long lastFrameTriangles() const;
+  // GPU culling's counters of the last frame, read back (waits): for benchmarks,
+  // tools and tests. All zero with culling off.
+  CullStats cullStats() const;
   // Every pass's GPU time, in the order the frame draws them.
   std::vector<PassTime> passTimes() const;
   const SceneDesc& scene() const;

@@ -140,6 +140,7 @@ TerrainDrawStats TerrainRenderer::upload(const LodSelection& selection) {
 
   std::vector<Instance> instances;
   instances.reserve(selection.patches.size());
+  drawnPatches_.clear();
   for (const LodPatch& p : selection.patches) {
     const auto it = slotOf_.find(p.node);
     if (it == slotOf_.end() || slotUsed_[std::size_t(it->second)] != frame_) {
@@ -147,6 +148,7 @@ TerrainDrawStats TerrainRenderer::upload(const LodSelection& selection) {
       continue;
     }
     instances.push_back({p.gx, p.gz, p.level, it->second});
+    drawnPatches_.push_back(p);
     stats.maxGeometricError = std::max(stats.maxGeometricError, p.error);
   }
   stats.patchesDrawn = instances.size();
@@ -179,10 +181,10 @@ void TerrainRenderer::drawInstances(std::size_t count) const {
   glBindVertexArray(0);
 }
 
-TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm::dvec3& cameraPosition,
-                                       const UniformSetter& setUniforms) {
-  const TerrainDrawStats stats = upload(selection);
-  if (stats.patchesDrawn == 0) return stats;
+int TerrainRenderer::indexCount() { return kIndexCount; }
+
+void TerrainRenderer::useColourProgram(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                                       const UniformSetter& setUniforms) const {
   const gl::Program& p = program_;
   setGridUniforms(p, selection);
   p.set("u_heightScale", std::max(terrain_->heightRange().max, 1e-3f));
@@ -193,8 +195,25 @@ TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm:
   p.use();
   if (setUniforms) setUniforms(p);
   for (std::size_t i = 0; i < layers_.size(); ++i) layers_[i].bind(GLuint(gl::binding::kTerrainLayers + i));
+}
+
+TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                                       const UniformSetter& setUniforms) {
+  const TerrainDrawStats stats = upload(selection);
+  if (stats.patchesDrawn == 0) return stats;
+  useColourProgram(selection, cameraPosition, setUniforms);
   drawInstances(stats.patchesDrawn);
   return stats;
+}
+
+void TerrainRenderer::drawIndirect(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                                   const UniformSetter& setUniforms, std::intptr_t offset, int count) const {
+  if (count <= 0) return;
+  useColourProgram(selection, cameraPosition, setUniforms);
+  glBindTextureUnit(gl::binding::kTerrainHeights, heightPages_.id());
+  vertexArray_.bind();
+  glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_SHORT, reinterpret_cast<const void*>(offset), count, 0);
+  glBindVertexArray(0);
 }
 
 TerrainDrawStats TerrainRenderer::drawDepth(const LodSelection& selection, const glm::mat4& lightViewProjection) {

@@ -66,6 +66,18 @@ class TerrainRenderer {
   // a shadow map.
   TerrainDrawStats drawDepth(const LodSelection& selection, const glm::mat4& lightViewProjection);
 
+  // GPU culling (render/gpu_cull.h) draws the colour pass in parts, from indirect
+  // commands: prepare makes the selection's pages resident and fills the instance
+  // buffer once (patches() is then the instances in order); drawIndirect draws
+  // `count` commands from byte `offset` of the bound GL_DRAW_INDIRECT_BUFFER, each
+  // a run of those instances (baseInstance), with draw's program and uniforms.
+  TerrainDrawStats prepare(const LodSelection& selection) { return upload(selection); }
+  const std::vector<LodPatch>& patches() const { return drawnPatches_; }
+  void drawIndirect(const LodSelection& selection, const glm::dvec3& cameraPosition, const UniformSetter& setUniforms,
+                    std::intptr_t offset, int count) const;
+  // The grid's indices a patch draws (GL_UNSIGNED_SHORT).
+  static int indexCount();
+
   const gl::Program& program() const { return program_; }
   int pageSlots() const { return slots_; }
   int pagesResident() const { return int(slotOf_.size()); }
@@ -78,6 +90,8 @@ class TerrainRenderer {
   void assignSlots(const std::vector<PageKey>& missing, std::size_t& uploads);
   void setGridUniforms(const gl::Program& p, const LodSelection& selection) const;
   void drawInstances(std::size_t count) const;
+  void useColourProgram(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                        const UniformSetter& setUniforms) const;
 
   const Terrain* terrain_ = nullptr;
   gl::Program program_, depthProgram_;
@@ -91,6 +105,7 @@ class TerrainRenderer {
   std::unordered_map<PageKey, int, PageKeyHash> slotOf_;
   std::vector<PageKey> slotKey_;
   std::vector<std::uint64_t> slotUsed_;  // draw of last use; 0 = free
+  std::vector<LodPatch> drawnPatches_;   // the last upload's instances, in order
 };
 
 }  // namespace engine::terrain

@@ -115,6 +115,12 @@ int main(int argc, char** argv) {
                  "Models' levels of detail (simplified meshes, made at load): drawn where their error is within "
                  "this many pixels on screen; 0 draws every mesh in full; default: the scene's render.lod_pixels, 0")
       ->check(CLI::Range(0.0, 64.0));
+  std::string gpuCulling;
+  app.add_option("--gpu-culling", gpuCulling,
+                 "Cull the main view's meshes per instance and per cluster of 128 triangles in a compute shader, "
+                 "against the frustum and the depth drawn so far (changes no pixel); default: the scene's "
+                 "render.gpu_culling, off")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_flag("--hdr-target", render.hdrTarget,
                "Keep the HDR target and the post pass where the scene needs neither (no tone map, exposure 1, "
                "no MSAA, supersampling, sky, probes, blending or transmission): the reference for the direct path");
@@ -190,6 +196,7 @@ int main(int argc, char** argv) {
   if (!ambient.empty()) render.ambientOverride = engine::ambientNames().at(ambient);
   if (!skinning.empty()) render.skinningOverride = engine::skinningNames().at(skinning);
   if (lodPixels >= 0.0) render.lodPixelsOverride = lodPixels;
+  if (!gpuCulling.empty()) render.gpuCullingOverride = gpuCulling == "on";
   if (!skinBlend.empty()) {
     render.skinModeOverride = skinBlend == "dqs"    ? engine::SkinMode::DualQuat
                               : skinBlend == "none" ? engine::SkinMode::None

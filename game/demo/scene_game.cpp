@@ -214,6 +214,21 @@ engine::Game::Counters SceneGame::frameCounters() {
                     {"cpu_ms_animation", s.animationMs},
                     {"cpu_ms_cull", s.cullMs},
                     {"cpu_ms_submit", s.submitMs}};
+  // GPU culling (render.gpu_culling): what its compute tested and culled in the
+  // last frame, and the CPU time of its passes (SceneStats::gpuCullMs says what).
+  if (const engine::CullStats c = renderer_->cullStats(); c.enabled) {
+    counters.insert(counters.end(), {{"cull_instances_tested", double(c.instancesTested)},
+                                     {"cull_instances_frustum", double(c.instancesFrustum)},
+                                     {"cull_instances_occluded", double(c.instancesOccluded)},
+                                     {"cull_clusters_tested", double(c.clustersTested)},
+                                     {"cull_clusters_frustum", double(c.clustersFrustum)},
+                                     {"cull_clusters_occluded", double(c.clustersOccluded)},
+                                     {"cull_terrain_patches_tested", double(c.patchesTested)},
+                                     {"cull_terrain_patches_frustum", double(c.patchesFrustum)},
+                                     {"cull_terrain_patches_occluded", double(c.patchesOccluded)},
+                                     {"cull_dispatches", double(s.cullDispatches)},
+                                     {"cpu_ms_gpu_cull", s.gpuCullMs}});
+  }
   for (const engine::PassTime& t : renderer_->passTimes()) counters.emplace_back("gpu_ms_" + t.pass, t.gpuMs);
   return counters;
 }

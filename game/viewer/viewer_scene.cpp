@@ -160,6 +160,7 @@ Status ViewerScene::buildRenderer() {
   SceneRenderOptions options;
   options.shaderDir = shaderDir_;
   options.debugView = settings_.debugView;
+  options.gpuCullingOverride = settings_.gpuCulling;
   auto renderer = SceneRenderer::create(std::move(scene).value(), options);
   if (!renderer) return renderer.error();
   renderer_ = std::move(renderer).value();

@@ -40,6 +40,9 @@ struct ViewerSettings {
   // bounds). Golden tests of flat test models look straight at them (0, 0, 1), as
   // Khronos's screenshots do.
   glm::dvec3 viewDirection{0.45, 0.3, 1.0};
+  // GPU culling (render.gpu_culling) for the one-model scene: the golden test of
+  // culling draws the viewer's goldens with it on and off; the viewer has no flag.
+  bool gpuCulling = false;
 };
 
 class ViewerScene final : public engine::Game {

@@ -97,6 +97,7 @@ case "$CASE" in
   scene_msaa_string) scene scene_msaa_string.json "scene_msaa_string\.json: /render/msaa: expected an integer" ;;
   scene_skinning_unknown) scene scene_skinning_unknown.json "scene_skinning_unknown\.json: /render/skinning: \"gpu\" is not one of: auto, compute, vertex" ;;
   scene_lod_negative) scene scene_lod_negative.json "scene_lod_negative\.json: /render/lod_pixels: expected a number in \[0, 64\], got -1" ;;
+  scene_gpu_culling_string) scene scene_gpu_culling_string.json "scene_gpu_culling_string\.json: /render/gpu_culling: expected true or false" ;;
   scene_unknown_key) scene scene_unknown_key.json "scene_unknown_key\.json: /origin: unknown key" ;;
   scene_not_object) scene scene_not_object.json "scene_not_object\.json: /: expected an object" ;;
   # A sky image is checked from its header when the scene loads, and decoded by each

@@ -76,6 +76,22 @@ case "$CASE" in
     expect 0 "win\.png" -- "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
     cmp egl_w.png win.png || { echo "FAIL: window and EGL frames differ"; exit 1; }
     echo "ok: identical bytes" ;;
+  gpu_culling_identical)
+    # GPU culling changes no pixel: offscreen on and off, and a window run of 3
+    # frames with culling on (each frame culls against its own depth only), the
+    # same bytes; --describe names the pass and the bench JSON has its counters.
+    rm -f cull_off.png cull_on.png cull_win.png cull.json
+    expect 0 "cull_off\.png" -- "$BIN/demo" --offscreen=egl --time 1 --size 640x360 --screenshot cull_off.png
+    expect 0 "cull_on\.png" -- "$BIN/demo" --offscreen=osmesa --time 1 --size 640x360 --gpu-culling on \
+      --screenshot cull_on.png --bench cull.json
+    cmp cull_off.png cull_on.png || { echo "FAIL: culling changed the offscreen frame"; exit 1; }
+    grep -q '"cull_clusters_tested"' cull.json || { echo "FAIL: no culling counters in the bench JSON"; exit 1; }
+    grep -q '"cull_terrain_patches_tested"' cull.json || { echo "FAIL: no terrain counters in the bench JSON"; exit 1; }
+    expect 0 "gpu-culling\(" -- "$BIN/demo" --describe --gpu-culling on
+    start_xvfb
+    expect 0 "cull_win\.png" -- "$BIN/demo" --frames 3 --time 1 --size 640x360 --gpu-culling on --screenshot cull_win.png
+    cmp cull_off.png cull_win.png || { echo "FAIL: the culled window frame differs"; exit 1; }
+    echo "ok: identical bytes" ;;
   viewer_window_panels)
     # The viewer's window under Xvfb with its panels (animation, variant and debug-view
     # pickers, materials): it runs, and its image is the offscreen frame's with the

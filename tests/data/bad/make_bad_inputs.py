@@ -310,6 +310,7 @@ def main(out):
     write("scene_msaa_string.json", json.dumps({"render": {"msaa": "four"}}))
     write("scene_skinning_unknown.json", json.dumps({"render": {"skinning": "gpu"}}))
     write("scene_lod_negative.json", json.dumps({"render": {"lod_pixels": -1}}))
+    write("scene_gpu_culling_string.json", json.dumps({"render": {"gpu_culling": "on"}}))
     write("scene_unknown_key.json", json.dumps({"origin": [0, 0, 0]}))
     write("scene_not_object.json", json.dumps([1, 2, 3]))
 
