@@ -158,7 +158,12 @@ class PathTracer {
         beta /= survive;
       }
       ++counters.reflection;
-      ray = hit->spawnRay(Vec3<T>(s->wi));
+      // Member by member: the whole struct assigned was stored in narrow pieces and
+      // read back in 16-byte loads, a store-forwarding stall on every bounce.
+      const Ray<T> next = hit->spawnRay(Vec3<T>(s->wi));
+      ray.o = next.o;
+      ray.d = next.d;
+      ray.tMax = next.tMax;
     }
     return radiance;
   }
