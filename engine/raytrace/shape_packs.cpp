@@ -24,12 +24,17 @@ __m128 copySign(__m128 magnitude, __m128 sign) {
   return _mm_or_ps(_mm_andnot_ps(signBit, magnitude), _mm_and_ps(signBit, sign));
 }
 
-template <typename Pack>
-Pack& packFor(std::vector<Pack>& packs, std::size_t index) {
-  if (index % 4 == 0) packs.emplace_back();
-  Pack& pack = packs.back();
-  ++pack.count;
-  return pack;
+// Shapes four to a pack, lane by lane (`write` copies one shape into a lane). Lanes
+// past the last shape hold `filler`, which keeps their arithmetic finite; filledLanes
+// drops them.
+template <typename Pack, typename Shape, typename Write>
+void packInto(std::vector<Pack>& packs, const std::vector<Shape>& shapes, const Shape& filler, Write write) {
+  packs.assign((shapes.size() + 3) / 4, Pack{});
+  for (std::size_t i = 0; i < 4 * packs.size(); ++i) {
+    Pack& pack = packs[i / 4];
+    write(pack, i % 4, i < shapes.size() ? shapes[i] : filler);
+    pack.count += i < shapes.size() ? 1 : 0;
+  }
 }
 
 }  // namespace
@@ -38,41 +43,23 @@ ShapePacks::RayLanes::RayLanes(const Ray<float>& ray)
     : o{ray.o.x, ray.o.y, ray.o.z}, d{ray.d.x, ray.d.y, ray.d.z}, dd(glm::dot(ray.d, ray.d)) {}
 
 void ShapePacks::setSpheres(const std::vector<Sphere<float>>& spheres) {
-  spheres_.clear();
-  for (std::size_t i = 0; i < spheres.size(); ++i) {
-    SpherePack& pack = packFor(spheres_, i);
-    const std::size_t lane = i % 4;
-    pack.cx[lane] = spheres[i].center.x;
-    pack.cy[lane] = spheres[i].center.y;
-    pack.cz[lane] = spheres[i].center.z;
-    pack.radius[lane] = spheres[i].radius;
-  }
-  // Empty lanes hold a unit sphere at the origin: their arithmetic stays finite, and
-  // filledLanes drops them.
-  for (SpherePack& pack : spheres_) {
-    for (int lane = pack.count; lane < 4; ++lane) {
-      pack.cx[lane] = pack.cy[lane] = pack.cz[lane] = 0.0f;
-      pack.radius[lane] = 1.0f;
-    }
-  }
+  packInto(spheres_, spheres, Sphere<float>{glm::vec3(0.0f), 1.0f, 0},
+           [](SpherePack& pack, std::size_t lane, const Sphere<float>& sphere) {
+             pack.cx[lane] = sphere.center.x;
+             pack.cy[lane] = sphere.center.y;
+             pack.cz[lane] = sphere.center.z;
+             pack.radius[lane] = sphere.radius;
+           });
 }
 
 void ShapePacks::setPlanes(const std::vector<Plane<float>>& planes) {
-  planes_.clear();
-  for (std::size_t i = 0; i < planes.size(); ++i) {
-    PlanePack& pack = packFor(planes_, i);
-    const std::size_t lane = i % 4;
-    pack.nx[lane] = planes[i].normal.x;
-    pack.ny[lane] = planes[i].normal.y;
-    pack.nz[lane] = planes[i].normal.z;
-    pack.d[lane] = planes[i].d;
-  }
-  for (PlanePack& pack : planes_) {
-    for (int lane = pack.count; lane < 4; ++lane) {
-      pack.nx[lane] = pack.nz[lane] = pack.d[lane] = 0.0f;
-      pack.ny[lane] = 1.0f;
-    }
-  }
+  packInto(planes_, planes, Plane<float>{glm::vec3(0.0f, 1.0f, 0.0f), 0.0f, 0},
+           [](PlanePack& pack, std::size_t lane, const Plane<float>& plane) {
+             pack.nx[lane] = plane.normal.x;
+             pack.ny[lane] = plane.normal.y;
+             pack.nz[lane] = plane.normal.z;
+             pack.d[lane] = plane.d;
+           });
 }
 
 // Sphere<float>::intersect on four spheres; see there for why each step is as it is.
