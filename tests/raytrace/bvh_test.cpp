@@ -118,8 +118,9 @@ TEST(Bvh, RefitToTheSamePositionsKeepsEveryBox) {
     bvh.refit(tris);
     ASSERT_EQ(bvh.nodeCount(), built.size()) << count << " triangles";
     // A tree of one leaf has no nodes, and memcmp must not see its null pointers.
-    if (!built.empty())
+    if (!built.empty()) {
       ASSERT_EQ(std::memcmp(built.data(), bvh.view().nodes, built.size() * sizeof(rt::Bvh::Node)), 0) << count << " triangles";
+    }
     EXPECT_EQ(bvh.bounds().min, root.min);
     EXPECT_EQ(bvh.bounds().max, root.max);
   }
