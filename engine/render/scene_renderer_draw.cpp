@@ -1,0 +1,400 @@
+// SceneRenderer's draws: each view's culled, sorted draw items and their
+// submission; the sky, the terrain, the world of one view and the reflection probes.
+#include "render/scene_renderer_impl.h"
+
+namespace engine {
+namespace {
+
+constexpr double kProbeNear = 0.01;
+
+bool sphereVisible(const glm::dvec4 planes[6], const glm::dvec3& center, double radius) {
+  if (radius < 0.0) return true;
+  for (int i = 0; i < 6; ++i) {
+    if (glm::dot(glm::dvec3(planes[i]), center) + planes[i].w < -radius) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void SceneRenderer::Impl::setUniforms(const gl::Program& program) const {
+  if (sunShadows) {
+    program.set("u_sunTexelWorld", float(sunTexelWorld));
+    sunShadowMap.bind(gl::binding::kSunShadow);
+    if (sunFarShadows) sunShadowMapFar.bind(gl::binding::kSunShadowFar);
+  }
+  if (pointShadows) {
+    program.set("u_pointNear", float(pointNear));
+    pointShadowMap.bind(gl::binding::kPointShadow);
+  }
+}
+
+void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm::mat4& viewProjection) {
+  frame.viewProjection = viewProjection;
+  frame.sunDirection = glm::vec4(0.0f);
+  if (sunLight >= 0) {
+    const LightDesc& sun = scene.lights[size_t(sunLight)];
+    frame.sunDirection = glm::vec4(glm::vec3(sun.direction), 1.0f);
+    frame.sunColor = glm::vec4(sun.color * sun.intensity, 0.0f);
+  }
+  frame.counts = glm::ivec4(int(pointLights.size()), 0, 0, 0);
+  for (size_t i = 0; i < pointLights.size(); ++i) {
+    const LightDesc& l = scene.lights[size_t(pointLights[i])];
+    frame.pointPosition[i] = glm::vec4(glm::vec3(l.position - cameraPosition), l.falloff ? 1.0f : 0.0f);
+    frame.pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows ? 1.0f : 0.0f);
+  }
+  // Ambient from the sky: the zenith and ground colours, dimmed.
+  frame.ambientSky = glm::vec4(ambientSkyColor(scene), scene.ambient);
+  frame.ambientGround = glm::vec4(ambientGroundColor(scene), 0.0f);
+  frame.fog = scene.fog.enabled ? glm::vec4(scene.fog.color, scene.fog.density) : glm::vec4(0.0f);
+  frame.shadowParams = glm::vec4(sunShadowSize ? 1.0f / float(sunShadowSize) : 0.0f, float(pcfRadius),
+                                 float(pointFar), cubeSize ? 2.0f / float(cubeSize) : 0.0f);
+  if (environmentLighting) {
+    for (int i = 0; i < 9; ++i) frame.shIrradiance[i] = glm::vec4(environmentLighting->sh().coefficients[size_t(i)], 0.0f);
+    frame.iblParams = glm::vec4(float(environmentLighting->maxLevel()), 0.0f, 0.0f, 0.0f);
+    environmentLighting->bind();
+  }
+  frameUbo.upload(0, sizeof(FrameBlock), &frame);
+  glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
+}
+
+// The scene's shapes for one view: culled, each with its program (shadow passes
+// draw the depth-only one), keyed by program, material and distance.
+Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists) {
+  for (int index = 0; index < int(shapes.size()); ++index) {
+    const ShapeDraw& s = shapes[size_t(index)];
+    if (index == skipShape) continue;
+    const glm::dvec3 center = s.center - eye;
+    if (planes && !sphereVisible(planes, center, s.radius)) {
+      ++stats->objectsCulled;
+      continue;
+    }
+    ++stats->objectsDrawn;
+    const bool textured = !depthOnly && materialTextures[size_t(s.material)].id() != 0;
+    auto program = variants->get({0, SkinMode::Linear, textured, depthOnly});
+    if (!program) return program.error();
+    const GLuint id = (*program)->id();
+    const double distance = s.radius < 0.0 ? 0.0 : glm::length(center);
+    lists.opaque.push_back({DrawItem::Source::Shape, index, -1, -1, id, opaqueKey(id, std::uint32_t(s.material), distance)});
+  }
+  return Ok{};
+}
+
+// Every primitive of every visible character: opaque and MASK ones keyed like
+// shapes (materials after the scene's own), BLEND ones back to front by the centre
+// of their bounds (whole primitives, so intersecting panes can still be out of
+// order). Shadow passes take no BLEND primitive: a tinted pane in a depth map
+// would be an opaque sheet.
+Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists) {
+  for (int index = 0; index < int(characters.size()); ++index) {
+    const CharacterDraw& c = characters[size_t(index)];
+    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
+    if (planes && !sphereVisible(planes, center, c.localRadius)) {
+      ++stats->objectsCulled;
+      continue;
+    }
+    ++stats->objectsDrawn;
+    const ModelData& model = c.instance->asset().model;
+    const SkinMode mode = skinModeOf(c.desc);
+    const bool cached = c.instance->skinCache() != nullptr;
+    const double distance = glm::length(center);
+    for (int n = 0; n < int(model.nodes.size()); ++n) {
+      const NodeData& node = model.nodes[size_t(n)];
+      if (node.mesh < 0) continue;
+      const auto& prims = model.meshes[size_t(node.mesh)].primitives;
+      for (int p = 0; p < int(prims.size()); ++p) {
+        const PrimitiveData& prim = prims[size_t(p)];
+        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
+        if (blend && depthOnly) continue;
+        auto program = variants->get(primitiveVariant(model, node, prim, mode, depthOnly, cached));
+        if (!program) return program.error();
+        const GLuint id = (*program)->id();
+        const bool transmissive =
+            !depthOnly && prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive();
+        lists.refracts = lists.refracts || transmissive;
+        if (!blend) {
+          const std::uint32_t material = std::uint32_t(scene.materials.size()) + std::uint32_t(std::max(prim.material, 0));
+          (transmissive ? lists.transmissive : lists.opaque)
+              .push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance)});
+        }
+      }
+    }
+    if (depthOnly) continue;
+    for (const BlendPrimitive& b : c.instance->blendPrimitives()) {
+      auto program = variants->get(primitiveVariant(model, model.nodes[size_t(b.node)],
+                                                    model.meshes[size_t(model.nodes[size_t(b.node)].mesh)].primitives[size_t(b.primitive)],
+                                                    mode, false, cached));
+      if (!program) return program.error();
+      lists.blend.push_back({DrawItem::Source::Character, index, b.node, b.primitive, (*program)->id(), blendKey(b.distance)});
+    }
+  }
+  return Ok{};
+}
+
+Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape) {
+  const auto start = std::chrono::steady_clock::now();
+  DrawLists lists;
+  if (auto s = collectShapes(planes, depthOnly, skipShape, lists); !s) return s.error();
+  if (auto s = collectCharacters(planes, depthOnly, lists); !s) return s.error();
+  sortDrawItems(lists.opaque);
+  sortDrawItems(lists.transmissive);
+  sortDrawItems(lists.blend);
+  stats->cullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return lists;
+}
+
+// A shape's u_model, camera-relative: the offset is taken in double, then the
+// matrix goes to float. GPU culling transforms its clusters by the same matrix.
+glm::mat4 SceneRenderer::Impl::shapeModel(const ShapeDraw& s) const {
+  glm::dmat4 relative = s.world;
+  relative[3] -= glm::dvec4(eye, 0.0);
+  return glm::mat4(relative);
+}
+
+void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, const PassInputs& pass,
+                                    const IndirectDraw* indirect) {
+  const MaterialDesc& m = scene.materials[size_t(s.material)];
+  const glm::mat4 model = shapeModel(s);
+  p.set("u_model", model);
+  p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model)))));
+  p.set("u_uvScale", s.uvScale * (s.mesh == quad.get() ? 1.0f : m.textureScale));
+  if (pass.depthOnly) {
+    p.set("u_lightViewProjection", pass.lightViewProjection);
+  } else {
+    p.set("u_baseColorFactor", glm::vec4(m.color, 1.0f));
+    p.set("u_metallic", m.metallic);
+    p.set("u_roughness", m.roughness);
+    p.set("u_ambient", m.ambient);
+    p.set("u_diffuse", m.diffuse);
+    p.set("u_specular", m.specular);
+    p.set("u_shininess", m.shininess);
+    p.set("u_reflection", m.reflection);
+    p.set("u_emissive", m.emission);
+    if (materialTextures[size_t(s.material)].id() != 0) materialTextures[size_t(s.material)].bind(gl::binding::kBaseColor);
+    if (!probes.empty()) {
+      const bool probed = pass.useProbes && s.probe >= 0;
+      p.set("u_hasProbe", probed ? 1 : 0);
+      if (probed) probes[size_t(s.probe)].cube.bind(gl::binding::kReflectionProbe);
+    }
+  }
+  // Two-sided: no culling for this draw, and the pass's setting put back (the
+  // point light's cube pass culls nothing: turning culling on after the ground
+  // would cull every caster drawn after it, as the sort order falls).
+  const bool twoSided = s.twoSided && glIsEnabled(GL_CULL_FACE);
+  if (twoSided) glDisable(GL_CULL_FACE);
+  if (indirect) {
+    s.mesh->drawIndirect(indirect->offset, indirect->count);
+  } else {
+    s.mesh->draw();
+  }
+  if (twoSided) glEnable(GL_CULL_FACE);
+}
+
+// The items in order, in the pass state the caller set. A program's pass-wide
+// uniforms (shadow parameters) are set when the pass first binds it, and each
+// change of program is counted: sorting keeps the count near the number of
+// programs the view needs.
+Status SceneRenderer::Impl::drawItems(const std::vector<DrawItem>& items, const PassInputs& pass,
+                                      const ItemCommands* commands) {
+  const auto start = std::chrono::steady_clock::now();
+  const Status status = submitItems(items, pass, commands);
+  stats->submitMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return status;
+}
+
+Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, const PassInputs& pass,
+                                        const ItemCommands* commands) {
+  std::vector<std::uint32_t> programs;
+  for (const DrawItem& item : items) programs.push_back(item.program);
+  std::sort(programs.begin(), programs.end());
+  stats->programsNeeded += int(std::unique(programs.begin(), programs.end()) - programs.begin());
+  GLuint bound = 0;
+  auto set = [&](const gl::Program& p) {
+    if (p.id() == bound) return;
+    bound = p.id();
+    ++stats->programChanges;
+    setUniforms(p);
+    if (pass.depthOnly) p.set("u_lightViewProjection", pass.lightViewProjection);
+  };
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const DrawItem& item = items[k];
+    const std::span<const IndirectDraw> indirect =
+        commands ? std::span<const IndirectDraw>((*commands)[k]) : std::span<const IndirectDraw>();
+    ++stats->drawCalls;
+    if (item.source == DrawItem::Source::Shape) {
+      const ShapeDraw& shape = shapes[size_t(item.object)];
+      const bool textured = !pass.depthOnly && materialTextures[size_t(shape.material)].id() != 0;
+      auto program = variants->get({0, SkinMode::Linear, textured, pass.depthOnly});
+      if (!program) return program.error();
+      (*program)->use();
+      set(**program);
+      drawShape(shape, **program, pass, indirect.empty() ? nullptr : &indirect[0]);
+      continue;
+    }
+    CharacterDraw& c = characters[size_t(item.object)];
+    if (auto s = c.instance->drawPrimitive(*variants, pass.viewProjection, skinModeOf(c.desc), set, pass.depthOnly,
+                                           item.node, item.primitive, indirect);
+        !s) {
+      return s;
+    }
+  }
+  return Ok{};
+}
+
+void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk) {
+  sky.use();
+  if (skyImage) {
+    const float radians = glm::radians(scene.sky.rotationDegrees);
+    sky.set("u_skyIntensity", scene.sky.intensity);
+    sky.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
+    skyImage.bind(gl::binding::kSkyImage);
+  } else {
+    Lighting lighting;
+    lighting.sunDirection = sunLight >= 0 ? glm::vec3(scene.lights[size_t(sunLight)].direction) : glm::vec3(0, -1, 0);
+    lighting.sunDisk = sunDisk && sunLight >= 0 && scene.sky.sunDisk;
+    lighting.skyZenith = scene.sky.zenith;
+    lighting.skyHorizon = scene.sky.horizon;
+    lighting.skyGround = scene.sky.ground;
+    setSkyUniforms(sky, lighting);
+  }
+  sky.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+  emptyVao.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++stats->drawCalls;
+}
+
+// Everything a colour pass shows, into the bound HDR framebuffer (cleared): the
+// sky, the terrain, the opaque draws of the view, the transmissive ones over a copy
+// of those, then its blended ones.
+Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useProbes) {
+  if (scene.sky.enabled) {
+    applyPassState(kSkyPass);
+    drawSky(view.viewProjection);
+  }
+  applyPassState(opaquePassFor(view.mirrored));
+  if (terrain && terrainCuller && view.main) {
+    drawTerrainCulled(view);
+  } else if (terrain) {
+    drawTerrain(view.viewProjection, view.fovy, view.height);
+  }
+  auto lists = collectDraws(view.planes, false, skipShape);
+  if (!lists) return lists.error();
+  if (culler && view.main) return drawCulled(view, *lists, useProbes);
+  const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
+  if (auto s = drawItems(lists->opaque, pass); !s) return s;
+  if (lists->refracts) {
+    if (view.main) copyTransmissionSource();
+    transmissionSource.bind(gl::binding::kTransmissionSource);
+    if (auto s = drawItems(lists->transmissive, pass); !s) return s;
+  }
+  if (lists->blend.empty()) return Ok{};
+  applyPassState(blendPassFor(view.mirrored));
+  return drawItems(lists->blend, pass);
+}
+
+// The view camera's LOD (its position, field of view and viewport fix every
+// patch's level and morph), culled against `cullViewProjection`; coarsened if it
+// would need more height pages than the GPU pool holds.
+terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullViewProjection, double fovy,
+                                                         int viewportHeight) const {
+  terrain::LodCamera camera;
+  camera.position = eye;
+  camera.viewProjection = cullViewProjection;
+  camera.zeroToOneDepth = true;  // reverse-Z and the sun's box both clip depth to 0..w
+  camera.fovY = fovy;
+  camera.viewportHeight = viewportHeight;
+  return terrain::selectLodWithin(*terrain, camera, terrainError,
+                                  std::size_t(terrainRenderer->pageSlots()));
+}
+
+// Every terrain block error the view from `eye` needs, before any of the frame's
+// selections: they all see the same errors, so the sun's maps keep the view's
+// ranges; and a frame's image depends on its camera alone, not on which frames came
+// before (a window and an offscreen run of another length give the same bytes). A
+// new view pays about 2 ms a block, once.
+void SceneRenderer::Impl::measureTerrain(double fovy, int viewportHeight) {
+  terrain::LodCamera camera;
+  camera.position = eye;
+  camera.fovY = fovy;
+  camera.viewportHeight = viewportHeight;
+  stats->terrainBlocksPending = int(terrain::measureBlocks(*terrain, camera, terrainError));
+}
+
+void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
+  const auto selection = selectTerrain(glm::mat4(viewProjection), fovy, viewportHeight);
+  const auto drawn = terrainRenderer->draw(selection, eye, [this](const gl::Program& p) { setUniforms(p); });
+  stats->drawCalls += 1;
+  stats->terrainTriangles = int(drawn.trianglesDrawn);
+}
+
+// What the transmissive draws refract: the view's colour so far (sky, terrain and
+// opaque draws; MSAA resolved by the blit), with its mip chain for rough surfaces.
+void SceneRenderer::Impl::copyTransmissionSource() {
+  glBlitNamedFramebuffer(drawFbo.id(), transmissionFbo.id(), 0, 0, targetWidth, targetHeight, 0, 0, targetWidth,
+                         targetHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glGenerateTextureMipmap(transmissionSource.id());
+}
+
+// Every character placed for a view from `cameraPosition`: only its root moves, the
+// pose (and its palettes) stay as update left them.
+void SceneRenderer::Impl::placeCharacters(const glm::dvec3& cameraPosition) {
+  eye = cameraPosition;
+  for (auto& c : characters) c.instance->place(c.world, cameraPosition);
+}
+
+// Each character's level-of-detail budget, from the main camera and for every pass
+// of the frame: a shadow cast by another level than the one drawn would not fit
+// its caster. Levels state their error relative to the diagonal of the bounds of
+// every pose (ModelAsset::levelsOfDetail), the instance's bounding sphere's
+// diameter: on screen, at most that error times the diameter's size in pixels at
+// the sphere's nearest point.
+void SceneRenderer::Impl::chooseLevelsOfDetail(const glm::dvec3& cameraPosition, double fovy, int height,
+                                               double nearPlane) {
+  const double pixelsAtOne = double(height) / (2.0 * std::tan(fovy / 2.0));
+  for (CharacterDraw& c : characters) {
+    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0));
+    const double distance = std::max(glm::length(center - cameraPosition) - c.localRadius, nearPlane);
+    const double diameterPixels = 2.0 * c.localRadius * pixelsAtOne / distance;
+    c.instance->setLodBudget(render.lodPixels > 0.0 ? float(render.lodPixels / diameterPixels) : 0.0f);
+  }
+}
+
+// Each probe's six faces, seen from the mirror's centre without the mirror itself.
+// Positions stay camera-relative, now to the probe's centre. The sun's maps are
+// drawn again around the probe: the camera's maps cover what the camera sees, and
+// a static scene keeps its probes however far the camera then goes. Probes show no
+// mirrors: one bounce, where the ray tracer follows --max-depth bounces. Before the
+// camera's own sun maps, which this overwrites.
+Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
+  const glm::dmat4 projection = reverseZProjection(glm::half_pi<double>(), 1.0, kProbeNear, scene.camera.farPlane);
+  const glm::vec3 background = scene.sky.background;
+  for (const Probe& probe : probes) {
+    placeCharacters(probe.center);
+    if (sunShadows) {
+      // All around the probe, as far as the camera's maps reach ahead of it.
+      const ShadowSphere nearSphere{glm::dvec3(0.0), std::min(scene.camera.farPlane, kSunShadowDistance)};
+      const ShadowSphere farSphere{glm::dvec3(0.0), std::min(scene.camera.farPlane, kSunFarShadowDistance)};
+      if (auto s = renderSunShadow(nearSphere, farSphere, glm::half_pi<double>(), probeSize); !s) return s;
+    }
+    glViewport(0, 0, probeSize, probeSize);
+    for (int face = 0; face < 6; ++face) {
+      View view;
+      view.viewProjection = projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]);
+      frustumPlanes(view.viewProjection, view.planes);
+      view.fovy = glm::half_pi<double>();
+      view.height = probeSize;
+      fillFrame(probe.center, glm::mat4(view.viewProjection));
+      glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probe.cube.id(), 0, face);
+      probeFbo.bind();
+      applyPassState(opaquePassFor(false));  // depth writes on, for the clear
+      glClearColor(background.r, background.g, background.b, 1.0f);
+      glClearDepth(0.0);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      if (auto s = drawWorld(view, probe.shape, false); !s) return s;
+    }
+  }
+  placeCharacters(cameraPosition);
+  return Ok{};
+}
+
+}  // namespace engine

@@ -1,0 +1,428 @@
+// SceneRenderer at load: settings, programs, targets, shadow maps, probes, the
+// models and shapes drawn.
+#include "render/scene_renderer_impl.h"
+
+namespace engine {
+namespace {
+
+constexpr int kMaxCubeShadowSize = 1024;
+constexpr int kMaxReflectionProbes = 4;
+
+// A depth map compared in hardware (sampler2DShadow), for the sun.
+gl::Texture makeSunShadowMap(int size) {
+  gl::Texture map = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size, 1);
+  map.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  map.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  map.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  map.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return map;
+}
+
+// The sky's lat-long image as half floats, mipmapped, repeating in u and clamped in
+// v. Rows go up as the image stores them (top first), so texture t = v: t = 0 is the
+// zenith, as common/latlong.glsl has it. Radiance past half's largest value (65504)
+// is clamped rather than left to the driver's conversion. RGBA16F, not RGB16F: it is
+// colour-renderable everywhere, which glGenerateMipmap may demand, and drivers
+// store RGB16F as four channels anyway; the upload's RGB leaves alpha 1. A row of
+// 12-byte texels meets any unpack alignment up to 4.
+gl::Texture uploadSkyImage(const FloatImage& image) {
+  gl::Texture texture = gl::Texture::create2D(GL_RGBA16F, image.width, image.height, 0);
+  std::vector<float> clamped(image.rgb.size());
+  std::transform(image.rgb.begin(), image.rgb.end(), clamped.begin(),
+                 [](float v) { return std::clamp(v, 0.0f, 65504.0f); });
+  glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, clamped.data());
+  texture.mipmapTrilinear(GL_REPEAT, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
+}  // namespace
+
+Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
+  shaderDir = options.shaderDir;
+  render = scene.render;
+  if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
+  render.skinning = options.skinningOverride.value_or(render.skinning);
+  render.lodPixels = options.lodPixelsOverride.value_or(render.lodPixels);
+  render.gpuCulling = options.gpuCullingOverride.value_or(render.gpuCulling);
+  cullDepthMargin = options.gpuCullingDepthMargin;
+  render.shading = options.shadingOverride.value_or(render.shading);
+  if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
+  render.toneMap = options.toneMapOverride.value_or(render.toneMap);
+  render.output = options.outputOverride.value_or(render.output);
+  terrainError = options.terrainErrorOverride > 0.0 ? options.terrainErrorOverride : scene.terrain.errorPixels;
+  skinModeOverride = options.skinModeOverride;
+  rotations = options.rotations;
+  if (options.supersampleOverride > 0) render.supersample = options.supersampleOverride;
+  if (options.shadowMapOverride > 0) render.shadowMapSize = options.shadowMapOverride;
+  if (options.pcfKernelOverride > 0) {
+    render.pcfKernel = options.pcfKernelOverride;
+    render.shadowFilter = options.pcfKernelOverride > 1 ? ShadowFilter::Pcf : ShadowFilter::Hard;
+  }
+  pcfRadius = render.shadowFilter == ShadowFilter::Hard ? 0 : render.pcfKernel / 2;
+  // Checked before anything is built: a scene may ask for more samples (up to 16)
+  // than this GL offers, and a frame without its target would draw nothing.
+  if (const int most = RenderTarget::maxSamples(); render.msaa > most) {
+    return makeError(scene.path + ": /render/msaa: " + std::to_string(render.msaa) +
+                     " samples asked, this GL offers up to " + std::to_string(most));
+  }
+
+  for (int i = 0; i < int(scene.lights.size()); ++i) {
+    const LightDesc& l = scene.lights[size_t(i)];
+    if (l.type == LightType::Sun && sunLight < 0) sunLight = i;
+    // Area lights are drawn as a point at their centre; their soft shadow is the
+    // ray tracer's job (PCF only imitates it).
+    if (l.type != LightType::Sun && int(pointLights.size()) < kMaxPointLights) pointLights.push_back(i);
+  }
+  sunShadows = sunLight >= 0 && scene.lights[size_t(sunLight)].shadows;
+  pointShadows = !pointLights.empty() && scene.lights[size_t(pointLights[0])].shadows;
+
+  std::vector<std::string> defines;
+  if (render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
+  if (sunShadows) defines.push_back("SUN_SHADOWS 1");
+  sunFarShadows = sunShadows && scene.terrain.enabled;
+  if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
+  if (pointShadows) defines.push_back("POINT_SHADOWS 1");
+  if (scene.fog.enabled) defines.push_back("FOG 1");
+  if (render.shading == Shading::Pbr) {
+    ambient = options.ambientOverride.value_or(ambientOf(scene));
+    iblSize = options.iblSizeOverride > 0 ? options.iblSizeOverride : render.iblSize;
+    if (ambient == Ambient::Sh) defines.push_back("AMBIENT_SH 1");
+    if (ambient == Ambient::Ibl) defines.push_back("AMBIENT_IBL 1");
+  }
+  debugView = options.debugView;
+  if (debugView != DebugView::None) {
+    // The value as it is: no exposure, no tone map (post.frag's TONE_MAP 0 clamps).
+    defines.push_back("DEBUG_VIEW " + std::to_string(int(debugView)));
+    render.exposure = 1.0f;
+    render.toneMap = ToneMap::None;
+  }
+  probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
+  if (auto s = makeProbes(); !s) return s;
+  if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
+  directOutput = !options.hdrTarget && needsNoHdrTarget();
+  if (directOutput) {
+    defines.push_back("DIRECT_OUTPUT 1");
+    if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
+  }
+  variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
+
+  if (auto s = makeSky(); !s) return s;
+  if (auto s = makePost(); !s) return s;
+  emptyVao = gl::VertexArray::create();
+  frameUbo = gl::Buffer::create(sizeof(FrameBlock));
+  if (auto s = makeEnvironmentLighting(); !s) return s;
+
+  if (auto s = loadTerrain(defines); !s) return s;
+  if (auto s = loadMaterials(); !s) return s;
+  if (auto s = loadModels(); !s) return s;
+  addShapes();
+  for (int i = 0; i < int(probes.size()); ++i) shapes[size_t(probes[size_t(i)].shape)].probe = i;
+  if (auto s = makeCuller(); !s) return s;
+
+  if (sunShadows) {
+    sunShadowSize = render.shadowMapSize;
+    sunShadowMap = makeSunShadowMap(sunShadowSize);
+    sunShadowFbo = gl::Framebuffer::create();
+    sunShadowFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMap);
+    if (auto s = sunShadowFbo.check("shadow-sun"); !s) return s;
+  }
+  if (sunFarShadows) {
+    sunShadowMapFar = makeSunShadowMap(sunShadowSize);
+    sunShadowFarFbo = gl::Framebuffer::create();
+    sunShadowFarFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMapFar);
+    if (auto s = sunShadowFarFbo.check("shadow-sun-far"); !s) return s;
+  }
+  if (pointShadows) {
+    cubeSize = std::min(render.shadowMapSize, kMaxCubeShadowSize);
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
+    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, cubeSize, cubeSize);
+    pointShadowMap = gl::Texture::adopt(id, cubeSize, cubeSize);
+    pointShadowMap.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    pointShadowMap.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    pointShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    pointShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    pointShadowFbo = gl::Framebuffer::create();
+    // Each face is attached in turn when drawn; all six are alike, so face 0 stands
+    // for them here.
+    glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, 0);
+    if (auto s = pointShadowFbo.check("shadow-point"); !s) return s;
+    pointFar = std::max(1.0, scene.camera.farPlane);
+  }
+  return buildVariants();
+}
+
+// The sky pass's program: the gradient, or the SKY_IMAGE variant with its texture,
+// uploaded once.
+Status SceneRenderer::Impl::makeSky() {
+  if (!scene.sky.enabled) return Ok{};
+  std::vector<std::string> defines{"HDR_OUTPUT 1"};
+  if (!scene.sky.image.empty()) {
+    auto image = readLinearImage(scene.sky.image);
+    if (!image) return makeError(scene.path + ": /sky/image: " + image.error().message);
+    skyImage = uploadSkyImage(*image);
+    defines.push_back("SKY_IMAGE 1");
+  }
+  auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
+  if (!program) return program.error();
+  sky = std::move(program).value();
+  return Ok{};
+}
+
+// The one post variant these settings need (post.frag says why not uniforms);
+// none where the fragment shaders write display values themselves.
+Status SceneRenderer::Impl::makePost() {
+  if (directOutput) return Ok{};
+  std::vector<std::string> defines{"SUPERSAMPLE " + std::to_string(render.supersample),
+                                   "TONE_MAP " + std::to_string(int(render.toneMap))};
+  if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
+  auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}}, defines);
+  if (!program) return program.error();
+  post = std::move(program).value();
+  return Ok{};
+}
+
+// The environment as the path tracer sees it (the sky without its sun disk, or the
+// background), drawn into a cube map once: the scene's sky never changes while it
+// is loaded. From it the SH irradiance, the BRDF table and, for IBL, the
+// prefiltered chain; the cube itself is dropped.
+Status SceneRenderer::Impl::makeEnvironmentLighting() {
+  if (render.shading == Shading::Classic || ambient == Ambient::Hemisphere) return Ok{};
+  const auto start = std::chrono::steady_clock::now();
+  GLint callerFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  const gl::Texture environment = makeCubeMap(iblSize, 0);
+  const gl::Framebuffer fbo = gl::Framebuffer::create();
+  // Any 90-degree projection will do: sky.vert takes only directions from it.
+  const glm::dmat4 projection = glm::perspective(glm::half_pi<double>(), 1.0, 0.1, 10.0);
+  const glm::vec3 background = scene.sky.background;
+  glViewport(0, 0, iblSize, iblSize);
+  applyPassState(kSkyPass);
+  for (int face = 0; face < 6; ++face) {
+    glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, environment.id(), 0, face);
+    if (auto s = fbo.check("ibl-environment"); !s) return s;
+    fbo.bind();
+    glClearColor(background.r, background.g, background.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (scene.sky.enabled) {
+      drawSky(projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]), false);
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
+  applyPassState(kCallerState);
+  environment.generateMipmaps();
+  auto lighting = EnvironmentLighting::create(shaderDir, environment, iblSize, ambient);
+  if (!lighting) return makeError(scene.path + ": /render/ambient: " + lighting.error().message);
+  environmentLighting = std::move(lighting).value();
+  glFinish();
+  iblMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return Ok{};
+}
+
+// One probe per mirror sphere or box (material reflection > 0), up to four. Planes
+// get none: a plane mirror needs a planar reflection, which this renderer lacks.
+Status SceneRenderer::Impl::makeProbes() {
+  if (probeSize <= 0) return Ok{};
+  for (int i = 0; i < int(scene.primitives.size()) && int(probes.size()) < kMaxReflectionProbes; ++i) {
+    const PrimitiveDesc& p = scene.primitives[size_t(i)];
+    if (p.type == PrimitiveType::Plane || scene.materials[size_t(p.material)].reflection <= 0.0f) continue;
+    Probe probe;
+    probe.shape = i;
+    probe.center = p.type == PrimitiveType::Sphere ? p.center : (p.min + p.max) * 0.5;
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
+    glTextureStorage2D(id, 1, GL_RGBA16F, probeSize, probeSize);
+    probe.cube = gl::Texture::adopt(id, probeSize, probeSize);
+    probe.cube.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    probe.cube.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    probes.push_back(std::move(probe));
+  }
+  if (probes.empty()) return Ok{};
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // no seams where faces meet
+  probeDepth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, probeSize, probeSize);
+  probeFbo = gl::Framebuffer::create();
+  probeFbo.attach(GL_DEPTH_ATTACHMENT, probeDepth);
+  glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probes[0].cube.id(), 0, 0);
+  return probeFbo.check("reflection-probe");
+}
+
+Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
+  terrain = source->terrain();
+  if (!terrain) return Ok{};
+  // The scene programs' variant: the terrain is lit and shadowed as they are.
+  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, defines);
+  if (!renderer) return renderer.error();
+  terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
+  return Ok{};
+}
+
+Status SceneRenderer::Impl::loadMaterials() {
+  for (const MaterialDesc& m : scene.materials) {
+    auto image = loadMaterialTexture(scene, m);
+    if (!image) return image.error();
+    materialTextures.push_back(image->empty() ? gl::Texture{} : uploadTexture(*image, true));
+  }
+  return Ok{};
+}
+
+// Whether the frame can skip the HDR target and the post pass (issue 14: a scene
+// with no HDR effect pays for none): nothing to tone map or expose, no samples to
+// resolve or average, and nothing that reads or blends the linear image (the sky
+// and probes are drawn linear for the environment too, blending and transmission
+// read what is behind). The fragment shaders then write display values
+// (common/output.glsl); the bytes differ from the post pass's by at most one level,
+// where it rounded the radiance to half floats first (SceneRenderer.DirectOutput...).
+bool SceneRenderer::Impl::needsNoHdrTarget() const {
+  if (render.toneMap != ToneMap::None || render.exposure != 1.0f || render.msaa > 1 || render.supersample > 1) return false;
+  if (scene.sky.enabled || !probes.empty() || debugView != DebugView::None) return false;
+  for (const auto& asset : source->assets()) {
+    for (const MaterialData& m : asset->model.materials)
+      if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
+  }
+  return true;
+}
+
+// Whether an instance deforms in the skin cache. render.skinning auto sends it
+// there where each vertex would otherwise be deformed again at a price in every
+// pass that draws it (measured: bench/morph_cost, bench/skinning_cost): morph
+// targets (8 of them cost 1.5x the frame in the vertex shaders, 1.1-1.2x cached),
+// dual quaternions, or more than the view and one sun map drawing it (a point
+// light's six cube faces, the probes). Plain LBS under a sun stays in the vertex
+// shaders, cheaper there than a dispatch that writes 48 bytes a vertex.
+bool SceneRenderer::Impl::usesSkinCache(const ModelData& model, const ModelDesc& desc) const {
+  if (render.skinning == Skinning::Vertex) return false;
+  bool skins = false, morphs = false;
+  for (const NodeData& node : model.nodes) {
+    if (node.mesh < 0) continue;
+    for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
+      skins = skins || (node.skin >= 0 && prim.influences > 0 && !desc.unskinned);
+      morphs = morphs || prim.morphTargets > 0;
+    }
+  }
+  if (render.skinning == Skinning::Compute) return skins || morphs;
+  const bool manyPasses = pointShadows || !probes.empty();
+  return morphs || (skins && (desc.dualQuat || manyPasses));
+}
+
+// One upload per model file, one CharacterInstance per scene instance.
+Status SceneRenderer::Impl::loadModels() {
+  std::vector<std::shared_ptr<const CharacterAsset>> uploaded;
+  for (const auto& asset : source->assets()) {
+    auto created = CharacterAsset::create(asset, render.lodPixels > 0.0);
+    if (!created) return makeError(scene.path + ": " + asset->model.path + ": " + created.error().message);
+    uploaded.push_back(std::move(created).value());
+  }
+  for (const ModelInstance& instance : source->instances()) {
+    CharacterDraw draw;
+    draw.instance = std::make_unique<CharacterInstance>(uploaded[size_t(instance.asset)]);
+    draw.instance->setPose(instance.pose);
+    draw.desc = instance.desc;
+    if (skinModeOverride) {
+      draw.desc.dualQuat = *skinModeOverride == SkinMode::DualQuat;
+      draw.desc.unskinned = *skinModeOverride == SkinMode::None;
+    }
+    if (usesSkinCache(draw.instance->asset().model, draw.desc)) {
+      if (!skinPrograms) skinPrograms = std::make_unique<SkinPrograms>(shaderDir);
+      draw.instance->useSkinCache(skinPrograms.get());
+    }
+    draw.world = instance.world;
+    draw.localCenter = instance.boundsCenter;
+    draw.localRadius = instance.boundsRadius;
+    characters.push_back(std::move(draw));
+  }
+  return Ok{};
+}
+
+void SceneRenderer::Impl::addShapes() {
+  for (const PrimitiveDesc& p : scene.primitives) {
+    ShapeDraw draw;
+    draw.material = p.material;
+    draw.world = primitiveTransform(p, scene.camera.farPlane);
+    std::unique_ptr<GpuMesh>& mesh =
+        p.type == PrimitiveType::Sphere ? sphere : p.type == PrimitiveType::Box ? cube : quad;
+    if (!mesh) mesh = std::make_unique<GpuMesh>(shapeForPrimitive(p));
+    draw.mesh = mesh.get();
+    if (p.type == PrimitiveType::Sphere) {
+      draw.center = p.center;
+      draw.radius = p.radius;
+    } else if (p.type == PrimitiveType::Box) {
+      draw.center = (p.min + p.max) * 0.5;
+      draw.radius = 0.5 * glm::length(p.max - p.min);
+    } else {
+      // The quad's uv spans 2 units; one texture tile per `1 / texture_scale` metres.
+      const double extent = planeExtent(p, scene.camera.farPlane);
+      draw.uvScale = glm::vec2(float(extent) * scene.materials[size_t(p.material)].textureScale);
+      draw.twoSided = true;
+    }
+    shapes.push_back(draw);
+  }
+}
+
+Status SceneRenderer::Impl::buildVariants() {
+  // Everything the scene will draw, built now, so the first frame costs no
+  // compile and --describe can list exactly what exists.
+  std::vector<ShaderVariant> needed;
+  for (const ShapeDraw& s : shapes) needed.push_back({0, SkinMode::Linear, materialTextures[size_t(s.material)].id() != 0, false});
+  for (const CharacterDraw& c : characters) {
+    const ModelData& model = c.instance->asset().model;
+    const SkinMode mode = skinModeOf(c.desc);
+    const bool cached = c.instance->skinCache() != nullptr;
+    // Deforms the first pose, which builds the skin cache's compute programs too.
+    if (auto s = c.instance->prepare(mode); !s) return s;
+    for (const NodeData& node : model.nodes) {
+      if (node.mesh < 0) continue;
+      for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
+        needed.push_back(primitiveVariant(model, node, prim, mode, false, cached));
+        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
+        if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
+        blendPass = blendPass || blend;
+        transmissionPass = transmissionPass || (prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive());
+      }
+    }
+  }
+  if ((sunShadows || pointShadows) && !shapes.empty()) needed.push_back({0, SkinMode::Linear, false, true});
+  for (const ShaderVariant& v : needed) {
+    auto program = variants->get(v);
+    if (!program) return program.error();
+  }
+  return Ok{};
+}
+
+Status SceneRenderer::Impl::makeTarget(int width, int height) {
+  const int w = width * render.supersample, h = height * render.supersample;
+  if (w == targetWidth && h == targetHeight && drawFbo) return Ok{};
+  targetWidth = w;
+  targetHeight = h;
+  hdr = gl::Texture::create2D(directOutput ? GL_RGBA8 : GL_RGBA16F, w, h, 1);
+  hdr.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  hdr.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const int samples = render.msaa > 1 ? render.msaa : 0;
+  depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, w, h, samples);
+  drawFbo = gl::Framebuffer::create();
+  if (samples > 0) {
+    msaaColor = gl::Renderbuffer::create(GL_RGBA16F, w, h, samples);
+    drawFbo.attach(GL_COLOR_ATTACHMENT0, msaaColor);
+    resolveFbo = gl::Framebuffer::create();
+    resolveFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
+  } else {
+    drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
+  }
+  drawFbo.attach(GL_DEPTH_ATTACHMENT, depth);
+  if (auto s = drawFbo.check(directOutput ? "scene-display" : "scene-hdr"); !s) return s;
+  if (transmissionPass) {
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(w, h)))));
+    transmissionSource = gl::Texture::create2D(GL_RGBA16F, w, h, levels);
+    transmissionSource.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    transmissionSource.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    transmissionSource.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    transmissionSource.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    transmissionFbo = gl::Framebuffer::create();
+    transmissionFbo.attach(GL_COLOR_ATTACHMENT0, transmissionSource);
+    if (auto s = transmissionFbo.check("transmission-source"); !s) return s;
+  }
+  return samples > 0 ? resolveFbo.check("scene-hdr-resolve") : Status(Ok{});
+}
+
+}  // namespace engine

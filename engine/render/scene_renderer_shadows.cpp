@@ -1,0 +1,120 @@
+// SceneRenderer's shadow passes: the sun's near and far maps, fitted to slices of
+// the view, and the point light's cube map.
+#include "render/scene_renderer_impl.h"
+
+namespace engine {
+
+// The bounding sphere of the view frustum's slice [nearPlane, farPlane],
+// camera-relative, its radius rounded up to whole metres: a stable size, so that
+// texels do not change every frame.
+SceneRenderer::Impl::ShadowSphere SceneRenderer::Impl::frustumSlice(const glm::dmat4& view, double fovy, double aspect,
+                                                                    double nearPlane, double farPlane) {
+  const glm::dmat4 invView = glm::inverse(view);
+  const double ty = std::tan(fovy * 0.5), tx = ty * aspect;
+  glm::dvec3 corners[8];
+  int k = 0;
+  for (double d : {nearPlane, farPlane})
+    for (double sy : {-1.0, 1.0})
+      for (double sx : {-1.0, 1.0}) corners[k++] = glm::dvec3(invView * glm::dvec4(sx * tx * d, sy * ty * d, -d, 1.0));
+  ShadowSphere slice;
+  for (const auto& c : corners) slice.center += c / 8.0;
+  for (const auto& c : corners) slice.radius = std::max(slice.radius, glm::length(c - slice.center));
+  slice.radius = std::ceil(slice.radius);
+  return slice;
+}
+
+// The sun's orthographic box around `around` (relative to `eye`), texel-snapped.
+SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const ShadowSphere& around) const {
+  const double radius = around.radius;
+  glm::dvec3 center = around.center;
+  const glm::dvec3 l = scene.lights[size_t(sunLight)].direction;
+  const glm::dvec3 up = std::abs(l.y) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 lx = glm::normalize(glm::cross(up, l)), ly = glm::cross(l, lx);
+  // Snap the centre to whole texels in world space: the map then slides in texel
+  // steps as the camera moves, and shadow edges do not shimmer.
+  SunBox box;
+  box.radius = radius;
+  box.texelWorld = 2.0 * radius / double(sunShadowSize);
+  const double texel = box.texelWorld;
+  const glm::dvec3 world = center + eye;
+  const double u = glm::dot(world, lx), v = glm::dot(world, ly);
+  center += lx * (std::floor(u / texel) * texel - u) + ly * (std::floor(v / texel) * texel - v);
+
+  const double casterMargin = 200.0;  // casters behind the view still throw shadows into it
+  box.view = glm::lookAt(center + l * (radius + casterMargin), center, ly);
+  box.projection = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0, 2.0 * radius + casterMargin);
+  const glm::dmat4 bias = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.0)) *
+                          glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 1.0));
+  box.shadowMatrix = glm::mat4(bias * box.projection * box.view);
+  return box;
+}
+
+// The terrain into the sun's shadow map, with the same patches and morph as the
+// view (a coarser mesh would poke through the drawn one and shadow it), culled
+// against the light's box stretched toward the sun over the whole field: with depth
+// clamping, a mountain in front of the light's near plane still casts, at depth 0.
+void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy, int viewportHeight) {
+  const terrain::HeightRange h = terrain->heightRange();
+  const double reach = std::hypot(double(terrain->cellsX()), double(terrain->cellsZ())) * terrain->spacing() +
+                       double(h.max - h.min);
+  const double r = box.radius;
+  const glm::dmat4 cullProjection = glm::orthoRH_ZO(-r, r, -r, r, -reach, 2.0 * r + reach);
+  const auto selection = selectTerrain(glm::mat4(cullProjection * box.view), fovy, viewportHeight);
+  applyPassState(kTerrainShadowPass);
+  terrainRenderer->drawDepth(selection, glm::mat4(box.projection * box.view));
+  stats->drawCalls += 1;
+}
+
+// The sun's maps around two spheres relative to `eye` (characters posed for it):
+// the near one of everything, the far one of the terrain alone. The frame block's
+// shadow matrices then belong to this eye.
+Status SceneRenderer::Impl::renderSunShadow(const ShadowSphere& nearSphere, const ShadowSphere& farSphere,
+                                            double fovy, int viewportHeight) {
+  const SunBox box = fitSunBox(nearSphere);
+  sunTexelWorld = box.texelWorld;
+  frame.sunShadowMatrix = box.shadowMatrix;
+  const glm::mat4 lightViewProjection(box.projection * box.view);
+
+  sunShadowFbo.bind();
+  glViewport(0, 0, sunShadowSize, sunShadowSize);
+  applyPassState(kShadowPass);
+  glClearDepth(1.0);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  // Every caster: the sun's box is fitted to what the view sees, not culled to it.
+  auto casters = collectDraws(nullptr, true);
+  if (!casters) return casters.error();
+  if (auto s = drawItems(casters->opaque, {true, lightViewProjection, lightViewProjection}); !s) return s;
+  if (terrain) drawTerrainShadow(box, fovy, viewportHeight);
+
+  if (sunFarShadows) {
+    // The far map: the terrain alone (mountains over valleys), out to a few km.
+    const SunBox far = fitSunBox(farSphere);
+    frame.sunShadowMatrixFar = far.shadowMatrix;
+    frame.sunFarParams = glm::vec4(1.0f / float(sunShadowSize), float(far.texelWorld), 0.0f, 0.0f);
+    sunShadowFarFbo.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    drawTerrainShadow(far, fovy, viewportHeight);
+  }
+  return Ok{};
+}
+
+Status SceneRenderer::Impl::renderPointShadow(const glm::dvec3& cameraPosition) {
+  const glm::dvec3 light = scene.lights[size_t(pointLights[0])].position - cameraPosition;
+  const glm::dmat4 proj = glm::perspectiveRH_ZO(glm::half_pi<double>(), 1.0, pointNear, pointFar);
+  glViewport(0, 0, cubeSize, cubeSize);
+  applyPassState(kCubeShadowPass);
+  glClearDepth(1.0);
+  // One list for the six faces: nothing is culled to a face.
+  auto casters = collectDraws(nullptr, true);
+  if (!casters) return casters.error();
+  for (int face = 0; face < 6; ++face) {
+    glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, face);
+    pointShadowFbo.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    const glm::mat4 faceViewProjection(proj * glm::lookAt(light, light + kCubeFaceDirections[face], kCubeFaceUps[face]));
+    if (auto s = drawItems(casters->opaque, {true, faceViewProjection, faceViewProjection}); !s) return s;
+  }
+  return Ok{};
+}
+
+}  // namespace engine
