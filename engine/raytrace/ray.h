@@ -3,9 +3,11 @@
 // hitting the surface they leave (pbrt-v4, "Managing Rounding Error"). Templated on
 // the scalar so that the same code runs in float (the default, fast) and in double
 // (to measure how much of an image is float error).
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include <glm/glm.hpp>
 
@@ -35,13 +37,24 @@ constexpr T gamma(int n) {
   return (T(n) * kMachineEpsilon<T>) / (T(1) - T(n) * kMachineEpsilon<T>);
 }
 
+// std::nextafter toward +-infinity, as pbrt-v4's NextFloatUp/Down: a step of the bit
+// pattern, inline (libm's nextafterf is a call, three of them per spawned ray). The
+// same value as std::nextafter for every input but NaN (Ray.NextUpAndDownAreNextafter).
 template <typename T>
 T nextUp(T v) {
-  return std::nextafter(v, std::numeric_limits<T>::infinity());
+  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  if (std::isinf(v) && v > T(0)) return v;
+  if (v == T(0)) v = T(0);  // -0 steps up as +0 does
+  const Bits bits = std::bit_cast<Bits>(v);
+  return std::bit_cast<T>(v >= T(0) ? bits + 1 : bits - 1);
 }
 template <typename T>
 T nextDown(T v) {
-  return std::nextafter(v, -std::numeric_limits<T>::infinity());
+  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  if (std::isinf(v) && v < T(0)) return v;
+  if (v == T(0)) v = -T(0);
+  const Bits bits = std::bit_cast<Bits>(v);
+  return std::bit_cast<T>(v > T(0) ? bits - 1 : bits + 1);
 }
 
 // Moves a hit point off its surface, along the geometric normal n, to the side that w

@@ -179,10 +179,7 @@ class RtScene {
   // Whether any material reads a texture (base colour, emissive, metallic-roughness)
   // or the terrain's layers.
   bool hasTextures() const {
-    return std::any_of(extras_.begin(), extras_.end(), [](const MaterialExtras& e) {
-      return e.texture >= 0 || e.emissiveTexture >= 0 || e.metallicRoughnessTexture >= 0 || e.terrain >= 0 ||
-             e.hasLayerTextures();
-    });
+    return std::any_of(extras_.begin(), extras_.end(), [](const MaterialExtras& e) { return e.readsUv; });
   }
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
   // and specular come from `layers` at each hit's uv, height and shading normal.
@@ -311,9 +308,12 @@ class RtScene {
     std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
     // MaterialDesc::layers' dielectric f0 (worked in double), once per material, not per hit.
     glm::vec3 dielectricF0{0.04f};
-    bool hasLayerTextures() const {
-      return std::any_of(layerTextures.begin(), layerTextures.end(), [](int t) { return t >= 0; });
-    }
+    // Kept as textures are attached, not searched for at every hit.
+    bool hasLayerTextures = false;
+    // Whether anything at a hit reads its texture coordinates (a texture or the
+    // terrain's layers): an analytic shape's are worked out (in double, through acos
+    // and atan2 on a sphere) only then.
+    bool readsUv = false;
     bool singleSided = false;
     bool unlit = false;
     int terrain = -1;

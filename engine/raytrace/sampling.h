@@ -43,6 +43,17 @@ struct Frame {
   glm::vec3 toWorld(const glm::vec3& w) const { return w.x * s + w.y * t + w.z * n; }
 };
 
+// (cos a, sin a) for |a| <= pi / 4, by their Taylor polynomials to a^8 and a^9 (the
+// first terms left out are below 2.5e-8 and 3.1e-7 there; within 3 ulps of the true
+// values, SamplingTest.QuarterSinCosIsWithinThreeUlps). libm's sincosf reduces any
+// argument and was 3-4 % of the path tracer's time on the course room.
+inline glm::vec2 cosSinQuarter(float a) {
+  const float a2 = a * a;
+  const float c = 1.0f + a2 * (-1.0f / 2 + a2 * (1.0f / 24 + a2 * (-1.0f / 720 + a2 * (1.0f / 40320))));
+  const float s = a * (1.0f + a2 * (-1.0f / 6 + a2 * (1.0f / 120 + a2 * (-1.0f / 5040 + a2 * (1.0f / 362880)))));
+  return {c, s};
+}
+
 // Malley's method: a uniform point on the disk lifted to the hemisphere; pdf cos / pi.
 inline glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
   // Shirley and Chiu's concentric map keeps strata compact (no squashing at the rim).
@@ -50,12 +61,13 @@ inline glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
   glm::vec2 d(0.0f);
   if (o.x != 0.0f || o.y != 0.0f) {
     // Each branch's operations chosen by selects, not jumps: which axis is major is a
-    // coin toss per sample, and a jump on it was mispredicted half the time.
+    // coin toss per sample, and a jump on it was mispredicted half the time. The
+    // minor axis's angle a is within pi / 4 of the major axis: (cos a, sin a) about
+    // x, or (cos(pi/2 - a), sin(pi/2 - a)) = (sin a, cos a) about y.
     const bool xMajor = std::abs(o.x) > std::abs(o.y);
     const float r = xMajor ? o.x : o.y, other = xMajor ? o.y : o.x;
-    const float angle = (kPi / 4.0f) * (other / r);
-    const float theta = xMajor ? angle : kPi / 2.0f - angle;
-    d = r * glm::vec2(std::cos(theta), std::sin(theta));
+    const glm::vec2 cs = cosSinQuarter((kPi / 4.0f) * (other / r));
+    d = r * (xMajor ? cs : glm::vec2(cs.y, cs.x));
   }
   const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
   return {d.x, d.y, z};

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <numbers>
 #include <random>
 
 #include "chi_square.h"
@@ -38,6 +41,39 @@ TEST(ChiSquare, CosineHemisphere) {
         return true;
       },
       [](const glm::vec3& w) { return double(rt::cosineHemispherePdf(w.z)); }));
+}
+
+// How many floats lie between a and b (both finite, of the same sign or zero).
+std::int64_t ulpsBetween(float a, float b) {
+  auto ordered = [](float f) {
+    std::int32_t i;
+    std::memcpy(&i, &f, sizeof i);
+    return i < 0 ? -std::int64_t(i & 0x7fffffff) : std::int64_t(i);
+  };
+  return std::abs(ordered(a) - ordered(b));
+}
+
+// The concentric map's cosine and sine over its whole range |a| <= pi / 4: 2^24 evenly
+// spaced angles and every float within 2^20 ulps of 0 and of either end, against
+// double's sin and cos rounded to float.
+TEST(SamplingTest, QuarterSinCosIsWithinThreeUlps) {
+  const float quarter = std::nextafter(float(std::numbers::pi / 4), 0.0f);
+  std::int64_t worst = 0;
+  float worstAngle = 0.0f;
+  auto check = [&](float a) {
+    const glm::vec2 cs = rt::cosSinQuarter(a);
+    const std::int64_t e = std::max(ulpsBetween(cs.x, float(std::cos(double(a)))),
+                                    ulpsBetween(cs.y, float(std::sin(double(a)))));
+    if (e > worst) worst = e, worstAngle = a;
+  };
+  constexpr int kEven = 1 << 24;
+  for (int i = 0; i <= kEven; ++i) check(-quarter + 2.0f * quarter * (float(i) / float(kEven)));
+  for (float a = 0.0f, b = -0.0f; ulpsBetween(a, 0.0f) < (1 << 20); a = std::nextafter(a, 1.0f), b = -a) {
+    check(a), check(b);
+  }
+  float a = quarter;
+  for (int i = 0; i < (1 << 20); ++i, a = std::nextafter(a, 0.0f)) check(a), check(-a);
+  EXPECT_LE(worst, 3) << "at " << worstAngle;
 }
 
 TEST(ChiSquare, UniformCone) {

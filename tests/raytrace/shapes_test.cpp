@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -29,6 +33,36 @@ rt::Vec3<T> randomUnit(std::mt19937& rng) {
     v = glm::dvec3(n(rng), n(rng), n(rng));
   } while (glm::length(v) < 1e-6);
   return rt::Vec3<T>(glm::normalize(v));
+}
+
+// nextUp and nextDown step the bits inline; std::nextafter is what they must equal:
+// 4 M random bit patterns (every sign, exponent and mantissa), and the neighbourhoods
+// of the edges: both zeros, the denormals' ends, 1, the largest finite, the
+// infinities.
+TYPED_TEST(ShapesTest, NextUpAndDownAreNextafter) {
+  using T = TypeParam;
+  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  constexpr T inf = std::numeric_limits<T>::infinity();
+  std::int64_t checked = 0;
+  auto check = [&](T v) {
+    if (std::isnan(v)) return;
+    ASSERT_EQ(std::bit_cast<Bits>(rt::nextUp(v)), std::bit_cast<Bits>(std::nextafter(v, inf))) << v;
+    ASSERT_EQ(std::bit_cast<Bits>(rt::nextDown(v)), std::bit_cast<Bits>(std::nextafter(v, -inf))) << v;
+    ++checked;
+  };
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 4'000'000; ++i) check(std::bit_cast<T>(Bits(rng())));
+  for (const T edge : {T(0), std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::min(), T(1),
+                       std::numeric_limits<T>::max(), inf}) {
+    for (const T signedEdge : {edge, -edge}) {
+      T up = signedEdge, down = signedEdge;
+      for (int i = 0; i < 1000; ++i, up = std::nextafter(up, inf), down = std::nextafter(down, -inf)) {
+        check(up);
+        check(down);
+      }
+    }
+  }
+  EXPECT_GT(checked, 4'000'000);
 }
 
 TYPED_TEST(ShapesTest, SphereHitsAtTheClosedFormDistance) {
