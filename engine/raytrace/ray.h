@@ -39,7 +39,7 @@ constexpr T gamma(int n) {
 
 // std::nextafter toward +-infinity, as pbrt-v4's NextFloatUp/Down: a step of the bit
 // pattern, inline (libm's nextafterf is a call, three of them per spawned ray). The
-// same value as std::nextafter for every input but NaN (Ray.NextUpAndDownAreNextafter).
+// same value as std::nextafter for every input but NaN (ShapesTest.NextUpAndDownAreNextafter).
 template <typename T>
 T nextUp(T v) {
   using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;

@@ -164,7 +164,6 @@ Status RtScene::checkMaterial(int material) const {
 Status RtScene::attachTexture(int material, int MaterialExtras::*slot, RtTexture texture) {
   if (auto s = checkMaterial(material); !s) return s.error();
   extras_[size_t(material)].*slot = int(textures_.size());
-  extras_[size_t(material)].readsUv = true;
   textures_.push_back(std::move(texture));
   return Ok{};
 }
@@ -211,7 +210,7 @@ Status RtScene::setLayerTexture(int material, TextureSlot slot, RtTexture textur
   if (int(slot) < kFirstLayerSlot || int(slot) >= kTextureSlots) return makeError("not a layer texture slot");
   MaterialExtras& e = extras_[size_t(material)];
   e.layerTextures[size_t(slot) - kFirstLayerSlot] = int(textures_.size());
-  e.hasLayerTextures = e.readsUv = true;
+  e.hasLayerTextures = true;
   textures_.push_back(std::move(texture));
   return Ok{};
 }
@@ -299,7 +298,6 @@ float RtScene::opacityAt(int material, const HitUv& uv, float footprint) const {
 Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
   if (auto s = checkMaterial(material); !s) return s.error();
   extras_[size_t(material)].terrain = int(terrains_.size());
-  extras_[size_t(material)].readsUv = true;
   terrains_.push_back(std::move(layers));
   return Ok{};
 }
@@ -602,7 +600,7 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
     SurfaceInteraction<T>& si = result.emplace();
     sphereList[index].fillInteraction(ray, ray.tMax, si);
     const float scale = materials_[size_t(si.material)].textureScale;
-    if (extras_[size_t(si.material)].readsUv) si.uv = sphereUv(glm::dvec3(si.n)) * scale;
+    if (extras_[size_t(si.material)].readsUv()) si.uv = sphereUv(glm::dvec3(si.n)) * scale;
     // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
     si.uvPerMetre = scale / (float(std::numbers::pi) * std::sqrt(2.0f) * float(sphereList[index].radius));
     si.uv1 = si.uv;
@@ -611,7 +609,7 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
   if (kind == 2) {
     SurfaceInteraction<T>& si = result.emplace();
     planes<T>()[index].fillInteraction(ray, ray.tMax, si);
-    if (extras_[size_t(si.material)].readsUv) {
+    if (extras_[size_t(si.material)].readsUv()) {
       const PlaneUv& q = planeUvs_[index];
       const glm::dvec3 local = glm::dvec3(si.p) - q.point;
       si.uv = glm::vec2(glm::dvec2(glm::dot(local, q.axisU) + q.extent, glm::dot(local, q.axisV) + q.extent) *

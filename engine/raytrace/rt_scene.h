@@ -179,7 +179,7 @@ class RtScene {
   // Whether any material reads a texture (base colour, emissive, metallic-roughness)
   // or the terrain's layers.
   bool hasTextures() const {
-    return std::any_of(extras_.begin(), extras_.end(), [](const MaterialExtras& e) { return e.readsUv; });
+    return std::any_of(extras_.begin(), extras_.end(), [](const MaterialExtras& e) { return e.readsUv(); });
   }
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
   // and specular come from `layers` at each hit's uv, height and shading normal.
@@ -308,12 +308,15 @@ class RtScene {
     std::array<int, kTextureSlots - kFirstLayerSlot> layerTextures{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
     // MaterialDesc::layers' dielectric f0 (worked in double), once per material, not per hit.
     glm::vec3 dielectricF0{0.04f};
-    // Kept as textures are attached, not searched for at every hit.
+    // Kept as layer textures are attached, not searched for among the twelve slots
+    // at every hit.
     bool hasLayerTextures = false;
     // Whether anything at a hit reads its texture coordinates (a texture or the
     // terrain's layers): an analytic shape's are worked out (in double, through acos
     // and atan2 on a sphere) only then.
-    bool readsUv = false;
+    bool readsUv() const {
+      return texture >= 0 || emissiveTexture >= 0 || metallicRoughnessTexture >= 0 || terrain >= 0 || hasLayerTextures;
+    }
     bool singleSided = false;
     bool unlit = false;
     int terrain = -1;

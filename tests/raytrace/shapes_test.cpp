@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <limits>
-#include <type_traits>
-#include <cmath>
 #include <numbers>
 #include <random>
+#include <type_traits>
 
 #include "asset/texture_transform.h"
 #include "raytrace/shapes.h"
