@@ -92,6 +92,11 @@ inline constexpr unsigned kRtLights = 8;
 inline constexpr unsigned kRtInput = 9;
 inline constexpr unsigned kRtOutput = 10;
 inline constexpr unsigned kRtEnvironment = 11;  // the path tracer's environment tables
+// Textures (raytrace/gpu_textures.h) and triangles' uvs, bound where the scene has them.
+inline constexpr unsigned kRtTriangleUvs = 17;
+inline constexpr unsigned kRtTextures = 18;
+inline constexpr unsigned kRtTexels = 19;
+inline constexpr unsigned kRtTerrains = 20;
 // rt/refit.comp's plan (gputrace/gpu_refit.h).
 inline constexpr unsigned kRtRefitPlan = 16;
 
@@ -99,7 +104,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 61> kDefines{{
+inline constexpr std::array<Define, 65> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -160,6 +165,10 @@ inline constexpr std::array<Define, 61> kDefines{{
     {"BUFFER_RT_INPUT", kRtInput},
     {"BUFFER_RT_OUTPUT", kRtOutput},
     {"BUFFER_RT_ENVIRONMENT", kRtEnvironment},
+    {"BUFFER_RT_TRIANGLE_UVS", kRtTriangleUvs},
+    {"BUFFER_RT_TEXTURES", kRtTextures},
+    {"BUFFER_RT_TEXELS", kRtTexels},
+    {"BUFFER_RT_TERRAINS", kRtTerrains},
     {"BUFFER_RT_REFIT_PLAN", kRtRefitPlan},
 }};
 

@@ -8,6 +8,8 @@
 
 #include "gl/bindings.h"
 #include "gputrace/tracer_state.h"
+#include "raytrace/gpu_textures.h"
+#include "raytrace/ray_cone.h"
 #include "raytrace/tile_render.h"
 
 namespace engine::gpurt {
@@ -26,7 +28,11 @@ struct GpuMaterial {
   glm::vec4 metallicRoughnessUnlit;
   glm::vec4 emission;
   glm::vec4 dielectric;  // f0, f90
+  glm::ivec4 textures;   // base colour, metallic-roughness, emissive, terrain (-1 none)
+  glm::vec4 surface;     // texture scale, reads uv
+  glm::vec4 alpha;       // mode, factor, cutoff, single-sided
 };
+static_assert(sizeof(GpuMaterial) == 128);
 struct GpuLight {
   glm::ivec4 typeShadowsFalloff;
   glm::vec4 position, direction, radiance, edgeU, edgeV;
@@ -35,11 +41,15 @@ struct GpuLight {
 std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene) {
   std::vector<GpuMaterial> out;
   for (std::size_t i = 0; i < scene.materials().size(); ++i) {
-    // materialAt with no texture is the MaterialDesc's own weights.
-    const rt::HitMaterial m = scene.materialAt(int(i), rt::HitUv(glm::vec2(0.0f), glm::vec2(0.0f)), 0.0f, 0.0, glm::vec3(0, 1, 0));
+    const rt::HitMaterial m = scene.baseMaterial(int(i));
+    const rt::RtScene::MaterialExtras& e = scene.extras(int(i));
+    const float alphaMode = e.alphaMode == AlphaMode::Mask ? 1.0f : e.alphaMode == AlphaMode::Blend ? 2.0f : 0.0f;
     out.push_back(GpuMaterial{glm::vec4(m.albedo, m.ambient), glm::vec4(m.diffuse, m.specular, m.shininess, m.reflection),
                               glm::vec4(m.metallic, m.roughness, m.unlit ? 1.0f : 0.0f, 0.0f), glm::vec4(m.emission, 0.0f),
-                              glm::vec4(m.dielectricF0, m.dielectricF90)});
+                              glm::vec4(m.dielectricF0, m.dielectricF90),
+                              glm::ivec4(e.texture, e.metallicRoughnessTexture, e.emissiveTexture, e.terrain),
+                              glm::vec4(scene.materials()[i].textureScale, e.readsUv() ? 1.0f : 0.0f, 0.0f, 0.0f),
+                              glm::vec4(alphaMode, e.alpha, e.alphaCutoff, e.singleSided ? 1.0f : 0.0f)});
   }
   return out;
 }
@@ -77,14 +87,18 @@ std::string undrawnLayers(const std::vector<MaterialDesc>& materials) {
 
 namespace detail {
 
-std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout) {
-  return {"RT_WIDTH " + std::to_string(layout.width), "RT_STACK_SIZE " + std::to_string(layout.stackSize()),
+std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt::RtScene* shaded) {
+  std::vector<std::string> defines{"RT_WIDTH " + std::to_string(layout.width), "RT_STACK_SIZE " + std::to_string(layout.stackSize()),
           floatDefine("RT_GAMMA2", rt::gamma<float>(2)),
           floatDefine("RT_GAMMA3", rt::gamma<float>(3)),
           floatDefine("RT_GAMMA5", rt::gamma<float>(5)),
           floatDefine("RT_GAMMA7", rt::gamma<float>(7)),
           floatDefine("RT_GAMMA8", rt::gamma<float>(8)),
           floatDefine("RT_WIDEN", 1.0f + 2.0f * rt::gamma<float>(3))};
+  if (shaded && shaded->hasTextures()) defines.emplace_back("RT_TEXTURES 1");
+  if (shaded && (shaded->hasTransparency() || shaded->hasSingleSided())) defines.emplace_back("RT_PASS_THROUGH 1");
+  if (shaded && shaded->hasTransparency()) defines.emplace_back("RT_TRANSPARENT 1");
+  return defines;
 }
 
 }  // namespace detail
@@ -92,9 +106,11 @@ std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout) {
 std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings) {
   const bool path = settings.method == rt::Method::Path;
   if (settings.precision != rt::Precision::Float) return "double precision is not supported";
-  if (scene.hasTextures()) return "textures are not supported yet";
-  if (scene.hasTransparency()) return "alpha (MASK, BLEND) is not supported yet";
-  if (scene.hasSingleSided()) return "single-sided materials are not supported yet";
+  if (!rt::fitsGpuTextures(scene)) return "textures of more than 32768 texels a side are not supported";
+  const auto layerTextures = [&](int m) { return scene.extras(m).hasLayerTextures; };
+  for (int m = 0; m < int(scene.materials().size()); ++m) {
+    if (layerTextures(m)) return "textures of glTF's material layers are not supported yet";
+  }
   if (scene.environment().hasImage()) return "image skies are not supported yet";
   const auto& meshes = scene.meshes();
   if (std::any_of(meshes.begin(), meshes.end(), [](const rt::RtMesh& m) { return !m.colors.empty(); }))
@@ -117,12 +133,15 @@ void GpuTracer::State::bindScene(const gl::Program& program) const {
       {gl::binding::kRtOrder, &order},         {gl::binding::kRtInstances, &instances},
       {gl::binding::kRtSpheres, &spheres},     {gl::binding::kRtPlanes, &planes},
       {gl::binding::kRtTriangles, &triangles}, {gl::binding::kRtMaterials, &materials},
-      {gl::binding::kRtLights, &lights}};
+      {gl::binding::kRtLights, &lights},       {gl::binding::kRtTriangleUvs, &triangleUvs},
+      {gl::binding::kRtTextures, &textures},   {gl::binding::kRtTexels, &texels},
+      {gl::binding::kRtTerrains, &terrains}};
   for (const auto& [unit, buffer] : buffers) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, unit, buffer->id());
   program.use();
   program.set("u_instanceCount", int(layout.instances.size()));
   program.set("u_sphereCount", int(layout.spheres.size()));
   program.set("u_planeCount", int(layout.planes.size()));
+  program.set("u_triangleUvs", layout.triangleUvs.empty() ? 0 : 1);
 }
 
 void GpuTracer::State::setView(const gl::Program& p, const rt::RenderSettings& settings) const {
@@ -207,7 +226,12 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   s.triangles = storage(s.layout.triangles);
   s.materials = storage(materialsOf(scene));
   s.lights = storage(lightsOf(scene));
-  auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, detail::traceDefines(s.layout));
+  s.triangleUvs = storage(s.layout.triangleUvs);
+  const rt::GpuTextureSet textures = rt::flattenTextures(scene);
+  s.textures = storage(textures.textures);
+  s.texels = storage(textures.texels);
+  s.terrains = storage(textures.terrains);
+  auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, detail::traceDefines(s.layout, nullptr));
   if (!hits) return hits.error();
   s.hits = std::move(hits).value();
   return tracer;
@@ -246,7 +270,7 @@ Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& sett
   const int maxDepth = std::max(0, settings.maxDepth);
   auto found = s.whitted.find(maxDepth);
   if (found == s.whitted.end()) {
-    std::vector<std::string> defines = detail::traceDefines(s.layout);
+    std::vector<std::string> defines = detail::traceDefines(s.layout, &scene);
     defines.push_back("RT_MAX_DEPTH " + std::to_string(maxDepth));
     auto program = gl::Program::build(s.shaderDir, {{GL_COMPUTE_SHADER, "rt/whitted.comp"}}, defines);
     if (!program) return program.error();
@@ -265,6 +289,7 @@ Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& sett
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);
   p.set("u_ambientSky", scene.ambientSky());
   p.set("u_ambientGround", scene.ambientGround());
+  p.set("u_coneSpread", rt::pixelConeSpread(scene.camera().fovyDegrees, settings.height, spp));
   return s.runPerPixel(settings.width, settings.height);
 }
 

@@ -10,6 +10,7 @@
 #include "gputrace/gpu_tracer.h"
 #include "gputrace/tracer_state.h"
 #include "raytrace/path_tracer.h"
+#include "raytrace/ray_cone.h"
 
 namespace engine::gpurt {
 namespace {
@@ -75,7 +76,7 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   const State& s = *state_;
   const rt::RtScene& scene = *s.scene;
   if (!s.path) {
-    auto program = gl::Program::build(s.shaderDir, {{GL_COMPUTE_SHADER, "rt/pathtrace.comp"}}, detail::traceDefines(s.layout));
+    auto program = gl::Program::build(s.shaderDir, {{GL_COMPUTE_SHADER, "rt/pathtrace.comp"}}, detail::traceDefines(s.layout, &scene));
     if (!program) return program.error();
     s.path = std::move(program).value();
   }
@@ -93,6 +94,8 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   p.set("u_rouletteDepth", settings.rouletteDepth);
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);
   p.set("u_coneSun", lights->coneSun ? 1 : 0);
+  p.set("u_coneSpread", rt::pixelConeSpread(scene.camera().fovyDegrees, settings.height,
+                                            settings.totalSamples > 0 ? settings.totalSamples : settings.samplesPerPixel));
   const rt::Distribution2D& d = lights->environment.distribution();
   glUniform2i(p.location("u_envSize"), d.width(), d.height());
   p.set("u_envBlack", lights->environment.black() ? 1 : 0);

@@ -103,6 +103,16 @@ class Narrower {
   std::vector<GpuNode4>& out_;
 };
 
+GpuTriangleUv uvsOf(const RtMesh& mesh, std::size_t first) {
+  GpuTriangleUv g{};
+  for (int v = 0; v < 3; ++v) {
+    const std::uint32_t i = mesh.indices[first + std::size_t(v)];
+    const glm::vec2 uv0 = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[i];
+    g.uv[v] = glm::vec4(uv0, mesh.uvs1.empty() ? uv0 : mesh.uvs1[i]);
+  }
+  return g;
+}
+
 void appendGroup(const RtScene& scene, int group, GpuSceneLayout& out) {
   const Bvh& bvh = scene.bvh(group);
   const Bvh::View view = bvh.view();
@@ -142,6 +152,7 @@ void appendGroup(const RtScene& scene, int group, GpuSceneLayout& out) {
     for (int v = 0; v < 3 && !mesh.normals.empty(); ++v) g.n[v] = glm::vec4(mesh.normals[mesh.indices[first + std::size_t(v)]], 0.0f);
     g.n[0].w = float(mesh.material);
     g.n[1].w = mesh.normals.empty() ? 0.0f : 1.0f;
+    if (out.hasUvs) out.triangleUvs.push_back(uvsOf(mesh, first));
   }
   if (bvh.empty()) return;
   const Bounds3f b = bvh.bounds();
@@ -157,6 +168,8 @@ void appendGroup(const RtScene& scene, int group, GpuSceneLayout& out) {
 GpuSceneLayout flattenScene(const RtScene& scene, int width) {
   GpuSceneLayout out;
   out.width = width == 4 ? 4 : 8;
+  // Only what a material reads: the box meshes of a scene file have uvs.
+  out.hasUvs = scene.hasTextures() && std::any_of(scene.meshes().begin(), scene.meshes().end(), [](const RtMesh& m) { return !m.uvs.empty() || !m.uvs1.empty(); });
   for (int g = 0; g < scene.groupCount(); ++g) appendGroup(scene, g, out);
   for (const Sphere<float>& s : scene.floatSpheres()) {
     out.spheres.push_back(GpuSphere{glm::vec4(s.center, s.radius), glm::ivec4(s.material, 0, 0, 0)});

@@ -69,6 +69,12 @@ struct GpuTriangle {
   glm::vec4 n[3];  // vertex normals; n[0].w the material, n[1].w 1 when the mesh has normals
 };
 
+// A triangle's texture coordinates, per vertex: TEXCOORD_0 in xy, TEXCOORD_1 in zw
+// (TEXCOORD_0 again where the mesh has no second set; zero where it has none).
+struct GpuTriangleUv {
+  glm::vec4 uv[3];
+};
+
 struct GpuSceneLayout {
   int width = 8;  // 8: nodes holds the tree; 4: nodes4 does
   std::vector<GpuNode> nodes;
@@ -79,7 +85,9 @@ struct GpuSceneLayout {
   std::vector<GpuSphere> spheres;
   std::vector<GpuPlane> planes;
   std::vector<GpuTriangle> triangles;  // by global id
+  std::vector<GpuTriangleUv> triangleUvs;  // by global id; empty unless hasUvs
   std::vector<std::uint32_t> firstTriangle;  // per group: its first global id
+  bool hasUvs = false;  // some material reads a texture and some mesh has uvs (triangleUvs is filled)
   int depth = 0;  // levels of nodes on the deepest path, leaves included
 
   // The most entries a traversal stack holds: width - 1 per level (Bvh::kStackSize's rule).

@@ -302,10 +302,9 @@ Status RtScene::setTerrainMaterial(int material, RtTerrainMaterial layers) {
   return Ok{};
 }
 
-HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns,
-                                const glm::vec3& dpdu, const glm::vec3& dpdv) const {
+HitMaterial RtScene::baseMaterial(int material) const {
   const MaterialDesc& m = materials_[size_t(material)];
-  HitMaterial out{baseColor(material, uv, footprint), m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
+  HitMaterial out{m.color, m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
                   m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit,
                   extras_[size_t(material)].dielectricF0, m.layers.dielectricF90(), m.layers.clearcoat,
                   m.layers.clearcoatRoughness, m.layers.transmission, m.layers.ior, m.layers.thickness,
@@ -314,6 +313,13 @@ HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, 
   out.iridescence = m.layers.iridescence;
   out.iridescenceIor = m.layers.iridescenceIor;
   out.iridescenceThickness = m.layers.iridescenceThicknessMax;
+  return out;
+}
+
+HitMaterial RtScene::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns,
+                                const glm::vec3& dpdu, const glm::vec3& dpdv) const {
+  HitMaterial out = baseMaterial(material);
+  out.albedo = baseColor(material, uv, footprint);
   if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
     const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
     out.roughness *= t.y;

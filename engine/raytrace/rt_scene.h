@@ -184,6 +184,9 @@ class RtScene {
   // Makes `material` the terrain's layers: its albedo (times its colour), roughness
   // and specular come from `layers` at each hit's uv, height and shading normal.
   Status setTerrainMaterial(int material, RtTerrainMaterial layers);
+  // The material's own weights, before any texture, vertex colour or terrain layer
+  // (what materialAt starts from; the GPU tracer applies the rest in its shaders).
+  HitMaterial baseMaterial(int material) const;
   // The material at a hit with uv `uv` (and `footprint`, as RtTexture::sample takes
   // it), world height `y` and unit shading normal `ns`.
   // `dpdu` and `dpdv` (SurfaceInteraction's) orient KHR_materials_anisotropy.
@@ -273,32 +276,6 @@ class RtScene {
   std::size_t sphereCount() const { return spheresF_.size(); }
   std::size_t planeCount() const { return planesF_.size(); }
 
- private:
-  template <typename T>
-  const std::vector<Sphere<T>>& spheres() const;
-  template <typename T>
-  const std::vector<Plane<T>>& planes() const;
-  struct Group;
-  template <typename T>
-  SurfaceInteraction<T> meshInteraction(const Group& group, const BvhHit<T>& hit) const;
-  template <typename T>
-  bool onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const;
-  // The nearest sphere and plane hits (kind 1 or 2, or 0) with ray.tMax shortened to
-  // them, and whether any exists: four shapes at a time for float rays, one at a time
-  // for double.
-  template <typename T>
-  int nearestShape(Ray<T>& ray, std::size_t& index) const;
-  template <typename T>
-  bool anyShape(const Ray<T>& ray) const;
-  Status checkMaterial(int material) const;  // an error naming it when out of range
-  struct MaterialExtras;
-  Status attachTexture(int material, int MaterialExtras::*slot, RtTexture texture);
-  void applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const;
-  void gatherTriangles(int group);
-
-  CameraDesc camera_;
-  std::vector<LightDesc> lights_;
-  std::vector<MaterialDesc> materials_;
   // What a material has beyond its MaterialDesc: textures (indices into textures_,
   // -1 none), the terrain's layers (into terrains_) and glTF's alpha.
   struct MaterialExtras {
@@ -324,6 +301,37 @@ class RtScene {
     float alpha = 1.0f;
     float alphaCutoff = 0.5f;
   };
+  const MaterialExtras& extras(int material) const { return extras_[std::size_t(material)]; }
+  // The textures materials point at (MaterialExtras' indices) and the terrains'
+  // layered materials: what the GPU tracer copies (raytrace/gpu_textures.h).
+  const std::vector<RtTexture>& textures() const { return textures_; }
+  const std::vector<RtTerrainMaterial>& terrains() const { return terrains_; }
+
+ private:
+  template <typename T>
+  const std::vector<Sphere<T>>& spheres() const;
+  template <typename T>
+  const std::vector<Plane<T>>& planes() const;
+  struct Group;
+  template <typename T>
+  SurfaceInteraction<T> meshInteraction(const Group& group, const BvhHit<T>& hit) const;
+  template <typename T>
+  bool onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const;
+  // The nearest sphere and plane hits (kind 1 or 2, or 0) with ray.tMax shortened to
+  // them, and whether any exists: four shapes at a time for float rays, one at a time
+  // for double.
+  template <typename T>
+  int nearestShape(Ray<T>& ray, std::size_t& index) const;
+  template <typename T>
+  bool anyShape(const Ray<T>& ray) const;
+  Status checkMaterial(int material) const;  // an error naming it when out of range
+  Status attachTexture(int material, int MaterialExtras::*slot, RtTexture texture);
+  void applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const;
+  void gatherTriangles(int group);
+
+  CameraDesc camera_;
+  std::vector<LightDesc> lights_;
+  std::vector<MaterialDesc> materials_;
   std::vector<MaterialExtras> extras_;  // one per material
   bool transparent_ = false;
   bool singleSided_ = false;

@@ -11,7 +11,7 @@
 
 namespace demo {
 
-// Errors: "--device gpu: textures are not supported yet" and the like for what the
+// Errors: "--device gpu: double precision is not supported" and the like for what the
 // GPU path cannot draw, or a context or shader failure.
 engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc& scene, double time,
                                                          const engine::rt::RenderSettings& settings,

@@ -1,6 +1,6 @@
 // The scene's materials as both GPU integrators read them (engine/gputrace's
-// GpuMaterial, std430): a MaterialDesc's own weights, as RtScene::materialAt gives
-// them where no texture is.
+// GpuMaterial, std430): a MaterialDesc's own weights, as RtScene::baseMaterial gives
+// them, and what RtScene::materialAt changes at a hit (rt/material_at.glsl).
 
 struct RtMaterial {
   vec4 colorAmbient;                         // colour, ambient
@@ -8,6 +8,9 @@ struct RtMaterial {
   vec4 metallicRoughnessUnlit;               // metallic, roughness, unlit (0 or 1)
   vec4 emission;
   vec4 dielectric;                           // f0 (KHR_materials_ior, _specular), f90
+  ivec4 textures;                            // base colour, metallic-roughness, emissive (rt/texture.glsl's; -1 none), terrain (-1 none)
+  vec4 surface;                              // x: texture scale (spheres, planes); y: 1 when a hit's uv is read
+  vec4 alpha;                                // x: mode (0 opaque, 1 MASK, 2 BLEND), y: factor, z: cutoff, w: 1 when single-sided
 };
 
 layout(std430, binding = BUFFER_RT_MATERIALS) readonly buffer RtMaterials { RtMaterial rtMaterials[]; };

@@ -14,8 +14,10 @@
 // the environment going through that one shadow ray.
 #include "rt/trace.glsl"
 #include "rt/pcg.glsl"
-#include "rt/surface.glsl"
 #include "rt/materials.glsl"
+#include "rt/surface.glsl"
+#include "rt/texture.glsl"
+#include "rt/material_at.glsl"
 #include "rt/sky.glsl"
 #include "rt/camera.glsl"
 #include "common/brdf.glsl"
@@ -25,6 +27,8 @@
 #include "rt/environment_light.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+
+#define RT_MAX_PASS_THROUGH 64  // path_tracer.cpp's kMaxPassThrough
 
 // PathLight, std430 (engine/gputrace/path_kernel.cpp's GpuPathLight).
 struct PtLight {
@@ -51,6 +55,7 @@ uniform int u_maxDepth, u_rouletteDepth;
 uniform int u_pbr;                 // Shading::Pbr
 uniform int u_coneSun;             // PathLights::coneSun: the camera sees no sky disk
 uniform uvec2 u_seed;              // RenderSettings::seed, low and high words
+uniform float u_coneSpread;  // pixelConeSpread: a camera sample's cone (raytrace/ray_cone.h)
 uniform int u_fog;
 uniform vec3 u_fogColor;
 uniform float u_fogDensity;
@@ -139,10 +144,10 @@ bool hitsArea(PtLight l, vec3 o, vec3 d, vec3 v, float tHit, out float pdf) {
 // The one shadow ray of the kernel: spawnRayTo the target (tMax 1), or spawnRay
 // along wi to infinity. 1 when nothing is in the way.
 float transmittance(Surface s, LightSample ls) {
-  ++shadowRays;
   vec3 o = offsetRayOrigin(s, ls.toPoint ? ls.target - s.p : ls.wi);
   precise vec3 toTarget = ls.target - o;
-  return rtAnyHit(o, ls.toPoint ? toTarget : ls.wi, ls.toPoint ? 1.0 : rtInfinity()) ? 0.0 : 1.0;
+  return rtTransmittance(o, ls.toPoint ? toTarget : ls.wi, ls.toPoint ? 1.0 : rtInfinity(), ls.toPoint, ls.target,
+                         shadowRays);
 }
 
 vec3 shade(Surface s, LightSample ls, bool shadows, Bsdf b, vec3 ng) {
@@ -213,6 +218,8 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng, out float firstHit) {
   vec3 radiance = vec3(0.0), beta = vec3(1.0);
   bool countEmitters = true;
   float bsdfPdf = 0.0;
+  float coneWidth = 0.0;
+  int passes = 0;  // through cut-away or transparent surfaces
   firstHit = -1.0;
   for (int depth = 0;; ++depth) {
     RtHit hit = rtClosestHit(o, d, tMax);
@@ -221,7 +228,21 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng, out float firstHit) {
     radiance += beta * emittersAlong(o, d, v, escaped ? tMax : hit.t, escaped, countEmitters, bsdfPdf, depth == 0);
     if (escaped) break;
     Surface s = surfaceAt(hit, o, d);
-    RtMaterial m = rtMaterials[s.material];
+    float footprint = rtFootprint(coneWidth, u_coneSpread, s, v, hit.t * sqrt(rtDot(d, d)));
+    // MASK's cut-away parts and single-sided faces seen from behind are not there;
+    // BLEND stops a share alpha of the paths. Either way the ray goes on unbent.
+#ifdef RT_PASS_THROUGH
+    float opacity = rtSurfaceOpacity(s, footprint, rtDot(s.n, v) > 0.0);
+    if (opacity < 1.0 && (opacity <= 0.0 || pcgUniform(rng) >= opacity)) {
+      if (++passes > RT_MAX_PASS_THROUGH) break;
+      o = offsetRayOrigin(s, d);
+      precise float rest = tMax - hit.t;
+      tMax = rest;
+      --depth;
+      continue;
+    }
+#endif
+    RtMaterial m = rtMaterialAt(s, footprint);
     if (firstHit < 0.0) {
       precise dvec3 e = dvec3(s.p) - u_cameraPosition;
       firstHit = float(sqrt(e.x * e.x + e.y * e.y + e.z * e.z));

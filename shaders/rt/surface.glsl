@@ -1,11 +1,23 @@
 // A hit as the shading sees it (raytrace/shapes.h's SurfaceInteraction): the point
-// with its error bound, the geometric and shading normals, the material; and the ray
-// origins spawned from it, offset as the CPU offsets them. After rt/trace.glsl.
+// with its error bound, the geometric and shading normals, the material, the texture
+// coordinates and their density (RtScene::intersect's, worked out only for a material
+// that reads them); and the ray origins spawned from it, offset as the CPU offsets
+// them. After rt/trace.glsl and rt/materials.glsl.
 
 struct Surface {
   vec3 p, pError, n, ns;
   int material;
+  vec2 uv0, uv1;     // TEXCOORD_0 and _1 (the same on spheres and planes)
+  float uvPerMetre;  // uv units per metre of surface, for the ray cone's footprint
 };
+
+// The triangles' texture coordinates (raytrace/gpu_layout.h's GpuTriangleUv), bound
+// with u_triangleUvs 1 when some mesh has them.
+struct RtTriangleUv {
+  vec4 uv[3];  // per vertex: TEXCOORD_0 in xy, TEXCOORD_1 in zw
+};
+layout(std430, binding = BUFFER_RT_TRIANGLE_UVS) readonly buffer RtTriangleUvs { RtTriangleUv rtTriangleUvs[]; };
+uniform int u_triangleUvs;
 
 float nextUp(float v) {
   if (isinf(v) && v > 0.0) return v;
@@ -40,8 +52,37 @@ vec3 rtNormalize(vec3 v) {
   return r;
 }
 
+// float(pi) and std::sqrt(2.0f), as the C++ rounds them.
+const float RT_PI_F = uintBitsToFloat(0x40490fdbu);
+const float RT_SQRT2_F = uintBitsToFloat(0x3fb504f3u);
+
+// The sphere's uv (rt_scene.cpp's sphereUv, in float here where the CPU works in
+// double): n = (sin t sin p, cos t, sin t cos p) at uv = (p / 2 pi, t / pi).
+vec2 rtSphereUv(vec3 n) {
+  float theta = acos(clamp(n.y, -1.0, 1.0));
+  float phi = atan(n.x, n.z);
+  if (phi < 0.0) phi += 2.0 * RT_PI_F;
+  return vec2(phi / (2.0 * RT_PI_F), theta / RT_PI_F);
+}
+
+// A triangle's uv at the hit and its density (RtScene::meshInteraction): the square
+// root of the uv area over the area in space.
+void rtTriangleUv(inout Surface s, RtHit hit, vec3 p0, vec3 p1, vec3 p2, float area) {
+  RtTriangleUv t = rtTriangleUvs[hit.index];
+  vec3 b = hit.bary;
+  precise vec4 uv = b.x * t.uv[0] + b.y * t.uv[1] + b.z * t.uv[2];
+  s.uv0 = uv.xy;
+  s.uv1 = uv.zw;
+  precise vec2 du = t.uv[1].xy - t.uv[0].xy, dv = t.uv[2].xy - t.uv[0].xy;
+  precise float uvArea = abs(du.x * dv.y - du.y * dv.x);
+  s.uvPerMetre = area > 0.0 ? sqrt(uvArea / area) : 0.0;
+}
+
 Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
   Surface s;
+  s.uv0 = vec2(0.0);
+  s.uv1 = vec2(0.0);
+  s.uvPerMetre = 0.0;
   precise vec3 at = o + d * hit.t;
   if (hit.kind == RT_SPHERE) {
     RtSphere sp = rtSpheres[hit.index];
@@ -51,6 +92,15 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
     s.pError = RT_GAMMA8 * (abs(sp.centerRadius.xyz) + vec3(sp.centerRadius.w));
     s.ns = s.n;
     s.material = sp.material.x;
+    vec4 surface = rtMaterials[s.material].surface;
+    if (surface.y != 0.0) {
+      precise vec2 uv = rtSphereUv(s.n) * surface.x;
+      s.uv0 = uv;
+      s.uv1 = uv;
+    }
+    // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
+    precise float around = RT_PI_F * RT_SQRT2_F * sp.centerRadius.w;
+    s.uvPerMetre = surface.x / around;
   } else if (hit.kind == RT_PLANE) {
     RtPlane pl = rtPlanes[hit.index];
     precise vec3 p = at - (rtDot(pl.normalD.xyz, at) - pl.normalD.w) * pl.normalD.xyz;
@@ -59,6 +109,18 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
     s.n = pl.normalD.xyz;
     s.ns = s.n;
     s.material = int(pl.axisU.w);
+    vec4 surface = rtMaterials[s.material].surface;
+    if (surface.y != 0.0) {
+      // In double, as the CPU: the square's uv from its corner, times the texture scale.
+      precise dvec3 local = dvec3(s.p) - dvec3(pl.pointExtent.xyz);
+      dvec3 u = dvec3(pl.axisU.xyz), v = dvec3(pl.axisV.xyz);
+      double extent = double(pl.pointExtent.w);
+      precise dvec2 uv = dvec2(local.x * u.x + local.y * u.y + local.z * u.z + extent,
+                               local.x * v.x + local.y * v.y + local.z * v.z + extent) * double(surface.x);
+      s.uv0 = vec2(uv);
+      s.uv1 = s.uv0;
+    }
+    s.uvPerMetre = surface.x;
   } else {
     RtLeaf l = rtLeaves[hit.slot / 4u];
     int lane = int(hit.slot % 4u);
@@ -80,6 +142,7 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
       if (nsLen > 0.0) s.ns = ns / nsLen;
     }
     s.material = int(tri.n[0].w);
+    if (u_triangleUvs != 0) rtTriangleUv(s, hit, p0, p1, p2, len);
   }
   return s;
 }

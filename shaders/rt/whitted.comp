@@ -7,8 +7,10 @@
 // refused on the CPU side (engine/gputrace/gpu_tracer.cpp) before it gets here.
 #include "rt/trace.glsl"
 #include "rt/pcg.glsl"
-#include "rt/surface.glsl"
 #include "rt/materials.glsl"
+#include "rt/surface.glsl"
+#include "rt/texture.glsl"
+#include "rt/material_at.glsl"
 #include "rt/sky.glsl"
 #include "rt/camera.glsl"
 #include "common/brdf.glsl"
@@ -37,6 +39,7 @@ uniform int u_shadowSamples;
 uniform int u_pbr;       // Shading::Pbr
 uniform uvec2 u_seed;    // RenderSettings::seed, low and high words
 uniform vec3 u_ambientSky, u_ambientGround;
+uniform float u_coneSpread;  // pixelConeSpread: a camera sample's cone (raytrace/ray_cone.h)
 uniform int u_fog;
 uniform vec3 u_fogColor;
 uniform float u_fogDensity;
@@ -79,8 +82,7 @@ vec3 sampleLight(Surface s, RtLight light, inout Pcg32 rng, out vec3 wi, out flo
     vec3 toward = type == 0 ? wi : target - s.p;
     vec3 o = offsetRayOrigin(s, toward);
     vec3 d = type == 0 ? wi : target - o;
-    ++shadowRays;
-    seen += rtAnyHit(o, d, type == 0 ? rtInfinity() : 1.0) ? 0.0 : 1.0;
+    seen += rtTransmittance(o, d, type == 0 ? rtInfinity() : 1.0, type != 0, target, shadowRays);
   }
   visibility = type == 2 ? seen / float(n * n) : seen;
   return radiance;
@@ -123,21 +125,45 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng) {
   float weight[RT_MAX_DEPTH + 1];
   int bounces = 0;
   float firstDistance = -1.0;
+  float coneWidth = 0.0;
   // The bound is a uniform: a constant one lets the compiler unroll the loop, and
   // with it six copies of the traversal.
   for (int depth = 0; depth <= u_maxDepth; ++depth) {
     bounces = depth + 1;
     weight[depth] = 0.0;
-    RtHit hit = rtClosestHit(o, d, tMax);
+    // Tracer::firstSolidHit: MASK's cut-away parts and single-sided faces seen from
+    // behind are passed (at the full-resolution level), at most 64 of them, in a
+    // scene built with RT_PASS_THROUGH (some material is not opaque or is single-sided).
+    RtHit hit;
+    Surface s;
+    float travelled = 0.0;
+    for (int pass = 0;; ++pass) {
+      hit = rtClosestHit(o, d, tMax);
+      if (hit.kind == RT_NONE) break;
+      s = surfaceAt(hit, o, d);
+#ifdef RT_PASS_THROUGH
+      if (rtSurfaceOpacity(s, 0.0, rtDot(s.n, d) > 0.0) > 0.0) break;
+#else
+      break;
+#endif
+      if (pass == 63) {
+        hit.kind = RT_NONE;
+        break;
+      }
+      travelled += hit.t;
+      o = offsetRayOrigin(s, d);
+      precise float rest = tMax - hit.t;
+      tMax = rest;
+    }
     if (hit.kind == RT_NONE) {
       own[depth] = rtSky(d, true);
       break;
     }
     vec3 v = rtNormalize(d);
-    float distance = hit.t * sqrt(rtDot(d, d));
+    precise float along = hit.t + travelled;
+    float distance = along * sqrt(rtDot(d, d));
     if (depth == 0) firstDistance = distance;
-    Surface s = surfaceAt(hit, o, d);
-    RtMaterial m = rtMaterials[s.material];
+    RtMaterial m = rtMaterialAt(s, rtFootprint(coneWidth, u_coneSpread, s, v, distance));
     if (m.metallicRoughnessUnlit.z != 0.0) {
       own[depth] = m.colorAmbient.xyz;
       break;

@@ -1,0 +1,167 @@
+// RtScene::materialAt on the GPU (raytrace/rt_scene.cpp): a hit's material, its
+// textures applied at the hit's uv with the ray cone's footprint (rt/texture.glsl):
+// the base colour's, metallic-roughness's (roughness times G, metallic times B) and
+// the emissive one's, and the terrain's layered material (raytrace/terrain_material.cpp,
+// terrain::layerWeights), operation for operation. Change both together. After
+// rt/surface.glsl and rt/texture.glsl.
+
+// RtTerrainMaterial's constants (raytrace/gpu_textures.h's GpuTerrain).
+struct RtTerrain {
+  ivec4 layers;              // grass, rock, snow: rtTextures indices
+  dvec2 originYHeightScale;  // the terrain origin's world height; the height scale
+  dvec2 unused;
+};
+layout(std430, binding = BUFFER_RT_TERRAINS) readonly buffer RtTerrains { RtTerrain rtTerrains[]; };
+
+// terrain/materials.h's constants.
+const float RT_LAYER_FAR_SCALE = 0.173;
+const vec3 RT_LAYER_ROUGHNESS = vec3(0.95, 0.8, 0.5);
+const float RT_LAYER_SPECULAR = 0.02, RT_SNOW_SPECULAR = 0.25;
+
+// terrain/materials.cpp's smoothstep, not GLSL's (which may round otherwise).
+float rtSmoothstep(float edge0, float edge1, float x) {
+  precise float t = clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
+  precise float r = t * t * (3.0 - 2.0 * t);
+  return r;
+}
+
+// terrain::layerWeights: (grass, rock, snow), summing to one.
+vec3 rtLayerWeights(float height01, float slope, float jitter) {
+  float rock = rtSmoothstep(0.28, 0.5, slope);
+  precise float snow = rtSmoothstep(0.6, 0.7, height01 + 0.05 * jitter) * (1.0 - rtSmoothstep(0.35, 0.6, slope));
+  precise float grass = max(1.0 - rock - snow, 0.0);
+  precise vec3 w = vec3(grass, rock, snow) / max(grass + rock + snow, 1e-4);
+  return w;
+}
+
+// RtTerrainMaterial::sample into the material from its five reads (grass near and
+// far, rock near and far, snow): its albedo times the layers', their roughness and
+// highlight.
+void rtApplyTerrain(inout RtMaterial m, RtTerrain t, vec4 reads[8], int first, double y, float normalY) {
+  precise vec3 grass = reads[first].xyz * reads[first + 1].xyz * 2.0;
+  precise vec3 rock = reads[first + 2].xyz * reads[first + 3].xyz * 2.0;
+  vec3 snow = reads[first + 4].xyz;
+  precise float height01 = float(y - t.originYHeightScale.x) / float(t.originYHeightScale.y);
+  precise float jitter = rock.r * 2.0 - 0.5;
+  vec3 w = rtLayerWeights(height01, 1.0 - normalY, jitter);
+  precise vec3 albedo = grass * w.x + rock * w.y + snow * w.z;
+  m.colorAmbient.xyz = m.colorAmbient.xyz * albedo;
+  precise float roughness = w.x * RT_LAYER_ROUGHNESS.x + w.y * RT_LAYER_ROUGHNESS.y + w.z * RT_LAYER_ROUGHNESS.z;
+  m.metallicRoughnessUnlit.y = roughness;
+  precise float specular = RT_LAYER_SPECULAR * (1.0 - w.z) + RT_SNOW_SPECULAR * w.z;
+  m.diffuseSpecularShininessReflection.y = specular;
+}
+
+// The ray cone's footprint at the hit (raytrace/ray_cone.h's footprintAt): the cone
+// widened over `distance`, stretched by 1 / cos along the slope, in uv units.
+float rtFootprint(inout float coneWidth, float coneSpread, Surface s, vec3 v, float distance) {
+  precise float width = coneWidth + coneSpread * distance;
+  coneWidth = width;
+  float cosine = max(abs(rtDot(s.n, v)), 1e-2);
+  precise float footprint = width / cosine * s.uvPerMetre;
+  return footprint;
+}
+
+// The material at the hit (the unflipped shading normal's y for the terrain), built
+// with RT_TEXTURES where some material reads a texture or is the terrain's. Its
+// texture reads are listed first and made in one loop: llvmpipe inlines every call,
+// and a sampler for each read made a kernel take 12 s to compile.
+RtMaterial rtMaterialAt(Surface s, float footprint) {
+  RtMaterial m = rtMaterials[s.material];
+#ifdef RT_TEXTURES
+  ivec4 t = m.textures;
+  int texture[8];
+  vec2 uv[8];
+  float width[8];
+  int reads = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (t[k] < 0) continue;
+    texture[reads] = t[k];
+    uv[reads] = s.uv0;
+    width[reads++] = footprint;
+  }
+  RtTerrain terrain;
+  if (t.w >= 0) {
+    terrain = rtTerrains[t.w];
+    precise vec2 uvFar = s.uv0 * RT_LAYER_FAR_SCALE;
+    precise float footprintFar = footprint * RT_LAYER_FAR_SCALE;
+    for (int k = 0; k < 5; ++k) {
+      texture[reads + k] = terrain.layers[k / 2];
+      uv[reads + k] = k % 2 == 0 ? s.uv0 : uvFar;
+      width[reads + k] = k % 2 == 0 ? footprint : footprintFar;
+    }
+  }
+  int terrainReads = t.w >= 0 ? 5 : 0;
+  vec4 texel[8];
+  for (int k = 0; k < reads + terrainReads; ++k) {
+    // A material's textures read their own uv set (uv[k] stands for TEXCOORD_0 only
+    // where the texture says so); the terrain's layers have one.
+    texel[k] = rtSampleTexture(texture[k], uv[k], k < reads ? s.uv1 : uv[k], width[k]);
+  }
+  int next = 0;
+  if (t.x >= 0) m.colorAmbient.xyz = m.colorAmbient.xyz * texel[next++].xyz;
+  if (t.y >= 0) {
+    vec3 mr = texel[next++].xyz;
+    m.metallicRoughnessUnlit.y = m.metallicRoughnessUnlit.y * mr.y;
+    m.metallicRoughnessUnlit.x = m.metallicRoughnessUnlit.x * mr.z;
+  }
+  if (t.z >= 0) m.emission.xyz = m.emission.xyz * texel[next++].xyz;
+  if (t.w >= 0) rtApplyTerrain(m, terrain, texel, reads, double(s.p.y), s.ns.y);
+#endif
+  return m;
+}
+
+// ---- Alpha and single-sided faces (RtScene::opacityAt, surfaceOpacity, transmittance) ----
+
+// How much of a ray the surface stops: 1 opaque, MASK's 0 or 1 at its cutoff, or
+// BLEND's alpha (the factor times the base colour texture's alpha).
+float rtOpacity(Surface s, float footprint) {
+  RtMaterial m = rtMaterials[s.material];
+  int mode = int(m.alpha.x);
+  if (mode == 0) return 1.0;
+  float alpha = m.alpha.y;
+#ifdef RT_TEXTURES
+  if (m.textures.x >= 0) alpha = alpha * rtSampleTexture(m.textures.x, s.uv0, s.uv1, footprint).w;
+#endif
+  if (mode == 1) return alpha >= m.alpha.z ? 1.0 : 0.0;
+  return clamp(alpha, 0.0, 1.0);
+}
+
+// rtOpacity, and 0 for a single-sided face seen from behind (the rasterizer culls it).
+float rtSurfaceOpacity(Surface s, float footprint, bool backFacing) {
+  return backFacing && rtMaterials[s.material].alpha.w != 0.0 ? 0.0 : rtOpacity(s, footprint);
+}
+
+// The share of light a shadow ray from o brings: along d up to tMax, or to `target`
+// (d = target - o, tMax 1, spawnRayTo) when toTarget. An any-hit ray where every
+// material is opaque; with RT_TRANSPARENT (some material is not) the product of
+// 1 - opacity over the surfaces it passes, at the full-resolution level, as the CPU
+// (each surface passed is one more ray in `rays`). The only shadow-ray call site of
+// a kernel that includes it: llvmpipe inlines every traversal.
+float rtTransmittance(vec3 o, vec3 d, float tMax, bool toTarget, vec3 target, inout uint rays) {
+  ++rays;
+#ifndef RT_TRANSPARENT
+  return rtAnyHit(o, d, tMax) ? 0.0 : 1.0;
+#else
+  float share = 1.0;
+  for (int i = 0; i <= 64; ++i) {
+    RtHit hit = rtClosestHit(o, d, tMax);
+    if (hit.kind == RT_NONE) return share;
+    Surface s = surfaceAt(hit, o, d);
+    share *= 1.0 - rtOpacity(s, 0.0);
+    if (share <= 0.0) return 0.0;
+    ++rays;
+    if (toTarget) {
+      o = offsetRayOrigin(s, target - s.p);
+      precise vec3 toT = target - o;
+      d = toT;
+      tMax = 1.0;
+    } else {
+      o = offsetRayOrigin(s, d);
+      precise float rest = tMax - hit.t;
+      tMax = rest;
+    }
+  }
+  return 0.0;
+#endif
+}
