@@ -11,10 +11,8 @@
 #include "../support/gl_test.h"
 #include "../support/rt_room.h"
 #include "../support/rt_textured.h"
-#include "asset/scene_file.h"
 #include "gputrace/gpu_tracer.h"
 #include "raytrace/integrator.h"
-#include "raytrace/scene_builder.h"
 
 using namespace engine;
 using engine::test::GlTest;
@@ -222,13 +220,7 @@ TEST_P(GpuPath, RendersTheCpusImageOfTexturedSurfaces) {
 }
 
 TEST_P(GpuPath, RendersTheCpusImageOfTheShippedTexturedScenes) {
-  for (const char* file : {"materials.json", "terrain.json"}) {
-    auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + file);
-    ASSERT_TRUE(desc) << desc.error().message;
-    auto traced = rt::AnimatedRtScene::create(*desc, 0.0, 90);
-    ASSERT_TRUE(traced) << traced.error().message;
-    expectAgreement(traced->scene(), file);
-  }
+  for (const char* file : {"materials.json", "terrain.json"}) expectAgreement(test::shippedScene(file).scene(), file);
 }
 
 // Many samples go in batches of at most 16, a dispatch each, each adding to the sums

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <string>
 #include <limits>
 
 #include "../support/gl_test.h"
@@ -15,7 +17,6 @@
 #include "asset/scene_file.h"
 #include "gputrace/gpu_tracer.h"
 #include "raytrace/integrator.h"
-#include "raytrace/scene_builder.h"
 #include "raytrace/tone_map.h"
 
 using namespace engine;
@@ -143,6 +144,22 @@ void expectCpusImage(const gpurt::GpuTracer& tracer, const rt::RtScene& scene, c
               a.meanError, double(a.maxError), a.differingPixels, gpu->seconds);
 }
 
+// One tracer for `scene` (llvmpipe compiles its kernel once), its image against the
+// CPU's as the scene is, then, given `toPbr`, in PBR shading after `toPbr` edits it.
+void expectCpusImages(rt::RtScene scene, const rt::RenderSettings& settings, const std::string& name,
+                      const std::function<void(rt::RtScene&)>& toPbr = {}) {
+  ASSERT_EQ(gpurt::unsupported(scene, settings), "") << name;
+  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
+  ASSERT_TRUE(tracer) << tracer.error().message;
+  expectCpusImage(*tracer, scene, settings, (name + (toPbr ? ", classic" : "")).c_str());
+  if (!toPbr) return;
+  RenderDesc render = scene.render();
+  render.shading = Shading::Pbr;
+  scene.setRender(render);
+  toPbr(scene);
+  expectCpusImage(*tracer, scene, settings, (name + ", pbr").c_str());
+}
+
 rt::RenderSettings whittedSettings() {
   rt::RenderSettings settings;
   settings.width = 160;
@@ -168,17 +185,10 @@ rt::RenderSettings whittedSettings() {
 TEST_P(GpuWhitted, RendersTheCpusImageOfTheRoom) {
   rt::RtScene scene = test::roomWithMeshes();
   ASSERT_GT(scene.triangleCount(), 12u);
-  const rt::RenderSettings settings = whittedSettings();
-  ASSERT_EQ(gpurt::unsupported(scene, settings), "");
-  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
-  ASSERT_TRUE(tracer) << tracer.error().message;
-  expectCpusImage(*tracer, scene, settings, "the room, classic");
-  RenderDesc render = scene.render();
-  render.shading = Shading::Pbr;
-  scene.setRender(render);
-  scene.setFog(FogDesc{true, 0.08f, glm::vec3(0.5f, 0.6f, 0.7f)});
-  scene.setSky(SkyDesc{});
-  expectCpusImage(*tracer, scene, settings, "the room, pbr, fog, sky");
+  expectCpusImages(scene, whittedSettings(), "the room", [](rt::RtScene& pbr) {
+    pbr.setFog(FogDesc{true, 0.08f, glm::vec3(0.5f, 0.6f, 0.7f)});
+    pbr.setSky(SkyDesc{});
+  });
 }
 
 // Textures sampled as the CPU samples them (support/rt_textured.h: every wrap mode,
@@ -188,16 +198,7 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTheRoom) {
 // with the same limits: llvmpipe gives the same bytes (GLSL's log2, acos and atan
 // may round otherwise elsewhere: a mipmap blend or a sphere's uv a few ulps off).
 TEST_P(GpuWhitted, RendersTheCpusImageOfTexturedSurfaces) {
-  rt::RtScene scene = test::texturedRoom();
-  const rt::RenderSettings settings = whittedSettings();
-  ASSERT_EQ(gpurt::unsupported(scene, settings), "");
-  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
-  ASSERT_TRUE(tracer) << tracer.error().message;
-  expectCpusImage(*tracer, scene, settings, "the textured room, classic");
-  RenderDesc render = scene.render();
-  render.shading = Shading::Pbr;
-  scene.setRender(render);
-  expectCpusImage(*tracer, scene, settings, "the textured room, pbr");
+  expectCpusImages(test::texturedRoom(), whittedSettings(), "the textured room", [](rt::RtScene&) {});
 }
 
 // The shipped scenes that use them: materials.json (the glTF material model:
@@ -205,16 +206,9 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTexturedSurfaces) {
 // ground) and terrain.json (the terrain's layers, far and near).
 TEST_P(GpuWhitted, RendersTheCpusImageOfTheShippedTexturedScenes) {
   for (const char* file : {"materials.json", "terrain.json"}) {
-    auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + file);
-    ASSERT_TRUE(desc) << desc.error().message;
-    auto traced = rt::AnimatedRtScene::create(*desc, 0.0, 90);
-    ASSERT_TRUE(traced) << traced.error().message;
     rt::RenderSettings settings = whittedSettings();
     settings.samplesPerPixel = 1;
-    ASSERT_EQ(gpurt::unsupported(traced->scene(), settings), "") << file;
-    auto tracer = gpurt::GpuTracer::create(traced->scene(), test::shaderDir());
-    ASSERT_TRUE(tracer) << tracer.error().message;
-    expectCpusImage(*tracer, traced->scene(), settings, file);
+    expectCpusImages(test::shippedScene(file).scene(), settings, file);
   }
 }
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "asset/texture_transform.h"
+#include "raytrace/scene_builder.h"
 #include "raytrace/terrain_material.h"
 #include "rt_room.h"
 
@@ -109,6 +110,16 @@ inline rt::RtScene texturedRoom() {
   add(uvGrid({-2.4f, 0.01f, 0.0f}, {0.0f, 0.0f, 2.4f}, {1.9f, 0.0f, 0.0f}, 24, {0.0f, 0.0f}, {40.0f, 40.0f}, 0.4f), 9);
   scene.build();
   return scene;
+}
+
+// A shipped scene (assets/scenes/`file`) as the tracers see it at time 0, its terrain
+// selected for an image `height` pixels high.
+inline rt::AnimatedRtScene shippedScene(const std::string& file, int height = 90) {
+  auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + file);
+  EXPECT_TRUE(desc) << desc.error().message;
+  auto traced = rt::AnimatedRtScene::create(*desc, 0.0, height);
+  EXPECT_TRUE(traced) << traced.error().message;
+  return std::move(traced).value();
 }
 
 }  // namespace engine::test
