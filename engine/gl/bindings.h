@@ -92,11 +92,13 @@ inline constexpr unsigned kRtLights = 8;
 inline constexpr unsigned kRtInput = 9;
 inline constexpr unsigned kRtOutput = 10;
 inline constexpr unsigned kRtEnvironment = 11;  // the path tracer's environment tables
-// Textures (raytrace/gpu_textures.h) and triangles' uvs, bound where the scene has them.
-inline constexpr unsigned kRtTriangleUvs = 17;
+// Declared in the kernels only where the scene has them (a compute shader may have
+// 16 storage blocks): triangles' uvs and colours, textures (raytrace/gpu_textures.h),
+// an image sky's linear RGB.
+inline constexpr unsigned kRtTriangleAttributes = 17;
 inline constexpr unsigned kRtTextures = 18;
 inline constexpr unsigned kRtTexels = 19;
-inline constexpr unsigned kRtTerrains = 20;
+inline constexpr unsigned kRtSkyImage = 20;
 // rt/refit.comp's plan (gputrace/gpu_refit.h).
 inline constexpr unsigned kRtRefitPlan = 16;
 
@@ -165,10 +167,10 @@ inline constexpr std::array<Define, 65> kDefines{{
     {"BUFFER_RT_INPUT", kRtInput},
     {"BUFFER_RT_OUTPUT", kRtOutput},
     {"BUFFER_RT_ENVIRONMENT", kRtEnvironment},
-    {"BUFFER_RT_TRIANGLE_UVS", kRtTriangleUvs},
+    {"BUFFER_RT_TRIANGLE_ATTRIBUTES", kRtTriangleAttributes},
     {"BUFFER_RT_TEXTURES", kRtTextures},
     {"BUFFER_RT_TEXELS", kRtTexels},
-    {"BUFFER_RT_TERRAINS", kRtTerrains},
+    {"BUFFER_RT_SKY_IMAGE", kRtSkyImage},
     {"BUFFER_RT_REFIT_PLAN", kRtRefitPlan},
 }};
 

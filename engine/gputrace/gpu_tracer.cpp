@@ -31,14 +31,17 @@ struct GpuMaterial {
   glm::ivec4 textures;   // base colour, metallic-roughness, emissive, terrain (-1 none)
   glm::vec4 surface;     // texture scale, reads uv
   glm::vec4 alpha;       // mode, factor, cutoff, single-sided
+  glm::ivec4 terrainLayers;              // grass, rock, snow: texture indices
+  glm::dvec2 terrainOriginYHeightScale;  // RtTerrainMaterial's
 };
-static_assert(sizeof(GpuMaterial) == 128);
+static_assert(sizeof(GpuMaterial) == 160);
 struct GpuLight {
   glm::ivec4 typeShadowsFalloff;
   glm::vec4 position, direction, radiance, edgeU, edgeV;
 };
 
-std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene) {
+// `textures`: where each terrain's layers are (flattenTextures).
+std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene, const rt::GpuTextureSet& textures) {
   std::vector<GpuMaterial> out;
   for (std::size_t i = 0; i < scene.materials().size(); ++i) {
     const rt::HitMaterial m = scene.baseMaterial(int(i));
@@ -49,7 +52,13 @@ std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene) {
                               glm::vec4(m.dielectricF0, m.dielectricF90),
                               glm::ivec4(e.texture, e.metallicRoughnessTexture, e.emissiveTexture, e.terrain),
                               glm::vec4(scene.materials()[i].textureScale, e.readsUv() ? 1.0f : 0.0f, 0.0f, 0.0f),
-                              glm::vec4(alphaMode, e.alpha, e.alphaCutoff, e.singleSided ? 1.0f : 0.0f)});
+                              glm::vec4(alphaMode, e.alpha, e.alphaCutoff, e.singleSided ? 1.0f : 0.0f),
+                              glm::ivec4(-1), glm::dvec2(0.0)});
+    if (e.terrain >= 0) {
+      const rt::GpuTerrain& t = textures.terrains[std::size_t(e.terrain)];
+      out.back().terrainLayers = t.layers;
+      out.back().terrainOriginYHeightScale = t.originYHeightScale;
+    }
   }
   return out;
 }
@@ -83,6 +92,20 @@ std::string undrawnLayers(const std::vector<MaterialDesc>& materials) {
   return names;
 }
 
+// Whether each array fits the largest storage block the GL allows (llvmpipe: 128 MiB;
+// an 8192 x 4096 sky is 384 MiB): an error naming the first that does not.
+Status fitsStorageBlocks(std::initializer_list<std::pair<const char*, std::size_t>> arrays) {
+  GLint64 largest = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
+  for (const auto& [what, bytes] : arrays) {
+    if (GLint64(bytes) > largest) {
+      return makeError(std::string(what) + " take " + std::to_string(bytes >> 20) + " MiB, more than the GL's largest storage block (" +
+                       std::to_string(largest >> 20) + " MiB)");
+    }
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 namespace detail {
@@ -95,9 +118,14 @@ std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt
           floatDefine("RT_GAMMA7", rt::gamma<float>(7)),
           floatDefine("RT_GAMMA8", rt::gamma<float>(8)),
           floatDefine("RT_WIDEN", 1.0f + 2.0f * rt::gamma<float>(3))};
-  if (shaded && shaded->hasTextures()) defines.emplace_back("RT_TEXTURES 1");
-  if (shaded && (shaded->hasTransparency() || shaded->hasSingleSided())) defines.emplace_back("RT_PASS_THROUGH 1");
-  if (shaded && shaded->hasTransparency()) defines.emplace_back("RT_TRANSPARENT 1");
+  if (!shaded) return defines;
+  if (shaded->hasTextures()) defines.emplace_back("RT_TEXTURES 1");
+  if (layout.hasUvs) defines.emplace_back("RT_TRIANGLE_UVS 1");
+  if (layout.hasColors) defines.emplace_back("RT_TRIANGLE_COLORS 1");
+  defines.push_back("RT_ATTRIBUTE_SLOTS " + std::to_string(layout.attributeSlots()));
+  if (shaded->environment().hasImage()) defines.emplace_back("RT_SKY_IMAGE 1");
+  if (shaded->hasTransparency() || shaded->hasSingleSided()) defines.emplace_back("RT_PASS_THROUGH 1");
+  if (shaded->hasTransparency()) defines.emplace_back("RT_TRANSPARENT 1");
   return defines;
 }
 
@@ -111,10 +139,6 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
   for (int m = 0; m < int(scene.materials().size()); ++m) {
     if (layerTextures(m)) return "textures of glTF's material layers are not supported yet";
   }
-  if (scene.environment().hasImage()) return "image skies are not supported yet";
-  const auto& meshes = scene.meshes();
-  if (std::any_of(meshes.begin(), meshes.end(), [](const rt::RtMesh& m) { return !m.colors.empty(); }))
-    return "vertex colours (COLOR_0) are not supported yet";
   const auto& materials = scene.materials();
   if (path) {
     if (const std::string layers = undrawnLayers(materials); !layers.empty())
@@ -133,15 +157,14 @@ void GpuTracer::State::bindScene(const gl::Program& program) const {
       {gl::binding::kRtOrder, &order},         {gl::binding::kRtInstances, &instances},
       {gl::binding::kRtSpheres, &spheres},     {gl::binding::kRtPlanes, &planes},
       {gl::binding::kRtTriangles, &triangles}, {gl::binding::kRtMaterials, &materials},
-      {gl::binding::kRtLights, &lights},       {gl::binding::kRtTriangleUvs, &triangleUvs},
+      {gl::binding::kRtLights, &lights},       {gl::binding::kRtTriangleAttributes, &triangleAttributes},
       {gl::binding::kRtTextures, &textures},   {gl::binding::kRtTexels, &texels},
-      {gl::binding::kRtTerrains, &terrains}};
+      {gl::binding::kRtSkyImage, &skyImage}};
   for (const auto& [unit, buffer] : buffers) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, unit, buffer->id());
   program.use();
   program.set("u_instanceCount", int(layout.instances.size()));
   program.set("u_sphereCount", int(layout.spheres.size()));
   program.set("u_planeCount", int(layout.planes.size()));
-  program.set("u_triangleUvs", layout.triangleUvs.empty() ? 0 : 1);
 }
 
 void GpuTracer::State::setView(const gl::Program& p, const rt::RenderSettings& settings) const {
@@ -161,7 +184,13 @@ void GpuTracer::State::setView(const gl::Program& p, const rt::RenderSettings& s
   glUniform2i(p.location("u_size"), w, h);
   glUniform2ui(p.location("u_seed"), GLuint(settings.seed & 0xffffffffu), GLuint(settings.seed >> 32));
   const SkyDesc& sky = scene->sky();
-  p.set("u_skyKind", scene->environment().isConstant() ? 0 : 1);
+  const rt::Environment& environment = scene->environment();
+  p.set("u_skyKind", environment.isConstant() ? 0 : environment.hasImage() ? 2 : 1);
+  if (const FloatImage* image = environment.image()) {  // RT_SKY_IMAGE's
+    glUniform2i(p.location("u_skyImageSize"), image->width, image->height);
+    p.set("u_skyIntensity", environment.intensity());
+    p.set("u_skyRotation", environment.rotation());
+  }
   p.set("u_background", sky.background);
   p.set("u_zenith", sky.zenith);
   p.set("u_horizon", sky.horizon);
@@ -224,13 +253,18 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   s.spheres = storage(s.layout.spheres);
   s.planes = storage(s.layout.planes);
   s.triangles = storage(s.layout.triangles);
-  s.materials = storage(materialsOf(scene));
-  s.lights = storage(lightsOf(scene));
-  s.triangleUvs = storage(s.layout.triangleUvs);
   const rt::GpuTextureSet textures = rt::flattenTextures(scene);
+  s.materials = storage(materialsOf(scene, textures));
+  s.lights = storage(lightsOf(scene));
+  s.triangleAttributes = storage(s.layout.triangleAttributes);
   s.textures = storage(textures.textures);
   s.texels = storage(textures.texels);
-  s.terrains = storage(textures.terrains);
+  const FloatImage* sky = scene.environment().image();
+  s.skyImage = sky ? storage(sky->rgb) : storage(std::vector<float>{});
+  if (auto fits = fitsStorageBlocks({{"the textures", textures.texels.size() * sizeof(glm::vec4)},
+                                     {"the sky image", sky ? sky->rgb.size() * sizeof(float) : 0}});
+      !fits)
+    return fits.error();
   auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, detail::traceDefines(s.layout, nullptr));
   if (!hits) return hits.error();
   s.hits = std::move(hits).value();

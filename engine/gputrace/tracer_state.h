@@ -25,8 +25,10 @@ gl::Buffer storage(const std::vector<T>& items) {
 
 // The constants trace.glsl takes from the C++ compiler (see there), and for an
 // integrator what its scene `shaded` needs built in (rt/material_at.glsl): RT_TEXTURES
-// (some material reads a texture or is the terrain's), RT_PASS_THROUGH (some material
-// is not opaque or is single-sided), RT_TRANSPARENT (not opaque: shadow rays pass it).
+// (some material reads a texture or is the terrain's), RT_TRIANGLE_UVS and
+// RT_TRIANGLE_COLORS (the layout's triangle attributes, RT_ATTRIBUTE_SLOTS a
+// triangle), RT_PASS_THROUGH (some material is not opaque or is single-sided),
+// RT_TRANSPARENT (not opaque: shadow rays pass it), RT_SKY_IMAGE.
 std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt::RtScene* shaded);
 
 }  // namespace detail
@@ -36,7 +38,7 @@ struct GpuTracer::State {
   std::string shaderDir;
   rt::GpuSceneLayout layout;
   gl::Buffer nodes, leaves, order, instances, spheres, planes, triangles, materials, lights;
-  gl::Buffer triangleUvs, textures, texels, terrains;  // placeholders where the scene has none
+  gl::Buffer triangleAttributes, textures, texels, skyImage;  // placeholders where the scene has none
   gl::Program hits;
   mutable std::map<int, gl::Program> whitted;  // by maxDepth, built on first use
   mutable std::optional<gl::Program> path;     // built on first use

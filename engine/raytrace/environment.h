@@ -32,6 +32,11 @@ class Environment {
   glm::ivec2 resolution() const;
   bool hasImage() const { return kind_ == Kind::Image; }
   bool isConstant() const { return kind_ == Kind::Constant; }  // background colour only
+  // An image sky as radiance() samples it (the GPU tracer copies it): the image (null
+  // for the others), its intensity and its turn about +y (cosine, sine).
+  const FloatImage* image() const { return image_.get(); }
+  float intensity() const { return intensity_; }
+  glm::vec2 rotation() const { return {cosRotation_, sinRotation_}; }
 
   // The one lat-long convention, both ways (common/latlong.glsl; the image's rotation
   // is applied inside radiance(), not here): u in [0, 1) about +y, u = 0.5 toward +z,

@@ -103,14 +103,16 @@ class Narrower {
   std::vector<GpuNode4>& out_;
 };
 
-GpuTriangleUv uvsOf(const RtMesh& mesh, std::size_t first) {
-  GpuTriangleUv g{};
-  for (int v = 0; v < 3; ++v) {
+// The triangle's attributes (GpuSceneLayout::triangleAttributes) after `out`'s.
+void appendAttributes(const RtMesh& mesh, std::size_t first, bool uvs, bool colors, std::vector<glm::vec4>& out) {
+  for (int v = 0; v < 3 && uvs; ++v) {
     const std::uint32_t i = mesh.indices[first + std::size_t(v)];
     const glm::vec2 uv0 = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[i];
-    g.uv[v] = glm::vec4(uv0, mesh.uvs1.empty() ? uv0 : mesh.uvs1[i]);
+    out.emplace_back(uv0, mesh.uvs1.empty() ? uv0 : mesh.uvs1[i]);
   }
-  return g;
+  for (int v = 0; v < 3 && colors; ++v) {
+    out.push_back(mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[mesh.indices[first + std::size_t(v)]]);
+  }
 }
 
 void appendGroup(const RtScene& scene, int group, GpuSceneLayout& out) {
@@ -152,7 +154,8 @@ void appendGroup(const RtScene& scene, int group, GpuSceneLayout& out) {
     for (int v = 0; v < 3 && !mesh.normals.empty(); ++v) g.n[v] = glm::vec4(mesh.normals[mesh.indices[first + std::size_t(v)]], 0.0f);
     g.n[0].w = float(mesh.material);
     g.n[1].w = mesh.normals.empty() ? 0.0f : 1.0f;
-    if (out.hasUvs) out.triangleUvs.push_back(uvsOf(mesh, first));
+    g.n[2].w = mesh.colors.empty() ? 0.0f : 1.0f;
+    appendAttributes(mesh, first, out.hasUvs, out.hasColors, out.triangleAttributes);
   }
   if (bvh.empty()) return;
   const Bounds3f b = bvh.bounds();
@@ -168,6 +171,7 @@ void appendGroup(const RtScene& scene, int group, GpuSceneLayout& out) {
 GpuSceneLayout flattenScene(const RtScene& scene, int width) {
   GpuSceneLayout out;
   out.width = width == 4 ? 4 : 8;
+  out.hasColors = std::any_of(scene.meshes().begin(), scene.meshes().end(), [](const RtMesh& m) { return !m.colors.empty(); });
   // Only what a material reads: the box meshes of a scene file have uvs.
   out.hasUvs = scene.hasTextures() && std::any_of(scene.meshes().begin(), scene.meshes().end(), [](const RtMesh& m) { return !m.uvs.empty() || !m.uvs1.empty(); });
   for (int g = 0; g < scene.groupCount(); ++g) appendGroup(scene, g, out);

@@ -66,13 +66,7 @@ struct GpuPlane {
 
 // What shading a triangle hit needs beyond the leaf's positions.
 struct GpuTriangle {
-  glm::vec4 n[3];  // vertex normals; n[0].w the material, n[1].w 1 when the mesh has normals
-};
-
-// A triangle's texture coordinates, per vertex: TEXCOORD_0 in xy, TEXCOORD_1 in zw
-// (TEXCOORD_0 again where the mesh has no second set; zero where it has none).
-struct GpuTriangleUv {
-  glm::vec4 uv[3];
+  glm::vec4 n[3];  // vertex normals; n[0].w the material, n[1].w 1 when the mesh has normals, n[2].w when colours
 };
 
 struct GpuSceneLayout {
@@ -85,9 +79,15 @@ struct GpuSceneLayout {
   std::vector<GpuSphere> spheres;
   std::vector<GpuPlane> planes;
   std::vector<GpuTriangle> triangles;  // by global id
-  std::vector<GpuTriangleUv> triangleUvs;  // by global id; empty unless hasUvs
+  // What shading reads of a triangle beyond its normals, attributeSlots() vec4 a
+  // triangle by global id: where hasUvs, each vertex's uv sets (TEXCOORD_0 in xy,
+  // TEXCOORD_1 in zw: TEXCOORD_0 again where the mesh has no second set, zero where
+  // it has none); then, where hasColors, each vertex's COLOR_0 (linear RGBA).
+  std::vector<glm::vec4> triangleAttributes;
   std::vector<std::uint32_t> firstTriangle;  // per group: its first global id
-  bool hasUvs = false;  // some material reads a texture and some mesh has uvs (triangleUvs is filled)
+  bool hasColors = false;  // some mesh has vertex colours
+  bool hasUvs = false;     // some material reads a texture and some mesh has uvs
+  int attributeSlots() const { return 3 * (int(hasUvs) + int(hasColors)); }
   int depth = 0;  // levels of nodes on the deepest path, leaves included
 
   // The most entries a traversal stack holds: width - 1 per level (Bvh::kStackSize's rule).

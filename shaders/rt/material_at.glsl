@@ -1,17 +1,9 @@
 // RtScene::materialAt on the GPU (raytrace/rt_scene.cpp): a hit's material, its
-// textures applied at the hit's uv with the ray cone's footprint (rt/texture.glsl):
+// vertex colour and, built with RT_TEXTURES, its textures applied at the hit's uv with the ray cone's footprint (rt/texture.glsl):
 // the base colour's, metallic-roughness's (roughness times G, metallic times B) and
 // the emissive one's, and the terrain's layered material (raytrace/terrain_material.cpp,
 // terrain::layerWeights), operation for operation. Change both together. After
 // rt/surface.glsl and rt/texture.glsl.
-
-// RtTerrainMaterial's constants (raytrace/gpu_textures.h's GpuTerrain).
-struct RtTerrain {
-  ivec4 layers;              // grass, rock, snow: rtTextures indices
-  dvec2 originYHeightScale;  // the terrain origin's world height; the height scale
-  dvec2 unused;
-};
-layout(std430, binding = BUFFER_RT_TERRAINS) readonly buffer RtTerrains { RtTerrain rtTerrains[]; };
 
 // terrain/materials.h's constants.
 const float RT_LAYER_FAR_SCALE = 0.173;
@@ -37,11 +29,11 @@ vec3 rtLayerWeights(float height01, float slope, float jitter) {
 // RtTerrainMaterial::sample into the material from its five reads (grass near and
 // far, rock near and far, snow): its albedo times the layers', their roughness and
 // highlight.
-void rtApplyTerrain(inout RtMaterial m, RtTerrain t, vec4 reads[8], int first, double y, float normalY) {
+void rtApplyTerrain(inout RtMaterial m, vec4 reads[8], int first, double y, float normalY) {
   precise vec3 grass = reads[first].xyz * reads[first + 1].xyz * 2.0;
   precise vec3 rock = reads[first + 2].xyz * reads[first + 3].xyz * 2.0;
   vec3 snow = reads[first + 4].xyz;
-  precise float height01 = float(y - t.originYHeightScale.x) / float(t.originYHeightScale.y);
+  precise float height01 = float(y - m.terrainOriginYHeightScale.x) / float(m.terrainOriginYHeightScale.y);
   precise float jitter = rock.r * 2.0 - 0.5;
   vec3 w = rtLayerWeights(height01, 1.0 - normalY, jitter);
   precise vec3 albedo = grass * w.x + rock * w.y + snow * w.z;
@@ -68,6 +60,7 @@ float rtFootprint(inout float coneWidth, float coneSpread, Surface s, vec3 v, fl
 // and a sampler for each read made a kernel take 12 s to compile.
 RtMaterial rtMaterialAt(Surface s, float footprint) {
   RtMaterial m = rtMaterials[s.material];
+  m.colorAmbient.xyz = m.colorAmbient.xyz * s.color.xyz;  // baseColor: the colour times COLOR_0
 #ifdef RT_TEXTURES
   ivec4 t = m.textures;
   int texture[8];
@@ -80,13 +73,11 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
     uv[reads] = s.uv0;
     width[reads++] = footprint;
   }
-  RtTerrain terrain;
   if (t.w >= 0) {
-    terrain = rtTerrains[t.w];
     precise vec2 uvFar = s.uv0 * RT_LAYER_FAR_SCALE;
     precise float footprintFar = footprint * RT_LAYER_FAR_SCALE;
     for (int k = 0; k < 5; ++k) {
-      texture[reads + k] = terrain.layers[k / 2];
+      texture[reads + k] = m.terrainLayers[k / 2];
       uv[reads + k] = k % 2 == 0 ? s.uv0 : uvFar;
       width[reads + k] = k % 2 == 0 ? footprint : footprintFar;
     }
@@ -106,7 +97,7 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
     m.metallicRoughnessUnlit.x = m.metallicRoughnessUnlit.x * mr.z;
   }
   if (t.z >= 0) m.emission.xyz = m.emission.xyz * texel[next++].xyz;
-  if (t.w >= 0) rtApplyTerrain(m, terrain, texel, reads, double(s.p.y), s.ns.y);
+  if (t.w >= 0) rtApplyTerrain(m, texel, reads, double(s.p.y), s.ns.y);
 #endif
   return m;
 }
@@ -114,12 +105,12 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
 // ---- Alpha and single-sided faces (RtScene::opacityAt, surfaceOpacity, transmittance) ----
 
 // How much of a ray the surface stops: 1 opaque, MASK's 0 or 1 at its cutoff, or
-// BLEND's alpha (the factor times the base colour texture's alpha).
+// BLEND's alpha (the factor times COLOR_0's alpha times the base colour texture's).
 float rtOpacity(Surface s, float footprint) {
   RtMaterial m = rtMaterials[s.material];
   int mode = int(m.alpha.x);
   if (mode == 0) return 1.0;
-  float alpha = m.alpha.y;
+  float alpha = m.alpha.y * s.color.a;
 #ifdef RT_TEXTURES
   if (m.textures.x >= 0) alpha = alpha * rtSampleTexture(m.textures.x, s.uv0, s.uv1, footprint).w;
 #endif

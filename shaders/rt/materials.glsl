@@ -11,6 +11,8 @@ struct RtMaterial {
   ivec4 textures;                            // base colour, metallic-roughness, emissive (rt/texture.glsl's; -1 none), terrain (-1 none)
   vec4 surface;                              // x: texture scale (spheres, planes); y: 1 when a hit's uv is read
   vec4 alpha;                                // x: mode (0 opaque, 1 MASK, 2 BLEND), y: factor, z: cutoff, w: 1 when single-sided
+  ivec4 terrainLayers;                       // the terrain's grass, rock, snow (textures.w >= 0)
+  dvec2 terrainOriginYHeightScale;           // its origin's world height; its height scale
 };
 
 layout(std430, binding = BUFFER_RT_MATERIALS) readonly buffer RtMaterials { RtMaterial rtMaterials[]; };

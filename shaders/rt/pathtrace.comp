@@ -21,7 +21,6 @@
 #include "rt/sky.glsl"
 #include "rt/camera.glsl"
 #include "common/brdf.glsl"
-#include "common/latlong.glsl"
 #include "rt/sampling.glsl"
 #include "rt/bsdf.glsl"
 #include "rt/environment_light.glsl"

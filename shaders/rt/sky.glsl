@@ -1,16 +1,57 @@
-// Environment::radiance for the background colour and the gradient sky (image skies
-// are refused before a kernel runs), shared by the GPU integrators. After
-// rt/surface.glsl (rtNormalize).
+// Environment::radiance, shared by the GPU integrators: the background colour, the
+// gradient sky, or a lat-long image (its linear RGB as Environment holds it, sampled
+// as Environment::bilinear does: wrapped around, clamped at the poles) times its
+// intensity, turned about +y. After rt/surface.glsl (rtNormalize).
+#include "common/latlong.glsl"
 
-// 0 the background colour, 1 the gradient sky.
+// 0 the background colour, 1 the gradient sky (an image: RT_SKY_IMAGE).
 uniform int u_skyKind;
 uniform vec3 u_background, u_zenith, u_horizon, u_ground;
 uniform int u_sunDisk;  // the gradient draws a disk toward u_sun
 uniform vec3 u_sun;
 
+// The image, built with RT_SKY_IMAGE.
+#ifdef RT_SKY_IMAGE
+uniform ivec2 u_skyImageSize;
+uniform float u_skyIntensity;
+uniform vec2 u_skyRotation;  // the image's turn: cosine, sine
+layout(std430, binding = BUFFER_RT_SKY_IMAGE) readonly buffer RtSkyImage { float rtSkyImage[]; };
+
+vec3 rtSkyTexel(int x, int y) {
+  int i = 3 * (y * u_skyImageSize.x + x);
+  return vec3(rtSkyImage[i], rtSkyImage[i + 1], rtSkyImage[i + 2]);
+}
+
+// glm::mix: a (1 - t) + b t.
+vec3 rtSkyMix(vec3 a, vec3 b, float t) {
+  precise vec3 r = a * (1.0 - t) + b * t;
+  return r;
+}
+
+vec3 rtSkyImageAt(vec2 uv) {
+  int w = u_skyImageSize.x, h = u_skyImageSize.y;
+  precise float x = uv.x * float(w) - 0.5, y = uv.y * float(h) - 0.5;
+  float x0f = floor(x), y0f = floor(y);
+  precise float fx = x - x0f, fy = y - y0f;
+  int x0 = int(x0f), x1 = int(x0f) + 1;
+  x0 = x0 >= 0 ? x0 % w : (w - 1) - ((-x0 - 1) % w);
+  x1 = x1 >= 0 ? x1 % w : (w - 1) - ((-x1 - 1) % w);
+  int y0 = clamp(int(y0f), 0, h - 1), y1 = clamp(int(y0f) + 1, 0, h - 1);
+  vec3 top = rtSkyMix(rtSkyTexel(x0, y0), rtSkyTexel(x1, y0), fx);
+  vec3 bottom = rtSkyMix(rtSkyTexel(x0, y1), rtSkyTexel(x1, y1), fx);
+  return rtSkyMix(top, bottom, fy);
+}
+#endif
+
 // `sunDisk` false leaves the disk out (the path tracer samples the sun as a light).
 vec3 rtSky(vec3 dir, bool sunDisk) {
   if (u_skyKind == 0) return u_background;
+#ifdef RT_SKY_IMAGE
+  // The image turned by the rotation shows at `dir` what it holds at `dir` turned back.
+  vec3 local = rotateAboutY(dir, u_skyRotation.x, -u_skyRotation.y);
+  precise vec3 radiance = rtSkyImageAt(latLongUv(local)) * u_skyIntensity;
+  return radiance;
+#endif
   vec3 d = rtNormalize(dir);
   vec3 color = d.y >= 0.0 ? mix(u_horizon, u_zenith, sqrt(d.y)) : mix(u_horizon, u_ground, sqrt(-d.y));
   if (sunDisk && u_sunDisk != 0) {

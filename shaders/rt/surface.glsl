@@ -9,15 +9,15 @@ struct Surface {
   int material;
   vec2 uv0, uv1;     // TEXCOORD_0 and _1 (the same on spheres and planes)
   float uvPerMetre;  // uv units per metre of surface, for the ray cone's footprint
+  vec4 color;        // COLOR_0 (white where the mesh has none)
 };
 
-// The triangles' texture coordinates (raytrace/gpu_layout.h's GpuTriangleUv), bound
-// with u_triangleUvs 1 when some mesh has them.
-struct RtTriangleUv {
-  vec4 uv[3];  // per vertex: TEXCOORD_0 in xy, TEXCOORD_1 in zw
-};
-layout(std430, binding = BUFFER_RT_TRIANGLE_UVS) readonly buffer RtTriangleUvs { RtTriangleUv rtTriangleUvs[]; };
-uniform int u_triangleUvs;
+// The triangles' uvs and colours (raytrace/gpu_layout.h's triangleAttributes,
+// RT_ATTRIBUTE_SLOTS vec4 a triangle), built with RT_TRIANGLE_UVS where a material
+// reads a texture and with RT_TRIANGLE_COLORS where a mesh has vertex colours.
+#if defined(RT_TRIANGLE_UVS) || defined(RT_TRIANGLE_COLORS)
+layout(std430, binding = BUFFER_RT_TRIANGLE_ATTRIBUTES) readonly buffer RtTriangleAttributes { vec4 rtTriangleAttributes[]; };
+#endif
 
 float nextUp(float v) {
   if (isinf(v) && v > 0.0) return v;
@@ -67,22 +67,26 @@ vec2 rtSphereUv(vec3 n) {
 
 // A triangle's uv at the hit and its density (RtScene::meshInteraction): the square
 // root of the uv area over the area in space.
-void rtTriangleUv(inout Surface s, RtHit hit, vec3 p0, vec3 p1, vec3 p2, float area) {
-  RtTriangleUv t = rtTriangleUvs[hit.index];
+#ifdef RT_TRIANGLE_UVS
+void rtTriangleUv(inout Surface s, RtHit hit, float area) {
+  uint first = hit.index * uint(RT_ATTRIBUTE_SLOTS);
+  vec4 t0 = rtTriangleAttributes[first], t1 = rtTriangleAttributes[first + 1u], t2 = rtTriangleAttributes[first + 2u];
   vec3 b = hit.bary;
-  precise vec4 uv = b.x * t.uv[0] + b.y * t.uv[1] + b.z * t.uv[2];
+  precise vec4 uv = b.x * t0 + b.y * t1 + b.z * t2;
   s.uv0 = uv.xy;
   s.uv1 = uv.zw;
-  precise vec2 du = t.uv[1].xy - t.uv[0].xy, dv = t.uv[2].xy - t.uv[0].xy;
+  precise vec2 du = t1.xy - t0.xy, dv = t2.xy - t0.xy;
   precise float uvArea = abs(du.x * dv.y - du.y * dv.x);
   s.uvPerMetre = area > 0.0 ? sqrt(uvArea / area) : 0.0;
 }
+#endif
 
 Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
   Surface s;
   s.uv0 = vec2(0.0);
   s.uv1 = vec2(0.0);
   s.uvPerMetre = 0.0;
+  s.color = vec4(1.0);
   precise vec3 at = o + d * hit.t;
   if (hit.kind == RT_SPHERE) {
     RtSphere sp = rtSpheres[hit.index];
@@ -142,7 +146,18 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
       if (nsLen > 0.0) s.ns = ns / nsLen;
     }
     s.material = int(tri.n[0].w);
-    if (u_triangleUvs != 0) rtTriangleUv(s, hit, p0, p1, p2, len);
+#ifdef RT_TRIANGLE_UVS
+    rtTriangleUv(s, hit, len);
+#endif
+#ifdef RT_TRIANGLE_COLORS
+    if (tri.n[2].w > 0.0) {
+      // After the uvs' three slots, where there are uvs.
+      uint first = hit.index * uint(RT_ATTRIBUTE_SLOTS) + uint(RT_ATTRIBUTE_SLOTS) - 3u;
+      precise vec4 color = b.x * rtTriangleAttributes[first] + b.y * rtTriangleAttributes[first + 1u] +
+                           b.z * rtTriangleAttributes[first + 2u];
+      s.color = color;
+    }
+#endif
   }
   return s;
 }

@@ -13,8 +13,12 @@ struct RtTexture {
   ivec4 level[RT_TEXTURE_LEVELS];  // first texel, width, height
 };
 
+// Declared only where the scene has textures (RT_TEXTURES): a compute shader has at
+// most 16 storage blocks, and GLSL counts every std430 block declared.
+#ifdef RT_TEXTURES
 layout(std430, binding = BUFFER_RT_TEXTURES) readonly buffer RtTextures { RtTexture rtTextures[]; };
 layout(std430, binding = BUFFER_RT_TEXELS) readonly buffer RtTexels { vec4 rtTexels[]; };
+#endif
 
 const int RT_WRAP_REPEAT = 10497;
 const int RT_WRAP_CLAMP = 33071;
@@ -50,6 +54,7 @@ vec4 rtMix(vec4 a, vec4 b, float t) {
   return r;
 }
 
+#ifdef RT_TEXTURES
 vec4 rtBilinear(int index, int level, vec2 uv) {
   ivec4 l = rtTextures[index].level[level];
   ivec4 info = rtTextures[index].info;
@@ -88,3 +93,4 @@ vec4 rtSampleTexture(int index, vec2 uv0, vec2 uv1, float footprint) {
   for (int k = 0; k < (t > 0.0 ? 2 : 1); ++k) level[k] = rtBilinear(index, below + k, uv);
   return t > 0.0 ? rtMix(level[0], level[1], t) : level[0];
 }
+#endif

@@ -205,8 +205,8 @@ TEST_P(GpuPath, RendersTheCpusImageOfTheRoom) {
 // Textures sampled through the ray cone, MASK's cut-outs and single-sided faces
 // passed, BLEND as stochastic transparency (a draw from the path's stream where 0 <
 // alpha < 1, as the CPU draws it) and its share in shadow rays, the terrain's layers:
-// support/rt_textured.h's room in classic shading, then in PBR under the gradient
-// sky; and the shipped scenes that use them (materials.json, terrain.json); judged
+// support/rt_textured.h's room (with vertex colours) in classic shading, then in PBR
+// under the gradient sky and under an image sky (sampled through its distribution); and the shipped scenes that use them (materials.json, terrain.json); judged
 // as the room above. Measured on llvmpipe: the same ray counts and images equal to
 // the last bits (README.md).
 TEST_P(GpuPath, RendersTheCpusImageOfTexturedSurfaces) {
@@ -217,6 +217,10 @@ TEST_P(GpuPath, RendersTheCpusImageOfTexturedSurfaces) {
   room.setRender(render);
   room.setSky(SkyDesc{});
   expectAgreement(room, "textured room, pbr, sky");
+  const std::filesystem::path file = test::temporaryFile("gpu_path_sky.hdr");
+  room.setEnvironment(test::hashedSky(file));
+  std::filesystem::remove(file);
+  expectAgreement(room, "textured room, pbr, image sky");
 }
 
 TEST_P(GpuPath, RendersTheCpusImageOfTheShippedTexturedScenes) {

@@ -201,6 +201,22 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTexturedSurfaces) {
   expectCpusImages(test::texturedRoom(), whittedSettings(), "the textured room", [](rt::RtScene&) {});
 }
 
+// An image sky (support/rt_textured.h's hashedSky: a Radiance file, an intensity, a
+// turn) over the room without its walls and ceiling (the floor a 6 m square), seen
+// directly and in the mirror, both shadings.
+TEST_P(GpuWhitted, RendersTheCpusImageOfAnImageSky) {
+  rt::RtScene scene = test::roomWithMeshes([](SceneDesc& desc) {
+    std::erase_if(desc.primitives, [](const PrimitiveDesc& p) { return p.type == PrimitiveType::Plane && p.point.y != 0.0; });
+    for (PrimitiveDesc& p : desc.primitives) {
+      if (p.type == PrimitiveType::Plane) p.extent = 3.0;
+    }
+  });
+  const std::filesystem::path file = test::temporaryFile("gpu_whitted_sky.hdr");
+  scene.setEnvironment(test::hashedSky(file));
+  std::filesystem::remove(file);
+  expectCpusImages(scene, whittedSettings(), "the room under an image sky", [](rt::RtScene&) {});
+}
+
 // The shipped scenes that use them: materials.json (the glTF material model:
 // textures, MASK, BLEND, single-sided quads, an emissive panel, the checkered
 // ground) and terrain.json (the terrain's layers, far and near).

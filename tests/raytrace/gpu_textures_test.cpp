@@ -46,32 +46,35 @@ TEST(GpuTextures, AreTheCpusTexelsAtTheMaterialsIndices) {
   }
 }
 
-// Each triangle's uvs (both sets) in the layout's global order: the order the
+// Each triangle's uvs (both sets) and colours in the layout's global order: the order the
 // leaves' ids and GpuTriangle use.
-TEST(GpuTextures, TrianglesCarryTheirMeshesUvs) {
+TEST(GpuTextures, TrianglesCarryTheirMeshesUvsAndColours) {
   const rt::RtScene scene = engine::test::texturedRoom();
   const rt::GpuSceneLayout layout = rt::flattenScene(scene, 4);
   ASSERT_TRUE(layout.hasUvs);
-  ASSERT_EQ(layout.triangleUvs.size(), layout.triangles.size());
+  ASSERT_TRUE(layout.hasColors);
+  ASSERT_EQ(layout.attributeSlots(), 6);
+  ASSERT_EQ(layout.triangleAttributes.size(), 6 * layout.triangles.size());
   int withUvs = 0;
   for (int group = 0; group < scene.groupCount(); ++group) {
     const auto& meshOf = scene.groupTriangleMeshes(group);
     for (std::size_t t = 0; t < meshOf.size(); ++t) {
       const rt::RtMesh& mesh = scene.meshes()[meshOf[t]];
       const std::size_t first = 3 * (t - scene.meshFirstTriangle(int(meshOf[t])));
-      const rt::GpuTriangleUv& g = layout.triangleUvs[layout.firstTriangle[std::size_t(group)] + t];
+      const glm::vec4* g = &layout.triangleAttributes[6 * (layout.firstTriangle[std::size_t(group)] + t)];
       for (int v = 0; v < 3; ++v) {
         const std::uint32_t i = mesh.indices[first + std::size_t(v)];
         const glm::vec2 uv0 = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[i];
         const glm::vec2 uv1 = mesh.uvs1.empty() ? uv0 : mesh.uvs1[i];
-        ASSERT_EQ(g.uv[v], glm::vec4(uv0, uv1)) << "group " << group << " triangle " << t;
+        ASSERT_EQ(g[v], glm::vec4(uv0, uv1)) << "group " << group << " triangle " << t;
+        ASSERT_EQ(g[3 + v], mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[i]);
       }
       withUvs += mesh.uvs.empty() ? 0 : 1;
     }
   }
   EXPECT_GT(withUvs, 1000);
   // Without a texture in the scene, no array (its boxes have uvs).
-  EXPECT_TRUE(rt::flattenScene(engine::test::roomWithMeshes(), 4).triangleUvs.empty());
+  EXPECT_TRUE(rt::flattenScene(engine::test::roomWithMeshes(), 4).triangleAttributes.empty());
 }
 
 }  // namespace

@@ -5,11 +5,20 @@
 // mode, a KHR_texture_transform on the second uv set, base colour, emissive and
 // metallic-roughness textures on planes, spheres and meshes (one without uvs), uvs
 // far outside [0, 1], alpha MASK and BLEND from a texture's alpha, a single-sided
-// face seen from behind, and the terrain's layered material on a bumpy grid.
+// face seen from behind, the terrain's layered material on a bumpy grid, vertex
+// colours; and an image sky (hashedSky).
 #include <cmath>
 #include <cstdint>
 
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <unistd.h>
+
 #include "asset/texture_transform.h"
+#include "radiance_file.h"
+#include "raytrace/environment.h"
 #include "raytrace/scene_builder.h"
 #include "raytrace/terrain_material.h"
 #include "rt_room.h"
@@ -60,6 +69,40 @@ inline rt::RtMesh uvGrid(const glm::vec3& corner, const glm::vec3& a, const glm:
   return mesh;
 }
 
+// The mesh with a vertex colour (COLOR_0: linear RGBA, alpha 0.4-1) at each vertex.
+inline rt::RtMesh withColors(rt::RtMesh mesh) {
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const float k = float(i % 7) / 6.0f;
+    mesh.colors.emplace_back(0.4f + 0.6f * k, 1.0f - 0.5f * k, 0.7f, 0.4f + 0.6f * (1.0f - k));
+  }
+  return mesh;
+}
+
+// A lat-long Radiance image of hashed values (0.05-0.55, none that the tone map
+// saturates), written to `path`, as the scene's environment: intensity 1.3, turned by
+// 30 degrees.
+// A file name of this process's own in the temporary folder.
+inline std::filesystem::path temporaryFile(const std::string& name) {
+  return std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+}
+
+inline rt::Environment hashedSky(const std::filesystem::path& path) {
+  constexpr int kWidth = 48, kHeight = 24;
+  std::vector<glm::vec3> pixels;
+  const Image hashed = hashedImage(kWidth, kHeight, 9);
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) pixels.push_back(0.05f + glm::vec3(hashed.at(x, y)[0], hashed.at(x, y)[1], hashed.at(x, y)[2]) / 512.0f);
+  }
+  writeHdr(path, kWidth, kHeight, pixels);
+  SkyDesc sky;
+  sky.image = path.string();
+  sky.intensity = 1.3f;
+  sky.rotationDegrees = 30.0f;
+  auto environment = rt::Environment::create(sky, std::nullopt);
+  EXPECT_TRUE(environment) << environment.error().message;
+  return std::move(environment).value();
+}
+
 inline rt::RtScene texturedRoom() {
   // Materials 6 (MASK, single-sided), 7 (BLEND), 8 (the second uv set through a
   // transform) and 9 (the terrain's layers) after the room's six.
@@ -104,9 +147,9 @@ inline rt::RtScene texturedRoom() {
   // Cut-out leaves facing the camera (-z), a pane seen from the front and, turned
   // away from the camera, the same cut-out: single-sided, so it is not there.
   add(uvGrid({-1.9f, 1.6f, 2.2f}, {0.0f, 1.0f, 0.0f}, {1.2f, 0.0f, 0.0f}, 6, {-2.3f, 0.4f}, {5.5f, 3.0f}), 6);
-  add(uvGrid({0.2f, 1.2f, 1.2f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.2f, 0.3f}, 3, {0.0f, 0.0f}, {1.0f, 1.0f}), 7);
+  add(withColors(uvGrid({0.2f, 1.2f, 1.2f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.2f, 0.3f}, 3, {0.0f, 0.0f}, {1.0f, 1.0f})), 7);
   add(uvGrid({1.5f, 0.2f, 2.6f}, {0.8f, 0.0f, 0.0f}, {0.0f, 1.1f, 0.0f}, 3, {0.0f, 0.0f}, {1.0f, 1.0f}), 6);
-  add(uvGrid({-0.6f, 2.0f, 4.9f}, {1.6f, 0.0f, 0.0f}, {0.0f, 0.9f, 0.0f}, 8, {-1.0f, -1.0f}, {3.0f, 3.0f}, 0.1f), 8);
+  add(withColors(uvGrid({-0.6f, 2.0f, 4.9f}, {1.6f, 0.0f, 0.0f}, {0.0f, 0.9f, 0.0f}, 8, {-1.0f, -1.0f}, {3.0f, 3.0f}, 0.1f)), 8);
   add(uvGrid({-2.4f, 0.01f, 0.0f}, {0.0f, 0.0f, 2.4f}, {1.9f, 0.0f, 0.0f}, 24, {0.0f, 0.0f}, {40.0f, 40.0f}, 0.4f), 9);
   scene.build();
   return scene;
