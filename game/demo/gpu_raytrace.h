@@ -2,11 +2,15 @@
 // `demo --mode raytrace|pathtrace --device gpu --offscreen`: the scene built as the
 // CPU tracer builds it, traced by the GPU Whitted integrator or path tracer
 // (engine/gputrace) on an offscreen context, tone mapped by the CPU's own code.
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "app/game.h"
 #include "app/runner.h"
 #include "asset/scene_desc.h"
 #include "core/result.h"
+#include "gl/resources.h"
 #include "raytrace/scene_builder.h"
 
 namespace demo {
@@ -16,5 +20,38 @@ namespace demo {
 engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc& scene, double time,
                                                          const engine::rt::RenderSettings& settings,
                                                          engine::Backend backend, const std::string& shaderDir);
+
+// `demo --mode raytrace|pathtrace --device gpu` in a window: the GPU tracer on the
+// window's own context, a pass a frame (the Whitted tracer's whole image; the path
+// tracer's next sample of every pixel), the image the mean of the passes so far. Each
+// pass is the GPU's sum of one sample, summed here in the order the offscreen
+// render's kernel sums them, so the last frame is the offscreen image byte for byte.
+class GpuTraceGame final : public engine::Game {
+ public:
+  GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings, std::string shaderDir);
+  ~GpuTraceGame() override;
+
+  engine::Status init() override;
+  void update(double, double) override {}
+  engine::Status render(const engine::FrameInfo& frame) override;
+  engine::Camera& camera() override { return camera_; }
+  void shutdown() override;
+
+ private:
+  engine::Status tracePass();
+
+  engine::SceneDesc desc_;
+  double time_;
+  engine::rt::RenderSettings settings_;
+  std::string shaderDir_;
+  engine::Camera camera_;
+  std::unique_ptr<engine::rt::RtScene> scene_;
+  struct Tracer;
+  std::unique_ptr<Tracer> tracer_;
+  std::vector<glm::vec3> sum_;  // linear, each pixel's samples so far
+  int done_ = 0, passes_ = 1;
+  engine::gl::Texture texture_;
+  engine::gl::Framebuffer framebuffer_;
+};
 
 }  // namespace demo

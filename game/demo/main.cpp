@@ -215,11 +215,17 @@ int main(int argc, char** argv) {
     rt.settings.height = options.run.height;
     rt.settings.precision = rt.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;
     const bool gpu = rt.device == "gpu";
-    if (gpu && !offscreen) return fail(engine::kExitBadInput, "--device gpu: only with --offscreen for now");
     if (offscreen) return runRaytraceOffscreen(*scene, options, rt.settings, gpu);
     if (!engine::displayAvailable()) return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
-    demo::RaytraceGame game(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings);
-    if (auto status = engine::runWindow(game, options.run); !status) return fail(engine::kExitBadInput, status.error().message);
+    std::unique_ptr<engine::Game> game;
+    if (gpu) {
+      game = std::make_unique<demo::GpuTraceGame>(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings,
+                                                  options.shaderDir);
+    } else {
+      game = std::make_unique<demo::RaytraceGame>(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings);
+    }
+    if (auto status = engine::runWindow(*game, options.run); !status) return fail(engine::kExitBadInput, status.error().message);
+    if (!options.run.screenshot.empty()) std::printf("%s\n", options.run.screenshot.c_str());
     return 0;
   }
   const engine::Backend backend = engine::chosenBackend(options);

@@ -449,8 +449,8 @@ PY
     expect 2 "^demo: --device gpu: double precision is not supported$" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" \
       --mode pathtrace --device gpu --rt-precision double --offscreen --size 64x48 --screenshot ptg.png
     [ "$(wc -l < "$ERR")" -eq 1 ] || { echo "FAIL: the refusal is not one line"; cat "$ERR"; exit 1; }
-    expect 2 "--device gpu: only with --offscreen for now" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" \
-      --mode pathtrace --device gpu --size 64x48 ;;
+    unset DISPLAY
+    expect 2 "no usable display" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode pathtrace --device gpu --size 64x48 ;;
   pathtrace_offscreen)
     rm -f pt.png pt.json
     expect 0 "path traced 64x48, spp 4" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode pathtrace --offscreen \
@@ -465,5 +465,23 @@ PY
     expect 0 "" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode pathtrace --size 64x48 --spp 4 --frames 30 \
       --screenshot ptw.png
     [ -s ptw.png ] || { echo "FAIL: no screenshot"; exit 1; } ;;
+  gpu_trace_window)
+    # The GPU tracers in a window, a pass a frame: once every pass is in, the
+    # window's image is the offscreen one byte for byte (the path tracer's samples
+    # summed in the kernel's order), for the Whitted tracer of the room and the path
+    # tracer of materials.json (textures, alpha).
+    start_xvfb
+    rm -f gww.png gwo.png gpw.png gpo.png
+    expect 0 "gww\.png" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --device gpu --size 64x48 \
+      --frames 2 --screenshot gww.png
+    expect 0 "" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --device gpu --offscreen --size 64x48 \
+      --screenshot gwo.png
+    cmp gww.png gwo.png || { echo "FAIL: the window's Whitted image is not the offscreen one"; exit 1; }
+    expect 0 "pass 4 of 4" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --mode pathtrace --device gpu --size 64x48 \
+      --spp 4 --frames 6 --screenshot gpw.png
+    expect 0 "" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --mode pathtrace --device gpu --offscreen \
+      --size 64x48 --spp 4 --screenshot gpo.png
+    cmp gpw.png gpo.png || { echo "FAIL: the window's path-traced image is not the offscreen one"; exit 1; }
+    echo "ok: identical bytes" ;;
   *) echo "unknown case $CASE"; exit 1 ;;
 esac
