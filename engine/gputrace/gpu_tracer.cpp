@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "gl/bindings.h"
+#include "gputrace/gpu_materials.h"
 #include "gputrace/tracer_state.h"
 #include "raytrace/gpu_textures.h"
 #include "raytrace/ray_cone.h"
@@ -21,47 +22,11 @@ std::string floatDefine(const char* name, float value) {
   return text;
 }
 
-// std430 twins of rt/materials.glsl's RtMaterial and whitted.comp's RtLight.
-struct GpuMaterial {
-  glm::vec4 colorAmbient;
-  glm::vec4 diffuseSpecularShininessReflection;
-  glm::vec4 metallicRoughnessUnlit;
-  glm::vec4 emission;
-  glm::vec4 dielectric;  // f0, f90
-  glm::ivec4 textures;   // base colour, metallic-roughness, emissive, terrain (-1 none)
-  glm::vec4 surface;     // texture scale, reads uv
-  glm::vec4 alpha;       // mode, factor, cutoff, single-sided
-  glm::ivec4 terrainLayers;              // grass, rock, snow: texture indices
-  glm::dvec2 terrainOriginYHeightScale;  // RtTerrainMaterial's
-};
-static_assert(sizeof(GpuMaterial) == 160);
+// std430 twin of whitted.comp's RtLight.
 struct GpuLight {
   glm::ivec4 typeShadowsFalloff;
   glm::vec4 position, direction, radiance, edgeU, edgeV;
 };
-
-// `textures`: where each terrain's layers are (flattenTextures).
-std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene, const rt::GpuTextureSet& textures) {
-  std::vector<GpuMaterial> out;
-  for (std::size_t i = 0; i < scene.materials().size(); ++i) {
-    const rt::HitMaterial m = scene.baseMaterial(int(i));
-    const rt::RtScene::MaterialExtras& e = scene.extras(int(i));
-    const float alphaMode = e.alphaMode == AlphaMode::Mask ? 1.0f : e.alphaMode == AlphaMode::Blend ? 2.0f : 0.0f;
-    out.push_back(GpuMaterial{glm::vec4(m.albedo, m.ambient), glm::vec4(m.diffuse, m.specular, m.shininess, m.reflection),
-                              glm::vec4(m.metallic, m.roughness, m.unlit ? 1.0f : 0.0f, 0.0f), glm::vec4(m.emission, 0.0f),
-                              glm::vec4(m.dielectricF0, m.dielectricF90),
-                              glm::ivec4(e.texture, e.metallicRoughnessTexture, e.emissiveTexture, e.terrain),
-                              glm::vec4(scene.materials()[i].textureScale, e.readsUv() ? 1.0f : 0.0f, 0.0f, 0.0f),
-                              glm::vec4(alphaMode, e.alpha, e.alphaCutoff, e.singleSided ? 1.0f : 0.0f),
-                              glm::ivec4(-1), glm::dvec2(0.0)});
-    if (e.terrain >= 0) {
-      const rt::GpuTerrain& t = textures.terrains[std::size_t(e.terrain)];
-      out.back().terrainLayers = t.layers;
-      out.back().terrainOriginYHeightScale = t.originYHeightScale;
-    }
-  }
-  return out;
-}
 
 std::vector<GpuLight> lightsOf(const rt::RtScene& scene) {
   std::vector<GpuLight> out;
@@ -75,16 +40,13 @@ std::vector<GpuLight> lightsOf(const rt::RtScene& scene) {
 }
 
 // The glTF material layers some material of the scene has that the GPU path tracer
-// does not draw (it draws KHR_materials_ior and _specular: the dielectric's f0 and
-// f90), as "KHR_materials_clearcoat, _sheen"; empty when none.
+// does not draw (it draws KHR_materials_ior, _specular, _clearcoat, _sheen and
+// _iridescence), as "KHR_materials_transmission, _anisotropy"; empty when none.
 std::string undrawnLayers(const std::vector<MaterialDesc>& materials) {
   const auto any = [&](auto has) { return std::any_of(materials.begin(), materials.end(), [&](const MaterialDesc& m) { return has(m.layers); }); };
   const std::pair<const char*, bool> layers[] = {
-      {"clearcoat", any([](const MaterialLayers& l) { return l.clearcoat > 0.0f; })},
       {"transmission", any([](const MaterialLayers& l) { return l.transmissive(); })},
-      {"sheen", any([](const MaterialLayers& l) { return l.sheen(); })},
-      {"anisotropy", any([](const MaterialLayers& l) { return l.anisotropy != 0.0f; })},
-      {"iridescence", any([](const MaterialLayers& l) { return l.iridescence > 0.0f; })}};
+      {"anisotropy", any([](const MaterialLayers& l) { return l.anisotropy != 0.0f; })}};
   std::string names;
   for (const auto& [name, present] : layers) {
     if (present) names += (names.empty() ? "KHR_materials_" : ", _") + std::string(name);

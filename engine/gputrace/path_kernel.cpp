@@ -9,6 +9,7 @@
 #include "gl/bindings.h"
 #include "gputrace/gpu_tracer.h"
 #include "gputrace/tracer_state.h"
+#include "core/sheen_table.h"
 #include "raytrace/path_tracer.h"
 #include "raytrace/ray_cone.h"
 
@@ -84,7 +85,15 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   // Prepared for each render, as Integrator prepares them: the sky may have changed.
   const std::shared_ptr<const rt::PathLights> lights = rt::preparePathLights(scene);
   const gl::Buffer lightBuffer = detail::storage(pathLightsOf(*lights));
-  const gl::Buffer environment = detail::storage(environmentTables(lights->environment));
+  // The sheen's albedo table after the environment's, where a material has a sheen.
+  std::vector<float> tables = environmentTables(lights->environment);
+  const int sheenOffset = int(tables.size());
+  const auto& materials = scene.materials();
+  if (std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return m.layers.sheen(); })) {
+    const std::vector<float>& sheen = engine::sheenTable().texels;
+    tables.insert(tables.end(), sheen.begin(), sheen.end());
+  }
+  const gl::Buffer environment = detail::storage(tables);
   s.bindScene(p);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtLights, lightBuffer.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtEnvironment, environment.id());
@@ -94,6 +103,7 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   p.set("u_rouletteDepth", settings.rouletteDepth);
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);
   p.set("u_coneSun", lights->coneSun ? 1 : 0);
+  p.set("u_sheenTable", sheenOffset);
   p.set("u_coneSpread", rt::pixelConeSpread(scene.camera().fovyDegrees, settings.height,
                                             settings.totalSamples > 0 ? settings.totalSamples : settings.samplesPerPixel));
   const rt::Distribution2D& d = lights->environment.distribution();

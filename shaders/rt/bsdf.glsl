@@ -1,11 +1,31 @@
 // The path tracer's scattering at one hit (raytrace/bsdf.cpp) for what the GPU path
 // tracer draws: the classic model made physical (Lambert, the course's highlight and
 // the mirror) and metallic-roughness (Lambert + GGX, with KHR_materials_ior and
-// _specular's f0 and f90). Clear coat, sheen, transmission, anisotropy and
-// iridescence are refused before a kernel runs, so their shares are 0 here and
+// _specular's f0 and f90, the clear coat, the sheen and the thin film). Transmission
+// and anisotropy are refused before a kernel runs, so their shares are 0 here and
 // their branches of bsdf.cpp are left out. The BRDFs are common/brdf.glsl's, the
-// text the CPU evaluates; the lobe choice and its pdf are bsdf.cpp's, transcribed.
-// After rt/sampling.glsl, rt/materials.glsl and common/brdf.glsl.
+// text the CPU evaluates; the lobe choice and its pdf are bsdf.cpp's, and the view's
+// terms HitMaterial::atView's, transcribed. After rt/sampling.glsl,
+// rt/materials.glsl, rt/environment_light.glsl and common/brdf.glsl.
+
+// The sheen's directional albedo table (core/sheen_table.h, SHEEN_TABLE_SIZE a side),
+// after the environment's tables in rtEnv at u_sheenTable, looked up as
+// SheenTable::lookup does.
+uniform int u_sheenTable;
+
+float sheenTableLookup(float nDotV, float roughness) {
+  int size = int(SHEEN_TABLE_SIZE);
+  precise vec2 x = sheenTableCoord(nDotV, roughness) * float(size) - vec2(0.5);
+  int x0 = clamp(int(floor(x.x)), 0, size - 1), y0 = clamp(int(floor(x.y)), 0, size - 1);
+  int x1 = min(x0 + 1, size - 1), y1 = min(y0 + 1, size - 1);
+  precise float wx = x.x - float(x0), wy = x.y - float(y0);
+  float a = rtEnv[u_sheenTable + y0 * size + x0], b = rtEnv[u_sheenTable + y0 * size + x1];
+  float c = rtEnv[u_sheenTable + y1 * size + x0], d = rtEnv[u_sheenTable + y1 * size + x1];
+  precise float bottom = a + (b - a) * wx;
+  precise float top = c + (d - c) * wx;
+  precise float r = bottom + (top - bottom) * wy;
+  return r;
+}
 
 struct Bsdf {
   bool metallicRoughness;
@@ -13,11 +33,19 @@ struct Bsdf {
   float diffuse, specular, shininess, reflection, metallic, roughness;
   vec3 dielectricF0;
   float dielectricF90;
+  float clearcoat, clearcoatRoughness;
+  vec3 sheenColor;
+  float sheenRoughness, iridescence;
   Frame frame;
   vec3 wo, woLocal;
   float alpha;      // GGX
+  float alphaCoat;  // the coat's GGX
   float pMirror;    // classic: the mirror's share of the samples
   float pSpecular;  // metallic-roughness: the GGX lobe's share
+  float pSheen, pCoat;
+  // ViewLayers: the sheen's albedo and the scaling it leaves the base; the film's Fresnel.
+  float sheenAlbedo, sheenScale;
+  vec3 iridescenceF;
 };
 
 struct BsdfSample {
@@ -32,6 +60,18 @@ float meanOf(vec3 c) {
   return m;
 }
 
+// glm::mix for vectors: a (1 - t) + b t.
+vec3 mixAsGlm(vec3 a, vec3 b, float t) {
+  precise vec3 r = a * (1.0 - t) + b * t;
+  return r;
+}
+
+// A lobe choice u past a share p taken before it, rescaled to [0, 1) (pastShare).
+float pastShare(float u, float p) {
+  precise float r = (u - p) / (1.0 - p);
+  return r;
+}
+
 Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
   Bsdf b;
   b.metallicRoughness = metallicRoughness;
@@ -44,12 +84,23 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
   b.roughness = m.metallicRoughnessUnlit.y;
   b.dielectricF0 = m.dielectric.xyz;
   b.dielectricF90 = m.dielectric.w;
+  b.clearcoat = m.coatSheen.x;
+  b.clearcoatRoughness = m.coatSheen.y;
+  b.sheenRoughness = m.coatSheen.z;
+  b.iridescence = m.coatSheen.w;
+  b.sheenColor = m.sheenColorFilmIor.xyz;
   b.frame = frameAbout(n);
   b.wo = wo;
   b.woLocal = toLocal(b.frame, wo);
   b.alpha = 1.0;
+  b.alphaCoat = 1.0;
   b.pMirror = 0.0;
   b.pSpecular = 0.0;
+  b.pSheen = 0.0;
+  b.pCoat = 0.0;
+  b.sheenAlbedo = 0.0;
+  b.sheenScale = 1.0;
+  b.iridescenceF = vec3(0.0);
   if (!metallicRoughness) {
     // Bsdf::classic: samples follow each part's weight.
     precise float rest = b.diffuse * max(b.albedo.x, max(b.albedo.y, b.albedo.z)) + b.specular;
@@ -58,15 +109,37 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
     b.pMirror = mirror > 0.0 ? (rest > 0.0 ? share : 1.0) : 0.0;
     return b;
   }
-  // Bsdf::metallicRoughness without layers: sheen scale 1, no coat, no transmission.
+  // Bsdf::metallicRoughness without transmission or anisotropy.
   b.alpha = ggxAlpha(b.roughness);
   float cosO = clamp(b.woLocal.z, 0.0, 1.0);
+  // HitMaterial::atView.
+  if (b.sheenColor != vec3(0.0)) b.sheenAlbedo = sheenTableLookup(cosO, b.sheenRoughness);
+  b.sheenScale = sheenScaling(b.sheenColor, b.sheenAlbedo);
   vec3 f0 = mix(b.dielectricF0, b.albedo, b.metallic);
+  if (b.iridescence > 0.0) {
+    b.iridescenceF = iridescenceFresnel(1.0, m.sheenColorFilmIor.w, max(cosO, 1e-4), m.film.x,
+                                        mixAsGlm(b.dielectricF0, b.albedo, b.metallic));
+  }
   precise float f90 = b.dielectricF90 + (1.0 - b.dielectricF90) * b.metallic;
-  float fresnel = meanOf(schlickFresnel90(f0, f90, cosO));
-  precise float diffuse = meanOf(b.albedo) * (1.0 - b.metallic) * (1.0 - fresnel);
-  precise float share = fresnel / (fresnel + diffuse);
+  float fresnel = meanOf(mixAsGlm(schlickFresnel90(f0, f90, cosO), b.iridescenceF, b.iridescence));
+  precise float sheen = maxComponent(b.sheenColor) * b.sheenAlbedo;
+  precise float specular = fresnel * b.sheenScale;
+  precise float diffuse = meanOf(b.albedo) * (1.0 - b.metallic) * (1.0 - fresnel) * b.sheenScale;  // no transmission
+  precise float share = specular / (specular + diffuse);
   b.pSpecular = diffuse > 0.0 ? clamp(share, 0.1, 0.9) : 1.0;
+  if (sheen > 0.0) {
+    precise float under = specular + diffuse;
+    precise float sheenShare = sheen / (sheen + under);
+    b.pSheen = under > 0.0 ? clamp(sheenShare, 0.1, 0.9) : 1.0;
+  }
+  // The coat reflects clearcoat Fc toward the eye and passes the rest on.
+  precise float coat = b.clearcoat > 0.0 ? b.clearcoat * schlickFresnel(vec3(0.04), cosO).x : 0.0;
+  if (b.clearcoat > 0.0) {
+    precise float base = (1.0 - coat) * (specular + diffuse + sheen);
+    b.alphaCoat = ggxAlpha(b.clearcoatRoughness);
+    precise float coatShare = coat / (coat + base);
+    b.pCoat = base > 0.0 ? clamp(coatShare, 0.1, 0.9) : 1.0;
+  }
   return b;
 }
 
@@ -80,7 +153,8 @@ vec3 bsdfF(Bsdf b, vec3 wi) {
     return reflected / (BRDF_PI * cosI);
   }
   return layeredBrdf(b.frame.n, b.wo, wi, b.albedo, b.metallic, b.roughness, b.dielectricF0, b.dielectricF90,
-                     b.frame.n, 0.0, 0.0, 0.0, vec3(0.0), 0.0, 1.0, b.frame.s, b.frame.t, 0.0, vec3(0.0), 0.0);
+                     b.frame.n, b.clearcoat, b.clearcoatRoughness, 0.0, b.sheenColor, b.sheenRoughness, b.sheenScale,
+                     b.frame.s, b.frame.t, 0.0, b.iridescenceF, b.iridescence);
 }
 
 // Bsdf::pdf: the density sample() draws wi with through its non-delta lobes.
@@ -93,7 +167,13 @@ float bsdfPdf(Bsdf b, vec3 wi) {
   }
   precise float base = b.pSpecular * ggxReflectionPdf(b.woLocal, wiLocal, b.alpha) +
                        (1.0 - b.pSpecular) * cosineHemispherePdf(wiLocal.z);
-  return base;
+  if (b.pSheen > 0.0) {
+    precise float withSheen = b.pSheen * uniformConePdf(0.0) + (1.0 - b.pSheen) * base;
+    base = withSheen;
+  }
+  if (b.pCoat <= 0.0) return base;
+  precise float reflected = b.pCoat * ggxReflectionPdf(b.woLocal, wiLocal, b.alphaCoat) + (1.0 - b.pCoat) * base;
+  return reflected;
 }
 
 // Bsdf::sample with its mirror, lambertSample and reflectionSample; false when it
@@ -120,10 +200,23 @@ bool bsdfSample(Bsdf b, vec2 u, float uLobe, out BsdfSample s) {
     s.weight = b.albedo * (b.diffuse / (1.0 - b.pMirror));
     return true;
   }
-  // reflectionSample (the transmission's share is 0, so uLobe is unchanged).
-  vec3 wiLocal = b.metallicRoughness && uLobe < b.pSpecular
-                     ? reflectAbout(b.woLocal, sampleGgxVisibleNormal(b.woLocal, b.alpha, u))
-                     : sampleCosineHemisphere(u);
+  // reflectionSample (the transmission's share is 0, so uLobe is unchanged): the
+  // coat, the sheen, the GGX lobe or the diffuse one, each past the shares before it.
+  // One call site for both GGX lobes (llvmpipe inlines every call).
+  float pastCoat = pastShare(uLobe, b.pCoat);
+  int lobe = !b.metallicRoughness                        ? 3
+             : uLobe < b.pCoat                           ? 0
+             : pastCoat < b.pSheen                       ? 1
+             : pastShare(pastCoat, b.pSheen) < b.pSpecular ? 2
+                                                         : 3;
+  vec3 wiLocal;
+  if (lobe == 1) {
+    wiLocal = sampleUniformCone(u, 0.0);
+  } else if (lobe == 3) {
+    wiLocal = sampleCosineHemisphere(u);
+  } else {
+    wiLocal = reflectAbout(b.woLocal, sampleGgxVisibleNormal(b.woLocal, lobe == 0 ? b.alphaCoat : b.alpha, u));
+  }
   if (wiLocal.z <= 0.0) return false;
   s.wi = rtNormalize(toWorld(b.frame, wiLocal));
   s.pdf = bsdfPdf(b, s.wi);

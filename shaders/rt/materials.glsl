@@ -11,6 +11,9 @@ struct RtMaterial {
   ivec4 textures;                            // base colour, metallic-roughness, emissive (rt/texture.glsl's; -1 none), terrain (-1 none)
   vec4 surface;                              // x: texture scale (spheres, planes); y: 1 when a hit's uv is read
   vec4 alpha;                                // x: mode (0 opaque, 1 MASK, 2 BLEND), y: factor, z: cutoff, w: 1 when single-sided
+  vec4 coatSheen;                            // clear coat, its roughness; the sheen's roughness; iridescence
+  vec4 sheenColorFilmIor;                    // the sheen's colour; the thin film's ior
+  vec4 film;                                 // x: the thin film's thickness (nm)
   ivec4 terrainLayers;                       // the terrain's grass, rock, snow (textures.w >= 0)
   dvec2 terrainOriginYHeightScale;           // its origin's world height; its height scale
 };

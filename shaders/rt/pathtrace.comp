@@ -1,7 +1,6 @@
 #version 450 core
 // The path tracer of raytrace/path_tracer.cpp on the GPU, one pixel per invocation,
-// for the scenes the GPU tracer draws (no textures, alpha, single-sided faces, image
-// skies or material layers beyond ior and specular: refused by
+// for the scenes the GPU tracer draws (no transmission or anisotropy: refused by
 // engine/gputrace/gpu_tracer.cpp before this runs). The same algorithm on the same
 // numbers: the CPU's camera rays through the R2 sequence turned per pixel, a PCG32
 // stream per sample, next-event estimation to every light and the environment
@@ -22,8 +21,8 @@
 #include "rt/camera.glsl"
 #include "common/brdf.glsl"
 #include "rt/sampling.glsl"
-#include "rt/bsdf.glsl"
 #include "rt/environment_light.glsl"
+#include "rt/bsdf.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

@@ -1,7 +1,7 @@
 // Environment::radiance, shared by the GPU integrators: the background colour, the
 // gradient sky, or a lat-long image (its linear RGB as Environment holds it, sampled
 // as Environment::bilinear does: wrapped around, clamped at the poles) times its
-// intensity, turned about +y. After rt/surface.glsl (rtNormalize).
+// intensity, turned about +y. After rt/math.glsl.
 #include "common/latlong.glsl"
 
 // 0 the background colour, 1 the gradient sky (an image: RT_SKY_IMAGE).

@@ -45,12 +45,6 @@ vec3 offsetRayOrigin(Surface s, vec3 w) {
   return po;
 }
 
-// glm::normalize: v * (1 / sqrt(v . v)).
-vec3 rtNormalize(vec3 v) {
-  precise float inv = 1.0 / sqrt(rtDot(v, v));
-  precise vec3 r = v * inv;
-  return r;
-}
 
 // float(pi) and std::sqrt(2.0f), as the C++ rounds them.
 const float RT_PI_F = uintBitsToFloat(0x40490fdbu);

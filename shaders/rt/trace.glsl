@@ -11,6 +11,7 @@
 // by the C++ compiler, so that no GPU division rounds them differently.
 
 #include "rt/layout.glsl"
+#include "rt/math.glsl"
 
 layout(std430, binding = BUFFER_RT_NODES) readonly buffer RtNodes { RtNode rtNodes[]; };
 layout(std430, binding = BUFFER_RT_LEAVES) readonly buffer RtLeaves { RtLeaf rtLeaves[]; };
@@ -32,11 +33,6 @@ const int RT_TRIANGLE = 3;
 
 float rtInfinity() { return uintBitsToFloat(0x7f800000u); }
 
-// glm::dot's order, (x + y) + z, unfused.
-float rtDot(vec3 a, vec3 b) {
-  precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
-  return r;
-}
 
 struct RtHit {
   float t;

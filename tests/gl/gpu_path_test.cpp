@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "../support/gl_test.h"
 #include "../support/rt_room.h"
@@ -128,13 +129,14 @@ PathAgreement gpuAgainstCpu(const rt::RtScene& drawn, const rt::RtScene& truth, 
 // of `sunIntensity`, the gradient sky sampled through its distribution, fog. (The
 // classic room's sun lights nothing: its ceiling, as wide as the far plane, shades
 // the whole room.)
-rt::RtScene pbrRoom(float sunIntensity = 1.5f) {
+// `layers` may give the materials glTF's layers.
+rt::RtScene pbrRoom(float sunIntensity = 1.5f, const std::function<void(SceneDesc&)>& layers = {}) {
   LightDesc sun;
   sun.direction = glm::normalize(glm::dvec3(0.3, 1.0, -0.4));
   sun.intensity = sunIntensity;
   sun.angleDegrees = 5.0f;
   rt::RtScene scene = test::roomWithMeshes(
-      [](SceneDesc& desc) {
+      [&layers](SceneDesc& desc) {
         desc.primitives.erase(desc.primitives.begin() + 1);  // the ceiling
         // Walls 5 high, not as wide as the far plane: a well that deep lets no sun in.
         for (PrimitiveDesc& p : desc.primitives) p.extent = p.type == PrimitiveType::Plane ? 5.0 : p.extent;
@@ -145,6 +147,7 @@ rt::RtScene pbrRoom(float sunIntensity = 1.5f) {
         desc.materials[4].roughness = 0.15f;
         desc.materials[5].roughness = 0.3f;  // blue: the sphere and the box
         desc.materials[5].layers.ior = 1.8f;
+        if (layers) layers(desc);
       },
       sun);
   RenderDesc render = scene.render();
@@ -255,6 +258,28 @@ TEST_P(GpuPath, SamplesInBatchesAreTheCpusSamples) {
               (unsigned long long)cpu.rays.reflection);
 }
 
+// glTF's clear coat (smooth over a rough metal, and half a coat over the red wall),
+// sheen (over the blue sphere and box: its albedo table read as the CPU reads it,
+// the base dimmed by its scaling, its lobe sampled) and thin film (the white walls
+// and the mirror), in the PBR room: each lobe's share, pdf and sample as
+// bsdf.cpp's, judged as the rooms above.
+TEST_P(GpuPath, RendersTheCpusImageOfLayeredMaterials) {
+  const rt::RtScene scene = pbrRoom(1.5f, [](SceneDesc& desc) {
+    desc.materials[3].layers.clearcoat = 1.0f;  // sphere1, a rough metal
+    desc.materials[3].layers.clearcoatRoughness = 0.08f;
+    desc.materials[1].layers.clearcoat = 0.5f;  // red
+    desc.materials[1].layers.clearcoatRoughness = 0.3f;
+    desc.materials[5].layers.sheenColor = glm::vec3(0.9f, 0.4f, 0.6f);  // blue
+    desc.materials[5].layers.sheenRoughness = 0.5f;
+    for (const int m : {0, 4}) {  // white, the mirror
+      desc.materials[std::size_t(m)].layers.iridescence = 1.0f;
+      desc.materials[std::size_t(m)].layers.iridescenceIor = 1.4f;
+      desc.materials[std::size_t(m)].layers.iridescenceThicknessMax = 450.0f;
+    }
+  });
+  expectAgreement(scene, "pbr room, coat, sheen, film");
+}
+
 // The comparison is not blind: the GPU drawing the open room without its sun fails it.
 TEST_P(GpuPath, TheComparisonCatchesAMissingLight) {
   const PathAgreement a = gpuAgainstCpu(pbrRoom(0.0f), pbrRoom(), "pbr room, the GPU without the sun");
@@ -263,8 +288,8 @@ TEST_P(GpuPath, TheComparisonCatchesAMissingLight) {
 }
 
 // What the GPU path tracer does not draw is refused by name, one line; it draws
-// KHR_materials_ior and _specular (the dielectric's f0 and f90), which the GPU
-// Whitted tracer refuses.
+// KHR_materials_ior and _specular (the dielectric's f0 and f90), _clearcoat, _sheen
+// and _iridescence, which the GPU Whitted tracer refuses.
 TEST(GpuPathSupport, RefusesTheLayersItDoesNotDrawByName) {
   rt::RenderSettings path = pathSettings(), whitted;
   const rt::RtScene dielectric = test::roomWithMeshes([](SceneDesc& desc) {
@@ -273,11 +298,17 @@ TEST(GpuPathSupport, RefusesTheLayersItDoesNotDrawByName) {
   });
   EXPECT_EQ(gpurt::unsupported(dielectric, path), "");
   EXPECT_NE(gpurt::unsupported(dielectric, whitted), "");
-  const rt::RtScene layered = test::roomWithMeshes([](SceneDesc& desc) {
+  const rt::RtScene drawn = test::roomWithMeshes([](SceneDesc& desc) {
     desc.materials[3].layers.clearcoat = 1.0f;
     desc.materials[5].layers.sheenColor = glm::vec3(0.5f);
+    desc.materials[0].layers.iridescence = 1.0f;
   });
-  EXPECT_EQ(gpurt::unsupported(layered, path), "the path tracer's material layers KHR_materials_clearcoat, _sheen are not supported yet");
+  EXPECT_EQ(gpurt::unsupported(drawn, path), "");
+  const rt::RtScene layered = test::roomWithMeshes([](SceneDesc& desc) {
+    desc.materials[3].layers.transmission = 1.0f;
+    desc.materials[5].layers.anisotropy = 0.5f;
+  });
+  EXPECT_EQ(gpurt::unsupported(layered, path), "the path tracer's material layers KHR_materials_transmission, _anisotropy are not supported yet");
   path.precision = rt::Precision::Double;
   EXPECT_EQ(gpurt::unsupported(dielectric, path), "double precision is not supported");
 }
