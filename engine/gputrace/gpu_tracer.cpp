@@ -40,12 +40,12 @@ std::vector<GpuLight> lightsOf(const rt::RtScene& scene) {
 }
 
 // The glTF material layers some material of the scene has that the GPU path tracer
-// does not draw (it draws KHR_materials_ior, _specular, _clearcoat, _sheen and
-// _iridescence), as "KHR_materials_transmission, _anisotropy"; empty when none.
+// does not draw (it draws KHR_materials_ior, _specular, _clearcoat, _sheen,
+// _iridescence, _transmission and _volume), as "KHR_materials_anisotropy"; empty
+// when none.
 std::string undrawnLayers(const std::vector<MaterialDesc>& materials) {
   const auto any = [&](auto has) { return std::any_of(materials.begin(), materials.end(), [&](const MaterialDesc& m) { return has(m.layers); }); };
   const std::pair<const char*, bool> layers[] = {
-      {"transmission", any([](const MaterialLayers& l) { return l.transmissive(); })},
       {"anisotropy", any([](const MaterialLayers& l) { return l.anisotropy != 0.0f; })}};
   std::string names;
   for (const auto& [name, present] : layers) {

@@ -1,9 +1,9 @@
 // The path tracer's scattering at one hit (raytrace/bsdf.cpp) for what the GPU path
 // tracer draws: the classic model made physical (Lambert, the course's highlight and
 // the mirror) and metallic-roughness (Lambert + GGX, with KHR_materials_ior and
-// _specular's f0 and f90, the clear coat, the sheen and the thin film). Transmission
-// and anisotropy are refused before a kernel runs, so their shares are 0 here and
-// their branches of bsdf.cpp are left out. The BRDFs are common/brdf.glsl's, the
+// _specular's f0 and f90, the clear coat, the sheen, the thin film and transmission
+// through thin walls and into volumes). Anisotropy is refused before a kernel runs,
+// so its branches of bsdf.cpp are left out. The BRDFs are common/brdf.glsl's, the
 // text the CPU evaluates; the lobe choice and its pdf are bsdf.cpp's, and the view's
 // terms HitMaterial::atView's, transcribed. After rt/sampling.glsl,
 // rt/materials.glsl, rt/environment_light.glsl and common/brdf.glsl.
@@ -36,13 +36,16 @@ struct Bsdf {
   float clearcoat, clearcoatRoughness;
   vec3 sheenColor;
   float sheenRoughness, iridescence;
+  float transmission, ior, thickness;
+  bool entering;  // the ray comes from outside the surface (its front)
   Frame frame;
   vec3 wo, woLocal;
   float alpha;      // GGX
   float alphaCoat;  // the coat's GGX
   float pMirror;    // classic: the mirror's share of the samples
   float pSpecular;  // metallic-roughness: the GGX lobe's share
-  float pSheen, pCoat;
+  float pSheen, pCoat, pTransmit;
+  float alphaTransmit;  // the transmitted lobe's GGX
   // ViewLayers: the sheen's albedo and the scaling it leaves the base; the film's Fresnel.
   float sheenAlbedo, sheenScale;
   vec3 iridescenceF;
@@ -53,6 +56,7 @@ struct BsdfSample {
   vec3 weight;  // f |cos| / pdf
   float pdf;    // 0 for the mirror's delta
   bool delta;
+  bool transmitted;  // wi goes through the surface
 };
 
 float meanOf(vec3 c) {
@@ -72,7 +76,7 @@ float pastShare(float u, float p) {
   return r;
 }
 
-Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
+Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo, bool entering) {
   Bsdf b;
   b.metallicRoughness = metallicRoughness;
   b.albedo = m.colorAmbient.xyz;
@@ -89,6 +93,10 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
   b.sheenRoughness = m.coatSheen.z;
   b.iridescence = m.coatSheen.w;
   b.sheenColor = m.sheenColorFilmIor.xyz;
+  b.transmission = m.transmission.x;
+  b.ior = m.transmission.y;
+  b.thickness = m.transmission.z;
+  b.entering = entering;
   b.frame = frameAbout(n);
   b.wo = wo;
   b.woLocal = toLocal(b.frame, wo);
@@ -98,6 +106,8 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
   b.pSpecular = 0.0;
   b.pSheen = 0.0;
   b.pCoat = 0.0;
+  b.pTransmit = 0.0;
+  b.alphaTransmit = 1.0;
   b.sheenAlbedo = 0.0;
   b.sheenScale = 1.0;
   b.iridescenceF = vec3(0.0);
@@ -109,7 +119,7 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
     b.pMirror = mirror > 0.0 ? (rest > 0.0 ? share : 1.0) : 0.0;
     return b;
   }
-  // Bsdf::metallicRoughness without transmission or anisotropy.
+  // Bsdf::metallicRoughness without anisotropy.
   b.alpha = ggxAlpha(b.roughness);
   float cosO = clamp(b.woLocal.z, 0.0, 1.0);
   // HitMaterial::atView.
@@ -124,7 +134,7 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
   float fresnel = meanOf(mixAsGlm(schlickFresnel90(f0, f90, cosO), b.iridescenceF, b.iridescence));
   precise float sheen = maxComponent(b.sheenColor) * b.sheenAlbedo;
   precise float specular = fresnel * b.sheenScale;
-  precise float diffuse = meanOf(b.albedo) * (1.0 - b.metallic) * (1.0 - fresnel) * b.sheenScale;  // no transmission
+  precise float diffuse = meanOf(b.albedo) * (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fresnel) * b.sheenScale;
   precise float share = specular / (specular + diffuse);
   b.pSpecular = diffuse > 0.0 ? clamp(share, 0.1, 0.9) : 1.0;
   if (sheen > 0.0) {
@@ -140,6 +150,16 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo) {
     precise float coatShare = coat / (coat + base);
     b.pCoat = base > 0.0 ? clamp(coatShare, 0.1, 0.9) : 1.0;
   }
+  if (b.transmission > 0.0 && b.metallic < 1.0) {
+    precise float through =
+        meanOf(b.albedo) * (1.0 - b.metallic) * b.transmission * (1.0 - fresnel) * (1.0 - coat) * b.sheenScale;
+    precise float reflected = coat + (1.0 - coat) * (specular + diffuse + sheen);
+    precise float throughShare = through / (through + reflected);
+    b.pTransmit = reflected > 0.0 ? clamp(throughShare, 0.1, 0.9) : 1.0;
+    // A thin wall blurs as much as its ior bends; a volume's facets refract at the
+    // surface's own roughness.
+    b.alphaTransmit = ggxAlpha(b.thickness > 0.0 ? b.roughness : transmissionRoughness(b.roughness, b.ior));
+  }
   return b;
 }
 
@@ -153,7 +173,7 @@ vec3 bsdfF(Bsdf b, vec3 wi) {
     return reflected / (BRDF_PI * cosI);
   }
   return layeredBrdf(b.frame.n, b.wo, wi, b.albedo, b.metallic, b.roughness, b.dielectricF0, b.dielectricF90,
-                     b.frame.n, b.clearcoat, b.clearcoatRoughness, 0.0, b.sheenColor, b.sheenRoughness, b.sheenScale,
+                     b.frame.n, b.clearcoat, b.clearcoatRoughness, b.transmission, b.sheenColor, b.sheenRoughness, b.sheenScale,
                      b.frame.s, b.frame.t, 0.0, b.iridescenceF, b.iridescence);
 }
 
@@ -171,9 +191,51 @@ float bsdfPdf(Bsdf b, vec3 wi) {
     precise float withSheen = b.pSheen * uniformConePdf(0.0) + (1.0 - b.pSheen) * base;
     base = withSheen;
   }
-  if (b.pCoat <= 0.0) return base;
-  precise float reflected = b.pCoat * ggxReflectionPdf(b.woLocal, wiLocal, b.alphaCoat) + (1.0 - b.pCoat) * base;
-  return reflected;
+  precise float reflected = b.pCoat <= 0.0 ? base : b.pCoat * ggxReflectionPdf(b.woLocal, wiLocal, b.alphaCoat) + (1.0 - b.pCoat) * base;
+  precise float pdf = (1.0 - b.pTransmit) * reflected;
+  return pdf;
+}
+
+// glm::refract(i, n, eta): the refracted direction, or 0 past the critical angle.
+vec3 refractAsGlm(vec3 i, vec3 n, float eta) {
+  precise float c = rtDot(n, i);
+  precise float k = 1.0 - eta * eta * (1.0 - c * c);
+  precise vec3 r = eta * i - (eta * c + sqrt(k)) * n;
+  return k >= 0.0 ? r : vec3(0.0);
+}
+
+// Bsdf::transmissionSample through the visible normal m: refracted into a volume (or
+// mirrored by m inside, past the critical angle), or mirrored and turned through a
+// thin wall; weighed by what the layered model passes, times G1 of the new direction,
+// over the lobe's share.
+bool transmissionSample(Bsdf b, vec3 m, inout BsdfSample s) {
+  float cosO = rtDot(b.woLocal, m);
+  if (!(cosO > 0.0)) return false;
+  vec3 fresnel = schlickFresnel90(b.dielectricF0, b.dielectricF90, cosO);
+  precise vec3 share = (vec3(1.0) - fresnel) * b.albedo * ((1.0 - b.metallic) * b.transmission * b.sheenScale);
+  vec3 wiLocal;
+  if (b.thickness > 0.0) {
+    float eta = b.entering ? 1.0 / max(b.ior, 1.0) : max(b.ior, 1.0);
+    wiLocal = refractAsGlm(-b.woLocal, m, eta);
+    if (wiLocal == vec3(0.0)) {
+      // Total internal reflection: what the reflection lobe's Fresnel did not take
+      // stays inside as well.
+      wiLocal = reflectAbout(b.woLocal, m);
+      if (wiLocal.z <= 0.0) return false;
+    } else if (wiLocal.z >= 0.0) {
+      return false;
+    }
+  } else {
+    wiLocal = reflectAbout(b.woLocal, m);
+    if (wiLocal.z <= 0.0) return false;
+    wiLocal.z = -wiLocal.z;
+  }
+  s.wi = rtNormalize(toWorld(b.frame, wiLocal));
+  precise vec3 weight = share * (ggxSmithG1(abs(wiLocal.z), b.alphaTransmit) / b.pTransmit);
+  s.weight = weight;
+  s.delta = true;
+  s.transmitted = wiLocal.z < 0.0;
+  return true;
 }
 
 // Bsdf::sample with its mirror, lambertSample and reflectionSample; false when it
@@ -183,6 +245,7 @@ bool bsdfSample(Bsdf b, vec2 u, float uLobe, out BsdfSample s) {
   s.weight = vec3(0.0);
   s.pdf = 0.0;
   s.delta = false;
+  s.transmitted = false;
   if (b.woLocal.z <= 0.0) return false;
   if (!b.metallicRoughness && uLobe < b.pMirror) {
     s.wi = toWorld(b.frame, vec3(-b.woLocal.x, -b.woLocal.y, b.woLocal.z));
@@ -200,22 +263,30 @@ bool bsdfSample(Bsdf b, vec2 u, float uLobe, out BsdfSample s) {
     s.weight = b.albedo * (b.diffuse / (1.0 - b.pMirror));
     return true;
   }
-  // reflectionSample (the transmission's share is 0, so uLobe is unchanged): the
-  // coat, the sheen, the GGX lobe or the diffuse one, each past the shares before it.
-  // One call site for both GGX lobes (llvmpipe inlines every call).
-  float pastCoat = pastShare(uLobe, b.pCoat);
-  int lobe = !b.metallicRoughness                        ? 3
-             : uLobe < b.pCoat                           ? 0
+  // Through the surface with the transmission's share; else reflectionSample with
+  // uLobe rescaled past it: the coat, the sheen, the GGX lobe or the diffuse one, each
+  // past the shares before it. One call site for the three GGX lobes' visible normals
+  // (llvmpipe inlines every call).
+  float rest = pastShare(uLobe, b.pTransmit);
+  float pastCoat = pastShare(rest, b.pCoat);
+  int lobe = uLobe < b.pTransmit                         ? 4
+             : !b.metallicRoughness                      ? 3
+             : rest < b.pCoat                            ? 0
              : pastCoat < b.pSheen                       ? 1
              : pastShare(pastCoat, b.pSheen) < b.pSpecular ? 2
                                                          : 3;
+  vec3 h = vec3(0.0, 0.0, 1.0);
+  if (lobe == 0 || lobe == 2 || lobe == 4) {
+    h = sampleGgxVisibleNormal(b.woLocal, lobe == 0 ? b.alphaCoat : lobe == 2 ? b.alpha : b.alphaTransmit, u);
+  }
+  if (lobe == 4) return transmissionSample(b, h, s);
   vec3 wiLocal;
   if (lobe == 1) {
     wiLocal = sampleUniformCone(u, 0.0);
   } else if (lobe == 3) {
     wiLocal = sampleCosineHemisphere(u);
   } else {
-    wiLocal = reflectAbout(b.woLocal, sampleGgxVisibleNormal(b.woLocal, lobe == 0 ? b.alphaCoat : b.alpha, u));
+    wiLocal = reflectAbout(b.woLocal, h);
   }
   if (wiLocal.z <= 0.0) return false;
   s.wi = rtNormalize(toWorld(b.frame, wiLocal));

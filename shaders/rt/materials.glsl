@@ -14,6 +14,8 @@ struct RtMaterial {
   vec4 coatSheen;                            // clear coat, its roughness; the sheen's roughness; iridescence
   vec4 sheenColorFilmIor;                    // the sheen's colour; the thin film's ior
   vec4 film;                                 // x: the thin film's thickness (nm)
+  vec4 transmission;                         // share, ior, thickness (0: a thin wall), attenuation distance
+  vec4 attenuation;                          // xyz: the volume's attenuation colour
   ivec4 terrainLayers;                       // the terrain's grass, rock, snow (textures.w >= 0)
   dvec2 terrainOriginYHeightScale;           // its origin's world height; its height scale
 };

@@ -1,6 +1,6 @@
 #version 450 core
 // The path tracer of raytrace/path_tracer.cpp on the GPU, one pixel per invocation,
-// for the scenes the GPU tracer draws (no transmission or anisotropy: refused by
+// for the scenes the GPU tracer draws (no anisotropy: refused by
 // engine/gputrace/gpu_tracer.cpp before this runs). The same algorithm on the same
 // numbers: the CPU's camera rays through the R2 sequence turned per pixel, a PCG32
 // stream per sample, next-event estimation to every light and the environment
@@ -210,6 +210,14 @@ vec3 emittersAlong(vec3 o, vec3 d, vec3 v, float tHit, bool escaped, bool countE
   return sum + rtSky(v, false) * (countEmitters ? 1.0 : powerHeuristic(bsdfPdf, envPdf(v)));
 }
 
+// Beer-Lambert's coefficient per unit length: attenuationColor remains of white
+// light after attenuationDistance (PathTracer::volumeAbsorption).
+vec3 volumeAbsorption(RtMaterial m) {
+  if (m.transmission.w <= 0.0) return vec3(0.0);
+  precise vec3 k = -log(max(m.attenuation.xyz, vec3(1e-6))) / m.transmission.w;
+  return k;
+}
+
 // `firstHit` receives the distance to the first surface the path scatters at (-1 when
 // the camera ray escapes).
 vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng, out float firstHit) {
@@ -218,11 +226,17 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng, out float firstHit) {
   float bsdfPdf = 0.0;
   float coneWidth = 0.0;
   int passes = 0;  // through cut-away or transparent surfaces
+  vec3 absorption = vec3(0.0);  // of the volume the ray travels in (KHR_materials_volume)
   firstHit = -1.0;
   for (int depth = 0;; ++depth) {
     RtHit hit = rtClosestHit(o, d, tMax);
     bool escaped = hit.kind == RT_NONE;
     vec3 v = rtNormalize(d);
+    if (absorption != vec3(0.0)) {
+      dvec3 dd = dvec3(d);
+      precise double travelled = double(escaped ? tMax : hit.t) * sqrt(dd.x * dd.x + dd.y * dd.y + dd.z * dd.z);
+      beta *= exp(-absorption * float(travelled));
+    }
     radiance += beta * emittersAlong(o, d, v, escaped ? tMax : hit.t, escaped, countEmitters, bsdfPdf, depth == 0);
     if (escaped) break;
     Surface s = surfaceAt(hit, o, d);
@@ -255,13 +269,19 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng, out float firstHit) {
     bool back = rtDot(s.n, v) > 0.0;
     vec3 ng = back ? -s.n : s.n;
     vec3 ns = back ? -s.ns : s.ns;
-    Bsdf b = bsdfOf(m, u_pbr != 0, ns, -v);
+    Bsdf b = bsdfOf(m, u_pbr != 0, ns, -v, !back);
     if (b.pMirror < 1.0) radiance += beta * directLight(s, b, ng, rng);
     vec2 u = pcgUniform2(rng);
     float uLobe = pcgUniform(rng);
     BsdfSample bs;
-    // A direction under the geometric surface would leak light through it.
-    if (!bsdfSample(b, u, uLobe, bs) || rtDot(bs.wi, ng) <= 0.0) break;
+    // A direction under the geometric surface would leak light through it; one
+    // transmitted must be under it.
+    if (!bsdfSample(b, u, uLobe, bs) || (rtDot(bs.wi, ng) <= 0.0) != bs.transmitted) break;
+    // In or out of a volume: its absorption applies along the next segment.
+    if (m.transmission.x > 0.0 && m.transmission.z > 0.0) {
+      dvec3 wi = dvec3(bs.wi), n = dvec3(s.n);
+      absorption = wi.x * n.x + wi.y * n.y + wi.z * n.z < 0.0lf ? volumeAbsorption(m) : vec3(0.0);
+    }
     beta *= bs.weight;
     countEmitters = bs.delta;
     bsdfPdf = bs.pdf;

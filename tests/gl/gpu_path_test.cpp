@@ -259,25 +259,30 @@ TEST_P(GpuPath, SamplesInBatchesAreTheCpusSamples) {
 }
 
 // glTF's clear coat (smooth over a rough metal, and half a coat over the red wall),
-// sheen (over the blue sphere and box: its albedo table read as the CPU reads it,
-// the base dimmed by its scaling, its lobe sampled) and thin film (the white walls
-// and the mirror), in the PBR room: each lobe's share, pdf and sample as
-// bsdf.cpp's, judged as the rooms above.
+// sheen (under that coat: its albedo table read as the CPU reads it, the base dimmed
+// by its scaling, its lobe sampled), thin film (the white walls and the mirror) and
+// transmission into an absorbing volume (the blue sphere and box: refraction, total
+// internal reflection, Beer-Lambert along the path inside), in the PBR room, judged
+// as the rooms above (GpuBsdf checks the lobes one by one).
 TEST_P(GpuPath, RendersTheCpusImageOfLayeredMaterials) {
   const rt::RtScene scene = pbrRoom(1.5f, [](SceneDesc& desc) {
     desc.materials[3].layers.clearcoat = 1.0f;  // sphere1, a rough metal
     desc.materials[3].layers.clearcoatRoughness = 0.08f;
     desc.materials[1].layers.clearcoat = 0.5f;  // red
     desc.materials[1].layers.clearcoatRoughness = 0.3f;
-    desc.materials[5].layers.sheenColor = glm::vec3(0.9f, 0.4f, 0.6f);  // blue
-    desc.materials[5].layers.sheenRoughness = 0.5f;
+    desc.materials[1].layers.sheenColor = glm::vec3(0.9f, 0.4f, 0.6f);  // under red's coat
+    desc.materials[1].layers.sheenRoughness = 0.5f;
+    desc.materials[5].layers.transmission = 0.9f;  // blue: a tinted, absorbing volume
+    desc.materials[5].layers.thickness = 0.5f;
+    desc.materials[5].layers.attenuationColor = glm::vec3(0.8f, 0.5f, 0.3f);
+    desc.materials[5].layers.attenuationDistance = 0.7f;
     for (const int m : {0, 4}) {  // white, the mirror
       desc.materials[std::size_t(m)].layers.iridescence = 1.0f;
       desc.materials[std::size_t(m)].layers.iridescenceIor = 1.4f;
       desc.materials[std::size_t(m)].layers.iridescenceThicknessMax = 450.0f;
     }
   });
-  expectAgreement(scene, "pbr room, coat, sheen, film");
+  expectAgreement(scene, "pbr room, coat, sheen, film, volume");
 }
 
 // The comparison is not blind: the GPU drawing the open room without its sun fails it.
@@ -288,8 +293,8 @@ TEST_P(GpuPath, TheComparisonCatchesAMissingLight) {
 }
 
 // What the GPU path tracer does not draw is refused by name, one line; it draws
-// KHR_materials_ior and _specular (the dielectric's f0 and f90), _clearcoat, _sheen
-// and _iridescence, which the GPU Whitted tracer refuses.
+// KHR_materials_ior and _specular (the dielectric's f0 and f90), _clearcoat, _sheen,
+// _iridescence, _transmission and _volume, which the GPU Whitted tracer refuses.
 TEST(GpuPathSupport, RefusesTheLayersItDoesNotDrawByName) {
   rt::RenderSettings path = pathSettings(), whitted;
   const rt::RtScene dielectric = test::roomWithMeshes([](SceneDesc& desc) {
@@ -308,7 +313,7 @@ TEST(GpuPathSupport, RefusesTheLayersItDoesNotDrawByName) {
     desc.materials[3].layers.transmission = 1.0f;
     desc.materials[5].layers.anisotropy = 0.5f;
   });
-  EXPECT_EQ(gpurt::unsupported(layered, path), "the path tracer's material layers KHR_materials_transmission, _anisotropy are not supported yet");
+  EXPECT_EQ(gpurt::unsupported(layered, path), "the path tracer's material layers KHR_materials_anisotropy are not supported yet");
   path.precision = rt::Precision::Double;
   EXPECT_EQ(gpurt::unsupported(dielectric, path), "double precision is not supported");
 }
