@@ -17,7 +17,7 @@ std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene, const rt::GpuText
                               glm::vec4(m.clearcoat, m.clearcoatRoughness, m.sheenRoughness, m.iridescence),
                               glm::vec4(m.sheenColor, m.iridescenceIor), glm::vec4(m.iridescenceThickness, 0.0f, 0.0f, 0.0f),
                               glm::vec4(m.transmission, m.ior, m.thickness, m.attenuationDistance),
-                              glm::vec4(m.attenuationColor, 0.0f),
+                              glm::vec4(m.attenuationColor, 0.0f), glm::vec4(m.anisotropy, m.anisotropyRotation, 0.0f, 0.0f),
                               glm::ivec4(-1), glm::dvec2(0.0)});
     if (e.terrain >= 0) {
       const rt::GpuTerrain& t = textures.terrains[std::size_t(e.terrain)];

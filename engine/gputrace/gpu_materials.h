@@ -26,10 +26,11 @@ struct GpuMaterial {
   glm::vec4 film;        // iridescenceThickness
   glm::vec4 transmission;  // transmission, ior, thickness, attenuationDistance
   glm::vec4 attenuation;   // attenuationColor
+  glm::vec4 anisotropy;    // anisotropy, anisotropyRotation
   glm::ivec4 terrainLayers;              // grass, rock, snow: texture indices
   glm::dvec2 terrainOriginYHeightScale;  // RtTerrainMaterial's
 };
-static_assert(sizeof(GpuMaterial) == 240);
+static_assert(sizeof(GpuMaterial) == 256);
 
 // `textures`: where each terrain's layers are (rt::flattenTextures of the scene).
 std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene, const rt::GpuTextureSet& textures);

@@ -39,21 +39,6 @@ std::vector<GpuLight> lightsOf(const rt::RtScene& scene) {
   return out;
 }
 
-// The glTF material layers some material of the scene has that the GPU path tracer
-// does not draw (it draws KHR_materials_ior, _specular, _clearcoat, _sheen,
-// _iridescence, _transmission and _volume), as "KHR_materials_anisotropy"; empty
-// when none.
-std::string undrawnLayers(const std::vector<MaterialDesc>& materials) {
-  const auto any = [&](auto has) { return std::any_of(materials.begin(), materials.end(), [&](const MaterialDesc& m) { return has(m.layers); }); };
-  const std::pair<const char*, bool> layers[] = {
-      {"anisotropy", any([](const MaterialLayers& l) { return l.anisotropy != 0.0f; })}};
-  std::string names;
-  for (const auto& [name, present] : layers) {
-    if (present) names += (names.empty() ? "KHR_materials_" : ", _") + std::string(name);
-  }
-  return names;
-}
-
 // Whether each array fits the largest storage block the GL allows (llvmpipe: 128 MiB;
 // an 8192 x 4096 sky is 384 MiB): an error naming the first that does not.
 Status fitsStorageBlocks(std::initializer_list<std::pair<const char*, std::size_t>> arrays) {
@@ -102,11 +87,8 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
     if (layerTextures(m)) return "textures of glTF's material layers are not supported yet";
   }
   const auto& materials = scene.materials();
-  if (path) {
-    if (const std::string layers = undrawnLayers(materials); !layers.empty())
-      return "the path tracer's material layers " + layers + " are not supported yet";
-    return {};
-  }
+  // The path tracer draws every layer glTF has (their textures are refused above).
+  if (path) return {};
   if (std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return !m.layers.isDefault(); }))
     return "glTF's material layers (KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen, "
            "_anisotropy) are not supported yet";

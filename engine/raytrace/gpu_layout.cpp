@@ -172,8 +172,12 @@ GpuSceneLayout flattenScene(const RtScene& scene, int width) {
   GpuSceneLayout out;
   out.width = width == 4 ? 4 : 8;
   out.hasColors = std::any_of(scene.meshes().begin(), scene.meshes().end(), [](const RtMesh& m) { return !m.colors.empty(); });
-  // Only what a material reads: the box meshes of a scene file have uvs.
-  out.hasUvs = scene.hasTextures() && std::any_of(scene.meshes().begin(), scene.meshes().end(), [](const RtMesh& m) { return !m.uvs.empty() || !m.uvs1.empty(); });
+  // Only what a material reads (a texture, or an anisotropic lobe's uv gradient): the
+  // box meshes of a scene file have uvs.
+  const auto& materials = scene.materials();
+  const bool anisotropic =
+      std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return m.layers.anisotropy > 0.0f; });
+  out.hasUvs = (scene.hasTextures() || anisotropic) && std::any_of(scene.meshes().begin(), scene.meshes().end(), [](const RtMesh& m) { return !m.uvs.empty() || !m.uvs1.empty(); });
   for (int g = 0; g < scene.groupCount(); ++g) appendGroup(scene, g, out);
   for (const Sphere<float>& s : scene.floatSpheres()) {
     out.spheres.push_back(GpuSphere{glm::vec4(s.center, s.radius), glm::ivec4(s.material, 0, 0, 0)});

@@ -86,7 +86,7 @@ struct GpuSceneLayout {
   std::vector<glm::vec4> triangleAttributes;
   std::vector<std::uint32_t> firstTriangle;  // per group: its first global id
   bool hasColors = false;  // some mesh has vertex colours
-  bool hasUvs = false;     // some material reads a texture and some mesh has uvs
+  bool hasUvs = false;     // some material reads a texture or is anisotropic, and some mesh has uvs
   int attributeSlots() const { return 3 * (int(hasUvs) + int(hasColors)); }
   int depth = 0;  // levels of nodes on the deepest path, leaves included
 

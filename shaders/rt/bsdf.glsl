@@ -1,9 +1,8 @@
 // The path tracer's scattering at one hit (raytrace/bsdf.cpp) for what the GPU path
 // tracer draws: the classic model made physical (Lambert, the course's highlight and
 // the mirror) and metallic-roughness (Lambert + GGX, with KHR_materials_ior and
-// _specular's f0 and f90, the clear coat, the sheen, the thin film and transmission
-// through thin walls and into volumes). Anisotropy is refused before a kernel runs,
-// so its branches of bsdf.cpp are left out. The BRDFs are common/brdf.glsl's, the
+// _specular's f0 and f90, the clear coat, the sheen, the thin film, transmission
+// through thin walls and into volumes, and anisotropy). The BRDFs are common/brdf.glsl's, the
 // text the CPU evaluates; the lobe choice and its pdf are bsdf.cpp's, and the view's
 // terms HitMaterial::atView's, transcribed. After rt/sampling.glsl,
 // rt/materials.glsl, rt/environment_light.glsl and common/brdf.glsl.
@@ -41,6 +40,8 @@ struct Bsdf {
   Frame frame;
   vec3 wo, woLocal;
   float alpha;      // GGX
+  vec2 alphas;      // the anisotropic GGX's, along the frame's s and t
+  float anisotropy; // ViewLayers::anisotropy: 0 where there is no stretch to orient
   float alphaCoat;  // the coat's GGX
   float pMirror;    // classic: the mirror's share of the samples
   float pSpecular;  // metallic-roughness: the GGX lobe's share
@@ -67,6 +68,13 @@ float meanOf(vec3 c) {
 // glm::mix for vectors: a (1 - t) + b t.
 vec3 mixAsGlm(vec3 a, vec3 b, float t) {
   precise vec3 r = a * (1.0 - t) + b * t;
+  return r;
+}
+
+// brdf.glsl's anisotropicAlpha with glm::mix's rounding, as the CPU's Bsdf gets it.
+float anisotropicAlphaAsGlm(float alpha, float anisotropy) {
+  precise float t = anisotropy * anisotropy;
+  precise float r = alpha * (1.0 - t) + 1.0 * t;
   return r;
 }
 
@@ -101,6 +109,8 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo, bool entering
   b.wo = wo;
   b.woLocal = toLocal(b.frame, wo);
   b.alpha = 1.0;
+  b.alphas = vec2(1.0);
+  b.anisotropy = 0.0;
   b.alphaCoat = 1.0;
   b.pMirror = 0.0;
   b.pSpecular = 0.0;
@@ -122,7 +132,18 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo, bool entering
   // Bsdf::metallicRoughness without anisotropy.
   b.alpha = ggxAlpha(b.roughness);
   float cosO = clamp(b.woLocal.z, 0.0, 1.0);
-  // HitMaterial::atView.
+  // HitMaterial::atView: the stretch made orthogonal to n (rtMaterialAt oriented it).
+  if (m.anisotropy.w > 0.0) {
+    precise vec3 t = m.anisotropy.xyz - n * rtDot(n, m.anisotropy.xyz);
+    float len = sqrt(rtDot(t, t));
+    if (len > 1e-6) {
+      // KHR_materials_anisotropy: the local frame's x along the stretch.
+      b.frame = frameAlong(n, t / len);
+      b.woLocal = toLocal(b.frame, wo);
+      b.anisotropy = m.anisotropy.w;
+      b.alphas = vec2(anisotropicAlphaAsGlm(b.alpha, b.anisotropy), b.alpha);
+    }
+  }
   if (b.sheenColor != vec3(0.0)) b.sheenAlbedo = sheenTableLookup(cosO, b.sheenRoughness);
   b.sheenScale = sheenScaling(b.sheenColor, b.sheenAlbedo);
   vec3 f0 = mix(b.dielectricF0, b.albedo, b.metallic);
@@ -174,7 +195,7 @@ vec3 bsdfF(Bsdf b, vec3 wi) {
   }
   return layeredBrdf(b.frame.n, b.wo, wi, b.albedo, b.metallic, b.roughness, b.dielectricF0, b.dielectricF90,
                      b.frame.n, b.clearcoat, b.clearcoatRoughness, b.transmission, b.sheenColor, b.sheenRoughness, b.sheenScale,
-                     b.frame.s, b.frame.t, 0.0, b.iridescenceF, b.iridescence);
+                     b.frame.s, b.frame.t, b.anisotropy, b.iridescenceF, b.iridescence);
 }
 
 // Bsdf::pdf: the density sample() draws wi with through its non-delta lobes.
@@ -185,8 +206,9 @@ float bsdfPdf(Bsdf b, vec3 wi) {
     precise float pdf = (1.0 - b.pMirror) * cosineHemispherePdf(wiLocal.z);
     return pdf;
   }
-  precise float base = b.pSpecular * ggxReflectionPdf(b.woLocal, wiLocal, b.alpha) +
-                       (1.0 - b.pSpecular) * cosineHemispherePdf(wiLocal.z);
+  float specular = b.anisotropy > 0.0 ? ggxAnisotropicReflectionPdf(b.woLocal, wiLocal, b.alphas)
+                                      : ggxReflectionPdf(b.woLocal, wiLocal, b.alpha);
+  precise float base = b.pSpecular * specular + (1.0 - b.pSpecular) * cosineHemispherePdf(wiLocal.z);
   if (b.pSheen > 0.0) {
     precise float withSheen = b.pSheen * uniformConePdf(0.0) + (1.0 - b.pSheen) * base;
     base = withSheen;
@@ -277,7 +299,8 @@ bool bsdfSample(Bsdf b, vec2 u, float uLobe, out BsdfSample s) {
                                                          : 3;
   vec3 h = vec3(0.0, 0.0, 1.0);
   if (lobe == 0 || lobe == 2 || lobe == 4) {
-    h = sampleGgxVisibleNormal(b.woLocal, lobe == 0 ? b.alphaCoat : lobe == 2 ? b.alpha : b.alphaTransmit, u);
+    vec2 alpha = lobe == 0 ? vec2(b.alphaCoat) : lobe == 2 ? (b.anisotropy > 0.0 ? b.alphas : vec2(b.alpha)) : vec2(b.alphaTransmit);
+    h = sampleGgxVisibleNormal(b.woLocal, alpha, u);
   }
   if (lobe == 4) return transmissionSample(b, h, s);
   vec3 wiLocal;

@@ -54,6 +54,28 @@ float rtFootprint(inout float coneWidth, float coneSpread, Surface s, vec3 v, fl
   return footprint;
 }
 
+// orientAnisotropy (rt_scene.cpp): the stretch's direction in the world from the
+// triangle's uv gradient, the material's direction (+x: layer textures are refused)
+// turned by its rotation; written to m.anisotropy as xyz the direction, w the
+// strength (0 where there is nothing to orient it by).
+void rtOrientAnisotropy(inout RtMaterial m, Surface s) {
+  float strength = m.anisotropy.x;
+  vec2 d = anisotropyDirection(vec2(1.0, 0.0), m.anisotropy.y);
+  vec3 ns = s.ns;
+  precise vec3 t = s.dpdu - ns * rtDot(ns, s.dpdu);
+  float len = sqrt(rtDot(t, t));
+  m.anisotropy = vec4(0.0);
+  if (len > 0.0 && !isinf(len) && !isnan(len)) {
+    t /= len;
+    // glTF's bitangent points up the image, against dP/dv.
+    vec3 across = cross(ns, t);
+    vec3 b = rtDot(across, s.dpdv) < 0.0 ? across : -across;
+    precise vec3 stretched = t * d.x + b * d.y;
+    float slen = sqrt(rtDot(stretched, stretched));
+    if (slen > 1e-6) m.anisotropy = vec4(stretched / slen, clamp(strength, 0.0, 1.0));
+  }
+}
+
 // The material at the hit (the unflipped shading normal's y for the terrain), built
 // with RT_TEXTURES where some material reads a texture or is the terrain's. Its
 // texture reads are listed first and made in one loop: llvmpipe inlines every call,
@@ -99,6 +121,11 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
   if (t.z >= 0) m.emission.xyz = m.emission.xyz * texel[next++].xyz;
   if (t.w >= 0) rtApplyTerrain(m, texel, reads, double(s.p.y), s.ns.y);
 #endif
+  if (m.anisotropy.x > 0.0) {
+    rtOrientAnisotropy(m, s);
+  } else {
+    m.anisotropy = vec4(0.0);
+  }
   return m;
 }
 

@@ -16,6 +16,7 @@ struct RtMaterial {
   vec4 film;                                 // x: the thin film's thickness (nm)
   vec4 transmission;                         // share, ior, thickness (0: a thin wall), attenuation distance
   vec4 attenuation;                          // xyz: the volume's attenuation colour
+  vec4 anisotropy;                           // x: strength, y: rotation (rtMaterialAt: xyz the stretch in the world, w strength)
   ivec4 terrainLayers;                       // the terrain's grass, rock, snow (textures.w >= 0)
   dvec2 terrainOriginYHeightScale;           // its origin's world height; its height scale
 };

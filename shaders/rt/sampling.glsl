@@ -25,6 +25,16 @@ Frame frameAbout(vec3 n) {
   f.t = t;
   return f;
 }
+// Frame(normal, tangent): s along the tangent made orthogonal to n, t = n x s.
+Frame frameAlong(vec3 n, vec3 tangent) {
+  Frame f;
+  f.n = n;
+  precise vec3 s = tangent - n * rtDot(n, tangent);
+  f.s = rtNormalize(s);
+  precise vec3 t = vec3(n.y * f.s.z - f.s.y * n.z, n.z * f.s.x - f.s.z * n.x, n.x * f.s.y - f.s.x * n.y);  // glm::cross
+  f.t = t;
+  return f;
+}
 vec3 toLocal(Frame f, vec3 w) { return vec3(rtDot(w, f.s), rtDot(w, f.t), rtDot(w, f.n)); }
 vec3 toWorld(Frame f, vec3 w) {
   precise vec3 r = w.x * f.s + w.y * f.t + w.z * f.n;
@@ -70,10 +80,10 @@ float ggxSmithG1(float cosTheta, float alpha) {
   return g1;
 }
 
-// Heitz 2018's visible normals (sampleGgxAnisotropicVisibleNormal with equal alphas,
-// which is what sampleGgxVisibleNormal is on the CPU).
-vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 u) {
-  vec3 vh = rtNormalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+// Heitz 2018's visible normals (sampleGgxAnisotropicVisibleNormal: alpha.x along x,
+// alpha.y along y; with equal alphas it is sampleGgxVisibleNormal, on the CPU too).
+vec3 sampleGgxVisibleNormal(vec3 wo, vec2 alpha, vec2 u) {
+  vec3 vh = rtNormalize(vec3(alpha.x * wo.x, alpha.y * wo.y, wo.z));
   precise float lensq = vh.x * vh.x + vh.y * vh.y;
   precise vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) / sqrt(lensq) : vec3(1.0, 0.0, 0.0);
   precise vec3 t2 = cross(vh, t1);
@@ -83,7 +93,7 @@ vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 u) {
   precise float s = 0.5 * (1.0 + vh.z);
   precise float p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * r * sin(phi);
   precise vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-  return rtNormalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-6, nh.z)));
+  return rtNormalize(vec3(alpha.x * nh.x, alpha.y * nh.y, max(1e-6, nh.z)));
 }
 
 // D(h) in brdf.glsl's stable form, for a local h.
@@ -100,6 +110,30 @@ float ggxReflectionPdf(vec3 wo, vec3 wi, float alpha) {
   precise vec3 sum = wo + wi;
   vec3 h = rtNormalize(sum);
   precise float pdf = ggxSmithG1(wo.z, alpha) * ggxD(h, alpha) / (4.0 * wo.z);
+  return pdf;
+}
+
+// KHR_materials_anisotropy's GGX (core/ggx_sampling.h, raytrace/sampling.h): Lambda
+// and G1 of a local direction, D of a local h, and the visible-normal pdf.
+float ggxAnisotropicG1(vec3 w, vec2 alpha) {
+  precise float z2 = max(w.z * w.z, 1e-12);
+  precise float a2Tan2 = (alpha.x * alpha.x * w.x * w.x + alpha.y * alpha.y * w.y * w.y) / z2;
+  precise float lambda = 0.5 * (sqrt(1.0 + a2Tan2) - 1.0);
+  precise float g1 = 1.0 / (1.0 + lambda);
+  return g1;
+}
+float ggxAnisotropicD(vec3 h, vec2 alpha) {
+  precise float a2 = alpha.x * alpha.y;
+  precise vec3 f = vec3(alpha.y * h.x, alpha.x * h.y, a2 * h.z);
+  precise float w2 = a2 / max(rtDot(f, f), 1e-30);
+  precise float d = a2 * w2 * w2 / RT_PI;
+  return d;
+}
+float ggxAnisotropicReflectionPdf(vec3 wo, vec3 wi, vec2 alpha) {
+  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
+  precise vec3 sum = wo + wi;
+  vec3 h = rtNormalize(sum);
+  precise float pdf = ggxAnisotropicG1(wo, alpha) * ggxAnisotropicD(h, alpha) / (4.0 * wo.z);
   return pdf;
 }
 

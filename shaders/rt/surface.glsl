@@ -10,6 +10,7 @@ struct Surface {
   vec2 uv0, uv1;     // TEXCOORD_0 and _1 (the same on spheres and planes)
   float uvPerMetre;  // uv units per metre of surface, for the ray cone's footprint
   vec4 color;        // COLOR_0 (white where the mesh has none)
+  vec3 dpdu, dpdv;   // a triangle's uv gradient, for an anisotropic material (else 0)
 };
 
 // The triangles' uvs and colours (raytrace/gpu_layout.h's triangleAttributes,
@@ -62,7 +63,7 @@ vec2 rtSphereUv(vec3 n) {
 // A triangle's uv at the hit and its density (RtScene::meshInteraction): the square
 // root of the uv area over the area in space.
 #ifdef RT_TRIANGLE_UVS
-void rtTriangleUv(inout Surface s, RtHit hit, float area) {
+void rtTriangleUv(inout Surface s, RtHit hit, vec3 p0, vec3 p1, vec3 p2, float area) {
   uint first = hit.index * uint(RT_ATTRIBUTE_SLOTS);
   vec4 t0 = rtTriangleAttributes[first], t1 = rtTriangleAttributes[first + 1u], t2 = rtTriangleAttributes[first + 2u];
   vec3 b = hit.bary;
@@ -72,6 +73,15 @@ void rtTriangleUv(inout Surface s, RtHit hit, float area) {
   precise vec2 du = t1.xy - t0.xy, dv = t2.xy - t0.xy;
   precise float uvArea = abs(du.x * dv.y - du.y * dv.x);
   s.uvPerMetre = area > 0.0 ? sqrt(uvArea / area) : 0.0;
+  // KHR_materials_anisotropy's tangent frame: dP/du and dP/dv across the triangle.
+  precise float det = du.x * dv.y - dv.x * du.y;
+  if (rtMaterials[s.material].anisotropy.x > 0.0 && abs(det) > 0.0) {
+    precise vec3 e1 = p1 - p0, e2 = p2 - p0;
+    precise vec3 dpdu = (dv.y * e1 - du.y * e2) / det;
+    precise vec3 dpdv = (du.x * e2 - dv.x * e1) / det;
+    s.dpdu = dpdu;
+    s.dpdv = dpdv;
+  }
 }
 #endif
 
@@ -81,6 +91,8 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
   s.uv1 = vec2(0.0);
   s.uvPerMetre = 0.0;
   s.color = vec4(1.0);
+  s.dpdu = vec3(0.0);
+  s.dpdv = vec3(0.0);
   precise vec3 at = o + d * hit.t;
   if (hit.kind == RT_SPHERE) {
     RtSphere sp = rtSpheres[hit.index];
@@ -141,7 +153,7 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
     }
     s.material = int(tri.n[0].w);
 #ifdef RT_TRIANGLE_UVS
-    rtTriangleUv(s, hit, len);
+    rtTriangleUv(s, hit, p0, p1, p2, len);
 #endif
 #ifdef RT_TRIANGLE_COLORS
     if (tri.n[2].w > 0.0) {

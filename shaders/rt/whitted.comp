@@ -8,12 +8,12 @@
 #include "rt/trace.glsl"
 #include "rt/pcg.glsl"
 #include "rt/materials.glsl"
+#include "common/brdf.glsl"
 #include "rt/surface.glsl"
 #include "rt/texture.glsl"
 #include "rt/material_at.glsl"
 #include "rt/sky.glsl"
 #include "rt/camera.glsl"
-#include "common/brdf.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -103,10 +104,11 @@ inline rt::Environment hashedSky(const std::filesystem::path& path) {
   return std::move(environment).value();
 }
 
-inline rt::RtScene texturedRoom() {
+// `edit` may change the materials (layers) before the scene is built.
+inline rt::RtScene texturedRoom(const std::function<void(SceneDesc&)>& edit = {}) {
   // Materials 6 (MASK, single-sided), 7 (BLEND), 8 (the second uv set through a
   // transform) and 9 (the terrain's layers) after the room's six.
-  rt::RtScene scene = roomWithMeshes([](SceneDesc& desc) {
+  rt::RtScene scene = roomWithMeshes([&edit](SceneDesc& desc) {
     desc.materials[0].textureScale = 0.8f;
     desc.materials[1].emission = glm::vec3(0.3f, 0.2f, 0.1f);
     desc.materials[3].textureScale = 2.0f;
@@ -116,6 +118,7 @@ inline rt::RtScene texturedRoom() {
       m.name = name;
       desc.materials.push_back(m);
     }
+    if (edit) edit(desc);
   });
   using rt::RtTexture;
   using rt::TextureOrigin;
