@@ -82,9 +82,8 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
   const bool path = settings.method == rt::Method::Path;
   if (settings.precision != rt::Precision::Float) return "double precision is not supported";
   if (!rt::fitsGpuTextures(scene)) return "textures of more than 32768 texels a side are not supported";
-  const auto layerTextures = [&](int m) { return scene.extras(m).hasLayerTextures; };
   for (int m = 0; m < int(scene.materials().size()); ++m) {
-    if (layerTextures(m)) return "textures of glTF's material layers are not supported yet";
+    if (scene.extras(m).hasLayerTextures) return "textures of glTF's material layers are not supported yet";
   }
   const auto& materials = scene.materials();
   // The path tracer draws every layer glTF has (their textures are refused above).
@@ -190,6 +189,13 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   s.scene = &scene;
   s.shaderDir = shaderDir;
   s.layout = rt::flattenScene(scene, width);
+  const rt::GpuTextureSet textures = rt::flattenTextures(scene);
+  const FloatImage* sky = scene.environment().image();
+  // Before anything is uploaded.
+  if (auto fits = fitsStorageBlocks({{"the textures", textures.texels.size() * sizeof(glm::vec4)},
+                                     {"the sky image", sky ? sky->rgb.size() * sizeof(float) : 0}});
+      !fits)
+    return fits.error();
   s.nodes = s.layout.width == 4 ? storage(s.layout.nodes4) : storage(s.layout.nodes);
   s.leaves = storage(s.layout.leaves);
   s.order = storage(s.layout.order);
@@ -197,18 +203,12 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   s.spheres = storage(s.layout.spheres);
   s.planes = storage(s.layout.planes);
   s.triangles = storage(s.layout.triangles);
-  const rt::GpuTextureSet textures = rt::flattenTextures(scene);
   s.materials = storage(materialsOf(scene, textures));
   s.lights = storage(lightsOf(scene));
   s.triangleAttributes = storage(s.layout.triangleAttributes);
   s.textures = storage(textures.textures);
   s.texels = storage(textures.texels);
-  const FloatImage* sky = scene.environment().image();
   s.skyImage = sky ? storage(sky->rgb) : storage(std::vector<float>{});
-  if (auto fits = fitsStorageBlocks({{"the textures", textures.texels.size() * sizeof(glm::vec4)},
-                                     {"the sky image", sky ? sky->rgb.size() * sizeof(float) : 0}});
-      !fits)
-    return fits.error();
   auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, detail::traceDefines(s.layout, nullptr));
   if (!hits) return hits.error();
   s.hits = std::move(hits).value();

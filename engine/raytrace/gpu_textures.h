@@ -3,8 +3,8 @@
 // level in linear RGBA, the wrap modes, the uv set and the KHR_texture_transform
 // matrix) and the terrains' layered materials, flattened for the GPU tracer, whose
 // shaders/rt/texture.glsl samples them as RtTexture::sampleRgba does, operation for
-// operation: one array of every texel, and a record per texture. GL-free; the structs
-// are std430 layouts (rt/texture.glsl's RtTexture and RtTerrain).
+// operation: one array of every texel, and a record per texture (std430, rt/texture.glsl's
+// RtTexture). GL-free.
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -23,13 +23,12 @@ struct GpuTexture {
 };
 static_assert(sizeof(GpuTexture) == 320);
 
-// RtTerrainMaterial's constants; its three layer images are textures of the set.
+// Where a terrain's three layer images are in the set, and its constants: what its
+// material's record carries (gputrace/gpu_materials.h), not uploaded as it is.
 struct GpuTerrain {
   glm::ivec4 layers;  // grass, rock, snow: GpuTextureSet::textures indices
   glm::dvec2 originYHeightScale;  // the terrain origin's world height; the height scale
-  glm::dvec2 unused;
 };
-static_assert(sizeof(GpuTerrain) == 48);
 
 struct GpuTextureSet {
   // RtScene::textures() in their order (MaterialExtras' indices stay valid), then

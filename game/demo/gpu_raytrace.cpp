@@ -4,6 +4,7 @@
 
 #include "gputrace/gpu_tracer.h"
 #include "platform/gl_context.h"
+#include "progressive_trace.h"
 #include "raytrace/tone_map.h"
 
 namespace demo {
@@ -31,10 +32,6 @@ engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc
   return run;
 }
 
-struct GpuTraceGame::Tracer {
-  engine::gpurt::GpuTracer tracer;
-};
-
 GpuTraceGame::GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings,
                            std::string shaderDir)
     : desc_(std::move(scene)), time_(time), settings_(std::move(settings)), shaderDir_(std::move(shaderDir)) {}
@@ -50,7 +47,7 @@ engine::Status GpuTraceGame::init() {
   scene_ = std::make_unique<engine::rt::RtScene>(std::move(scene).value());
   auto tracer = engine::gpurt::GpuTracer::create(*scene_, shaderDir_);
   if (!tracer) return tracer.error();
-  tracer_ = std::make_unique<Tracer>(Tracer{std::move(tracer).value()});
+  tracer_ = std::make_unique<engine::gpurt::GpuTracer>(std::move(tracer).value());
   passes_ = settings_.method == engine::rt::Method::Path ? std::max(1, settings_.samplesPerPixel) : 1;
   sum_.assign(std::size_t(settings_.width) * std::size_t(settings_.height), glm::vec3(0.0f));
   texture_ = engine::gl::Texture::create2D(GL_RGBA8, settings_.width, settings_.height, 1);
@@ -67,7 +64,7 @@ engine::Status GpuTraceGame::tracePass() {
     pass.samplesPerPixel = 1;
     pass.totalSamples = settings_.samplesPerPixel;
   }
-  auto result = tracer_->tracer.render(pass);
+  auto result = tracer_->render(pass);
   if (!result) return result.error();
   ++done_;
   // One sample a pass: its mean is its sum. The Whitted pass is the whole image.
@@ -86,14 +83,7 @@ engine::Status GpuTraceGame::render(const engine::FrameInfo& frame) {
   if (done_ < passes_) {
     if (auto s = tracePass(); !s) return s;
   }
-  GLint target = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-  // Encoded display values, copied as they are and flipped (row 0 is the image's top).
-  glDisable(GL_FRAMEBUFFER_SRGB);
-  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-  glBlitNamedFramebuffer(framebuffer_.id(), GLuint(target), 0, 0, settings_.width, settings_.height, 0, frame.height,
-                         frame.width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  showTracedImage(framebuffer_, settings_.width, settings_.height, frame);
   return engine::Ok{};
 }
 

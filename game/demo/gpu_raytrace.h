@@ -13,6 +13,10 @@
 #include "gl/resources.h"
 #include "raytrace/scene_builder.h"
 
+namespace engine::gpurt {
+class GpuTracer;
+}
+
 namespace demo {
 
 // Errors: "--device gpu: double precision is not supported" and the like for what the
@@ -46,8 +50,7 @@ class GpuTraceGame final : public engine::Game {
   std::string shaderDir_;
   engine::Camera camera_;
   std::unique_ptr<engine::rt::RtScene> scene_;
-  struct Tracer;
-  std::unique_ptr<Tracer> tracer_;
+  std::unique_ptr<engine::gpurt::GpuTracer> tracer_;
   std::vector<glm::vec3> sum_;  // linear, each pixel's samples so far
   int done_ = 0, passes_ = 1;
   engine::gl::Texture texture_;

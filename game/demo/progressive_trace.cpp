@@ -6,12 +6,24 @@
 #include <chrono>
 #include <cmath>
 
+#include "app/game.h"
 #include "raytrace/progress_bar.h"
 #include "raytrace/tone_map.h"
 
 namespace demo {
 namespace {
 constexpr int kTile = 16;
+}
+
+void showTracedImage(const engine::gl::Framebuffer& image, int width, int height, const engine::FrameInfo& frame) {
+  GLint target = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+  // Encoded display values: copied as they are, flipped.
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glBlitNamedFramebuffer(image.id(), GLuint(target), 0, 0, width, height, 0, frame.height, frame.width, 0,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
 engine::Result<std::unique_ptr<ProgressiveTrace>> ProgressiveTrace::start(std::unique_ptr<engine::rt::RtScene> scene,

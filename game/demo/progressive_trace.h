@@ -19,7 +19,16 @@
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
 
+namespace engine {
+struct FrameInfo;
+}
+
 namespace demo {
+
+// Fills the bound draw framebuffer with a traced image of `width` x `height` (encoded
+// display values, its first row the image's top), as it is, stretched to the frame:
+// the tracers' windows, CPU and GPU.
+void showTracedImage(const engine::gl::Framebuffer& image, int width, int height, const engine::FrameInfo& frame);
 
 class ProgressiveTrace {
  public:

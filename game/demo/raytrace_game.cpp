@@ -20,15 +20,7 @@ engine::Status RaytraceGame::init() {
 
 engine::Status RaytraceGame::render(const engine::FrameInfo& frame) {
   trace_->uploadFinishedTiles();
-  GLint target = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-  // The texture holds encoded display values: copy them as they are, flipped (the
-  // image's first row is the top one).
-  glDisable(GL_FRAMEBUFFER_SRGB);
-  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-  glBlitNamedFramebuffer(trace_->framebuffer().id(), GLuint(target), 0, 0, trace_->width(), trace_->height(), 0,
-                         frame.height, frame.width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  showTracedImage(trace_->framebuffer(), trace_->width(), trace_->height(), frame);
   return engine::Ok{};
 }
 

@@ -65,19 +65,6 @@ float meanOf(vec3 c) {
   return m;
 }
 
-// glm::mix for vectors: a (1 - t) + b t.
-vec3 mixAsGlm(vec3 a, vec3 b, float t) {
-  precise vec3 r = a * (1.0 - t) + b * t;
-  return r;
-}
-
-// brdf.glsl's anisotropicAlpha with glm::mix's rounding, as the CPU's Bsdf gets it.
-float anisotropicAlphaAsGlm(float alpha, float anisotropy) {
-  precise float t = anisotropy * anisotropy;
-  precise float r = alpha * (1.0 - t) + 1.0 * t;
-  return r;
-}
-
 // A lobe choice u past a share p taken before it, rescaled to [0, 1) (pastShare).
 float pastShare(float u, float p) {
   precise float r = (u - p) / (1.0 - p);
@@ -141,7 +128,9 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo, bool entering
       b.frame = frameAlong(n, t / len);
       b.woLocal = toLocal(b.frame, wo);
       b.anisotropy = m.anisotropy.w;
-      b.alphas = vec2(anisotropicAlphaAsGlm(b.alpha, b.anisotropy), b.alpha);
+      // brdf.glsl's anisotropicAlpha with glm::mix's rounding, as the CPU's Bsdf gets it.
+      precise float squared = b.anisotropy * b.anisotropy;
+      b.alphas = vec2(mixAsGlm(b.alpha, 1.0, squared), b.alpha);
     }
   }
   if (b.sheenColor != vec3(0.0)) b.sheenAlbedo = sheenTableLookup(cosO, b.sheenRoughness);

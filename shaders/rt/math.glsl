@@ -1,5 +1,5 @@
-// glm's dot and normalize as the CPU tracer computes them, unfused, for every GPU
-// tracer file (rt/trace.glsl includes it).
+// glm's dot, normalize and mix as the CPU tracer computes them, unfused, and a
+// modulo for negative operands, for every GPU tracer file (rt/trace.glsl includes it).
 
 // glm::dot's order, (x + y) + z, unfused.
 float rtDot(vec3 a, vec3 b) {
@@ -13,3 +13,20 @@ vec3 rtNormalize(vec3 v) {
   precise vec3 r = v * inv;
   return r;
 }
+
+// glm::mix: a (1 - t) + b t (GLSL's mix may round otherwise).
+float mixAsGlm(float a, float b, float t) {
+  precise float r = a * (1.0 - t) + b * t;
+  return r;
+}
+vec3 mixAsGlm(vec3 a, vec3 b, float t) {
+  precise vec3 r = a * (1.0 - t) + b * t;
+  return r;
+}
+vec4 mixAsGlm(vec4 a, vec4 b, float t) {
+  precise vec4 r = a * (1.0 - t) + b * t;
+  return r;
+}
+
+// i mod n into [0, n), negative i too (GLSL's % leaves negative operands undefined).
+int wrapMod(int i, int n) { return i >= 0 ? i % n : (n - 1) - ((-i - 1) % n); }

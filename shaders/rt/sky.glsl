@@ -22,24 +22,16 @@ vec3 rtSkyTexel(int x, int y) {
   return vec3(rtSkyImage[i], rtSkyImage[i + 1], rtSkyImage[i + 2]);
 }
 
-// glm::mix: a (1 - t) + b t.
-vec3 rtSkyMix(vec3 a, vec3 b, float t) {
-  precise vec3 r = a * (1.0 - t) + b * t;
-  return r;
-}
-
 vec3 rtSkyImageAt(vec2 uv) {
   int w = u_skyImageSize.x, h = u_skyImageSize.y;
   precise float x = uv.x * float(w) - 0.5, y = uv.y * float(h) - 0.5;
   float x0f = floor(x), y0f = floor(y);
   precise float fx = x - x0f, fy = y - y0f;
-  int x0 = int(x0f), x1 = int(x0f) + 1;
-  x0 = x0 >= 0 ? x0 % w : (w - 1) - ((-x0 - 1) % w);
-  x1 = x1 >= 0 ? x1 % w : (w - 1) - ((-x1 - 1) % w);
+  int x0 = wrapMod(int(x0f), w), x1 = wrapMod(int(x0f) + 1, w);
   int y0 = clamp(int(y0f), 0, h - 1), y1 = clamp(int(y0f) + 1, 0, h - 1);
-  vec3 top = rtSkyMix(rtSkyTexel(x0, y0), rtSkyTexel(x1, y0), fx);
-  vec3 bottom = rtSkyMix(rtSkyTexel(x0, y1), rtSkyTexel(x1, y1), fx);
-  return rtSkyMix(top, bottom, fy);
+  vec3 top = mixAsGlm(rtSkyTexel(x0, y0), rtSkyTexel(x1, y0), fx);
+  vec3 bottom = mixAsGlm(rtSkyTexel(x0, y1), rtSkyTexel(x1, y1), fx);
+  return mixAsGlm(top, bottom, fy);
 }
 #endif
 

@@ -24,17 +24,14 @@ const int RT_WRAP_REPEAT = 10497;
 const int RT_WRAP_CLAMP = 33071;
 const int RT_WRAP_MIRRORED = 33648;
 
-// i mod n into [0, n), negative i too (GLSL's % leaves negative operands undefined).
-int rtWrapMod(int i, int n) { return i >= 0 ? i % n : (n - 1) - ((-i - 1) % n); }
-
 // wrapIndex: GL's wrap of texel index i of n.
 int rtWrapIndex(int i, int n, int mode) {
   if (mode == RT_WRAP_CLAMP) return clamp(i, 0, n - 1);
   if (mode == RT_WRAP_MIRRORED) {
-    int a = rtWrapMod(i, 2 * n) - n;
+    int a = wrapMod(i, 2 * n) - n;
     return (n - 1) - (a >= 0 ? a : -(1 + a));
   }
-  return rtWrapMod(i, n);
+  return wrapMod(i, n);
 }
 
 // reduce: a coordinate brought to one period of its wrap (two for mirrored repeat).
@@ -45,12 +42,6 @@ float rtReduce(float x, int mode) {
     return r;
   }
   precise float r = x - floor(x);
-  return r;
-}
-
-// glm::mix: a (1 - t) + b t.
-vec4 rtMix(vec4 a, vec4 b, float t) {
-  precise vec4 r = a * (1.0 - t) + b * t;
   return r;
 }
 
@@ -68,7 +59,7 @@ vec4 rtBilinear(int index, int level, vec2 uv) {
   int y0 = rtWrapIndex(int(fv), h, info.z), y1 = rtWrapIndex(int(fv) + 1, h, info.z);
   vec4 a = rtTexels[l.x + y0 * w + x0], b = rtTexels[l.x + y0 * w + x1];
   vec4 c = rtTexels[l.x + y1 * w + x0], d = rtTexels[l.x + y1 * w + x1];
-  return rtMix(rtMix(a, b, tu), rtMix(c, d, tu), tv);
+  return mixAsGlm(mixAsGlm(a, b, tu), mixAsGlm(c, d, tu), tv);
 }
 
 // RtTexture::sampleRgba at the hit's uv sets with the footprint in TEXCOORD_0's units.
@@ -91,6 +82,6 @@ vec4 rtSampleTexture(int index, vec2 uv0, vec2 uv1, float footprint) {
   precise float t = lod > 0.0 ? lod - float(below) : 0.0;
   vec4 level[2];
   for (int k = 0; k < (t > 0.0 ? 2 : 1); ++k) level[k] = rtBilinear(index, below + k, uv);
-  return t > 0.0 ? rtMix(level[0], level[1], t) : level[0];
+  return t > 0.0 ? mixAsGlm(level[0], level[1], t) : level[0];
 }
 #endif
