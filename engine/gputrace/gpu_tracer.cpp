@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/sheen_table.h"
 #include "gl/bindings.h"
 #include "gputrace/gpu_materials.h"
 #include "gputrace/tracer_state.h"
@@ -57,6 +58,11 @@ Status fitsStorageBlocks(std::initializer_list<std::pair<const char*, std::size_
 
 namespace detail {
 
+bool hasSheen(const rt::RtScene& scene) {
+  const auto& materials = scene.materials();
+  return std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return m.layers.sheen(); });
+}
+
 std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt::RtScene* shaded) {
   std::vector<std::string> defines{"RT_WIDTH " + std::to_string(layout.width), "RT_STACK_SIZE " + std::to_string(layout.stackSize()),
           floatDefine("RT_GAMMA2", rt::gamma<float>(2)),
@@ -73,24 +79,19 @@ std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt
   if (shaded->environment().hasImage()) defines.emplace_back("RT_SKY_IMAGE 1");
   if (shaded->hasTransparency() || shaded->hasSingleSided()) defines.emplace_back("RT_PASS_THROUGH 1");
   if (shaded->hasTransparency()) defines.emplace_back("RT_TRANSPARENT 1");
+  if (hasSheen(*shaded)) defines.emplace_back("RT_SHEEN_TABLE 1");
   return defines;
 }
 
 }  // namespace detail
 
 std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings) {
-  const bool path = settings.method == rt::Method::Path;
   if (settings.precision != rt::Precision::Float) return "double precision is not supported";
   if (!rt::fitsGpuTextures(scene)) return "textures of more than 32768 texels a side are not supported";
   for (int m = 0; m < int(scene.materials().size()); ++m) {
     if (scene.extras(m).hasLayerTextures) return "textures of glTF's material layers are not supported yet";
   }
-  const auto& materials = scene.materials();
-  // The path tracer draws every layer glTF has (their textures are refused above).
-  if (path) return {};
-  if (std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return !m.layers.isDefault(); }))
-    return "glTF's material layers (KHR_materials_ior, _specular, _clearcoat, _transmission, _volume, _sheen, "
-           "_anisotropy) are not supported yet";
+  // Both integrators draw every layer glTF has (their textures are refused above).
   return {};
 }
 
@@ -256,12 +257,18 @@ Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& sett
   }
   const gl::Program& p = found->second;
   s.bindScene(p);
+  // The sheen's albedo table (RT_SHEEN_TABLE's), where some material has a sheen.
+  const gl::Buffer sheen = detail::storage(detail::hasSheen(scene) ? engine::sheenTable().texels : std::vector<float>{});
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtEnvironment, sheen.id());
+  p.set("u_sheenTable", 0);
   s.setView(p, settings);
   const int spp = std::max(1, settings.samplesPerPixel);
   const glm::ivec2 strata = rt::detail::strataFor(spp);
   glUniform2i(p.location("u_strata"), strata.x, strata.y);
   p.set("u_spp", spp);
   p.set("u_maxDepth", maxDepth);
+  // A tree of mirror and transmitted rays, 2^(maxDepth + 1) - 1 at most.
+  p.set("u_rayBound", int((std::int64_t(1) << std::min(maxDepth + 1, 30)) - 1));
   p.set("u_shadowSamples", settings.shadowSamples);
   p.set("u_lightCount", int(scene.lights().size()));
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);

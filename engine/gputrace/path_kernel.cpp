@@ -88,8 +88,7 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   // The sheen's albedo table after the environment's, where a material has a sheen.
   std::vector<float> tables = environmentTables(lights->environment);
   const int sheenOffset = int(tables.size());
-  const auto& materials = scene.materials();
-  if (std::any_of(materials.begin(), materials.end(), [](const MaterialDesc& m) { return m.layers.sheen(); })) {
+  if (detail::hasSheen(scene)) {
     const std::vector<float>& sheen = engine::sheenTable().texels;
     tables.insert(tables.end(), sheen.begin(), sheen.end());
   }

@@ -28,8 +28,11 @@ gl::Buffer storage(const std::vector<T>& items) {
 // (some material reads a texture or is the terrain's), RT_TRIANGLE_UVS and
 // RT_TRIANGLE_COLORS (the layout's triangle attributes, RT_ATTRIBUTE_SLOTS a
 // triangle), RT_PASS_THROUGH (some material is not opaque or is single-sided),
-// RT_TRANSPARENT (not opaque: shadow rays pass it), RT_SKY_IMAGE.
+// RT_TRANSPARENT (not opaque: shadow rays pass it), RT_SKY_IMAGE, RT_SHEEN_TABLE.
 std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt::RtScene* shaded);
+// Whether some material of the scene has a sheen (RT_SHEEN_TABLE: the integrators read
+// its albedo table).
+bool hasSheen(const rt::RtScene& scene);
 
 }  // namespace detail
 

@@ -52,7 +52,7 @@ struct RenderSettings {
   // pass must use the whole image's share to sum to the image render() makes. 0: spp.
   int totalSamples = 0;
   int shadowSamples = 4;    // an area light gets N x N stratified jittered shadow rays
-  int maxDepth = 5;         // bounces after the primary hit (Whitted: mirror bounces; path: 0 is direct light only)
+  int maxDepth = 5;         // bounces after the primary hit (Whitted: mirror and transmitted rays; path: 0 is direct light only)
   int rouletteDepth = 3;    // path: Russian roulette from this bounce on
   std::uint64_t seed = 1;
   Precision precision = Precision::Float;

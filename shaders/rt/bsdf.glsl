@@ -4,27 +4,8 @@
 // _specular's f0 and f90, the clear coat, the sheen, the thin film, transmission
 // through thin walls and into volumes, and anisotropy). The BRDFs are common/brdf.glsl's, the
 // text the CPU evaluates; the lobe choice and its pdf are bsdf.cpp's, and the view's
-// terms HitMaterial::atView's, transcribed. After rt/sampling.glsl,
-// rt/materials.glsl, rt/environment_light.glsl and common/brdf.glsl.
-
-// The sheen's directional albedo table (core/sheen_table.h, SHEEN_TABLE_SIZE a side),
-// after the environment's tables in rtEnv at u_sheenTable, looked up as
-// SheenTable::lookup does.
-uniform int u_sheenTable;
-
-float sheenTableLookup(float nDotV, float roughness) {
-  int size = int(SHEEN_TABLE_SIZE);
-  precise vec2 x = sheenTableCoord(nDotV, roughness) * float(size) - vec2(0.5);
-  int x0 = clamp(int(floor(x.x)), 0, size - 1), y0 = clamp(int(floor(x.y)), 0, size - 1);
-  int x1 = min(x0 + 1, size - 1), y1 = min(y0 + 1, size - 1);
-  precise float wx = x.x - float(x0), wy = x.y - float(y0);
-  float a = rtEnv[u_sheenTable + y0 * size + x0], b = rtEnv[u_sheenTable + y0 * size + x1];
-  float c = rtEnv[u_sheenTable + y1 * size + x0], d = rtEnv[u_sheenTable + y1 * size + x1];
-  precise float bottom = a + (b - a) * wx;
-  precise float top = c + (d - c) * wx;
-  precise float r = bottom + (top - bottom) * wy;
-  return r;
-}
+// terms rt/view_layers.glsl's. After rt/sampling.glsl, rt/materials.glsl,
+// rt/environment_light.glsl, common/brdf.glsl and rt/view_layers.glsl.
 
 struct Bsdf {
   bool metallicRoughness;
@@ -116,30 +97,23 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo, bool entering
     b.pMirror = mirror > 0.0 ? (rest > 0.0 ? share : 1.0) : 0.0;
     return b;
   }
-  // Bsdf::metallicRoughness without anisotropy.
+  // Bsdf::metallicRoughness.
   b.alpha = ggxAlpha(b.roughness);
   float cosO = clamp(b.woLocal.z, 0.0, 1.0);
-  // HitMaterial::atView: the stretch made orthogonal to n (rtMaterialAt oriented it).
-  if (m.anisotropy.w > 0.0) {
-    precise vec3 t = m.anisotropy.xyz - n * rtDot(n, m.anisotropy.xyz);
-    float len = sqrt(rtDot(t, t));
-    if (len > 1e-6) {
-      // KHR_materials_anisotropy: the local frame's x along the stretch.
-      b.frame = frameAlong(n, t / len);
-      b.woLocal = toLocal(b.frame, wo);
-      b.anisotropy = m.anisotropy.w;
-      // brdf.glsl's anisotropicAlpha with glm::mix's rounding, as the CPU's Bsdf gets it.
-      precise float squared = b.anisotropy * b.anisotropy;
-      b.alphas = vec2(mixAsGlm(b.alpha, 1.0, squared), b.alpha);
-    }
+  RtViewLayers view = rtViewLayers(m, n, cosO);
+  if (view.anisotropy > 0.0) {
+    // KHR_materials_anisotropy: the local frame's x along the stretch.
+    b.frame = frameAlong(n, view.anisotropyT);
+    b.woLocal = toLocal(b.frame, wo);
+    b.anisotropy = view.anisotropy;
+    // brdf.glsl's anisotropicAlpha with glm::mix's rounding, as the CPU's Bsdf gets it.
+    precise float squared = b.anisotropy * b.anisotropy;
+    b.alphas = vec2(mixAsGlm(b.alpha, 1.0, squared), b.alpha);
   }
-  if (b.sheenColor != vec3(0.0)) b.sheenAlbedo = sheenTableLookup(cosO, b.sheenRoughness);
-  b.sheenScale = sheenScaling(b.sheenColor, b.sheenAlbedo);
+  b.sheenAlbedo = view.sheenAlbedo;
+  b.sheenScale = view.sheenScale;
+  b.iridescenceF = view.iridescenceF;
   vec3 f0 = mix(b.dielectricF0, b.albedo, b.metallic);
-  if (b.iridescence > 0.0) {
-    b.iridescenceF = iridescenceFresnel(1.0, m.sheenColorFilmIor.w, max(cosO, 1e-4), m.film.x,
-                                        mixAsGlm(b.dielectricF0, b.albedo, b.metallic));
-  }
   precise float f90 = b.dielectricF90 + (1.0 - b.dielectricF90) * b.metallic;
   float fresnel = meanOf(mixAsGlm(schlickFresnel90(f0, f90, cosO), b.iridescenceF, b.iridescence));
   precise float sheen = maxComponent(b.sheenColor) * b.sheenAlbedo;
@@ -205,14 +179,6 @@ float bsdfPdf(Bsdf b, vec3 wi) {
   precise float reflected = b.pCoat <= 0.0 ? base : b.pCoat * ggxReflectionPdf(b.woLocal, wiLocal, b.alphaCoat) + (1.0 - b.pCoat) * base;
   precise float pdf = (1.0 - b.pTransmit) * reflected;
   return pdf;
-}
-
-// glm::refract(i, n, eta): the refracted direction, or 0 past the critical angle.
-vec3 refractAsGlm(vec3 i, vec3 n, float eta) {
-  precise float c = rtDot(n, i);
-  precise float k = 1.0 - eta * eta * (1.0 - c * c);
-  precise vec3 r = eta * i - (eta * c + sqrt(k)) * n;
-  return k >= 0.0 ? r : vec3(0.0);
 }
 
 // Bsdf::transmissionSample through the visible normal m: refracted into a volume (or

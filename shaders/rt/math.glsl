@@ -1,5 +1,5 @@
-// glm's dot, normalize and mix as the CPU tracer computes them, unfused, and a
-// modulo for negative operands, for every GPU tracer file (rt/trace.glsl includes it).
+// glm's dot, normalize, mix and refract as the CPU tracer computes them, unfused,
+// and a modulo for negative operands, for every GPU tracer file (rt/trace.glsl includes it).
 
 // glm::dot's order, (x + y) + z, unfused.
 float rtDot(vec3 a, vec3 b) {
@@ -26,6 +26,14 @@ vec3 mixAsGlm(vec3 a, vec3 b, float t) {
 vec4 mixAsGlm(vec4 a, vec4 b, float t) {
   precise vec4 r = a * (1.0 - t) + b * t;
   return r;
+}
+
+// glm::refract(i, n, eta): the refracted direction, or 0 past the critical angle.
+vec3 refractAsGlm(vec3 i, vec3 n, float eta) {
+  precise float c = rtDot(n, i);
+  precise float k = 1.0 - eta * eta * (1.0 - c * c);
+  precise vec3 r = eta * i - (eta * c + sqrt(k)) * n;
+  return k >= 0.0 ? r : vec3(0.0);
 }
 
 // i mod n into [0, n), negative i too (GLSL's % leaves negative operands undefined).

@@ -1,6 +1,6 @@
 #version 450 core
 // The path tracer of raytrace/path_tracer.cpp on the GPU, one pixel per invocation,
-// for the scenes the GPU tracer draws (no anisotropy: refused by
+// for the scenes the GPU tracer draws (what it cannot draw is refused by
 // engine/gputrace/gpu_tracer.cpp before this runs). The same algorithm on the same
 // numbers: the CPU's camera rays through the R2 sequence turned per pixel, a PCG32
 // stream per sample, next-event estimation to every light and the environment
@@ -22,6 +22,7 @@
 #include "rt/camera.glsl"
 #include "rt/sampling.glsl"
 #include "rt/environment_light.glsl"
+#include "rt/view_layers.glsl"
 #include "rt/bsdf.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -8,6 +8,7 @@
 #include "common/brdf.glsl"
 #include "rt/sampling.glsl"
 #include "rt/environment_light.glsl"
+#include "rt/view_layers.glsl"
 #include "rt/bsdf.glsl"
 
 layout(local_size_x = 64) in;

@@ -122,42 +122,6 @@ PathAgreement gpuAgainstCpu(const rt::RtScene& drawn, const rt::RtScene& truth, 
   return a;
 }
 
-// The room in metallic-roughness, open to the sky (no ceiling, walls of 10 x 10): a
-// smooth and a rough
-// metal, a dielectric of ior 1.8 (KHR_materials_ior's f0), an emitter; a sun of 5
-// degrees high over the open top (cone sampling, and found by escaping BSDF rays)
-// of `sunIntensity`, the gradient sky sampled through its distribution, fog. (The
-// classic room's sun lights nothing: its ceiling, as wide as the far plane, shades
-// the whole room.)
-// `layers` may give the materials glTF's layers.
-rt::RtScene pbrRoom(float sunIntensity = 1.5f, const std::function<void(SceneDesc&)>& layers = {}) {
-  LightDesc sun;
-  sun.direction = glm::normalize(glm::dvec3(0.3, 1.0, -0.4));
-  sun.intensity = sunIntensity;
-  sun.angleDegrees = 5.0f;
-  rt::RtScene scene = test::roomWithMeshes(
-      [&layers](SceneDesc& desc) {
-        desc.primitives.erase(desc.primitives.begin() + 1);  // the ceiling
-        // Walls 5 high, not as wide as the far plane: a well that deep lets no sun in.
-        for (PrimitiveDesc& p : desc.primitives) p.extent = p.type == PrimitiveType::Plane ? 5.0 : p.extent;
-        desc.materials[3].metallic = 1.0f;  // sphere1
-        desc.materials[3].roughness = 0.35f;
-        desc.materials[3].emission = glm::vec3(0.15f, 0.1f, 0.05f);
-        desc.materials[4].metallic = 1.0f;  // the mirror
-        desc.materials[4].roughness = 0.15f;
-        desc.materials[5].roughness = 0.3f;  // blue: the sphere and the box
-        desc.materials[5].layers.ior = 1.8f;
-        if (layers) layers(desc);
-      },
-      sun);
-  RenderDesc render = scene.render();
-  render.shading = Shading::Pbr;
-  scene.setRender(render);
-  scene.setFog(FogDesc{true, 0.08f, glm::vec3(0.5f, 0.6f, 0.7f)});
-  scene.setSky(SkyDesc{});
-  return scene;
-}
-
 // The classic room lit through its open front as well: a grey background (the
 // environment as a constant, sampled through its distribution), a sun 2 degrees
 // over the horizon straight in (a delta), and a highlight on the white walls (the
@@ -200,7 +164,7 @@ ENGINE_INSTANTIATE_OFFSCREEN(GpuPath);
 TEST_P(GpuPath, RendersTheCpusImageOfTheRoom) {
   for (const int variant : {0, 1, 2}) {
     const char* names[] = {"classic room", "classic room open to the front", "pbr room"};
-    const rt::RtScene scene = variant == 0 ? test::roomWithMeshes() : variant == 1 ? classicRoomOpenToTheFront() : pbrRoom();
+    const rt::RtScene scene = variant == 0 ? test::roomWithMeshes() : variant == 1 ? classicRoomOpenToTheFront() : test::pbrRoom();
     expectAgreement(scene, names[variant]);
   }
 }
@@ -265,72 +229,34 @@ TEST_P(GpuPath, SamplesInBatchesAreTheCpusSamples) {
 // internal reflection, Beer-Lambert along the path inside), in the PBR room, judged
 // as the rooms above (GpuBsdf checks the lobes one by one).
 TEST_P(GpuPath, RendersTheCpusImageOfLayeredMaterials) {
-  const rt::RtScene scene = pbrRoom(1.5f, [](SceneDesc& desc) {
-    desc.materials[3].layers.clearcoat = 1.0f;  // sphere1, a rough metal
-    desc.materials[3].layers.clearcoatRoughness = 0.08f;
-    desc.materials[1].layers.clearcoat = 0.5f;  // red
-    desc.materials[1].layers.clearcoatRoughness = 0.3f;
-    desc.materials[1].layers.sheenColor = glm::vec3(0.9f, 0.4f, 0.6f);  // under red's coat
-    desc.materials[1].layers.sheenRoughness = 0.5f;
-    desc.materials[5].layers.transmission = 0.9f;  // blue: a tinted, absorbing volume
-    desc.materials[5].layers.thickness = 0.5f;
-    desc.materials[5].layers.attenuationColor = glm::vec3(0.8f, 0.5f, 0.3f);
-    desc.materials[5].layers.attenuationDistance = 0.7f;
-    for (const int m : {0, 4}) {  // white, the mirror
-      desc.materials[std::size_t(m)].layers.iridescence = 1.0f;
-      desc.materials[std::size_t(m)].layers.iridescenceIor = 1.4f;
-      desc.materials[std::size_t(m)].layers.iridescenceThicknessMax = 450.0f;
-    }
-  });
+  const rt::RtScene scene = test::pbrRoom(1.5f, test::layeredMaterials);
   expectAgreement(scene, "pbr room, coat, sheen, film, volume");
-  // Anisotropy needs a uv gradient to orient it: the textured room's grid on the
-  // back wall (its second uv set turned by a transform) made a brushed metal.
-  rt::RtScene brushed = test::texturedRoom([](SceneDesc& desc) {
-    MaterialDesc& m = desc.materials[8];
-    m.metallic = 1.0f;
-    m.roughness = 0.3f;
-    m.layers.anisotropy = 0.8f;
-    m.layers.anisotropyRotation = 0.5f;
-  });
-  RenderDesc render = brushed.render();
-  render.shading = Shading::Pbr;
-  brushed.setRender(render);
-  brushed.setSky(SkyDesc{});
+  // Anisotropy, oriented by a triangle's uv gradient.
+  const rt::RtScene brushed = test::brushedMetalRoom();
   expectAgreement(brushed, "textured room, pbr, anisotropic metal");
 }
 
 // The comparison is not blind: the GPU drawing the open room without its sun fails it.
 TEST_P(GpuPath, TheComparisonCatchesAMissingLight) {
-  const PathAgreement a = gpuAgainstCpu(pbrRoom(0.0f), pbrRoom(), "pbr room, the GPU without the sun");
+  const PathAgreement a = gpuAgainstCpu(test::pbrRoom(0.0f), test::pbrRoom(), "pbr room, the GPU without the sun");
   EXPECT_FALSE(a.agrees());
   EXPECT_FALSE(a.meansAgree());
 }
 
-// The GPU path tracer draws every glTF layer (KHR_materials_ior and _specular: the
+// Both GPU integrators draw every glTF layer (KHR_materials_ior and _specular: the
 // dielectric's f0 and f90; _clearcoat, _sheen, _iridescence, _transmission, _volume,
-// _anisotropy), which the GPU Whitted tracer refuses; what neither draws is refused
-// in one line.
+// _anisotropy); what they do not draw is refused in one line.
 TEST(GpuPathSupport, DrawsEveryLayerAndRefusesInOneLine) {
   rt::RenderSettings path = pathSettings(), whitted;
-  const rt::RtScene dielectric = test::roomWithMeshes([](SceneDesc& desc) {
-    desc.materials[5].layers.ior = 1.8f;
+  const rt::RtScene layered = test::pbrRoom(1.5f, [](SceneDesc& desc) {
+    test::layeredMaterials(desc);
     desc.materials[5].layers.specular = 0.5f;
-  });
-  EXPECT_EQ(gpurt::unsupported(dielectric, path), "");
-  EXPECT_NE(gpurt::unsupported(dielectric, whitted), "");
-  const rt::RtScene drawn = test::roomWithMeshes([](SceneDesc& desc) {
-    desc.materials[3].layers.clearcoat = 1.0f;
-    desc.materials[5].layers.sheenColor = glm::vec3(0.5f);
-    desc.materials[0].layers.iridescence = 1.0f;
-  });
-  EXPECT_EQ(gpurt::unsupported(drawn, path), "");
-  const rt::RtScene layered = test::roomWithMeshes([](SceneDesc& desc) {
-    desc.materials[3].layers.transmission = 1.0f;
-    desc.materials[5].layers.anisotropy = 0.5f;
+    desc.materials[0].layers.anisotropy = 0.5f;
   });
   EXPECT_EQ(gpurt::unsupported(layered, path), "");
+  EXPECT_EQ(gpurt::unsupported(layered, whitted), "");
   path.precision = rt::Precision::Double;
-  EXPECT_EQ(gpurt::unsupported(dielectric, path), "double precision is not supported");
+  EXPECT_EQ(gpurt::unsupported(layered, path), "double precision is not supported");
 }
 
 }  // namespace

@@ -228,4 +228,21 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTheShippedTexturedScenes) {
   }
 }
 
+// glTF's layers as the CPU's Whitted tracer draws them (core/brdf.h's layeredBrdf per
+// light, the hemisphere ambient through the layers, one refracted ray through
+// KHR_materials_transmission, absorbed inside KHR_materials_volume): support/rt_room.h's
+// layered PBR room (a clear coat over a rough metal and over a sheen, a thin film on
+// the walls and the mirror, a tinted volume whose rays refract in and out and reflect
+// past the critical angle, beside mirror rays: a tree of rays, not a chain), then
+// the textured room's brushed metal (anisotropy oriented by the uv gradient), with
+// the room's limits.
+TEST_P(GpuWhitted, RendersTheCpusImageOfLayeredMaterials) {
+  const rt::RtScene layered = test::pbrRoom(1.5f, [](SceneDesc& desc) {
+    test::layeredMaterials(desc);
+    desc.materials[5].reflection = 0.25f;  // the volume a mirror as well
+  });
+  expectCpusImages(layered, whittedSettings(), "the layered pbr room");
+  expectCpusImages(test::brushedMetalRoom(), whittedSettings(), "the brushed metal");
+}
+
 }  // namespace

@@ -70,4 +70,60 @@ inline rt::RtScene roomWithMeshes(const std::function<void(SceneDesc&)>& edit = 
   return scene;
 }
 
+// The room in metallic-roughness, open to the sky (no ceiling, walls of 10 x 10): a
+// smooth and a rough metal, a dielectric of ior 1.8 (KHR_materials_ior's f0), an
+// emitter; a sun of 5 degrees high over the open top (the path tracer samples it as
+// a cone and finds it by escaping BSDF rays; the Whitted tracer takes it as a delta)
+// of `sunIntensity`, the gradient sky, fog. (The classic room's sun lights nothing:
+// its ceiling, as wide as the far plane, shades the whole room.) `layers` may give
+// the materials glTF's layers.
+inline rt::RtScene pbrRoom(float sunIntensity = 1.5f, const std::function<void(SceneDesc&)>& layers = {}) {
+  LightDesc sun;
+  sun.direction = glm::normalize(glm::dvec3(0.3, 1.0, -0.4));
+  sun.intensity = sunIntensity;
+  sun.angleDegrees = 5.0f;
+  rt::RtScene scene = roomWithMeshes(
+      [&layers](SceneDesc& desc) {
+        desc.primitives.erase(desc.primitives.begin() + 1);  // the ceiling
+        // Walls 5 high, not as wide as the far plane: a well that deep lets no sun in.
+        for (PrimitiveDesc& p : desc.primitives) p.extent = p.type == PrimitiveType::Plane ? 5.0 : p.extent;
+        desc.materials[3].metallic = 1.0f;  // sphere1
+        desc.materials[3].roughness = 0.35f;
+        desc.materials[3].emission = glm::vec3(0.15f, 0.1f, 0.05f);
+        desc.materials[4].metallic = 1.0f;  // the mirror
+        desc.materials[4].roughness = 0.15f;
+        desc.materials[5].roughness = 0.3f;  // blue: the sphere and the box
+        desc.materials[5].layers.ior = 1.8f;
+        if (layers) layers(desc);
+      },
+      sun);
+  RenderDesc render = scene.render();
+  render.shading = Shading::Pbr;
+  scene.setRender(render);
+  scene.setFog(FogDesc{true, 0.08f, glm::vec3(0.5f, 0.6f, 0.7f)});
+  scene.setSky(SkyDesc{});
+  return scene;
+}
+
+// pbrRoom's materials with glTF's layers: a clear coat (smooth over the rough metal,
+// and half a coat over the red wall), a sheen under red's coat, a thin film on the
+// white walls and the mirror, and the blue sphere and box a tinted, absorbing volume.
+inline void layeredMaterials(SceneDesc& desc) {
+  desc.materials[3].layers.clearcoat = 1.0f;  // sphere1, a rough metal
+  desc.materials[3].layers.clearcoatRoughness = 0.08f;
+  desc.materials[1].layers.clearcoat = 0.5f;  // red
+  desc.materials[1].layers.clearcoatRoughness = 0.3f;
+  desc.materials[1].layers.sheenColor = glm::vec3(0.9f, 0.4f, 0.6f);  // under red's coat
+  desc.materials[1].layers.sheenRoughness = 0.5f;
+  desc.materials[5].layers.transmission = 0.9f;  // blue: a tinted, absorbing volume
+  desc.materials[5].layers.thickness = 0.5f;
+  desc.materials[5].layers.attenuationColor = glm::vec3(0.8f, 0.5f, 0.3f);
+  desc.materials[5].layers.attenuationDistance = 0.7f;
+  for (const int m : {0, 4}) {  // white, the mirror
+    desc.materials[std::size_t(m)].layers.iridescence = 1.0f;
+    desc.materials[std::size_t(m)].layers.iridescenceIor = 1.4f;
+    desc.materials[std::size_t(m)].layers.iridescenceThicknessMax = 450.0f;
+  }
+}
+
 }  // namespace engine::test

@@ -168,4 +168,22 @@ inline rt::AnimatedRtScene shippedScene(const std::string& file, int height = 90
   return std::move(traced).value();
 }
 
+// Anisotropy needs a uv gradient to orient it: texturedRoom's grid on the back wall
+// (its second uv set turned by a transform) made a brushed metal, in PBR under the
+// gradient sky.
+inline rt::RtScene brushedMetalRoom() {
+  rt::RtScene room = texturedRoom([](SceneDesc& desc) {
+    MaterialDesc& m = desc.materials[8];
+    m.metallic = 1.0f;
+    m.roughness = 0.3f;
+    m.layers.anisotropy = 0.8f;
+    m.layers.anisotropyRotation = 0.5f;
+  });
+  RenderDesc render = room.render();
+  render.shading = Shading::Pbr;
+  room.setRender(render);
+  room.setSky(SkyDesc{});
+  return room;
+}
+
 }  // namespace engine::test
