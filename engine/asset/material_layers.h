@@ -63,8 +63,8 @@ struct MaterialLayers {
   float iorF0() const { return float(reflectance()); }
   // ... and at grazing angles: the specular weight.
   float dielectricF90() const { return specular; }
-
- private:
+  // ((ior - 1) / (ior + 1))^2 in double, which dielectricF0 tints (the GPU tracer
+  // tints it per hit by the specular textures as dielectricF0 does).
   double reflectance() const {
     const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
     return r * r;

@@ -29,8 +29,14 @@ struct GpuMaterial {
   glm::vec4 anisotropy;    // anisotropy, anisotropyRotation
   glm::ivec4 terrainLayers;              // grass, rock, snow: texture indices
   glm::dvec2 terrainOriginYHeightScale;  // RtTerrainMaterial's
+  // glTF's layer textures (MaterialExtras::layerTextures: TextureSlot::Specular on,
+  // -1 none), and what applying them takes from MaterialDesc::layers.
+  glm::ivec4 layerTextures[3];
+  glm::vec4 specularLayer;   // specularColor, specular
+  glm::vec4 filmRange;       // iridescenceThicknessMin, Max
+  glm::dvec2 reflectance;    // x: MaterialLayers::reflectance()
 };
-static_assert(sizeof(GpuMaterial) == 256);
+static_assert(sizeof(GpuMaterial) == 352);
 
 // `textures`: where each terrain's layers are (rt::flattenTextures of the scene).
 std::vector<GpuMaterial> materialsOf(const rt::RtScene& scene, const rt::GpuTextureSet& textures);

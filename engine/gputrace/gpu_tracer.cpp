@@ -88,10 +88,7 @@ std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt
 std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings) {
   if (settings.precision != rt::Precision::Float) return "double precision is not supported";
   if (!rt::fitsGpuTextures(scene)) return "textures of more than 32768 texels a side are not supported";
-  for (int m = 0; m < int(scene.materials().size()); ++m) {
-    if (scene.extras(m).hasLayerTextures) return "textures of glTF's material layers are not supported yet";
-  }
-  // Both integrators draw every layer glTF has (their textures are refused above).
+  // Both integrators draw every layer glTF has, with its textures.
   return {};
 }
 

@@ -1,9 +1,13 @@
 // RtScene::materialAt on the GPU (raytrace/rt_scene.cpp): a hit's material, its
 // vertex colour and, built with RT_TEXTURES, its textures applied at the hit's uv with the ray cone's footprint (rt/texture.glsl):
-// the base colour's, metallic-roughness's (roughness times G, metallic times B) and
-// the emissive one's, and the terrain's layered material (raytrace/terrain_material.cpp,
+// the base colour's, metallic-roughness's (roughness times G, metallic times B), the
+// emissive one's, glTF's layers' and the terrain's layered material (raytrace/terrain_material.cpp,
 // terrain::layerWeights), operation for operation. Change both together. After
 // rt/surface.glsl and rt/texture.glsl.
+
+// A hit's texture reads at most: base colour, metallic-roughness, emissive, glTF's 12
+// layer slots, the terrain's five.
+#define RT_MOST_READS 20
 
 // terrain/materials.h's constants.
 const float RT_LAYER_FAR_SCALE = 0.173;
@@ -29,7 +33,7 @@ vec3 rtLayerWeights(float height01, float slope, float jitter) {
 // RtTerrainMaterial::sample into the material from its five reads (grass near and
 // far, rock near and far, snow): its albedo times the layers', their roughness and
 // highlight.
-void rtApplyTerrain(inout RtMaterial m, vec4 reads[8], int first, double y, float normalY) {
+void rtApplyTerrain(inout RtMaterial m, vec4 reads[RT_MOST_READS], int first, double y, float normalY) {
   precise vec3 grass = reads[first].xyz * reads[first + 1].xyz * 2.0;
   precise vec3 rock = reads[first + 2].xyz * reads[first + 3].xyz * 2.0;
   vec3 snow = reads[first + 4].xyz;
@@ -55,25 +59,51 @@ float rtFootprint(inout float coneWidth, float coneSpread, Surface s, vec3 v, fl
 }
 
 // orientAnisotropy (rt_scene.cpp): the stretch's direction in the world from the
-// triangle's uv gradient, the material's direction (+x: layer textures are refused)
-// turned by its rotation; written to m.anisotropy as xyz the direction, w the
-// strength (0 where there is nothing to orient it by).
+// triangle's uv gradient, the material's direction (m.anisotropy.zw: +x, or its
+// texture's) turned by its rotation; written to m.anisotropy as xyz the direction, w
+// the strength (0 where there is nothing to orient it by).
 void rtOrientAnisotropy(inout RtMaterial m, Surface s) {
   float strength = m.anisotropy.x;
-  vec2 d = anisotropyDirection(vec2(1.0, 0.0), m.anisotropy.y);
+  vec2 d = anisotropyDirection(m.anisotropy.zw, m.anisotropy.y);
   vec3 ns = s.ns;
   precise vec3 t = s.dpdu - ns * rtDot(ns, s.dpdu);
   float len = sqrt(rtDot(t, t));
   m.anisotropy = vec4(0.0);
   if (len > 0.0 && !isinf(len) && !isnan(len)) {
-    t /= len;
+    t = t / len;
     // glTF's bitangent points up the image, against dP/dv.
-    vec3 across = cross(ns, t);
+    vec3 across = rtCross(ns, t);
     vec3 b = rtDot(across, s.dpdv) < 0.0 ? across : -across;
     precise vec3 stretched = t * d.x + b * d.y;
     float slen = sqrt(rtDot(stretched, stretched));
     if (slen > 1e-6) m.anisotropy = vec4(stretched / slen, clamp(strength, 0.0, 1.0));
   }
+}
+
+// RtScene::applyLayerTextures: `read[k]` is the texel of layer slot k
+// (TextureSlot::Specular + k), or -1. KHR_materials_specular's weight (alpha) and
+// colour tint the dielectric's f0 as MaterialLayers::dielectricF0 does, in double.
+void rtApplyLayerTextures(inout RtMaterial m, vec4 texel[RT_MOST_READS], int read[12]) {
+  if (read[0] >= 0 || read[1] >= 0) {
+    precise float weight = m.specularLayer.w * (read[0] >= 0 ? texel[read[0]].a : 1.0);
+    precise vec3 color = m.specularLayer.xyz * (read[1] >= 0 ? texel[read[1]].xyz : vec3(1.0));
+    precise dvec3 f0 = min(dvec3(m.reflectance.x) * dvec3(color), dvec3(1.0)) * double(weight);
+    m.dielectric = vec4(vec3(f0), weight);
+  }
+  if (read[2] >= 0) m.coatSheen.x = m.coatSheen.x * texel[read[2]].x;                  // clearcoat
+  if (read[3] >= 0) m.coatSheen.y = m.coatSheen.y * texel[read[3]].y;                  // its roughness
+  if (read[4] >= 0) m.transmission.x = m.transmission.x * texel[read[4]].x;            // transmission
+  if (read[5] >= 0) m.transmission.z = m.transmission.z * texel[read[5]].y;            // thickness
+  if (read[7] >= 0) m.sheenColorFilmIor.xyz = m.sheenColorFilmIor.xyz * texel[read[7]].xyz;  // sheen colour
+  if (read[8] >= 0) m.coatSheen.z = m.coatSheen.z * texel[read[8]].a;                  // its roughness
+  if (read[9] >= 0) {  // anisotropy: the direction in RG, the strength in B
+    vec3 stretch = texel[read[9]].xyz;
+    precise vec2 direction = stretch.xy * 2.0 - 1.0;
+    m.anisotropy.zw = direction;
+    m.anisotropy.x = m.anisotropy.x * stretch.z;
+  }
+  if (read[10] >= 0) m.coatSheen.w = m.coatSheen.w * texel[read[10]].x;                // iridescence
+  if (read[11] >= 0) m.film.x = mixAsGlm(m.filmRange.x, m.filmRange.y, texel[read[11]].y);  // its thickness
 }
 
 // The material at the hit (the unflipped shading normal's y for the terrain), built
@@ -85,13 +115,22 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
   m.colorAmbient.xyz = m.colorAmbient.xyz * s.color.xyz;  // baseColor: the colour times COLOR_0
 #ifdef RT_TEXTURES
   ivec4 t = m.textures;
-  int texture[8];
-  vec2 uv[8];
-  float width[8];
+  int texture[RT_MOST_READS];
+  vec2 uv[RT_MOST_READS];
+  float width[RT_MOST_READS];
   int reads = 0;
   for (int k = 0; k < 3; ++k) {
     if (t[k] < 0) continue;
     texture[reads] = t[k];
+    uv[reads] = s.uv0;
+    width[reads++] = footprint;
+  }
+  int layerRead[12];
+  for (int k = 0; k < 12; ++k) {
+    int index = m.layerTextures[k / 4][k % 4];
+    layerRead[k] = index >= 0 ? reads : -1;
+    if (index < 0) continue;
+    texture[reads] = index;
     uv[reads] = s.uv0;
     width[reads++] = footprint;
   }
@@ -105,7 +144,7 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
     }
   }
   int terrainReads = t.w >= 0 ? 5 : 0;
-  vec4 texel[8];
+  vec4 texel[RT_MOST_READS];
   for (int k = 0; k < reads + terrainReads; ++k) {
     // A material's textures read their own uv set (uv[k] stands for TEXCOORD_0 only
     // where the texture says so); the terrain's layers have one.
@@ -119,6 +158,7 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
     m.metallicRoughnessUnlit.x = m.metallicRoughnessUnlit.x * mr.z;
   }
   if (t.z >= 0) m.emission.xyz = m.emission.xyz * texel[next++].xyz;
+  rtApplyLayerTextures(m, texel, layerRead);
   if (t.w >= 0) rtApplyTerrain(m, texel, reads, double(s.p.y), s.ns.y);
 #endif
   if (m.anisotropy.x > 0.0) {

@@ -16,9 +16,13 @@ struct RtMaterial {
   vec4 film;                                 // x: the thin film's thickness (nm)
   vec4 transmission;                         // share, ior, thickness (0: a thin wall), attenuation distance
   vec4 attenuation;                          // xyz: the volume's attenuation colour
-  vec4 anisotropy;                           // x: strength, y: rotation (rtMaterialAt: xyz the stretch in the world, w strength)
+  vec4 anisotropy;                           // x: strength, y: rotation, zw: direction (rtMaterialAt: xyz the stretch in the world, w strength)
   ivec4 terrainLayers;                       // the terrain's grass, rock, snow (textures.w >= 0)
   dvec2 terrainOriginYHeightScale;           // its origin's world height; its height scale
+  ivec4 layerTextures[3];                    // glTF's layer textures, TextureSlot::Specular on (-1 none)
+  vec4 specularLayer;                        // KHR_materials_specular's colour and weight
+  vec4 filmRange;                            // the thin film's thickness at texel 0 and 1 (nm)
+  dvec2 reflectance;                         // x: ((ior - 1) / (ior + 1))^2
 };
 
 layout(std430, binding = BUFFER_RT_MATERIALS) readonly buffer RtMaterials { RtMaterial rtMaterials[]; };

@@ -1,9 +1,15 @@
-// glm's dot, normalize, mix and refract as the CPU tracer computes them, unfused,
+// glm's dot, cross, normalize, mix and refract as the CPU tracer computes them, unfused,
 // and a modulo for negative operands, for every GPU tracer file (rt/trace.glsl includes it).
 
 // glm::dot's order, (x + y) + z, unfused.
 float rtDot(vec3 a, vec3 b) {
   precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
+  return r;
+}
+
+// glm::cross's operations, unfused.
+vec3 rtCross(vec3 a, vec3 b) {
+  precise vec3 r = vec3(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
   return r;
 }
 

@@ -22,12 +22,6 @@ float sheenTableLookup(float nDotV, float roughness) {
   return r;
 }
 
-// glm::cross's operations, unfused.
-vec3 rtCross(vec3 a, vec3 b) {
-  precise vec3 r = vec3(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
-  return r;
-}
-
 struct RtViewLayers {
   float sheenAlbedo, sheenScale;    // the white sheen's albedo at N.V; what it leaves the base
   vec3 anisotropyT, anisotropyB;    // the stretch made orthogonal to n, and n x it

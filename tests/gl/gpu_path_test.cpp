@@ -234,6 +234,9 @@ TEST_P(GpuPath, RendersTheCpusImageOfLayeredMaterials) {
   // Anisotropy, oriented by a triangle's uv gradient.
   const rt::RtScene brushed = test::brushedMetalRoom();
   expectAgreement(brushed, "textured room, pbr, anisotropic metal");
+  // A texture in every layer slot the tracers read (support/rt_textured.h).
+  expectAgreement(test::layerTexturedRoom(), "pbr room, layer textures");
+  expectAgreement(test::brushedMetalRoom(true), "textured room, pbr, anisotropy texture");
 }
 
 // The comparison is not blind: the GPU drawing the open room without its sun fails it.
@@ -245,7 +248,7 @@ TEST_P(GpuPath, TheComparisonCatchesAMissingLight) {
 
 // Both GPU integrators draw every glTF layer (KHR_materials_ior and _specular: the
 // dielectric's f0 and f90; _clearcoat, _sheen, _iridescence, _transmission, _volume,
-// _anisotropy); what they do not draw is refused in one line.
+// _anisotropy), with their textures; what they do not draw is refused in one line.
 TEST(GpuPathSupport, DrawsEveryLayerAndRefusesInOneLine) {
   rt::RenderSettings path = pathSettings(), whitted;
   const rt::RtScene layered = test::pbrRoom(1.5f, [](SceneDesc& desc) {
@@ -255,6 +258,9 @@ TEST(GpuPathSupport, DrawsEveryLayerAndRefusesInOneLine) {
   });
   EXPECT_EQ(gpurt::unsupported(layered, path), "");
   EXPECT_EQ(gpurt::unsupported(layered, whitted), "");
+  const rt::RtScene textured = test::layerTexturedRoom();
+  EXPECT_EQ(gpurt::unsupported(textured, path), "");
+  EXPECT_EQ(gpurt::unsupported(textured, whitted), "");
   path.precision = rt::Precision::Double;
   EXPECT_EQ(gpurt::unsupported(layered, path), "double precision is not supported");
 }

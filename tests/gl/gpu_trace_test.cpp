@@ -234,15 +234,19 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTheShippedTexturedScenes) {
 // layered PBR room (a clear coat over a rough metal and over a sheen, a thin film on
 // the walls and the mirror, a tinted volume whose rays refract in and out and reflect
 // past the critical angle, beside mirror rays: a tree of rays, not a chain), then
-// the textured room's brushed metal (anisotropy oriented by the uv gradient), with
-// the room's limits.
+// the textured room's brushed metal (anisotropy oriented by the uv gradient), then
+// both with a texture in every layer slot the tracers read (support/rt_textured.h),
+// with the room's limits.
 TEST_P(GpuWhitted, RendersTheCpusImageOfLayeredMaterials) {
-  const rt::RtScene layered = test::pbrRoom(1.5f, [](SceneDesc& desc) {
-    test::layeredMaterials(desc);
-    desc.materials[5].reflection = 0.25f;  // the volume a mirror as well
-  });
-  expectCpusImages(layered, whittedSettings(), "the layered pbr room");
+  const auto alsoAMirror = [](SceneDesc& desc) { desc.materials[5].reflection = 0.25f; };  // the volume
+  expectCpusImages(test::pbrRoom(1.5f, [&](SceneDesc& desc) {
+                     test::layeredMaterials(desc);
+                     alsoAMirror(desc);
+                   }),
+                   whittedSettings(), "the layered pbr room");
   expectCpusImages(test::brushedMetalRoom(), whittedSettings(), "the brushed metal");
+  expectCpusImages(test::layerTexturedRoom(alsoAMirror), whittedSettings(), "the layered pbr room, textured");
+  expectCpusImages(test::brushedMetalRoom(true), whittedSettings(), "the brushed metal, textured");
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 
 #include <unistd.h>
 
+#include "asset/model_data.h"
 #include "asset/texture_transform.h"
 #include "radiance_file.h"
 #include "raytrace/environment.h"
@@ -168,10 +169,41 @@ inline rt::AnimatedRtScene shippedScene(const std::string& file, int height = 90
   return std::move(traced).value();
 }
 
+// A small hashed image for layer slot `slot` of `material`, decoded as glTF decodes
+// that slot (sRGB colours, linear factors), with a wrap and a seed of its own.
+inline void addLayerTexture(rt::RtScene& scene, int material, TextureSlot slot, int w, int h) {
+  const auto seed = std::uint32_t(20 + int(slot));
+  const rt::TextureEncoding encoding = isSrgbSlot(slot) ? rt::TextureEncoding::Srgb : rt::TextureEncoding::Linear;
+  rt::RtTexture texture(hashedImage(w, h, seed), rt::TextureOrigin::TopLeft, encoding);
+  texture.setWrap(int(slot) % 2 ? TextureWrap::MirroredRepeat : TextureWrap::Repeat, TextureWrap::Repeat);
+  const Status added = scene.setLayerTexture(material, slot, std::move(texture));
+  EXPECT_TRUE(added) << added.error().message;
+}
+
+// support/rt_room.h's layered PBR room (`layers` on top of layeredMaterials) with a
+// texture in each layer slot the tracers read: the volume's specular weight and
+// colour, transmission and thickness; the coated metal's coat and its roughness; the
+// sheen's colour and roughness on the red wall; the film's share and thickness on
+// the white walls.
+inline rt::RtScene layerTexturedRoom(const std::function<void(SceneDesc&)>& layers = {}) {
+  rt::RtScene scene = pbrRoom(1.5f, [&layers](SceneDesc& desc) {
+    layeredMaterials(desc);
+    desc.materials[5].layers.specular = 0.8f;
+    desc.materials[5].layers.specularColor = glm::vec3(1.0f, 0.7f, 0.9f);
+    if (layers) layers(desc);
+  });
+  using enum TextureSlot;
+  for (const TextureSlot slot : {Specular, SpecularColor, Transmission, Thickness}) addLayerTexture(scene, 5, slot, 7, 5);
+  for (const TextureSlot slot : {Clearcoat, ClearcoatRoughness}) addLayerTexture(scene, 3, slot, 6, 6);
+  for (const TextureSlot slot : {SheenColor, SheenRoughness}) addLayerTexture(scene, 1, slot, 5, 9);
+  for (const TextureSlot slot : {Iridescence, IridescenceThickness}) addLayerTexture(scene, 0, slot, 8, 3);
+  return scene;
+}
+
 // Anisotropy needs a uv gradient to orient it: texturedRoom's grid on the back wall
 // (its second uv set turned by a transform) made a brushed metal, in PBR under the
-// gradient sky.
-inline rt::RtScene brushedMetalRoom() {
+// gradient sky; `textured`: its direction and strength from a texture.
+inline rt::RtScene brushedMetalRoom(bool textured = false) {
   rt::RtScene room = texturedRoom([](SceneDesc& desc) {
     MaterialDesc& m = desc.materials[8];
     m.metallic = 1.0f;
@@ -179,6 +211,7 @@ inline rt::RtScene brushedMetalRoom() {
     m.layers.anisotropy = 0.8f;
     m.layers.anisotropyRotation = 0.5f;
   });
+  if (textured) addLayerTexture(room, 8, TextureSlot::Anisotropy, 5, 4);
   RenderDesc render = room.render();
   render.shading = Shading::Pbr;
   room.setRender(render);
