@@ -148,7 +148,10 @@ void GpuTracer::State::setView(const gl::Program& p, const rt::RenderSettings& s
   p.set("u_fogDensity", scene->fog().density);
 }
 
-rt::RenderResult GpuTracer::State::runPerPixel(int w, int h, int batches, const std::function<void(int)>& prepare) const {
+rt::RenderResult GpuTracer::State::runPerPixel(const gl::Program& program, int w, int firstRow, int h, int batches,
+                                               const std::function<void(int)>& prepare) const {
+  program.set("u_firstRow", firstRow);
+  program.set("u_rows", h);
   const gl::Buffer image = gl::Buffer::create(std::size_t(w) * std::size_t(h) * sizeof(glm::vec4));
   const std::uint32_t zeros[4] = {0, 0, 0, 0};
   const gl::Buffer counters = gl::Buffer::create(sizeof(zeros), zeros);
@@ -236,11 +239,20 @@ std::vector<RayAnswer> GpuTracer::trace(std::span<const RayQuery> rays) const {
 }
 
 Result<rt::RenderResult> GpuTracer::render(const rt::RenderSettings& settings) const {
-  if (const std::string why = unsupported(*state_->scene, settings); !why.empty()) return makeError(why);
-  return settings.method == rt::Method::Path ? renderPath(settings) : renderWhitted(settings);
+  return render(settings, 0, settings.height);
 }
 
-Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& settings) const {
+Result<rt::RenderResult> GpuTracer::render(const rt::RenderSettings& settings, int firstRow, int rows) const {
+  if (const std::string why = unsupported(*state_->scene, settings); !why.empty()) return makeError(why);
+  if (firstRow < 0 || rows < 1 || firstRow + rows > settings.height) {
+    return makeError("rows " + std::to_string(firstRow) + " to " + std::to_string(firstRow + rows) +
+                     " are not in an image " + std::to_string(settings.height) + " high");
+  }
+  return settings.method == rt::Method::Path ? renderPath(settings, firstRow, rows)
+                                             : renderWhitted(settings, firstRow, rows);
+}
+
+Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& settings, int firstRow, int rows) const {
   const State& s = *state_;
   const rt::RtScene& scene = *s.scene;
   const int maxDepth = std::max(0, settings.maxDepth);
@@ -272,7 +284,7 @@ Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& sett
   p.set("u_ambientSky", scene.ambientSky());
   p.set("u_ambientGround", scene.ambientGround());
   p.set("u_coneSpread", rt::pixelConeSpread(scene.camera().fovyDegrees, settings.height, spp));
-  return s.runPerPixel(settings.width, settings.height);
+  return s.runPerPixel(p, settings.width, firstRow, rows);
 }
 
 }  // namespace engine::gpurt

@@ -53,6 +53,10 @@ class GpuTracer {
   // The image Integrator(scene, settings).render() makes, Whitted or path traced
   // (check unsupported() first). `seconds` is the GPU's time, the upload excluded.
   Result<rt::RenderResult> render(const rt::RenderSettings& settings) const;
+  // Rows [firstRow, firstRow + rows) of that image, each pixel the same bits as in the
+  // whole image (a window traces a pass a band at a time, a GPU's watchdog never
+  // sees a long dispatch): the result's image is those rows, `rows` high.
+  Result<rt::RenderResult> render(const rt::RenderSettings& settings, int firstRow, int rows) const;
 
   // The flattened scene it traces, and the buffers it lives in: a GpuRefit made from
   // this layout refits a group of it in place.
@@ -65,9 +69,9 @@ class GpuTracer {
 
  private:
   GpuTracer();
-  Result<rt::RenderResult> renderWhitted(const rt::RenderSettings& settings) const;
+  Result<rt::RenderResult> renderWhitted(const rt::RenderSettings& settings, int firstRow, int rows) const;
   // path_kernel.cpp.
-  Result<rt::RenderResult> renderPath(const rt::RenderSettings& settings) const;
+  Result<rt::RenderResult> renderPath(const rt::RenderSettings& settings, int firstRow, int rows) const;
   struct State;
   std::unique_ptr<State> state_;
 };

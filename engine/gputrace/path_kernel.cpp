@@ -73,7 +73,7 @@ int samplesPerBatch(const rt::RenderSettings& settings, std::size_t lights) {
 
 }  // namespace
 
-Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& settings) const {
+Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& settings, int firstRow, int rows) const {
   const State& s = *state_;
   const rt::RtScene& scene = *s.scene;
   if (!s.path) {
@@ -112,7 +112,7 @@ Result<rt::RenderResult> GpuTracer::renderPath(const rt::RenderSettings& setting
   // in the CPU's order, and the mean is taken here as renderPixel takes it.
   const int first = std::max(0, settings.firstSample), spp = std::max(1, settings.samplesPerPixel);
   const int batch = samplesPerBatch(settings, lights->lights.size());
-  rt::RenderResult result = s.runPerPixel(settings.width, settings.height, (spp + batch - 1) / batch, [&](int b) {
+  rt::RenderResult result = s.runPerPixel(p, settings.width, firstRow, rows, (spp + batch - 1) / batch, [&](int b) {
     p.set("u_firstSample", first + b * batch);
     p.set("u_spp", std::min(batch, spp - b * batch));
     p.set("u_accumulate", b > 0 ? 1 : 0);

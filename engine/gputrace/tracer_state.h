@@ -51,12 +51,13 @@ struct GpuTracer::State {
   // What both integrators read alike: the image size, the camera (rt/camera.glsl),
   // the sky (rt/sky.glsl), the fog and the seed.
   void setView(const gl::Program& program, const rt::RenderSettings& settings) const;
-  // `batches` dispatches of one invocation per pixel in 8 x 8 groups, `prepare(batch)`
-  // setting each one's uniforms first; timed from dispatch to glFinish. The image is
+  // `batches` dispatches of `program`, one invocation per pixel of rows [firstRow,
+  // firstRow + rows) of a `width` wide image in 8 x 8 groups, `prepare(batch)` setting
+  // each one's uniforms first; timed from dispatch to glFinish. The band's image is
   // read back after the last (a kernel may add to what the one before wrote), the
   // three ray counters (primary, shadow, reflection or bounce) after each, summed in
   // 64 bits.
-  rt::RenderResult runPerPixel(int width, int height, int batches = 1,
+  rt::RenderResult runPerPixel(const gl::Program& program, int width, int firstRow, int rows, int batches = 1,
                                const std::function<void(int)>& prepare = {}) const;
 };
 

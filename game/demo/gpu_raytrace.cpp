@@ -1,5 +1,6 @@
 #include "gpu_raytrace.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "gputrace/gpu_tracer.h"
@@ -56,24 +57,48 @@ engine::Status GpuTraceGame::init() {
   return framebuffer_.check("traced image");
 }
 
-// The next pass, added to the sums, and the mean so far encoded into the texture.
-engine::Status GpuTraceGame::tracePass() {
+namespace {
+
+// The GPU time a frame's band aims at: a window that answers 20-30 times a second.
+constexpr double kFrameSeconds = 0.04;
+
+// The rows the next band gets: the last band's rate over kFrameSeconds, a multiple of
+// the kernels' 8-row groups, growing at most fourfold a frame.
+int nextBandRows(int rows, double seconds, int height) {
+  const double perRow = std::max(seconds, 1e-6) / double(rows);
+  const int wanted = int(kFrameSeconds / perRow) / 8 * 8;
+  return std::clamp(wanted, 8, std::max(8, std::min(4 * rows, height)));
+}
+
+}  // namespace
+
+// The pass's next band of rows, added to the sums, and the band's mean so far
+// encoded into the texture.
+engine::Status GpuTraceGame::traceBand() {
   engine::rt::RenderSettings pass = settings_;
   if (passes_ > 1) {
     pass.firstSample = done_;
     pass.samplesPerPixel = 1;
     pass.totalSamples = settings_.samplesPerPixel;
   }
-  auto result = tracer_->render(pass);
+  const int rows = std::min(bandRows_, settings_.height - row_);
+  auto result = tracer_->render(pass, row_, rows);
   if (!result) return result.error();
-  ++done_;
   // One sample a pass: its mean is its sum. The Whitted pass is the whole image.
-  engine::rt::Framebuffer mean(settings_.width, settings_.height);
-  for (std::size_t i = 0; i < sum_.size(); ++i) {
-    sum_[i] = passes_ > 1 ? sum_[i] + result->image.pixels[i] : result->image.pixels[i];
-    mean.pixels[i] = passes_ > 1 ? sum_[i] / float(done_) : sum_[i];
+  engine::rt::Framebuffer mean(settings_.width, rows);
+  const std::size_t first = std::size_t(row_) * std::size_t(settings_.width);
+  for (std::size_t i = 0; i < mean.pixels.size(); ++i) {
+    glm::vec3& sum = sum_[first + i];
+    sum = passes_ > 1 ? sum + result->image.pixels[i] : result->image.pixels[i];
+    mean.pixels[i] = passes_ > 1 ? sum / float(done_ + 1) : sum;
   }
-  texture_.uploadRgba8(engine::rt::toImage(mean, scene_->render()).pixels.data());
+  const engine::Image encoded = engine::rt::toImage(mean, scene_->render());
+  glTextureSubImage2D(texture_.id(), 0, 0, row_, settings_.width, rows, GL_RGBA, GL_UNSIGNED_BYTE, encoded.pixels.data());
+  bandRows_ = nextBandRows(rows, result->seconds, settings_.height);
+  row_ += rows;
+  if (row_ < settings_.height) return engine::Ok{};
+  row_ = 0;
+  ++done_;
   std::fprintf(stderr, "\rGPU %s: pass %d of %d", passes_ > 1 ? "path tracer" : "Whitted tracer", done_, passes_);
   if (done_ == passes_) std::fputc('\n', stderr);
   return engine::Ok{};
@@ -81,7 +106,7 @@ engine::Status GpuTraceGame::tracePass() {
 
 engine::Status GpuTraceGame::render(const engine::FrameInfo& frame) {
   if (done_ < passes_) {
-    if (auto s = tracePass(); !s) return s;
+    if (auto s = traceBand(); !s) return s;
   }
   showTracedImage(framebuffer_, settings_.width, settings_.height, frame);
   return engine::Ok{};

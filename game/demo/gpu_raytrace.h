@@ -26,10 +26,13 @@ engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc
                                                          engine::Backend backend, const std::string& shaderDir);
 
 // `demo --mode raytrace|pathtrace --device gpu` in a window: the GPU tracer on the
-// window's own context, a pass a frame (the Whitted tracer's whole image; the path
-// tracer's next sample of every pixel), the image the mean of the passes so far. Each
-// pass is the GPU's sum of one sample, summed here in the order the offscreen
-// render's kernel sums them, so the last frame is the offscreen image byte for byte.
+// window's own context, a band of rows of a pass a frame (a pass: the Whitted
+// tracer's whole image; the path tracer's next sample of every pixel), the image the
+// mean of the passes so far. The bands are sized to about kFrameSeconds of the GPU's
+// time, so the window answers while a pass takes seconds (llvmpipe). Each pass is
+// the GPU's sum of one sample, summed here in the order the offscreen render's
+// kernel sums them, so once every pass is in the image is the offscreen one byte for
+// byte.
 class GpuTraceGame final : public engine::Game {
  public:
   GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings, std::string shaderDir);
@@ -42,7 +45,7 @@ class GpuTraceGame final : public engine::Game {
   void shutdown() override;
 
  private:
-  engine::Status tracePass();
+  engine::Status traceBand();
 
   engine::SceneDesc desc_;
   double time_;
@@ -53,6 +56,8 @@ class GpuTraceGame final : public engine::Game {
   std::unique_ptr<engine::gpurt::GpuTracer> tracer_;
   std::vector<glm::vec3> sum_;  // linear, each pixel's samples so far
   int done_ = 0, passes_ = 1;
+  int row_ = 0;          // the first row of the pass not traced yet
+  int bandRows_ = 8;     // rows a frame, sized by the last band's time
   engine::gl::Texture texture_;
   engine::gl::Framebuffer framebuffer_;
 };

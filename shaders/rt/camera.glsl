@@ -2,6 +2,18 @@
 // there, shared by the GPU integrators.
 
 uniform ivec2 u_size;  // the image
+// The band of rows this dispatch traces, [u_firstRow, u_firstRow + u_rows): the
+// output holds those rows only.
+uniform int u_firstRow, u_rows;
+
+// This invocation's pixel, and whether it lies in the band.
+ivec2 bandPixel(out bool inside) {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_firstRow);
+  inside = pixel.x < u_size.x && pixel.y < min(u_size.y, u_firstRow + u_rows);
+  return pixel;
+}
+// Its place in the band's output.
+int bandIndex(ivec2 pixel) { return (pixel.y - u_firstRow) * u_size.x + pixel.x; }
 uniform dvec3 u_cameraPosition, u_cameraRight, u_cameraUp, u_cameraForward;
 uniform dvec2 u_cameraScale;  // xScale, yScale
 uniform double u_farPlane;

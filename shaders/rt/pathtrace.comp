@@ -305,14 +305,15 @@ vec3 finiteOr0(vec3 c) { return any(isnan(c)) || any(isinf(c)) ? vec3(0.0) : c; 
 // turned by the pixel's random offset, each with a random stream of its own, summed
 // in the CPU's order onto the batches before.
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= u_size.x || pixel.y >= u_size.y) return;
+  bool inside;
+  ivec2 pixel = bandPixel(inside);
+  if (!inside) return;
   Pcg32 pixelRng = pcgForPixel(u_seed, pixel.x, pixel.y);
   double offsetX = double(pcgUniform(pixelRng));
   double offsetY = double(pcgUniform(pixelRng));
   vec3 origin = vec3(u_cameraPosition);
   int first = max(0, u_firstSample), spp = max(1, u_spp);
-  int index = pixel.y * u_size.x + pixel.x;
+  int index = bandIndex(pixel);
   vec3 sum = u_accumulate != 0 ? pixels[index].xyz : vec3(0.0);
   for (int k = first; k < first + spp; ++k) {
     precise double jx = offsetX + 0.75487766624669276lf * double(k);

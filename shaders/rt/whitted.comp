@@ -309,8 +309,9 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= u_size.x || pixel.y >= u_size.y) return;
+  bool inside;
+  ivec2 pixel = bandPixel(inside);
+  if (!inside) return;
   Pcg32 rng = pcgForPixel(u_seed, pixel.x, pixel.y);
   vec3 o = vec3(u_cameraPosition);
   // One sample at the pixel's centre, or strata with a jittered point each.
@@ -329,7 +330,7 @@ void main() {
     vec3 c = Li(o, d, tMax, rng);
     sum = jitter ? sum + c : c;
   }
-  pixels[pixel.y * u_size.x + pixel.x] = vec4(jitter ? sum / float(u_spp) : sum, 1.0);
+  pixels[bandIndex(pixel)] = vec4(jitter ? sum / float(u_spp) : sum, 1.0);
   atomicAdd(rayCounters[0], primaryRays);
   atomicAdd(rayCounters[1], shadowRays);
   atomicAdd(rayCounters[2], reflectionRays);

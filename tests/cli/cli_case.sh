@@ -466,19 +466,20 @@ PY
       --screenshot ptw.png
     [ -s ptw.png ] || { echo "FAIL: no screenshot"; exit 1; } ;;
   gpu_trace_window)
-    # The GPU tracers in a window, a pass a frame: once every pass is in, the
+    # The GPU tracers in a window, a band of rows of a pass a frame (8 rows first, so
+    # a pass of these 48 rows takes more than one frame): once every pass is in, the
     # window's image is the offscreen one byte for byte (the path tracer's samples
     # summed in the kernel's order), for the Whitted tracer of the room and the path
     # tracer of materials.json (textures, alpha).
     start_xvfb
     rm -f gww.png gwo.png gpw.png gpo.png
-    expect 0 "gww\.png" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --device gpu --size 64x48 \
-      --frames 2 --screenshot gww.png
+    expect 0 "pass 1 of 1" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --device gpu --size 64x48 \
+      --frames 12 --screenshot gww.png
     expect 0 "" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --device gpu --offscreen --size 64x48 \
       --screenshot gwo.png
     cmp gww.png gwo.png || { echo "FAIL: the window's Whitted image is not the offscreen one"; exit 1; }
     expect 0 "pass 4 of 4" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --mode pathtrace --device gpu --size 64x48 \
-      --spp 4 --frames 6 --screenshot gpw.png
+      --spp 4 --frames 40 --screenshot gpw.png
     expect 0 "" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --mode pathtrace --device gpu --offscreen \
       --size 64x48 --spp 4 --screenshot gpo.png
     cmp gpw.png gpo.png || { echo "FAIL: the window's path-traced image is not the offscreen one"; exit 1; }

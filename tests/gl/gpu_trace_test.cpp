@@ -228,6 +228,40 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTheShippedTexturedScenes) {
   }
 }
 
+// A window traces a pass a band of rows at a time (GpuTracer::render's rows): bands
+// of 7 rows (not the kernels' 8-row groups) over the room, Whitted and path
+// traced, are the whole image's rows bit for bit, with the same ray counts in sum.
+TEST_P(GpuWhitted, BandsOfRowsAreTheWholeImagesRows) {
+  const rt::RtScene scene = test::roomWithMeshes();
+  auto tracer = gpurt::GpuTracer::create(scene, test::shaderDir());
+  ASSERT_TRUE(tracer) << tracer.error().message;
+  rt::RenderSettings settings = whittedSettings();
+  settings.width = 40;
+  settings.height = 30;
+  for (const rt::Method method : {rt::Method::Whitted, rt::Method::Path}) {
+    settings.method = method;
+    auto whole = tracer->render(settings);
+    ASSERT_TRUE(whole) << whole.error().message;
+    rt::RayCounters rays;
+    int differing = 0;
+    for (int row = 0; row < settings.height; row += 7) {
+      const int rows = std::min(7, settings.height - row);
+      auto band = tracer->render(settings, row, rows);
+      ASSERT_TRUE(band) << band.error().message;
+      ASSERT_EQ(band->image.height, rows);
+      rays += band->rays;
+      for (int y = 0; y < rows; ++y) {
+        for (int x = 0; x < settings.width; ++x) differing += band->image.at(x, y) != whole->image.at(x, row + y) ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_EQ(rays.primary, whole->rays.primary);
+    EXPECT_EQ(rays.shadow, whole->rays.shadow);
+    EXPECT_EQ(rays.reflection, whole->rays.reflection);
+  }
+  EXPECT_FALSE(tracer->render(settings, 25, 6));  // past the image: an error, not a crash
+}
+
 // glTF's layers as the CPU's Whitted tracer draws them (core/brdf.h's layeredBrdf per
 // light, the hemisphere ambient through the layers, one refracted ray through
 // KHR_materials_transmission, absorbed inside KHR_materials_volume): support/rt_room.h's
