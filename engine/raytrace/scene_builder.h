@@ -58,6 +58,11 @@ class AnimatedRtScene {
 
   RtScene& scene() { return scene_; }
   const RtScene& scene() const { return scene_; }
+  // The scene's model instances: each one's BVH group of the RtScene and its meshes as
+  // last posed (world space, in the group's order: what a GPU refit reads).
+  std::size_t instanceCount() const { return instances_.size(); }
+  int instanceGroup(std::size_t i) const { return instances_[i].group; }
+  const std::vector<RtMesh>& instanceMeshes(std::size_t i) const { return instances_[i].meshes; }
 
   AnimatedRtScene(AnimatedRtScene&&) noexcept;
   AnimatedRtScene& operator=(AnimatedRtScene&&) noexcept;

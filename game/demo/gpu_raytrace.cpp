@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 
+#include "gputrace/gpu_poses.h"
 #include "gputrace/gpu_tracer.h"
 #include "platform/gl_context.h"
 #include "progressive_trace.h"
@@ -34,22 +36,32 @@ engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc
 }
 
 GpuTraceGame::GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings,
-                           std::string shaderDir)
-    : desc_(std::move(scene)), time_(time), settings_(std::move(settings)), shaderDir_(std::move(shaderDir)) {}
+                           std::string shaderDir, bool animate)
+    : desc_(std::move(scene)),
+      time_(time),
+      settings_(std::move(settings)),
+      shaderDir_(std::move(shaderDir)),
+      animate_(animate) {}
 
 GpuTraceGame::~GpuTraceGame() { shutdown(); }
 
 engine::Status GpuTraceGame::init() {
-  auto scene = engine::rt::buildRtScene(desc_, time_, settings_.height);
+  auto scene = engine::rt::AnimatedRtScene::create(desc_, time_, settings_.height);
   if (!scene) return scene.error();
-  if (const std::string why = engine::gpurt::unsupported(*scene, settings_); !why.empty()) {
+  if (const std::string why = engine::gpurt::unsupported(scene->scene(), settings_); !why.empty()) {
     return engine::makeError("--device gpu: " + why);
   }
-  scene_ = std::make_unique<engine::rt::RtScene>(std::move(scene).value());
-  auto tracer = engine::gpurt::GpuTracer::create(*scene_, shaderDir_);
+  scene_ = std::make_unique<engine::rt::AnimatedRtScene>(std::move(scene).value());
+  auto tracer = engine::gpurt::GpuTracer::create(scene_->scene(), shaderDir_);
   if (!tracer) return tracer.error();
   tracer_ = std::make_unique<engine::gpurt::GpuTracer>(std::move(tracer).value());
   passes_ = settings_.method == engine::rt::Method::Path ? std::max(1, settings_.samplesPerPixel) : 1;
+  if (animate_) {
+    auto poses = engine::gpurt::GpuPoses::create(*scene_, *tracer_, shaderDir_);
+    if (!poses) return poses.error();
+    poses_ = std::make_unique<engine::gpurt::GpuPoses>(std::move(poses).value());
+    passes_ = std::numeric_limits<int>::max();  // until the window closes
+  }
   sum_.assign(std::size_t(settings_.width) * std::size_t(settings_.height), glm::vec3(0.0f));
   texture_ = engine::gl::Texture::create2D(GL_RGBA8, settings_.width, settings_.height, 1);
   framebuffer_ = engine::gl::Framebuffer::create();
@@ -73,13 +85,18 @@ int nextBandRows(int rows, double seconds, int height) {
 }  // namespace
 
 // The pass's next band of rows, added to the sums, and the band's mean so far
-// encoded into the texture.
-engine::Status GpuTraceGame::traceBand() {
+// encoded into the texture. Animated, a pass starts by posing the scene at `time`.
+engine::Status GpuTraceGame::traceBand(double time) {
+  if (animate_ && row_ == 0) {
+    if (auto s = scene_->setTime(time); !s) return s;
+    poses_->update(*scene_, *tracer_);
+  }
+  const bool summed = passes_ > 1 && !animate_;
   engine::rt::RenderSettings pass = settings_;
-  if (passes_ > 1) {
+  if (passes_ > 1 && settings_.method == engine::rt::Method::Path) {
     pass.firstSample = done_;
     pass.samplesPerPixel = 1;
-    pass.totalSamples = settings_.samplesPerPixel;
+    pass.totalSamples = animate_ ? 1 : settings_.samplesPerPixel;
   }
   const int rows = std::min(bandRows_, settings_.height - row_);
   auto result = tracer_->render(pass, row_, rows);
@@ -89,30 +106,37 @@ engine::Status GpuTraceGame::traceBand() {
   const std::size_t first = std::size_t(row_) * std::size_t(settings_.width);
   for (std::size_t i = 0; i < mean.pixels.size(); ++i) {
     glm::vec3& sum = sum_[first + i];
-    sum = passes_ > 1 ? sum + result->image.pixels[i] : result->image.pixels[i];
-    mean.pixels[i] = passes_ > 1 ? sum / float(done_ + 1) : sum;
+    sum = summed ? sum + result->image.pixels[i] : result->image.pixels[i];
+    mean.pixels[i] = summed ? sum / float(done_ + 1) : sum;
   }
-  const engine::Image encoded = engine::rt::toImage(mean, scene_->render());
+  const engine::Image encoded = engine::rt::toImage(mean, scene_->scene().render());
   glTextureSubImage2D(texture_.id(), 0, 0, row_, settings_.width, rows, GL_RGBA, GL_UNSIGNED_BYTE, encoded.pixels.data());
   bandRows_ = nextBandRows(rows, result->seconds, settings_.height);
   row_ += rows;
   if (row_ < settings_.height) return engine::Ok{};
   row_ = 0;
   ++done_;
-  std::fprintf(stderr, "\rGPU %s: pass %d of %d", passes_ > 1 ? "path tracer" : "Whitted tracer", done_, passes_);
+  const char* tracer = settings_.method == engine::rt::Method::Path ? "path tracer" : "Whitted tracer";
+  if (animate_) {
+    std::fprintf(stderr, "\rGPU %s: pass %d at %.3f s (%zu vertices refitted)", tracer, done_, time, poses_->vertices());
+    return engine::Ok{};
+  }
+  std::fprintf(stderr, "\rGPU %s: pass %d of %d", tracer, done_, passes_);
   if (done_ == passes_) std::fputc('\n', stderr);
   return engine::Ok{};
 }
 
 engine::Status GpuTraceGame::render(const engine::FrameInfo& frame) {
   if (done_ < passes_) {
-    if (auto s = traceBand(); !s) return s;
+    if (auto s = traceBand(frame.time); !s) return s;
   }
   showTracedImage(framebuffer_, settings_.width, settings_.height, frame);
   return engine::Ok{};
 }
 
 void GpuTraceGame::shutdown() {
+  if (poses_ && done_ > 0) std::fputc('\n', stderr);
+  poses_.reset();
   tracer_.reset();
   framebuffer_ = {};
   texture_ = {};

@@ -15,6 +15,7 @@
 
 namespace engine::gpurt {
 class GpuTracer;
+class GpuPoses;
 }
 
 namespace demo {
@@ -32,10 +33,13 @@ engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc
 // time, so the window answers while a pass takes seconds (llvmpipe). Each pass is
 // the GPU's sum of one sample, summed here in the order the offscreen render's
 // kernel sums them, so once every pass is in the image is the offscreen one byte for
-// byte.
+// byte. `animate`: the scene moves instead, each pass posed at the time of the frame
+// that starts it (its characters' BVHs refitted on the GPU, gpurt::GpuPoses), and a
+// pass is shown alone, not summed with passes of other poses.
 class GpuTraceGame final : public engine::Game {
  public:
-  GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings, std::string shaderDir);
+  GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings, std::string shaderDir,
+               bool animate = false);
   ~GpuTraceGame() override;
 
   engine::Status init() override;
@@ -45,15 +49,17 @@ class GpuTraceGame final : public engine::Game {
   void shutdown() override;
 
  private:
-  engine::Status traceBand();
+  engine::Status traceBand(double time);
 
   engine::SceneDesc desc_;
   double time_;
   engine::rt::RenderSettings settings_;
   std::string shaderDir_;
   engine::Camera camera_;
-  std::unique_ptr<engine::rt::RtScene> scene_;
+  bool animate_ = false;
+  std::unique_ptr<engine::rt::AnimatedRtScene> scene_;
   std::unique_ptr<engine::gpurt::GpuTracer> tracer_;
+  std::unique_ptr<engine::gpurt::GpuPoses> poses_;  // with animate_
   std::vector<glm::vec3> sum_;  // linear, each pixel's samples so far
   int done_ = 0, passes_ = 1;
   int row_ = 0;          // the first row of the pass not traced yet

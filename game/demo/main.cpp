@@ -29,6 +29,7 @@ int fail(int code, const std::string& message) {
 struct RaytraceOptions {
   std::string precision = "float";
   std::string device = "cpu";
+  bool animate = false;
   engine::rt::RenderSettings settings;
 };
 
@@ -173,9 +174,12 @@ int main(int argc, char** argv) {
   app.add_option("--rt-precision", rt.precision, "Ray tracing: float or double")
       ->check(CLI::IsMember({"float", "double"}))->capture_default_str();
   app.add_option("--device", rt.device,
-                 "Ray tracing: cpu, or gpu (raytrace and pathtrace, --offscreen only: the Whitted tracer or "
-                 "the path tracer in a compute shader, through the --offscreen backend)")
+                 "Ray tracing: cpu, or gpu (raytrace and pathtrace: the Whitted tracer or the path tracer in a "
+                 "compute shader, through the --offscreen backend or in a window)")
       ->check(CLI::IsMember({"cpu", "gpu"}))->capture_default_str();
+  app.add_flag("--animate", rt.animate,
+               "Ray tracing, --device gpu in a window: trace the scene as it moves, each pass posed at its frame's "
+               "time (the characters' BVHs refitted on the GPU)");
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
 
   if (options.checkDisplay) return engine::displayAvailable() ? 0 : 1;
@@ -215,12 +219,13 @@ int main(int argc, char** argv) {
     rt.settings.height = options.run.height;
     rt.settings.precision = rt.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;
     const bool gpu = rt.device == "gpu";
+    if (rt.animate && (!gpu || offscreen)) return fail(engine::kExitBadInput, "--animate: only with --device gpu in a window");
     if (offscreen) return runRaytraceOffscreen(*scene, options, rt.settings, gpu);
     if (!engine::displayAvailable()) return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
     std::unique_ptr<engine::Game> game;
     if (gpu) {
       game = std::make_unique<demo::GpuTraceGame>(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings,
-                                                  options.shaderDir);
+                                                  options.shaderDir, rt.animate);
     } else {
       game = std::make_unique<demo::RaytraceGame>(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings);
     }

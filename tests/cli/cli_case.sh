@@ -483,6 +483,19 @@ PY
     expect 0 "" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --mode pathtrace --device gpu --offscreen \
       --size 64x48 --spp 4 --screenshot gpo.png
     cmp gpw.png gpo.png || { echo "FAIL: the window's path-traced image is not the offscreen one"; exit 1; }
-    echo "ok: identical bytes" ;;
+    echo "ok: identical bytes"
+    # --animate: the scene moves, each pass posed at its frame's time, the walking
+    # character's BVH refitted on the GPU (tests/gl/gpu_refit_test.cpp checks the
+    # images); offscreen it is refused.
+    cat > walk.json <<JSON
+{"camera": {"position": [0.4, 1.3, 3.4], "target": [0.0, 0.9, 0.0], "fovy": 45},
+ "lights": [{"type": "sun", "direction": [-0.4, 0.8, 0.5], "intensity": 2.0, "shadows": true}],
+ "primitives": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "extent": 6}],
+ "models": [{"path": "$SRC/assets/models/character.gltf", "position": [0, 0, 0], "clip": "Walk"}]}
+JSON
+    expect 0 "pass 3 at 0\.[0-9]+ s \([0-9]+ vertices refitted\)" -- "$BIN/demo" walk.json --mode raytrace --device gpu \
+      --animate --size 64x48 --frames 12 --screenshot gwa.png
+    expect 2 "--animate: only with --device gpu in a window" -- "$BIN/demo" walk.json --mode raytrace --device gpu \
+      --animate --offscreen --size 64x48 --screenshot gwa.png ;;
   *) echo "unknown case $CASE"; exit 1 ;;
 esac
