@@ -36,12 +36,13 @@ engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc
 }
 
 GpuTraceGame::GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings,
-                           std::string shaderDir, bool animate)
+                           std::string shaderDir, bool animate, bool wholePasses)
     : desc_(std::move(scene)),
       time_(time),
       settings_(std::move(settings)),
       shaderDir_(std::move(shaderDir)),
-      animate_(animate) {}
+      animate_(animate),
+      wholePasses_(wholePasses) {}
 
 GpuTraceGame::~GpuTraceGame() { shutdown(); }
 
@@ -56,6 +57,7 @@ engine::Status GpuTraceGame::init() {
   if (!tracer) return tracer.error();
   tracer_ = std::make_unique<engine::gpurt::GpuTracer>(std::move(tracer).value());
   passes_ = settings_.method == engine::rt::Method::Path ? std::max(1, settings_.samplesPerPixel) : 1;
+  if (wholePasses_) bandRows_ = settings_.height;
   if (animate_) {
     auto poses = engine::gpurt::GpuPoses::create(*scene_, *tracer_, shaderDir_);
     if (!poses) return poses.error();
@@ -93,10 +95,10 @@ engine::Status GpuTraceGame::traceBand(double time) {
   }
   const bool summed = passes_ > 1 && !animate_;
   engine::rt::RenderSettings pass = settings_;
-  if (passes_ > 1 && settings_.method == engine::rt::Method::Path) {
+  if (summed) {
     pass.firstSample = done_;
     pass.samplesPerPixel = 1;
-    pass.totalSamples = animate_ ? 1 : settings_.samplesPerPixel;
+    pass.totalSamples = settings_.samplesPerPixel;
   }
   const int rows = std::min(bandRows_, settings_.height - row_);
   auto result = tracer_->render(pass, row_, rows);
@@ -111,7 +113,7 @@ engine::Status GpuTraceGame::traceBand(double time) {
   }
   const engine::Image encoded = engine::rt::toImage(mean, scene_->scene().render());
   glTextureSubImage2D(texture_.id(), 0, 0, row_, settings_.width, rows, GL_RGBA, GL_UNSIGNED_BYTE, encoded.pixels.data());
-  bandRows_ = nextBandRows(rows, result->seconds, settings_.height);
+  if (!wholePasses_) bandRows_ = nextBandRows(rows, result->seconds, settings_.height);
   row_ += rows;
   if (row_ < settings_.height) return engine::Ok{};
   row_ = 0;

@@ -35,11 +35,13 @@ engine::Result<engine::rt::RaytraceRun> gpuRaytraceScene(const engine::SceneDesc
 // kernel sums them, so once every pass is in the image is the offscreen one byte for
 // byte. `animate`: the scene moves instead, each pass posed at the time of the frame
 // that starts it (its characters' BVHs refitted on the GPU, gpurt::GpuPoses), and a
-// pass is shown alone, not summed with passes of other poses.
+// pass is the whole still of that pose (the path tracer's every sample), shown
+// alone. `wholePasses` (offscreen): a pass a frame, not bands, so that each frame is
+// the still of its own time.
 class GpuTraceGame final : public engine::Game {
  public:
   GpuTraceGame(engine::SceneDesc scene, double time, engine::rt::RenderSettings settings, std::string shaderDir,
-               bool animate = false);
+               bool animate = false, bool wholePasses = false);
   ~GpuTraceGame() override;
 
   engine::Status init() override;
@@ -57,6 +59,7 @@ class GpuTraceGame final : public engine::Game {
   std::string shaderDir_;
   engine::Camera camera_;
   bool animate_ = false;
+  bool wholePasses_ = false;
   std::unique_ptr<engine::rt::AnimatedRtScene> scene_;
   std::unique_ptr<engine::gpurt::GpuTracer> tracer_;
   std::unique_ptr<engine::gpurt::GpuPoses> poses_;  // with animate_

@@ -178,8 +178,8 @@ int main(int argc, char** argv) {
                  "compute shader, through the --offscreen backend or in a window)")
       ->check(CLI::IsMember({"cpu", "gpu"}))->capture_default_str();
   app.add_flag("--animate", rt.animate,
-               "Ray tracing, --device gpu in a window: trace the scene as it moves, each pass posed at its frame's "
-               "time (the characters' BVHs refitted on the GPU)");
+               "Ray tracing, --device gpu: trace the scene as it moves, each pass posed at its frame's time (the "
+               "characters' BVHs refitted on the GPU); offscreen, a whole image a frame for --frames frames");
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
 
   if (options.checkDisplay) return engine::displayAvailable() ? 0 : 1;
@@ -219,7 +219,15 @@ int main(int argc, char** argv) {
     rt.settings.height = options.run.height;
     rt.settings.precision = rt.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;
     const bool gpu = rt.device == "gpu";
-    if (rt.animate && (!gpu || offscreen)) return fail(engine::kExitBadInput, "--animate: only with --device gpu in a window");
+    if (rt.animate && !gpu) return fail(engine::kExitBadInput, "--animate: only with --device gpu");
+    if (offscreen && rt.animate) {
+      demo::GpuTraceGame game(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings, options.shaderDir,
+                              true, true);
+      if (auto s = engine::runHeadless(engine::chosenBackend(options), game, options.run); !s)
+        return fail(engine::kExitBadInput, s.error().message);
+      std::printf("%s\n", options.run.screenshot.c_str());
+      return 0;
+    }
     if (offscreen) return runRaytraceOffscreen(*scene, options, rt.settings, gpu);
     if (!engine::displayAvailable()) return fail(engine::kExitBadInput, "no usable display; use --offscreen to render to a PNG");
     std::unique_ptr<engine::Game> game;
