@@ -92,6 +92,47 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
   return {};
 }
 
+std::string describe(const rt::RtScene& scene, const rt::RenderSettings& settings) {
+  const rt::GpuSceneLayout layout = rt::flattenScene(scene, 4);
+  const rt::GpuTextureSet textures = rt::flattenTextures(scene);
+  const bool path = settings.method == rt::Method::Path;
+  std::string out = path ? "gpu kernel: rt/pathtrace.comp" : "gpu kernel: rt/whitted.comp";
+  // The variant: what the scene needs built in (the error bounds' constants aside).
+  for (const std::string& define : detail::traceDefines(layout, &scene)) {
+    if (define.starts_with("RT_GAMMA") || define.starts_with("RT_WIDEN")) continue;
+    out.push_back(' ');
+    out.append(define);
+    out[out.rfind(' ')] = '=';
+  }
+  if (!path) out.append(" RT_MAX_DEPTH=").append(std::to_string(std::max(0, settings.maxDepth)));
+  char line[128];
+  std::snprintf(line, sizeof(line), "\ngpu bvh: 4 wide, %d levels, %zu instances\ngpu buffers:", layout.depth,
+                layout.instances.size());
+  out.append(line);
+  const FloatImage* sky = scene.environment().image();
+  const std::pair<const char*, std::size_t> buffers[] = {
+      {"nodes", layout.nodes4.size() * sizeof(rt::GpuNode4)},
+      {"leaves", layout.leaves.size() * sizeof(rt::GpuLeaf)},
+      {"triangles", layout.triangles.size() * sizeof(rt::GpuTriangle)},
+      {"triangle attributes", layout.triangleAttributes.size() * sizeof(glm::vec4)},
+      {"spheres", layout.spheres.size() * sizeof(rt::GpuSphere)},
+      {"planes", layout.planes.size() * sizeof(rt::GpuPlane)},
+      {"materials", scene.materials().size() * sizeof(GpuMaterial)},
+      {"textures", textures.texels.size() * sizeof(glm::vec4)},
+      {"sky image", sky ? sky->rgb.size() * sizeof(float) : 0}};
+  for (const auto& [name, bytes] : buffers) {
+    if (bytes == 0) continue;
+    if (bytes >= (1u << 20)) {
+      std::snprintf(line, sizeof(line), " %s %.1f MiB,", name, double(bytes) / double(1 << 20));
+    } else {
+      std::snprintf(line, sizeof(line), " %s %.1f KiB,", name, double(bytes) / 1024.0);
+    }
+    out.append(line);
+  }
+  out.back() = '\n';
+  return out;
+}
+
 void GpuTracer::State::bindScene(const gl::Program& program) const {
   const std::pair<unsigned, const gl::Buffer*> buffers[] = {
       {gl::binding::kRtNodes, &nodes},         {gl::binding::kRtLeaves, &leaves},

@@ -41,6 +41,11 @@ static_assert(sizeof(RayAnswer) == 16);
 // gpu: "; empty when it can.
 std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings);
 
+// What the GPU tracer builds for the scene (demo --describe --device gpu): its kernel
+// with the variant's defines (what the scene needs built in), the BVH layout and the
+// storage buffers it uploads, with their sizes. Needs no GL context.
+std::string describe(const rt::RtScene& scene, const rt::RenderSettings& settings);
+
 class GpuTracer {
  public:
   // Flattens and uploads the scene (it must stay unchanged while this lives) and

@@ -13,6 +13,8 @@
 #include "app/cli.h"
 #include "asset/scene_file.h"
 #include "gpu_raytrace.h"
+#include "gputrace/gpu_tracer.h"
+#include "raytrace/describe.h"
 #include "raytrace/progress_bar.h"
 #include "raytrace/scene_builder.h"
 #include "raytrace_game.h"
@@ -63,6 +65,21 @@ int runRaytraceOffscreen(const engine::SceneDesc& scene, const engine::CommonOpt
     std::ofstream(options.run.benchFile) << j.dump(2) << "\n";
   }
   std::printf("%s\n", options.run.screenshot.c_str());
+  return 0;
+}
+
+// --describe in the tracers' modes: what the tracer builds for the scene (and on the
+// GPU its kernel's variant and buffers), or why the GPU refuses it (exit 2).
+int describeRaytrace(const engine::SceneDesc& desc, const engine::CommonOptions& options,
+                     const engine::rt::RenderSettings& settings, bool gpu) {
+  auto scene = engine::rt::buildRtScene(desc, options.run.time.value_or(0.0), settings.height);
+  if (!scene) return fail(engine::kExitBadInput, scene.error().message);
+  std::fputs(engine::rt::describe(*scene, settings).c_str(), stdout);
+  if (!gpu) return 0;
+  if (const std::string why = engine::gpurt::unsupported(*scene, settings); !why.empty()) {
+    return fail(engine::kExitBadInput, "--device gpu: " + why);
+  }
+  std::fputs(engine::gpurt::describe(*scene, settings).c_str(), stdout);
   return 0;
 }
 
@@ -143,7 +160,9 @@ int main(int argc, char** argv) {
                  "ambient=sh, skinning=compute, ...); repeatable");
   bool noTimings = false;
   app.add_flag("--panel-no-timings", noTimings, "Window: the trade panel shows no timing figures (reproducible screenshots)");
-  app.add_flag("--describe", describe, "Print the passes and shader variants built for the scene");
+  app.add_flag("--describe", describe,
+               "Print the passes and shader variants built for the scene (--mode raytrace|pathtrace: the scene as "
+               "traced and, with --device gpu, the kernel's variant and the buffers it uploads)");
   std::string reference = "off";
   app.add_option("--reference", reference,
                  "Window: the trade panel's reference view at start (off, split, reference or heatmap); it traces "
@@ -219,6 +238,7 @@ int main(int argc, char** argv) {
     rt.settings.height = options.run.height;
     rt.settings.precision = rt.precision == "double" ? engine::rt::Precision::Double : engine::rt::Precision::Float;
     const bool gpu = rt.device == "gpu";
+    if (describe) return describeRaytrace(*scene, options, rt.settings, gpu);
     if (rt.animate && !gpu) return fail(engine::kExitBadInput, "--animate: only with --device gpu");
     if (offscreen && rt.animate) {
       demo::GpuTraceGame game(std::move(scene).value(), options.run.time.value_or(0.0), rt.settings, options.shaderDir,

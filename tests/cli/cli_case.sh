@@ -389,6 +389,22 @@ PY
     for unwanted in "shadow-sun" "sky" "terrain" "fog" "lbs" "dqs" "textured" "brdf-lut" "ambient"; do
       if grep -qF "$unwanted" "$OUT"; then echo "FAIL: cornell built $unwanted"; cat "$OUT"; exit 1; fi
     done ;;
+  describe_trace)
+    # The tracers' --describe: the scene as traced, and on the GPU the kernel's
+    # variant (only what the scene needs built in) and the buffers uploaded.
+    expect 0 "shapes: 3 spheres, 5 planes, 0 meshes" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace \
+      --device gpu --describe
+    grep -qF "gpu kernel: rt/whitted.comp" "$OUT" || { echo "FAIL: no kernel"; cat "$OUT"; exit 1; }
+    for unwanted in RT_TEXTURES RT_TRIANGLE_UVS RT_PASS_THROUGH RT_SKY_IMAGE RT_SHEEN_TABLE leaves; do
+      if grep -qF "$unwanted" "$OUT"; then echo "FAIL: the room's kernel built $unwanted"; cat "$OUT"; exit 1; fi
+    done
+    expect 0 "gpu kernel: rt/pathtrace.comp .*RT_TEXTURES=1 .*RT_TRANSPARENT=1" -- "$BIN/demo" \
+      "$SRC/assets/scenes/materials.json" --mode pathtrace --device gpu --describe
+    grep -qE "gpu buffers: .*textures [0-9.]+ MiB" "$OUT" || { echo "FAIL: no texture buffer"; cat "$OUT"; exit 1; }
+    expect 0 "tracer: path, float" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --mode pathtrace --describe
+    if grep -qF "gpu kernel" "$OUT"; then echo "FAIL: the CPU tracer described a kernel"; cat "$OUT"; exit 1; fi
+    expect 2 "--device gpu: double precision is not supported" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" \
+      --mode raytrace --device gpu --rt-precision double --describe ;;
   scene_unknown_clip)
     printf '{"models": [{"path": "%s/assets/models/character.gltf", "clip": "Run"}]}' "$SRC" > clip.json
     expect 2 'clip\.json: /models/0/clip: no clip "Run" in character\.gltf; clips are: Idle, Walk, Wave' -- \

@@ -1,0 +1,58 @@
+#include "raytrace/describe.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace engine::rt {
+namespace {
+
+std::string lightsOf(const RtScene& scene) {
+  int sun = 0, point = 0, area = 0, shadowed = 0;
+  for (const LightDesc& l : scene.lights()) {
+    sun += l.type == LightType::Sun ? 1 : 0;
+    point += l.type == LightType::Point ? 1 : 0;
+    area += l.type == LightType::Area ? 1 : 0;
+    shadowed += l.shadows ? 1 : 0;
+  }
+  char text[128];
+  std::snprintf(text, sizeof(text), "lights: %d sun, %d point, %d area (%d casting shadows)", sun, point, area, shadowed);
+  return text;
+}
+
+std::string environmentOf(const Environment& environment) {
+  if (const FloatImage* image = environment.image()) {
+    return "environment: image " + std::to_string(image->width) + "x" + std::to_string(image->height);
+  }
+  return environment.isConstant() ? "environment: background colour" : "environment: gradient sky";
+}
+
+}  // namespace
+
+std::string describe(const RtScene& scene, const RenderSettings& s) {
+  const bool path = s.method == Method::Path;
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof(line), "tracer: %s, %s, %dx%d, spp %d, max depth %d", path ? "path" : "whitted",
+                s.precision == Precision::Double ? "double" : "float", s.width, s.height, s.samplesPerPixel, s.maxDepth);
+  out += line;
+  out += path ? ", roulette from depth " + std::to_string(s.rouletteDepth) + "\n"
+              : ", " + std::to_string(s.shadowSamples) + "x" + std::to_string(s.shadowSamples) + " area shadow rays\n";
+  std::size_t meshTriangles = 0, textured = 0, layered = 0;
+  for (const RtMesh& m : scene.meshes()) meshTriangles += m.indices.size() / 3;
+  for (int m = 0; m < int(scene.materials().size()); ++m) {
+    textured += scene.extras(m).readsUv() ? 1 : 0;
+    layered += scene.materials()[std::size_t(m)].layers.isDefault() ? 0 : 1;
+  }
+  std::snprintf(line, sizeof(line), "shapes: %zu spheres, %zu planes, %zu meshes (%zu triangles) in %d BVH groups\n",
+                scene.sphereCount(), scene.planeCount(), scene.meshes().size(), meshTriangles, scene.groupCount());
+  out += line;
+  out += lightsOf(scene) + "\n";
+  std::snprintf(line, sizeof(line), "materials: %zu (%zu textured, %zu with glTF layers), %zu textures, %s shading\n",
+                scene.materials().size(), textured, layered, scene.textures().size(),
+                scene.render().shading == Shading::Pbr ? "pbr" : "classic");
+  out += line;
+  out += environmentOf(scene.environment()) + (scene.fog().enabled ? ", fog\n" : "\n");
+  return out;
+}
+
+}  // namespace engine::rt
