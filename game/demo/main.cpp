@@ -228,6 +228,9 @@ int main(int argc, char** argv) {
   render.rotations = rotations == "nlerp" ? engine::QuatInterpolation::Nlerp : engine::QuatInterpolation::Slerp;
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
   options.run.targetSamples = 1;
+  if (rt.animate && mode == "raster") {
+    return fail(engine::kExitBadInput, "--animate: only with --mode raytrace or pathtrace (the rasterizer always animates)");
+  }
   if (mode == "raytrace" || mode == "pathtrace") {
     if (mode == "pathtrace") {
       rt.settings.method = engine::rt::Method::Path;

@@ -522,6 +522,8 @@ JSON
       cmp gwa.png gws.png || { echo "FAIL: $mode: the animated run's last frame is not the still of its time"; exit 1; }
     done
     expect 2 "--animate: only with --device gpu" -- "$BIN/demo" walk.json --mode raytrace --animate --offscreen \
+      --size 64x48 --screenshot gwa.png
+    expect 2 "--animate: only with --mode raytrace or pathtrace" -- "$BIN/demo" walk.json --animate --offscreen \
       --size 64x48 --screenshot gwa.png ;;
   *) echo "unknown case $CASE"; exit 1 ;;
 esac
