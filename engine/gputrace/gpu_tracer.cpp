@@ -251,6 +251,7 @@ Result<GpuTracer> GpuTracer::create(const rt::RtScene& scene, const std::string&
   s.textures = storage(textures.textures);
   s.texels = storage(textures.texels);
   s.skyImage = sky ? storage(sky->rgb) : storage(std::vector<float>{});
+  s.sheenTable = storage(detail::hasSheen(scene) ? engine::sheenTable().texels : std::vector<float>{});
   auto hits = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "rt/hits.comp"}}, detail::traceDefines(s.layout, nullptr));
   if (!hits) return hits.error();
   s.hits = std::move(hits).value();
@@ -307,9 +308,8 @@ Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& sett
   }
   const gl::Program& p = found->second;
   s.bindScene(p);
-  // The sheen's albedo table (RT_SHEEN_TABLE's), where some material has a sheen.
-  const gl::Buffer sheen = detail::storage(detail::hasSheen(scene) ? engine::sheenTable().texels : std::vector<float>{});
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtEnvironment, sheen.id());
+  // The sheen's albedo table (RT_SHEEN_TABLE's), uploaded once with the scene.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gl::binding::kRtEnvironment, s.sheenTable.id());
   p.set("u_sheenTable", 0);
   s.setView(p, settings);
   const int spp = std::max(1, settings.samplesPerPixel);

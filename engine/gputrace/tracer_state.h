@@ -42,6 +42,7 @@ struct GpuTracer::State {
   rt::GpuSceneLayout layout;
   gl::Buffer nodes, leaves, order, instances, spheres, planes, triangles, materials, lights;
   gl::Buffer triangleAttributes, textures, texels, skyImage;  // placeholders where the scene has none
+  gl::Buffer sheenTable;  // the Whitted kernel's (RT_SHEEN_TABLE); the path tracer's follows its environment's tables
   gl::Program hits;
   mutable std::map<int, gl::Program> whitted;  // by maxDepth, built on first use
   mutable std::optional<gl::Program> path;     // built on first use
