@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../support/gl_test.h"
+#include "../support/random_draws.h"
 #include "gl/bindings.h"
 #include "gl/resources.h"
 #include "gl/shader.h"
@@ -36,18 +37,8 @@ struct BsdfAnswer {
   glm::vec4 f, drawn, weight, shares;
 };
 
-// Three draws in order (a function's arguments are evaluated in an order each
-// compiler picks: the cases must be the same under g++ and clang).
-template <typename Distribution>
-glm::vec3 draw3(Distribution& d, std::mt19937& rng) {
-  const float x = d(rng), y = d(rng), z = d(rng);
-  return {x, y, z};
-}
-
-glm::vec3 randomUnitVector(std::mt19937& rng) {
-  std::normal_distribution<float> g;
-  return glm::normalize(draw3(g, rng));
-}
+using test::draw3;
+using test::randomUnitVector;
 
 // 48 materials: metallic-roughness with every mix of coat, sheen and film (and none),
 // random colours, metalness and roughness down to 0.02; and a few classic ones.

@@ -180,6 +180,18 @@ inline void addLayerTexture(rt::RtScene& scene, int material, TextureSlot slot, 
   EXPECT_TRUE(added) << added.error().message;
 }
 
+// A texture in each layer slot the tracers read, on the materials layeredMaterials
+// gives layers: the volume's (5) specular weight and colour, transmission and
+// thickness; the coated metal's (3) coat and its roughness; the red wall's (1) sheen
+// colour and roughness; the white walls' (0) film and its thickness.
+inline void addLayerTextures(rt::RtScene& scene) {
+  using enum TextureSlot;
+  for (const TextureSlot slot : {Specular, SpecularColor, Transmission, Thickness}) addLayerTexture(scene, 5, slot, 7, 5);
+  for (const TextureSlot slot : {Clearcoat, ClearcoatRoughness}) addLayerTexture(scene, 3, slot, 6, 6);
+  for (const TextureSlot slot : {SheenColor, SheenRoughness}) addLayerTexture(scene, 1, slot, 5, 9);
+  for (const TextureSlot slot : {Iridescence, IridescenceThickness}) addLayerTexture(scene, 0, slot, 8, 3);
+}
+
 // support/rt_room.h's layered PBR room (`layers` on top of layeredMaterials) with a
 // texture in each layer slot the tracers read: the volume's specular weight and
 // colour, transmission and thickness; the coated metal's coat and its roughness; the
@@ -192,11 +204,7 @@ inline rt::RtScene layerTexturedRoom(const std::function<void(SceneDesc&)>& laye
     desc.materials[5].layers.specularColor = glm::vec3(1.0f, 0.7f, 0.9f);
     if (layers) layers(desc);
   });
-  using enum TextureSlot;
-  for (const TextureSlot slot : {Specular, SpecularColor, Transmission, Thickness}) addLayerTexture(scene, 5, slot, 7, 5);
-  for (const TextureSlot slot : {Clearcoat, ClearcoatRoughness}) addLayerTexture(scene, 3, slot, 6, 6);
-  for (const TextureSlot slot : {SheenColor, SheenRoughness}) addLayerTexture(scene, 1, slot, 5, 9);
-  for (const TextureSlot slot : {Iridescence, IridescenceThickness}) addLayerTexture(scene, 0, slot, 8, 3);
+  addLayerTextures(scene);
   return scene;
 }
 
