@@ -352,7 +352,9 @@ void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int ma
   const double d = glm::dot(n, point);
   planesD_.push_back(Plane<double>{n, d, material});
   planesF_.push_back(Plane<float>{glm::vec3(n), float(d), material});
-  packs_.setPlanes(planesF_);
+  std::vector<ShapePacks::Square> squares;
+  for (const PlaneUv& q : planeUvs_) squares.push_back({q.point, q.extent});
+  packs_.setPlanes(planesF_, squares);
 }
 
 int RtScene::addGroup() {
@@ -579,27 +581,52 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
   // Member by member: a copy of the whole struct read it back in 16-byte loads over the
   // caller's narrower stores of it, a store-forwarding stall on every ray.
   Ray<T> ray{rayIn.o, rayIn.d, rayIn.tMax};
-  // Which shape won: 0 none, 1 sphere, 2 plane, 3 mesh; shapes shorten tMax as they hit.
+  // Which shape won: 0 none, 1 sphere, 2 plane; shapes shorten tMax as they hit.
   std::size_t index = 0;
   const int kind = nearestShape(ray, index);
+  return pastShapes(ray, kind, index);
+}
+
+bool RtScene::onSquareOf(const void* scene, std::size_t plane, const Ray<float>& ray, float t) {
+  return static_cast<const RtScene*>(scene)->onPlaneSquare(plane, ray, t);
+}
+
+void RtScene::intersectMany(const Ray<float>* const* rays, std::size_t count,
+                            std::optional<SurfaceInteraction<float>>* out) const {
+  for (std::size_t first = 0; first < count; first += 4) {
+    const int n = int(std::min<std::size_t>(4, count - first));
+    ShapePacks::Nearest nearest[4];
+    packs_.nearestOfFour(rays + first, n, nearest, onSquareOf, this);
+    for (int i = 0; i < n; ++i) {
+      const Ray<float>& r = *rays[first + std::size_t(i)];
+      Ray<float> ray{r.o, r.d, nearest[i].tMax};
+      out[first + std::size_t(i)] = pastShapes(ray, nearest[i].kind, std::size_t(nearest[i].index));
+    }
+  }
+}
+
+template <typename T>
+std::optional<SurfaceInteraction<T>> RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index) const {
   // Each group's root box is tested against the shortened tMax first, so groups the
   // ray misses, or that lie behind the nearest hit so far, cost one box test rather
   // than a traversal's setup and its root node's eight boxes.
-  const BoundsRay<T> boxes(ray);
-  const Group* hitGroup = nullptr;
-  std::optional<BvhHit<T>> meshHit;
-  for (const Group& group : groups_) {
-    if (!boxes.hits(group.bvh.bounds(), ray)) continue;
-    if (auto hit = group.bvh.intersect(ray)) {
-      ray.tMax = hit->hit.t;
-      meshHit = hit;
-      hitGroup = &group;
-    }
-  }
   std::optional<SurfaceInteraction<T>> result;
-  if (hitGroup) {
-    result = meshInteraction(*hitGroup, *meshHit);
-    return result;
+  if (!groups_.empty()) {  // BoundsRay's three divisions only where there are boxes
+    const BoundsRay<T> boxes(ray);
+    const Group* hitGroup = nullptr;
+    std::optional<BvhHit<T>> meshHit;
+    for (const Group& group : groups_) {
+      if (!boxes.hits(group.bvh.bounds(), ray)) continue;
+      if (auto hit = group.bvh.intersect(ray)) {
+        ray.tMax = hit->hit.t;
+        meshHit = hit;
+        hitGroup = &group;
+      }
+    }
+    if (hitGroup) {
+      result = meshInteraction(*hitGroup, *meshHit);
+      return result;
+    }
   }
   if (kind == 1) {
     const auto& sphereList = spheres<T>();
@@ -630,6 +657,7 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
 template <typename T>
 bool RtScene::intersectAny(const Ray<T>& ray) const {
   if (anyShape(ray)) return true;
+  if (groups_.empty()) return false;  // BoundsRay's three divisions, for nothing
   const BoundsRay<T> boxes(ray);
   for (const Group& group : groups_) {
     if (boxes.hits(group.bvh.bounds(), ray) && group.bvh.intersectAny(ray)) return true;

@@ -229,6 +229,10 @@ class RtScene {
   // The nearest hit in (0, ray.tMax) over every shape, and whether any hit exists.
   template <typename T>
   std::optional<SurfaceInteraction<T>> intersect(const Ray<T>& ray) const;
+  // intersect() of each of several float rays (a batch of paths, a bounce at a time),
+  // the same answers bit for bit; the spheres and planes meet four rays at a time.
+  void intersectMany(const Ray<float>* const* rays, std::size_t count,
+                     std::optional<SurfaceInteraction<float>>* out) const;
   template <typename T>
   bool intersectAny(const Ray<T>& ray) const;
   // The share of light that passes along a shadow ray: 0 or 1 past opaque surfaces
@@ -324,6 +328,12 @@ class RtScene {
   int nearestShape(Ray<T>& ray, std::size_t& index) const;
   template <typename T>
   bool anyShape(const Ray<T>& ray) const;
+  // intersect() once the spheres and planes have shortened ray.tMax to their nearest
+  // (kind 1 or 2 at `index`, 0 none): the meshes, then the winner's interaction.
+  template <typename T>
+  std::optional<SurfaceInteraction<T>> pastShapes(Ray<T>& ray, int kind, std::size_t index) const;
+  // onPlaneSquare as ShapePacks asks it.
+  static bool onSquareOf(const void* scene, std::size_t plane, const Ray<float>& ray, float t);
   Status checkMaterial(int material) const;  // an error naming it when out of range
   Status attachTexture(int material, int MaterialExtras::*slot, RtTexture texture);
   void applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const;

@@ -43,6 +43,7 @@ ShapePacks::RayLanes::RayLanes(const Ray<float>& ray)
     : o{ray.o.x, ray.o.y, ray.o.z}, d{ray.d.x, ray.d.y, ray.d.z}, dd(glm::dot(ray.d, ray.d)) {}
 
 void ShapePacks::setSpheres(const std::vector<Sphere<float>>& spheres) {
+  sphereCount_ = spheres.size();
   packInto(spheres_, spheres, Sphere<float>{glm::vec3(0.0f), 1.0f, 0},
            [](SpherePack& pack, std::size_t lane, const Sphere<float>& sphere) {
              pack.cx[lane] = sphere.center.x;
@@ -52,7 +53,13 @@ void ShapePacks::setSpheres(const std::vector<Sphere<float>>& spheres) {
            });
 }
 
-void ShapePacks::setPlanes(const std::vector<Plane<float>>& planes) {
+void ShapePacks::setPlanes(const std::vector<Plane<float>>& planes, const std::vector<Square>& squares) {
+  planeCount_ = planes.size();
+  squares_.clear();
+  for (const Square& q : squares) {
+    const glm::vec3 c(q.point);
+    squares_.push_back({c.x, c.y, c.z, std::abs(c.x) + std::abs(c.y) + std::abs(c.z), float(q.extent)});
+  }
   packInto(planes_, planes, Plane<float>{glm::vec3(0.0f, 1.0f, 0.0f), 0.0f, 0},
            [](PlanePack& pack, std::size_t lane, const Plane<float>& plane) {
              pack.nx[lane] = plane.normal.x;
@@ -136,6 +143,137 @@ bool ShapePacks::anySphere(const Ray<float>& ray) const {
     if (sphereHits(pack, lanes, ray.tMax, t) != 0) return true;
   }
   return false;
+}
+
+namespace {
+
+// Four rays, one to a lane, and what each has found so far.
+struct RayQuad {
+  __m128 ox, oy, oz, dx, dy, dz, dd;
+  __m128 tMax;
+  __m128i kind = _mm_setzero_si128(), index = _mm_setzero_si128();
+
+  explicit RayQuad(const Ray<float>* const rays[4])
+      : ox(_mm_setr_ps(rays[0]->o.x, rays[1]->o.x, rays[2]->o.x, rays[3]->o.x)),
+        oy(_mm_setr_ps(rays[0]->o.y, rays[1]->o.y, rays[2]->o.y, rays[3]->o.y)),
+        oz(_mm_setr_ps(rays[0]->o.z, rays[1]->o.z, rays[2]->o.z, rays[3]->o.z)),
+        dx(_mm_setr_ps(rays[0]->d.x, rays[1]->d.x, rays[2]->d.x, rays[3]->d.x)),
+        dy(_mm_setr_ps(rays[0]->d.y, rays[1]->d.y, rays[2]->d.y, rays[3]->d.y)),
+        dz(_mm_setr_ps(rays[0]->d.z, rays[1]->d.z, rays[2]->d.z, rays[3]->d.z)),
+        dd(dot3(dx, dy, dz, dx, dy, dz)),
+        tMax(_mm_setr_ps(rays[0]->tMax, rays[1]->tMax, rays[2]->tMax, rays[3]->tMax)) {}
+
+  // The lanes in `hit` take t and the shape.
+  void keep(__m128 hit, __m128 t, int shapeKind, int shapeIndex) {
+    tMax = select(hit, t, tMax);
+    const __m128i h = _mm_castps_si128(hit);
+    kind = _mm_or_si128(_mm_and_si128(h, _mm_set1_epi32(shapeKind)), _mm_andnot_si128(h, kind));
+    index = _mm_or_si128(_mm_and_si128(h, _mm_set1_epi32(shapeIndex)), _mm_andnot_si128(h, index));
+  }
+};
+
+// sphereHits with the shape broadcast and the rays in lanes, each lane's limit its own
+// tMax: the scalar Sphere<float>::intersect of every lane.
+__m128 sphereLanes(const RayQuad& q, float cx, float cy, float cz, float r, __m128& tOut) {
+  const __m128 zero = _mm_setzero_ps();
+  tOut = zero;
+  const __m128 ocx = _mm_sub_ps(q.ox, _mm_set1_ps(cx));
+  const __m128 ocy = _mm_sub_ps(q.oy, _mm_set1_ps(cy));
+  const __m128 ocz = _mm_sub_ps(q.oz, _mm_set1_ps(cz));
+  const __m128 radius = _mm_set1_ps(r);
+  const __m128 a = q.dd;
+  const __m128 halfB = dot3(ocx, ocy, ocz, q.dx, q.dy, q.dz);
+  const __m128 c = _mm_sub_ps(dot3(ocx, ocy, ocz, ocx, ocy, ocz), _mm_mul_ps(radius, radius));
+  __m128 live = _mm_cmpeq_ps(zero, zero);
+  live = _mm_andnot_ps(_mm_and_ps(_mm_cmpgt_ps(c, zero), _mm_cmpgt_ps(halfB, zero)), live);
+  if (_mm_movemask_ps(live) == 0) return live;
+  const __m128 k = _mm_div_ps(halfB, a);
+  const __m128 lx = _mm_sub_ps(ocx, _mm_mul_ps(k, q.dx));
+  const __m128 ly = _mm_sub_ps(ocy, _mm_mul_ps(k, q.dy));
+  const __m128 lz = _mm_sub_ps(ocz, _mm_mul_ps(k, q.dz));
+  const __m128 dist = _mm_sqrt_ps(dot3(lx, ly, lz, lx, ly, lz));
+  const __m128 disc = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(4.0f), a),
+                                 _mm_mul_ps(_mm_sub_ps(radius, dist), _mm_add_ps(radius, dist)));
+  live = _mm_and_ps(live, _mm_cmpge_ps(disc, zero));
+  if (_mm_movemask_ps(live) == 0) return live;
+  const __m128 b = _mm_mul_ps(_mm_set1_ps(2.0f), halfB);
+  const __m128 qq = _mm_mul_ps(_mm_set1_ps(-0.5f), _mm_add_ps(b, copySign(_mm_sqrt_ps(disc), b)));
+  const __m128 t0 = _mm_div_ps(qq, a);
+  const __m128 t1 = select(_mm_cmpneq_ps(qq, zero), _mm_div_ps(c, qq), t0);
+  const __m128 swap = _mm_cmpgt_ps(t0, t1);
+  const __m128 nearT = select(swap, t1, t0), farT = select(swap, t0, t1);
+  const __m128 nearOk = _mm_and_ps(_mm_cmpgt_ps(nearT, zero), _mm_cmplt_ps(nearT, q.tMax));
+  const __m128 farOk = _mm_and_ps(_mm_cmpgt_ps(farT, zero), _mm_cmplt_ps(farT, q.tMax));
+  tOut = select(nearOk, nearT, farT);
+  return _mm_and_ps(live, _mm_or_ps(nearOk, farOk));
+}
+
+// planeHits with the plane broadcast and the rays in lanes.
+__m128 planeLanes(const RayQuad& q, float nx, float ny, float nz, float d, __m128& tOut) {
+  const __m128 zero = _mm_setzero_ps();
+  const __m128 px = _mm_set1_ps(nx), py = _mm_set1_ps(ny), pz = _mm_set1_ps(nz);
+  const __m128 denom = dot3(px, py, pz, q.dx, q.dy, q.dz);
+  const __m128 along = dot3(px, py, pz, q.ox, q.oy, q.oz);
+  tOut = _mm_div_ps(_mm_sub_ps(_mm_set1_ps(d), along), denom);
+  return _mm_and_ps(_mm_cmpneq_ps(denom, zero),
+                    _mm_and_ps(_mm_cmpgt_ps(tOut, zero), _mm_cmplt_ps(tOut, q.tMax)));
+}
+
+// The lanes whose hit at t is inside the square whatever the rounding: |p - centre|
+// summed over the axes, in float, bounds the distance along either of the square's
+// unit axes; 1e-5 of it and of the centre's size covers float's rounding (a few parts
+// in 1e7) with room to spare, so a lane kept here is one the exact test keeps.
+int clearlyOnSquare(const RayQuad& q, const ShapePacks::SquareLanes& square, __m128 t) {
+  const __m128 signBit = _mm_set1_ps(-0.0f);
+  const auto absDiff = [&](__m128 o, __m128 d, float c) {
+    return _mm_andnot_ps(signBit, _mm_sub_ps(_mm_add_ps(o, _mm_mul_ps(d, t)), _mm_set1_ps(c)));
+  };
+  const __m128 l1 = _mm_add_ps(_mm_add_ps(absDiff(q.ox, q.dx, square.x), absDiff(q.oy, q.dy, square.y)),
+                               absDiff(q.oz, q.dz, square.z));
+  const __m128 margin = _mm_mul_ps(_mm_set1_ps(1e-5f), _mm_add_ps(l1, _mm_set1_ps(square.size)));
+  return _mm_movemask_ps(_mm_cmple_ps(_mm_add_ps(l1, margin), _mm_set1_ps(square.extent)));
+}
+
+}  // namespace
+
+void ShapePacks::nearestOfFour(const Ray<float>* const rays[4], int count, Nearest out[4], SquareTest onSquare,
+                               const void* context) const {
+  // Lanes past count repeat the first ray; their answers are dropped.
+  const Ray<float>* lanes[4];
+  for (int i = 0; i < 4; ++i) lanes[i] = rays[i < count ? i : 0];
+  RayQuad q(lanes);
+  for (std::size_t s = 0; s < sphereCount_; ++s) {
+    const SpherePack& p = spheres_[s / 4];
+    const std::size_t l = s % 4;
+    __m128 t;
+    const __m128 hit = sphereLanes(q, p.cx[l], p.cy[l], p.cz[l], p.radius[l], t);
+    if (_mm_movemask_ps(hit) != 0) q.keep(hit, t, 1, int(s));
+  }
+  for (std::size_t i = 0; i < planeCount_; ++i) {
+    const PlanePack& p = planes_[i / 4];
+    const std::size_t l = i % 4;
+    __m128 t;
+    __m128 hit = planeLanes(q, p.nx[l], p.ny[l], p.nz[l], p.d[l], t);
+    int mask = _mm_movemask_ps(hit);
+    if (mask != 0 && squares_[i].extent > 0.0f) {
+      alignas(16) float ts[4];
+      _mm_store_ps(ts, t);
+      // Only the hits not clearly inside the square ask the caller's exact test.
+      for (int m = mask & ~clearlyOnSquare(q, squares_[i], t); m != 0; m &= m - 1) {
+        const int lane = __builtin_ctz(unsigned(m));
+        if (!onSquare(context, i, *lanes[lane], ts[lane])) mask &= ~(1 << lane);
+      }
+      hit = _mm_castsi128_ps(_mm_cmpgt_epi32(
+          _mm_and_si128(_mm_set1_epi32(mask), _mm_setr_epi32(1, 2, 4, 8)), _mm_setzero_si128()));
+    }
+    if (mask != 0) q.keep(hit, t, 2, int(i));
+  }
+  alignas(16) float tMax[4];
+  alignas(16) int kind[4], index[4];
+  _mm_store_ps(tMax, q.tMax);
+  _mm_store_si128(reinterpret_cast<__m128i*>(kind), q.kind);
+  _mm_store_si128(reinterpret_cast<__m128i*>(index), q.index);
+  for (int i = 0; i < count; ++i) out[i] = Nearest{kind[i], index[i], tMax[i]};
 }
 
 }  // namespace engine::rt

@@ -16,14 +16,42 @@ namespace engine::rt {
 
 class ShapePacks {
  public:
-  // Rebuilt whenever a shape is added.
+  // A plane's square: its centre, and its half side along the plane's axes (0:
+  // unbounded).
+  struct Square {
+    glm::dvec3 point{0.0};
+    double extent = 0.0;
+  };
+  // Per plane: its square's centre in float, the centre's |x| + |y| + |z| and the
+  // half side (0: unbounded), for the quick test of nearestOfFour.
+  struct SquareLanes {
+    float x, y, z, size, extent;
+  };
+  // Rebuilt whenever a shape is added. A hit on a bounded plane is kept if its square
+  // holds it, which the caller's test decides (nearestOfFour's `onSquare`) unless it
+  // is clearly inside.
   void setSpheres(const std::vector<Sphere<float>>& spheres);
-  void setPlanes(const std::vector<Plane<float>>& planes);
+  void setPlanes(const std::vector<Plane<float>>& planes, const std::vector<Square>& squares);
 
   // The nearest sphere hit in (0, ray.tMax): its index, with tMax shortened to it;
   // -1 (tMax unchanged) when none.
   int nearestSphere(const Ray<float>& ray, float& tMax) const;
   bool anySphere(const Ray<float>& ray) const;
+
+  // Four rays at once, one to a lane (the packs' transpose, for a batch of paths a
+  // bounce at a time): for each ray the nearest sphere and plane hit in (0, tMax),
+  // which nearestSphere and forEachPlaneHit find for it alone, bit for bit: the
+  // lanes run the same operations in the same order, each shape against the lane's
+  // tMax as shortened by the shapes before it. Rays past `count` are not read.
+  struct Nearest {
+    int kind = 0;  // 0 none, 1 sphere, 2 plane
+    int index = 0;
+    float tMax = 0.0f;  // the ray's, shortened to the hit
+  };
+  // Whether a hit at t lies on a bounded plane's square; asked only of bounded planes.
+  using SquareTest = bool (*)(const void* context, std::size_t plane, const Ray<float>& ray, float t);
+  void nearestOfFour(const Ray<float>* const rays[4], int count, Nearest out[4], SquareTest onSquare,
+                     const void* context) const;
 
   // Every plane hit in (0, tMax), as what the caller filters further (the square a
   // plane is bounded to): forEachPlaneHit calls visit(index, t) in index order and
@@ -61,6 +89,8 @@ class ShapePacks {
 
   std::vector<SpherePack> spheres_;
   std::vector<PlanePack> planes_;
+  std::size_t sphereCount_ = 0, planeCount_ = 0;
+  std::vector<SquareLanes> squares_;
 };
 
 }  // namespace engine::rt

@@ -46,7 +46,8 @@ struct AtomicCounters {
 // does not depend on the schedule: each pixel's (or sample's) RNG is seeded from its
 // coordinates and the seed alone (rng.h), and each pixel is written by exactly one tile.
 // `tracer`: anything with renderPixel(x, y, RayCounters&) const, safe to call from
-// several threads at once.
+// several threads at once; or renderSpan(x0, x1, y, glm::vec3* out, RayCounters&),
+// the pixels of a tile's row at once.
 template <typename Tracer>
 RenderResult renderTiles(const Tracer& tracer, const RenderSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
@@ -75,7 +76,11 @@ RenderResult renderTiles(const Tracer& tracer, const RenderSettings& settings) {
           const int x1 = std::min(x0 + tile, settings.width), y1 = std::min(y0 + tile, settings.height);
           RayCounters local;
           for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) result.image.at(x, y) = tracer.renderPixel(x, y, local);
+            if constexpr (requires(glm::vec3* out) { tracer.renderSpan(x0, x1, y, out, local); }) {
+              tracer.renderSpan(x0, x1, y, &result.image.at(x0, y), local);
+            } else {
+              for (int x = x0; x < x1; ++x) result.image.at(x, y) = tracer.renderPixel(x, y, local);
+            }
           }
           counters.add(local);
           const int done = tilesDone.fetch_add(1) + 1;

@@ -8,7 +8,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <random>
+#include <vector>
 
 #include "raytrace/rt_scene.h"
 
@@ -128,6 +131,30 @@ class RandomShapes {
     if (glm::length(d) > 0.0f) ray.d = d;
     if (uniform(0.0, 1.0) < 0.5) ray.o = ray.o - p.normal * (glm::dot(ray.o, p.normal) - p.d);
   }
+ public:
+  // Toward a bounded plane's square at its edge, give or take a few ulps: where the
+  // quick test of four rays at a time must leave the answer to the exact one.
+  bool towardSquareEdge(const rt::RtScene& scene, rt::Ray<float>& ray) {
+    std::vector<std::size_t> bounded;
+    for (std::size_t i = 0; i < scene.planeCount(); ++i) {
+      if (scene.planeSquare(i).extent > 0.0) bounded.push_back(i);
+    }
+    if (bounded.empty()) return false;
+    const auto& q = scene.planeSquare(bounded[std::size_t(uniform(0.0, double(bounded.size()) - 1e-9))]);
+    const double edge = q.extent * (1.0 + std::round(uniform(-8.0, 8.0)) * 6e-8);
+    // Often on the axis itself, where the quick test's sum over the axes is tightest.
+    const double across = uniform(0.0, 1.0) < 0.5 ? 0.0 : q.extent * uniform(-1.2, 1.2);
+    const bool alongU = uniform(0.0, 1.0) < 0.5;
+    const double sign = uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+    const glm::dvec3 target = q.point + (alongU ? q.axisU * edge * sign + q.axisV * across
+                                                : q.axisV * edge * sign + q.axisU * across);
+    ray.o = glm::vec3(target + randomUnit() * scale_ * uniform(0.1, 4.0));
+    ray.d = glm::vec3(target - glm::dvec3(ray.o));
+    ray.tMax = std::numeric_limits<float>::infinity();
+    return true;
+  }
+
+ private:
   // tMax exactly at the scalar loop's hit, or one ulp either side of it.
   void endAtAHit(const rt::RtScene& scene, rt::Ray<float>& ray) {
     const ScalarAnswer hit = scalarNearest(scene, ray);
@@ -164,6 +191,47 @@ TEST(ShapePacks, FourAtATimeIsTheScalarLoopBitForBit) {
   EXPECT_GT(hits, rays / 4);
   EXPECT_LT(hits, rays - rays / 8);
   EXPECT_GT(multiPackScenes, 100u);
+}
+
+// RtScene::intersectMany (the path tracer's batches: four rays to a pass over the
+// shapes, one to a lane) gives each ray intersect()'s own answer, bit for bit, in
+// batches of every size; a fifth of the rays aim at the edge of a bounded plane's
+// square, where its quick test must defer to the exact one.
+TEST(ShapePacks, FourRaysAtATimeAreEachRaysOwnAnswerBitForBit) {
+  const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+  std::uint64_t rays = 0, hits = 0, edgeRays = 0;
+  for (std::uint32_t seed = 1; seed <= 200; ++seed) {
+    RandomShapes random(seed);
+    const rt::RtScene scene = random.scene();
+    std::mt19937 sizes(seed);
+    for (int batch = 0; batch < 1000; ++batch) {
+      const std::size_t count = 1 + sizes() % 9;
+      std::vector<rt::Ray<float>> batchRays(count);
+      for (rt::Ray<float>& ray : batchRays) {
+        ray = random.ray(scene);
+        if (sizes() % 5 == 0 && random.towardSquareEdge(scene, ray)) ++edgeRays;
+      }
+      std::vector<const rt::Ray<float>*> pointers;
+      for (const rt::Ray<float>& ray : batchRays) pointers.push_back(&ray);
+      std::vector<std::optional<rt::SurfaceInteraction<float>>> many(count);
+      scene.intersectMany(pointers.data(), count, many.data());
+      for (std::size_t i = 0; i < count; ++i, ++rays) {
+        const auto one = scene.intersect(batchRays[i]);
+        ASSERT_EQ(many[i].has_value(), one.has_value()) << "seed " << seed << " batch " << batch << " ray " << i;
+        if (!one) continue;
+        ++hits;
+        ASSERT_EQ(many[i]->material, one->material) << "seed " << seed << " batch " << batch << " ray " << i;
+        ASSERT_EQ(bits(many[i]->t), bits(one->t)) << "seed " << seed << " batch " << batch << " ray " << i;
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(bits(many[i]->p[c]), bits(one->p[c])) << "seed " << seed << " batch " << batch << " ray " << i;
+          ASSERT_EQ(bits(many[i]->n[c]), bits(one->n[c])) << "seed " << seed << " batch " << batch << " ray " << i;
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, rays / 4);
+  EXPECT_LT(hits, rays - rays / 8);
+  EXPECT_GT(edgeRays, rays / 10);
 }
 
 }  // namespace
