@@ -584,7 +584,9 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
   // Which shape won: 0 none, 1 sphere, 2 plane; shapes shorten tMax as they hit.
   std::size_t index = 0;
   const int kind = nearestShape(ray, index);
-  return pastShapes(ray, kind, index);
+  std::optional<SurfaceInteraction<T>> result;
+  pastShapes(ray, kind, index, result);
+  return result;
 }
 
 bool RtScene::onSquareOf(const void* scene, std::size_t plane, const Ray<float>& ray, float t) {
@@ -600,17 +602,17 @@ void RtScene::intersectMany(const Ray<float>* const* rays, std::size_t count,
     for (int i = 0; i < n; ++i) {
       const Ray<float>& r = *rays[first + std::size_t(i)];
       Ray<float> ray{r.o, r.d, nearest[i].tMax};
-      out[first + std::size_t(i)] = pastShapes(ray, nearest[i].kind, std::size_t(nearest[i].index));
+      pastShapes(ray, nearest[i].kind, std::size_t(nearest[i].index), out[first + std::size_t(i)]);
     }
   }
 }
 
 template <typename T>
-std::optional<SurfaceInteraction<T>> RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index) const {
+void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result) const {
   // Each group's root box is tested against the shortened tMax first, so groups the
   // ray misses, or that lie behind the nearest hit so far, cost one box test rather
   // than a traversal's setup and its root node's eight boxes.
-  std::optional<SurfaceInteraction<T>> result;
+  result.reset();
   if (!groups_.empty()) {  // BoundsRay's three divisions only where there are boxes
     const BoundsRay<T> boxes(ray);
     const Group* hitGroup = nullptr;
@@ -625,7 +627,7 @@ std::optional<SurfaceInteraction<T>> RtScene::pastShapes(Ray<T>& ray, int kind, 
     }
     if (hitGroup) {
       result = meshInteraction(*hitGroup, *meshHit);
-      return result;
+      return;
     }
   }
   if (kind == 1) {
@@ -637,7 +639,7 @@ std::optional<SurfaceInteraction<T>> RtScene::pastShapes(Ray<T>& ray, int kind, 
     // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
     si.uvPerMetre = scale / (float(std::numbers::pi) * std::sqrt(2.0f) * float(sphereList[index].radius));
     si.uv1 = si.uv;
-    return result;
+    return;
   }
   if (kind == 2) {
     SurfaceInteraction<T>& si = result.emplace();
@@ -651,7 +653,6 @@ std::optional<SurfaceInteraction<T>> RtScene::pastShapes(Ray<T>& ray, int kind, 
     si.uvPerMetre = materials_[size_t(si.material)].textureScale;
     si.uv1 = si.uv;
   }
-  return result;
 }
 
 template <typename T>

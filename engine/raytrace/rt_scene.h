@@ -329,9 +329,10 @@ class RtScene {
   template <typename T>
   bool anyShape(const Ray<T>& ray) const;
   // intersect() once the spheres and planes have shortened ray.tMax to their nearest
-  // (kind 1 or 2 at `index`, 0 none): the meshes, then the winner's interaction.
+  // (kind 1 or 2 at `index`, 0 none): the meshes, then the winner's interaction,
+  // written into `result` where it is kept (a record returned was copied).
   template <typename T>
-  std::optional<SurfaceInteraction<T>> pastShapes(Ray<T>& ray, int kind, std::size_t index) const;
+  void pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result) const;
   // onPlaneSquare as ShapePacks asks it.
   static bool onSquareOf(const void* scene, std::size_t plane, const Ray<float>& ray, float t);
   Status checkMaterial(int material) const;  // an error naming it when out of range
