@@ -359,7 +359,7 @@ class PathTracer {
         const Vec3<T> toLight = ls.target - si.p;
         const T d2 = glm::dot(toLight, toLight);
         if (!(d2 > T(0))) return false;
-        ls.wi = glm::vec3(toLight / std::sqrt(d2));
+        ls.wi = glm::vec3(dividedBy(toLight, std::sqrt(d2)));
         ls.value = l.power * (kPi / (l.falloff ? float(d2) : 1.0f));
         return true;
       }
@@ -370,7 +370,7 @@ class PathTracer {
         const Vec3<T> toLight = ls.target - si.p;
         const T d2 = glm::dot(toLight, toLight);
         if (!(d2 > T(0))) return false;
-        ls.wi = glm::vec3(toLight / std::sqrt(d2));
+        ls.wi = glm::vec3(dividedBy(toLight, std::sqrt(d2)));
         const float cosLight = -glm::dot(ls.wi, l.normal);
         if (cosLight <= 0.0f) return false;
         ls.pdf = float(d2) / (l.area * cosLight);

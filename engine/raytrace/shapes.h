@@ -84,7 +84,7 @@ struct Sphere {
     // Reproject onto the surface: the error is then that of the reprojection only,
     // bounded by the magnitudes of the centre and the radius.
     const Vec3<T> local = ray(t) - center;
-    si.n = local / glm::length(local);
+    si.n = dividedBy(local, glm::length(local));
     si.p = center + si.n * radius;
     si.pError = gamma<T>(8) * (glm::abs(center) + Vec3<T>(radius));
     si.ns = si.n;
