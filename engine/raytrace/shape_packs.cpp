@@ -24,6 +24,59 @@ __m128 copySign(__m128 magnitude, __m128 sign) {
   return _mm_or_ps(_mm_andnot_ps(signBit, magnitude), _mm_and_ps(signBit, sign));
 }
 
+// Sphere<float>::intersect lane by lane, whichever side is broadcast (four spheres
+// and one ray, or one sphere and four rays): oc = o - centre, d, a = dot(d, d), the
+// radius and tMax of each lane. The lanes of `live` with a hit, their distance in tOut.
+struct SphereLanesIn {
+  __m128 ocx, ocy, ocz, dx, dy, dz, a, radius, tMax;
+};
+__m128 sphereTest(const SphereLanesIn& s, __m128 live, __m128& tOut) {
+  const __m128 zero = _mm_setzero_ps();
+  tOut = zero;
+  const __m128 halfB = dot3(s.ocx, s.ocy, s.ocz, s.dx, s.dy, s.dz);
+  const __m128 c = _mm_sub_ps(dot3(s.ocx, s.ocy, s.ocz, s.ocx, s.ocy, s.ocz), _mm_mul_ps(s.radius, s.radius));
+  // Outside and moving away: most shadow and wall rays stop here.
+  live = _mm_andnot_ps(_mm_and_ps(_mm_cmpgt_ps(c, zero), _mm_cmpgt_ps(halfB, zero)), live);
+  if (_mm_movemask_ps(live) == 0) return live;
+  const __m128 k = _mm_div_ps(halfB, s.a);
+  const __m128 lx = _mm_sub_ps(s.ocx, _mm_mul_ps(k, s.dx));
+  const __m128 ly = _mm_sub_ps(s.ocy, _mm_mul_ps(k, s.dy));
+  const __m128 lz = _mm_sub_ps(s.ocz, _mm_mul_ps(k, s.dz));
+  const __m128 dist = _mm_sqrt_ps(dot3(lx, ly, lz, lx, ly, lz));
+  const __m128 disc = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(4.0f), s.a),
+                                 _mm_mul_ps(_mm_sub_ps(s.radius, dist), _mm_add_ps(s.radius, dist)));
+  live = _mm_and_ps(live, _mm_cmpge_ps(disc, zero));  // false for NaN, as !(disc >= 0)
+  if (_mm_movemask_ps(live) == 0) return live;
+  const __m128 b = _mm_mul_ps(_mm_set1_ps(2.0f), halfB);
+  const __m128 q = _mm_mul_ps(_mm_set1_ps(-0.5f), _mm_add_ps(b, copySign(_mm_sqrt_ps(disc), b)));
+  const __m128 t0 = _mm_div_ps(q, s.a);
+  const __m128 t1 = select(_mm_cmpneq_ps(q, zero), _mm_div_ps(c, q), t0);
+  const __m128 swap = _mm_cmpgt_ps(t0, t1);
+  const __m128 nearT = select(swap, t1, t0), farT = select(swap, t0, t1);
+  const __m128 nearOk = _mm_and_ps(_mm_cmpgt_ps(nearT, zero), _mm_cmplt_ps(nearT, s.tMax));
+  const __m128 farOk = _mm_and_ps(_mm_cmpgt_ps(farT, zero), _mm_cmplt_ps(farT, s.tMax));
+  tOut = select(nearOk, nearT, farT);
+  return _mm_and_ps(live, _mm_or_ps(nearOk, farOk));
+}
+
+// Plane<float>::intersect lane by lane, whichever side is broadcast: the plane's
+// normal and d, the ray's origin and direction, tMax. The lanes of `live` with a hit.
+struct Lanes3 {
+  __m128 x, y, z;
+};
+struct PlaneLanesIn {
+  __m128 nx, ny, nz, d;
+};
+__m128 planeTest(const PlaneLanesIn& p, const Lanes3& o, const Lanes3& d, __m128 tMax, __m128 live, __m128& tOut) {
+  const __m128 zero = _mm_setzero_ps();
+  const __m128 denom = dot3(p.nx, p.ny, p.nz, d.x, d.y, d.z);
+  const __m128 along = dot3(p.nx, p.ny, p.nz, o.x, o.y, o.z);
+  tOut = _mm_div_ps(_mm_sub_ps(p.d, along), denom);
+  // cmpneq is true for a NaN denominator, as !(denom == 0) is.
+  live = _mm_and_ps(live, _mm_cmpneq_ps(denom, zero));
+  return _mm_and_ps(live, _mm_and_ps(_mm_cmpgt_ps(tOut, zero), _mm_cmplt_ps(tOut, tMax)));
+}
+
 // Shapes four to a pack, lane by lane (`write` copies one shape into a lane). Lanes
 // past the last shape hold `filler`, which keeps their arithmetic finite; filledLanes
 // drops them.
@@ -71,52 +124,26 @@ void ShapePacks::setPlanes(const std::vector<Plane<float>>& planes, const std::v
 
 // Sphere<float>::intersect on four spheres; see there for why each step is as it is.
 int ShapePacks::sphereHits(const SpherePack& pack, const RayLanes& ray, float tMax, float t[4]) {
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 dx = _mm_set1_ps(ray.d[0]), dy = _mm_set1_ps(ray.d[1]), dz = _mm_set1_ps(ray.d[2]);
   const __m128 ocx = _mm_sub_ps(_mm_set1_ps(ray.o[0]), _mm_load_ps(pack.cx));
   const __m128 ocy = _mm_sub_ps(_mm_set1_ps(ray.o[1]), _mm_load_ps(pack.cy));
   const __m128 ocz = _mm_sub_ps(_mm_set1_ps(ray.o[2]), _mm_load_ps(pack.cz));
-  const __m128 radius = _mm_load_ps(pack.radius);
-  const __m128 a = _mm_set1_ps(ray.dd);
-  const __m128 halfB = dot3(ocx, ocy, ocz, dx, dy, dz);
-  const __m128 c = _mm_sub_ps(dot3(ocx, ocy, ocz, ocx, ocy, ocz), _mm_mul_ps(radius, radius));
-  // Outside and moving away: most shadow and wall rays stop here.
-  __m128 live = _mm_andnot_ps(_mm_and_ps(_mm_cmpgt_ps(c, zero), _mm_cmpgt_ps(halfB, zero)), filledLanes(pack.count));
-  if (_mm_movemask_ps(live) == 0) return 0;
-  const __m128 k = _mm_div_ps(halfB, a);
-  const __m128 lx = _mm_sub_ps(ocx, _mm_mul_ps(k, dx));
-  const __m128 ly = _mm_sub_ps(ocy, _mm_mul_ps(k, dy));
-  const __m128 lz = _mm_sub_ps(ocz, _mm_mul_ps(k, dz));
-  const __m128 dist = _mm_sqrt_ps(dot3(lx, ly, lz, lx, ly, lz));
-  const __m128 disc = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(4.0f), a),
-                                 _mm_mul_ps(_mm_sub_ps(radius, dist), _mm_add_ps(radius, dist)));
-  live = _mm_and_ps(live, _mm_cmpge_ps(disc, zero));  // false for NaN, as !(disc >= 0)
-  if (_mm_movemask_ps(live) == 0) return 0;
-  const __m128 b = _mm_mul_ps(_mm_set1_ps(2.0f), halfB);
-  const __m128 q = _mm_mul_ps(_mm_set1_ps(-0.5f), _mm_add_ps(b, copySign(_mm_sqrt_ps(disc), b)));
-  const __m128 t0 = _mm_div_ps(q, a);
-  const __m128 t1 = select(_mm_cmpneq_ps(q, zero), _mm_div_ps(c, q), t0);
-  const __m128 swap = _mm_cmpgt_ps(t0, t1);
-  const __m128 nearT = select(swap, t1, t0), farT = select(swap, t0, t1);
-  const __m128 limit = _mm_set1_ps(tMax);
-  const __m128 nearOk = _mm_and_ps(_mm_cmpgt_ps(nearT, zero), _mm_cmplt_ps(nearT, limit));
-  const __m128 farOk = _mm_and_ps(_mm_cmpgt_ps(farT, zero), _mm_cmplt_ps(farT, limit));
-  _mm_store_ps(t, select(nearOk, nearT, farT));
-  return _mm_movemask_ps(_mm_and_ps(live, _mm_or_ps(nearOk, farOk)));
+  __m128 hitT;
+  const __m128 hit = sphereTest({ocx, ocy, ocz, _mm_set1_ps(ray.d[0]), _mm_set1_ps(ray.d[1]), _mm_set1_ps(ray.d[2]),
+                                 _mm_set1_ps(ray.dd), _mm_load_ps(pack.radius), _mm_set1_ps(tMax)},
+                                filledLanes(pack.count), hitT);
+  _mm_store_ps(t, hitT);
+  return _mm_movemask_ps(hit);
 }
 
 // Plane<float>::intersect on four planes.
 int ShapePacks::planeHits(const PlanePack& pack, const RayLanes& ray, float tMax, float t[4]) {
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 nx = _mm_load_ps(pack.nx), ny = _mm_load_ps(pack.ny), nz = _mm_load_ps(pack.nz);
-  const __m128 denom = dot3(nx, ny, nz, _mm_set1_ps(ray.d[0]), _mm_set1_ps(ray.d[1]), _mm_set1_ps(ray.d[2]));
-  const __m128 along = dot3(nx, ny, nz, _mm_set1_ps(ray.o[0]), _mm_set1_ps(ray.o[1]), _mm_set1_ps(ray.o[2]));
-  const __m128 hitT = _mm_div_ps(_mm_sub_ps(_mm_load_ps(pack.d), along), denom);
-  // cmpneq is true for a NaN denominator, as !(denom == 0) is.
-  const __m128 live = _mm_and_ps(_mm_cmpneq_ps(denom, zero), filledLanes(pack.count));
-  const __m128 ok = _mm_and_ps(live, _mm_and_ps(_mm_cmpgt_ps(hitT, zero), _mm_cmplt_ps(hitT, _mm_set1_ps(tMax))));
+  __m128 hitT;
+  const __m128 hit = planeTest({_mm_load_ps(pack.nx), _mm_load_ps(pack.ny), _mm_load_ps(pack.nz), _mm_load_ps(pack.d)},
+                               {_mm_set1_ps(ray.o[0]), _mm_set1_ps(ray.o[1]), _mm_set1_ps(ray.o[2])},
+                               {_mm_set1_ps(ray.d[0]), _mm_set1_ps(ray.d[1]), _mm_set1_ps(ray.d[2])},
+                               _mm_set1_ps(tMax), filledLanes(pack.count), hitT);
   _mm_store_ps(t, hitT);
-  return _mm_movemask_ps(ok);
+  return _mm_movemask_ps(hit);
 }
 
 int ShapePacks::nearestSphere(const Ray<float>& ray, float& tMax) const {
@@ -175,48 +202,18 @@ struct RayQuad {
 // sphereHits with the shape broadcast and the rays in lanes, each lane's limit its own
 // tMax: the scalar Sphere<float>::intersect of every lane.
 __m128 sphereLanes(const RayQuad& q, float cx, float cy, float cz, float r, __m128& tOut) {
-  const __m128 zero = _mm_setzero_ps();
-  tOut = zero;
   const __m128 ocx = _mm_sub_ps(q.ox, _mm_set1_ps(cx));
   const __m128 ocy = _mm_sub_ps(q.oy, _mm_set1_ps(cy));
   const __m128 ocz = _mm_sub_ps(q.oz, _mm_set1_ps(cz));
-  const __m128 radius = _mm_set1_ps(r);
-  const __m128 a = q.dd;
-  const __m128 halfB = dot3(ocx, ocy, ocz, q.dx, q.dy, q.dz);
-  const __m128 c = _mm_sub_ps(dot3(ocx, ocy, ocz, ocx, ocy, ocz), _mm_mul_ps(radius, radius));
-  __m128 live = _mm_cmpeq_ps(zero, zero);
-  live = _mm_andnot_ps(_mm_and_ps(_mm_cmpgt_ps(c, zero), _mm_cmpgt_ps(halfB, zero)), live);
-  if (_mm_movemask_ps(live) == 0) return live;
-  const __m128 k = _mm_div_ps(halfB, a);
-  const __m128 lx = _mm_sub_ps(ocx, _mm_mul_ps(k, q.dx));
-  const __m128 ly = _mm_sub_ps(ocy, _mm_mul_ps(k, q.dy));
-  const __m128 lz = _mm_sub_ps(ocz, _mm_mul_ps(k, q.dz));
-  const __m128 dist = _mm_sqrt_ps(dot3(lx, ly, lz, lx, ly, lz));
-  const __m128 disc = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(4.0f), a),
-                                 _mm_mul_ps(_mm_sub_ps(radius, dist), _mm_add_ps(radius, dist)));
-  live = _mm_and_ps(live, _mm_cmpge_ps(disc, zero));
-  if (_mm_movemask_ps(live) == 0) return live;
-  const __m128 b = _mm_mul_ps(_mm_set1_ps(2.0f), halfB);
-  const __m128 qq = _mm_mul_ps(_mm_set1_ps(-0.5f), _mm_add_ps(b, copySign(_mm_sqrt_ps(disc), b)));
-  const __m128 t0 = _mm_div_ps(qq, a);
-  const __m128 t1 = select(_mm_cmpneq_ps(qq, zero), _mm_div_ps(c, qq), t0);
-  const __m128 swap = _mm_cmpgt_ps(t0, t1);
-  const __m128 nearT = select(swap, t1, t0), farT = select(swap, t0, t1);
-  const __m128 nearOk = _mm_and_ps(_mm_cmpgt_ps(nearT, zero), _mm_cmplt_ps(nearT, q.tMax));
-  const __m128 farOk = _mm_and_ps(_mm_cmpgt_ps(farT, zero), _mm_cmplt_ps(farT, q.tMax));
-  tOut = select(nearOk, nearT, farT);
-  return _mm_and_ps(live, _mm_or_ps(nearOk, farOk));
+  const __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  return sphereTest({ocx, ocy, ocz, q.dx, q.dy, q.dz, q.dd, _mm_set1_ps(r), q.tMax}, all, tOut);
 }
 
 // planeHits with the plane broadcast and the rays in lanes.
 __m128 planeLanes(const RayQuad& q, float nx, float ny, float nz, float d, __m128& tOut) {
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 px = _mm_set1_ps(nx), py = _mm_set1_ps(ny), pz = _mm_set1_ps(nz);
-  const __m128 denom = dot3(px, py, pz, q.dx, q.dy, q.dz);
-  const __m128 along = dot3(px, py, pz, q.ox, q.oy, q.oz);
-  tOut = _mm_div_ps(_mm_sub_ps(_mm_set1_ps(d), along), denom);
-  return _mm_and_ps(_mm_cmpneq_ps(denom, zero),
-                    _mm_and_ps(_mm_cmpgt_ps(tOut, zero), _mm_cmplt_ps(tOut, q.tMax)));
+  const __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  return planeTest({_mm_set1_ps(nx), _mm_set1_ps(ny), _mm_set1_ps(nz), _mm_set1_ps(d)}, {q.ox, q.oy, q.oz},
+                   {q.dx, q.dy, q.dz}, q.tMax, all, tOut);
 }
 
 // The lanes whose hit at t is inside the square whatever the rounding: |p - centre|
