@@ -486,6 +486,9 @@ template <typename T>
 bool RtScene::onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const {
   const PlaneUv& q = planeUvs_[plane];
   if (q.extent <= 0.0) return true;
+  if constexpr (std::is_same_v<T, float>) {
+    if (packs_.clearlyOnSquare(plane, ray, t)) return true;
+  }
   const glm::dvec3 local = glm::dvec3(ray(t)) - q.point;
   return std::abs(glm::dot(local, q.axisU)) <= q.extent && std::abs(glm::dot(local, q.axisV)) <= q.extent;
 }

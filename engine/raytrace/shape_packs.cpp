@@ -220,7 +220,7 @@ __m128 planeLanes(const RayQuad& q, float nx, float ny, float nz, float d, __m12
 // summed over the axes, in float, bounds the distance along either of the square's
 // unit axes; 1e-5 of it and of the centre's size covers float's rounding (a few parts
 // in 1e7) with room to spare, so a lane kept here is one the exact test keeps.
-int clearlyOnSquare(const RayQuad& q, const ShapePacks::SquareLanes& square, __m128 t) {
+int clearlyOnSquareLanes(const RayQuad& q, const ShapePacks::SquareLanes& square, __m128 t) {
   const __m128 signBit = _mm_set1_ps(-0.0f);
   const auto absDiff = [&](__m128 o, __m128 d, float c) {
     return _mm_andnot_ps(signBit, _mm_sub_ps(_mm_add_ps(o, _mm_mul_ps(d, t)), _mm_set1_ps(c)));
@@ -232,6 +232,13 @@ int clearlyOnSquare(const RayQuad& q, const ShapePacks::SquareLanes& square, __m
 }
 
 }  // namespace
+
+bool ShapePacks::clearlyOnSquare(std::size_t plane, const Ray<float>& ray, float t) const {
+  const SquareLanes& q = squares_[plane];
+  const glm::vec3 p = ray(t);
+  const float l1 = std::abs(p.x - q.x) + std::abs(p.y - q.y) + std::abs(p.z - q.z);
+  return l1 + 1e-5f * (l1 + q.size) <= q.extent;
+}
 
 void ShapePacks::nearestOfFour(const Ray<float>* const rays[4], int count, Nearest out[4], SquareTest onSquare,
                                const void* context) const {
@@ -256,7 +263,7 @@ void ShapePacks::nearestOfFour(const Ray<float>* const rays[4], int count, Neare
       alignas(16) float ts[4];
       _mm_store_ps(ts, t);
       // Only the hits not clearly inside the square ask the caller's exact test.
-      for (int m = mask & ~clearlyOnSquare(q, squares_[i], t); m != 0; m &= m - 1) {
+      for (int m = mask & ~clearlyOnSquareLanes(q, squares_[i], t); m != 0; m &= m - 1) {
         const int lane = __builtin_ctz(unsigned(m));
         if (!onSquare(context, i, *lanes[lane], ts[lane])) mask &= ~(1 << lane);
       }

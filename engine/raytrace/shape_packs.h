@@ -50,6 +50,10 @@ class ShapePacks {
   };
   // Whether a hit at t lies on a bounded plane's square; asked only of bounded planes.
   using SquareTest = bool (*)(const void* context, std::size_t plane, const Ray<float>& ray, float t);
+  // Whether plane `plane`'s hit at t is inside its square whatever the rounding (the
+  // float test of nearestOfFour, for one ray): true settles it, false leaves it to
+  // the exact test.
+  bool clearlyOnSquare(std::size_t plane, const Ray<float>& ray, float t) const;
   void nearestOfFour(const Ray<float>* const rays[4], int count, Nearest out[4], SquareTest onSquare,
                      const void* context) const;
 
