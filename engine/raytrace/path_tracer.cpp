@@ -151,7 +151,7 @@ class PathTracer {
   // Every path to its end, all of them a bounce at a time: the nearest hits of all
   // the paths still going, then each one's bounce. (Their shadow rays are traced one
   // at a time, inside the bounce: gathered for the whole batch as well, they were
-  // slower, 0.92x, for the light samples and BSDFs kept aside meanwhile.)
+  // slower, 0.96x, for the light samples kept aside meanwhile.)
   void traceAll(Path* paths, std::size_t count, RayCounters& counters) const {
     std::vector<std::size_t>& live = batch_.live;
     live.resize(count);

@@ -220,6 +220,9 @@ __m128 planeLanes(const RayQuad& q, float nx, float ny, float nz, float d, __m12
 // summed over the axes, in float, bounds the distance along either of the square's
 // unit axes; 1e-5 of it and of the centre's size covers float's rounding (a few parts
 // in 1e7) with room to spare, so a lane kept here is one the exact test keeps.
+// ShapePacks::clearlyOnSquare is the same test for one ray, inside the caller's
+// onSquare; four lanes at once here measured 1.03x the path tracer's rate over asking
+// it lane by lane (the lanes it leaves, near an edge or outside, run it again there).
 int clearlyOnSquareLanes(const RayQuad& q, const ShapePacks::SquareLanes& square, __m128 t) {
   const __m128 signBit = _mm_set1_ps(-0.0f);
   const auto absDiff = [&](__m128 o, __m128 d, float c) {
