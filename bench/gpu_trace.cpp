@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
                "gpu_trace"};
   engine::CommonOptions common;
   Options o;
-  app.add_option("scenes", o.scenes, "Whitted and path-traced scenes (default: cornell.json cornell_soft.json)");
+  app.add_option("scenes", o.scenes, "Whitted and path-traced scenes (default: cornell.json cornell_soft.json; 'none' skips)");
   app.add_option("--runs", o.runs, "Runs per measurement (median)")->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--spp", o.spp, "Whitted samples per pixel")->check(CLI::Range(1, 4096))->capture_default_str();
   app.add_option("--pt-spp", o.pathSpp, "Path tracer samples per pixel")->check(CLI::Range(1, 4096))->capture_default_str();
@@ -157,7 +157,13 @@ int main(int argc, char** argv) {
   if (auto code = engine::parseCommandLine(app, argc, argv)) return *code;
   if (common.offscreen.empty()) common.offscreen = "egl";
   if (auto s = engine::finishCommonOptions(common, argc, argv); !s) return fail(s.error().message);
-  if (o.scenes.empty()) o.scenes = {common.assetDir + "/scenes/cornell.json", common.assetDir + "/scenes/cornell_soft.json"};
+  // Line by line, also into a file: a run stopped by a timeout keeps what it measured.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  if (o.scenes == std::vector<std::string>{"none"}) {
+    o.scenes.clear();
+  } else if (o.scenes.empty()) {
+    o.scenes = {common.assetDir + "/scenes/cornell.json", common.assetDir + "/scenes/cornell_soft.json"};
+  }
   if (o.queries.empty()) o.queries = common.assetDir + "/scenes/demo.json";
   engine::ContextOptions context;
   context.width = 16;
