@@ -183,6 +183,21 @@ struct SceneRenderer::Impl {
   gl::Framebuffer sunShadowFarFbo;
   int sunShadowSize = 0, cubeSize = 0;
   double sunTexelWorld = 0.0;
+  // What the sun's maps were last drawn for: while it holds (a still camera), what
+  // does not move (shapes, the terrain) is not drawn again. The near map's static
+  // casters alone are kept in `sunStaticMap` (made the second still frame, so that
+  // a moving camera pays nothing) and copied back under the characters each frame.
+  struct SunMapsKey {
+    glm::dvec3 eye{0.0};
+    glm::mat4 nearBox{0.0f}, farBox{0.0f};
+    double fovy = 0.0;
+    int viewportHeight = 0;
+    bool operator==(const SunMapsKey&) const = default;
+  };
+  std::optional<SunMapsKey> sunMapsKey;
+  gl::Texture sunStaticMap;
+  bool sunStaticValid = false;   // sunStaticMap holds the static casters for sunMapsKey
+  bool sunMapHasMovers = false;  // sunShadowMap holds characters too
   double pointNear = 0.05, pointFar = 50.0;
   int pcfRadius = 0;
   // Without characters nothing moves: the point light's cube map (which does not
@@ -263,6 +278,7 @@ struct SceneRenderer::Impl {
                                    double farPlane);
   SunBox fitSunBox(const ShadowSphere& sphere) const;
   void drawTerrainShadow(const SunBox& box, double fovy, int viewportHeight);
+  Status drawSunNear(const SunBox& box, bool still, double fovy, int viewportHeight);
   Status loadMaterials();
   Status loadModels();
   void addShapes();

@@ -65,32 +65,70 @@ void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy, int 
   stats->drawCalls += 1;
 }
 
+// The near map: every caster (the sun's box is fitted to what the view sees, not
+// culled to it). A depth-only pass keeps the nearest depth whatever the order of
+// the draws, so the shapes and the terrain may go first and the characters over
+// them: while the camera stands still, the static casters' depth is copied back
+// from the frame that drew them and only the characters are drawn again.
+Status SceneRenderer::Impl::drawSunNear(const SunBox& box, bool still, double fovy, int viewportHeight) {
+  auto casters = collectDraws(nullptr, true);
+  if (!casters) return casters.error();
+  std::vector<DrawItem> statics, movers;
+  for (const DrawItem& item : casters->opaque)
+    (item.source == DrawItem::Source::Character ? movers : statics).push_back(item);
+  const glm::mat4 lightViewProjection(box.projection * box.view);
+  const PassInputs pass{true, lightViewProjection, lightViewProjection};
+  sunShadowFbo.bind();
+  glViewport(0, 0, sunShadowSize, sunShadowSize);
+  applyPassState(kShadowPass);
+  glClearDepth(1.0);
+  const bool anyStatic = !statics.empty() || terrain;
+  if (still && movers.empty() && !sunMapHasMovers) {
+    stats->sunStaticKept = 1;
+    return Ok{};  // the map is as it was drawn
+  }
+  if (still && sunStaticValid) {
+    stats->sunStaticKept = 1;
+    glCopyImageSubData(sunStaticMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0, sunShadowMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                       sunShadowSize, sunShadowSize, 1);
+  } else {
+    glClear(GL_DEPTH_BUFFER_BIT);
+    if (auto s = drawItems(statics, pass); !s) return s;
+    if (terrain) drawTerrainShadow(box, fovy, viewportHeight);
+    if (still && anyStatic && !movers.empty()) {
+      if (sunStaticMap.id() == 0) sunStaticMap = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, sunShadowSize, sunShadowSize, 1);
+      glCopyImageSubData(sunShadowMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0, sunStaticMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                         sunShadowSize, sunShadowSize, 1);
+      sunStaticValid = true;
+    }
+  }
+  sunMapHasMovers = !movers.empty();
+  return drawItems(movers, pass);
+}
+
 // The sun's maps around two spheres relative to `eye` (characters posed for it):
 // the near one of everything, the far one of the terrain alone. The frame block's
-// shadow matrices then belong to this eye.
+// shadow matrices then belong to this eye. Either map's static part is drawn again
+// only when the camera has moved (see SunMapsKey).
 Status SceneRenderer::Impl::renderSunShadow(const ShadowSphere& nearSphere, const ShadowSphere& farSphere,
                                             double fovy, int viewportHeight) {
   const SunBox box = fitSunBox(nearSphere);
   sunTexelWorld = box.texelWorld;
   frame.sunShadowMatrix = box.shadowMatrix;
-  const glm::mat4 lightViewProjection(box.projection * box.view);
-
-  sunShadowFbo.bind();
-  glViewport(0, 0, sunShadowSize, sunShadowSize);
-  applyPassState(kShadowPass);
-  glClearDepth(1.0);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  // Every caster: the sun's box is fitted to what the view sees, not culled to it.
-  auto casters = collectDraws(nullptr, true);
-  if (!casters) return casters.error();
-  if (auto s = drawItems(casters->opaque, {true, lightViewProjection, lightViewProjection}); !s) return s;
-  if (terrain) drawTerrainShadow(box, fovy, viewportHeight);
-
+  SunMapsKey key{eye, glm::mat4(box.projection * box.view), glm::mat4(0.0f), fovy, viewportHeight};
+  SunBox far;
   if (sunFarShadows) {
-    // The far map: the terrain alone (mountains over valleys), out to a few km.
-    const SunBox far = fitSunBox(farSphere);
+    far = fitSunBox(farSphere);
     frame.sunShadowMatrixFar = far.shadowMatrix;
     frame.sunFarParams = glm::vec4(1.0f / float(sunShadowSize), float(far.texelWorld), 0.0f, 0.0f);
+    key.farBox = glm::mat4(far.projection * far.view);
+  }
+  const bool still = sunMapsKey == key;
+  if (!still) sunStaticValid = false;
+  sunMapsKey = key;
+  if (auto s = drawSunNear(box, still, fovy, viewportHeight); !s) return s;
+  if (sunFarShadows && !still) {
+    // The far map: the terrain alone (mountains over valleys), out to a few km.
     sunShadowFarFbo.bind();
     glClear(GL_DEPTH_BUFFER_BIT);
     drawTerrainShadow(far, fovy, viewportHeight);

@@ -210,6 +210,7 @@ engine::Game::Counters SceneGame::frameCounters() {
                     {"terrain_triangles", s.terrainTriangles},
                     {"vertices_deformed", double(s.verticesDeformed)},
                     {"frame_copies", s.frameCopies},
+                    {"sun_static_kept", s.sunStaticKept},
                     {"triangles_all_passes", double(renderer_->lastFrameTriangles())},
                     {"cpu_ms_animation", s.animationMs},
                     {"cpu_ms_cull", s.cullMs},

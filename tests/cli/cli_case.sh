@@ -297,6 +297,19 @@ PY
     expect 0 "egl4" -- "$BIN/demo" --offscreen=egl --msaa 4 --time 0.5 --size 320x180 --screenshot egl4.png
     expect 0 "osmesa4" -- "$BIN/demo" --offscreen=osmesa --msaa 4 --time 0.5 --size 320x180 --screenshot osmesa4.png
     cmp egl4.png osmesa4.png || { echo "FAIL: EGL and OSMesa MSAA frames differ"; exit 1; } ;;
+  sun_maps_kept)
+    # A still camera keeps the sun maps' shapes and terrain from frame to frame
+    # (SceneRenderer::Impl::SunMapsKey) and draws only the characters over them: the
+    # last of 6 frames, the robots walking, is the same bytes as that frame drawn
+    # alone, and the bench says the static part was kept.
+    rm -f kept1.png kept6.png kept.json
+    expect 0 "kept1\.png" -- "$BIN/demo" --offscreen=egl --time 1 --size 320x180 --screenshot kept1.png
+    expect 0 "kept6\.png" -- "$BIN/demo" --offscreen=egl --time 1 --frames 6 --size 320x180 --screenshot kept6.png \
+      --bench kept.json
+    cmp kept1.png kept6.png || { echo "FAIL: the kept sun maps changed the frame"; exit 1; }
+    python3 -c "import json, sys; c = json.load(open(sys.argv[1]))['last_frame']; assert c['sun_static_kept'] == 1, c" kept.json \
+      || { echo "FAIL: the sun maps were drawn anew on a still frame"; exit 1; }
+    echo "ok: identical bytes, static casters kept" ;;
   bench_json)
     rm -f bench.json
     expect 0 "shot\.png" -- "$BIN/demo" --offscreen --frames 5 --size 320x180 --bench bench.json --screenshot shot.png
