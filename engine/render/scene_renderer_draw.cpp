@@ -274,14 +274,21 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   applyPassState(opaquePassFor(view.mirrored));
   if (terrain && terrainCuller && view.main) {
     drawTerrainCulled(view);
-  } else if (terrain) {
-    drawTerrain(view.viewProjection, view.fovy, view.height);
   }
   auto lists = collectDraws(view.planes, false, skipShape);
   if (!lists) return lists.error();
   if (culler && view.main) return drawCulled(view, *lists, useProbes);
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
   if (auto s = drawItems(lists->opaque, pass); !s) return s;
+  // The terrain after the shapes and characters: its fragment shader (five layers,
+  // two sun maps, the ambient) is the frame's dearest, and a plaza or a floor over
+  // it then hides what lies beneath before it is shaded (llvmpipe, like any GPU,
+  // tests depth before shading). Opaque surfaces keep the nearest depth whatever the
+  // order, so the image is the same. GPU culling draws it first, as an occluder.
+  if (terrain && !(terrainCuller && view.main)) {
+    applyPassState(opaquePassFor(view.mirrored));
+    drawTerrain(view.viewProjection, view.fovy, view.height);
+  }
   if (lists->refracts) {
     if (view.main) copyTransmissionSource();
     transmissionSource.bind(gl::binding::kTransmissionSource);
