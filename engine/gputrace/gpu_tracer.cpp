@@ -319,6 +319,7 @@ Result<rt::RenderResult> GpuTracer::renderWhitted(const rt::RenderSettings& sett
   p.set("u_maxDepth", maxDepth);
   // A tree of mirror and transmitted rays, 2^(maxDepth + 1) - 1 at most.
   p.set("u_rayBound", int((std::int64_t(1) << std::min(maxDepth + 1, 30)) - 1));
+  p.set("u_lastPass", 63);
   p.set("u_shadowSamples", settings.shadowSamples);
   p.set("u_lightCount", int(scene.lights().size()));
   p.set("u_pbr", scene.render().shading == Shading::Pbr ? 1 : 0);

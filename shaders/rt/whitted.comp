@@ -44,6 +44,11 @@ uniform int u_lightCount;
 uniform ivec2 u_strata;  // detail::strataFor(spp)
 uniform int u_spp;
 uniform int u_maxDepth;  // RT_MAX_DEPTH, which sizes the arrays
+// 63: Tracer::firstSolidHit passes 64 surfaces at most. A uniform, as u_rayBound:
+// with the constant a compiler may unroll the loop, and with it 64 copies of the
+// traversal (a suspect in the 50 s NVIDIA's driver 580 took to compile demo.json's
+// kernel, not yet measured apart; llvmpipe compiles either in the same time).
+uniform int u_lastPass;
 uniform int u_shadowSamples;
 uniform int u_pbr;       // Shading::Pbr
 uniform uvec2 u_seed;    // RenderSettings::seed, low and high words
@@ -216,7 +221,7 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng) {
 #else
       break;
 #endif
-      if (pass == 63) {
+      if (pass == u_lastPass) {
         hit.kind = RT_NONE;
         break;
       }
