@@ -138,6 +138,8 @@ void GpuCuller::upload() {
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commandBuffer_.id());
 }
 
+void GpuCuller::bindCommands() const { glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commandBuffer_.id()); }
+
 void GpuCuller::cull(std::size_t first, std::size_t end, const glm::mat4& viewProjection, const HiZPyramid* hiz,
                      float depthMargin) {
   if (end <= first) return;

@@ -67,6 +67,8 @@ class GpuCuller {
   // Uploads the jobs (and the table, once), sizes the command buffer, zeroes the
   // counters and binds the commands to GL_DRAW_INDIRECT_BUFFER.
   void upload();
+  // Binds the commands cull() writes as GL_DRAW_INDIRECT_BUFFER (upload() does too).
+  void bindCommands() const;
   // Culls jobs [first, end) for a view (camera-relative world -> clip, reverse-Z),
   // against `hiz`, or the frustum only (null). Commands are ready for drawing.
   // `depthMargin`: cull::View's (tests only change it).

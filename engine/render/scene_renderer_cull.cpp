@@ -115,15 +115,16 @@ bool SceneRenderer::Impl::isOccluder(const DrawItem& item) const {
 }
 
 // The pyramid the main view's draws are culled against: the depth drawn so far
-// (the terrain's), and the occluders' depth drawn over a copy of it, depth only
+// (none but the cleared far plane: the sky writes none, the terrain comes after),
+// and the occluders' depth drawn over a copy of it, depth only
 // (the occluder prepass). Why that is safe though the occluders come later in the
 // pass: an item whose every pixel has, in the end, a strictly nearer depth is
 // never the nearest fragment anywhere, and with GL_GREATER the image and the
 // depth are the first nearest fragment's; removing a fragment that is not the
 // nearest changes neither. Every occluder is an opaque draw of this pass, and the
 // pass's final depth is at least the prepass's (up to float rounding between two
-// programs' vertex shaders, far inside cull::kDepthMargin). Without occluders the
-// terrain's pyramid, made for its second half, serves as it is.
+// programs' vertex shaders, far inside cull::kDepthMargin). Without occluders
+// there is nothing to cull by depth: the frustum only.
 void SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders) {
   GLint framebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
@@ -140,7 +141,7 @@ void SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::vect
 // The main view's draws with GPU culling, in the order drawWorld draws them, every
 // one culled in one dispatch against the occluder pyramid (above). A window's
 // frames and a single offscreen frame cull alike: the pyramid is this frame's own,
-// never the last frame's. MSAA, or no terrain and no occluder: the frustum only
+// never the last frame's. MSAA, or no occluder: the frustum only
 // (MSAA's pyramid would need every sample's depth).
 Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists, bool useProbes) {
   culler->clearJobs();
@@ -151,20 +152,26 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   std::vector<DrawItem> occluders;
   std::copy_if(lists.opaque.begin(), lists.opaque.end(), std::back_inserter(occluders),
                [this](const DrawItem& item) { return isOccluder(item); });
-  const bool occlusion = render.msaa <= 1 && (terrain || !occluders.empty());
+  const bool occlusion = render.msaa <= 1 && !occluders.empty();
   // The occluders' depth waits for what is drawn before it: timed from there.
-  if (occlusion && !(terrainPyramid && occluders.empty())) glFinish();
+  if (occlusion) glFinish();
   const auto start = std::chrono::steady_clock::now();
-  if (occlusion && !(terrainPyramid && occluders.empty())) {
+  if (occlusion) {
     buildOccluderPyramid(view, occluders);
     applyPassState(opaquePassFor(view.mirrored));
   }
-  terrainPyramid = false;
   culler->cull(0, culler->jobCount(), glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
   ++stats->cullDispatches;
   stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
   Status status = drawItems(lists.opaque, pass, &opaqueCommands);
+  // The terrain after the opaque items, as drawWorld draws it: its patches then
+  // meet their depth (a plaza over a valley) in the pyramid of its second half.
+  if (status && terrain && terrainCuller) {
+    applyPassState(opaquePassFor(view.mirrored));
+    drawTerrainCulled(view);
+    culler->bindCommands();
+  }
   if (status && lists.refracts) {
     copyTransmissionSource();
     transmissionSource.bind(gl::binding::kTransmissionSource);
@@ -187,12 +194,12 @@ std::vector<cull::Cluster> SceneRenderer::Impl::terrainPatchBoxes(const terrain:
   return out;
 }
 
-// The main view's terrain with GPU culling: its selection (CPU-culled to the
-// frustum by the CDLOD traversal, as without) in two halves of the drawing order,
-// the first culled against the frustum alone (nothing is drawn before the
-// terrain), the second against a pyramid of the first's depth. Each command is a
-// run of the instance buffer's patches (cull::kInstances), so they are drawn in
-// the same order as the one instanced draw.
+// The main view's terrain with GPU culling, after the opaque draws: its selection
+// (CPU-culled to the frustum by the CDLOD traversal, as without) in two halves of
+// the drawing order, the first culled against the frustum alone, the second
+// against a pyramid of the depth drawn so far (the shapes, the characters and the
+// first half). Each command is a run of the instance buffer's patches
+// (cull::kInstances), so they are drawn in the same order as the one instanced draw.
 void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   const auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
   const auto prepared = terrainRenderer->prepare(selection);
@@ -222,7 +229,6 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   const auto uniforms = [this](const gl::Program& p) { setUniforms(p); };
   for (const std::size_t j : {near, far}) {
     cullPhase(*terrainCuller, j, j + 1, view, j == far && render.msaa <= 1);
-    terrainPyramid = j == far && render.msaa <= 1;
     const IndirectDraw commands = terrainCuller->commandsOf(j);
     terrainRenderer->drawIndirect(selection, eye, uniforms, commands.offset, commands.count);
   }

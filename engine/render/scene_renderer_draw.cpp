@@ -272,9 +272,6 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
     drawSky(view.viewProjection);
   }
   applyPassState(opaquePassFor(view.mirrored));
-  if (terrain && terrainCuller && view.main) {
-    drawTerrainCulled(view);
-  }
   auto lists = collectDraws(view.planes, false, skipShape);
   if (!lists) return lists.error();
   if (culler && view.main) return drawCulled(view, *lists, useProbes);
@@ -284,8 +281,9 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   // two sun maps, the ambient) is the frame's dearest, and a plaza or a floor over
   // it then hides what lies beneath before it is shaded (llvmpipe, like any GPU,
   // tests depth before shading). Opaque surfaces keep the nearest depth whatever the
-  // order, so the image is the same. GPU culling draws it first, as an occluder.
-  if (terrain && !(terrainCuller && view.main)) {
+  // order, so the image is the same. drawCulled does the same with its patches
+  // culled against the depth of what went before.
+  if (terrain) {
     applyPassState(opaquePassFor(view.mirrored));
     drawTerrain(view.viewProjection, view.fovy, view.height);
   }

@@ -222,10 +222,6 @@ struct SceneRenderer::Impl {
   std::unique_ptr<GpuCuller> terrainCuller;  // the terrain's patches, a table of their own each frame
   std::unique_ptr<HiZPyramid> hiz;
   float cullDepthMargin = cull::kDepthMargin;
-  // The pyramid the terrain's second half was culled with, this frame: without
-  // occluders the draws are culled with it (the depth has only come nearer
-  // since), which saves a build and a wait.
-  bool terrainPyramid = false;
   std::map<const GpuMesh*, std::uint32_t> shapeClusterBase;
   std::map<const GpuPrimitive*, std::uint32_t> primitiveClusterBase;
   Status makeCuller();
