@@ -8,18 +8,6 @@ namespace {
 constexpr int kMaxCubeShadowSize = 1024;
 constexpr int kMaxReflectionProbes = 4;
 
-// A depth map compared in hardware (sampler2DShadow), for the sun.
-gl::Texture makeSunShadowMap(int size) {
-  gl::Texture map = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size, 1);
-  map.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  map.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  map.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  map.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  map.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  map.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return map;
-}
-
 // The sky's lat-long image as half floats, mipmapped, repeating in u and clamped in
 // v. Rows go up as the image stores them (top first), so texture t = v: t = 0 is the
 // zenith, as common/latlong.glsl has it. Radiance past half's largest value (65504)
@@ -38,6 +26,17 @@ gl::Texture uploadSkyImage(const FloatImage& image) {
 }
 
 }  // namespace
+
+gl::Texture makeSunShadowMap(int size) {
+  gl::Texture map = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size, 1);
+  map.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  map.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  map.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  map.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  map.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return map;
+}
 
 Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   shaderDir = options.shaderDir;

@@ -65,6 +65,14 @@ void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy, int 
   stats->drawCalls += 1;
 }
 
+namespace {
+
+void copySunMap(const gl::Texture& from, const gl::Texture& to, int size) {
+  glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, size, size, 1);
+}
+
+}  // namespace
+
 // The near map: every caster (the sun's box is fitted to what the view sees, not
 // culled to it). A depth-only pass keeps the nearest depth whatever the order of
 // the draws, so the shapes and the terrain may go first and the characters over
@@ -89,16 +97,14 @@ Status SceneRenderer::Impl::drawSunNear(const SunBox& box, bool still, double fo
   }
   if (still && sunStaticValid) {
     stats->sunStaticKept = 1;
-    glCopyImageSubData(sunStaticMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0, sunShadowMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                       sunShadowSize, sunShadowSize, 1);
+    copySunMap(sunStaticMap, sunShadowMap, sunShadowSize);
   } else {
     glClear(GL_DEPTH_BUFFER_BIT);
     if (auto s = drawItems(statics, pass); !s) return s;
     if (terrain) drawTerrainShadow(box, fovy, viewportHeight);
     if (still && anyStatic && !movers.empty()) {
-      if (sunStaticMap.id() == 0) sunStaticMap = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, sunShadowSize, sunShadowSize, 1);
-      glCopyImageSubData(sunShadowMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0, sunStaticMap.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                         sunShadowSize, sunShadowSize, 1);
+      if (sunStaticMap.id() == 0) sunStaticMap = makeSunShadowMap(sunShadowSize);
+      copySunMap(sunShadowMap, sunStaticMap, sunShadowSize);
       sunStaticValid = true;
     }
   }
