@@ -1,7 +1,5 @@
 #include "anim/clip.h"
 
-#include "anim/quat_batch.h"
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -244,19 +242,15 @@ void Clip::groupTracks() {
     for (std::size_t j = 0; j < i; ++j)
       if (tracks_[i].joint == tracks_[j].joint && tracks_[i].path == tracks_[j].path) return;
   grouped_ = true;
+  std::vector<std::vector<std::uint32_t>> linear(timelines_.size());
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    const Track& t = tracks_[i];
-    if (t.interpolation == Interpolation::Linear) {
-      linear_[static_cast<int>(t.path)].push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(t.timeline),
-                                                   static_cast<std::uint32_t>(t.joint),
-                                                   static_cast<std::uint32_t>(arcs_.size())});
-      if (t.path == AnimPath::Rotation)
-        for (std::size_t k = 0; k + 1 < t.values.size(); ++k)
-          arcs_.push_back(slerpArc(toQuat(t.values[k]), toQuat(t.values[k + 1])));
+    if (tracks_[i].interpolation == Interpolation::Linear) {
+      linear[static_cast<std::size_t>(tracks_[i].timeline)].push_back(static_cast<std::uint32_t>(i));
     } else {
       others_.push_back(static_cast<std::uint32_t>(i));
     }
   }
+  for (std::size_t t = 0; t < timelines_.size(); ++t) blocks_.emplace_back(tracks_, linear[t], timelines_[t].size());
 }
 
 int Clip::timelineOf(const std::vector<float>& times) {
@@ -275,41 +269,6 @@ void SamplingContext::bind(const Clip& clip) {
   morphTracks_.assign(clip.morphTracks().size(), 0);
 }
 
-namespace {
-
-// Queues a LINEAR rotation track between two keys into `batch`: slerp through the
-// pair's arc (slerpAt's weights), or nlerp (whose flip the batch does).
-void queueRotation(const Track& track, const KeyPair& keys, QuatInterpolation method, const SlerpArc& arc,
-                   QuatBatch& batch, glm::quat& out) {
-  const glm::vec4& a = track.values[keys.first];
-  const float t = keys.u;
-  if (method == QuatInterpolation::Nlerp) {
-    batch.add(a, toQuat(track.values[keys.second]), 1.0f - t, t, out);
-  } else if (arc.nlerp) {
-    batch.add(a, arc.b, 1.0f - t, t, out);
-  } else {
-    batch.add(a, arc.b, std::sin((1.0f - t) * arc.theta) * arc.invSin, std::sin(t * arc.theta) * arc.invSin, out);
-  }
-}
-
-// LINEAR translations or scales: the key held outside the keys, else a lerp.
-void lerpChannels(std::span<const Clip::Channel> channels, std::span<const Track> tracks,
-                  std::span<const KeyPair> keys, std::span<Srt> output, glm::vec3 Srt::*part) {
-  for (const Clip::Channel& c : channels) {
-    const KeyPair& k = keys[c.timeline];
-    const glm::vec4* values = tracks[c.track].values.data();
-    const glm::vec3 a(values[k.first]);
-    if (k.first == k.second) {
-      output[c.joint].*part = a;
-    } else {
-      const glm::vec3 b(values[k.second]);
-      output[c.joint].*part = a + (b - a) * k.u;
-    }
-  }
-}
-
-}  // namespace
-
 void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInterpolation method,
                   SamplingContext& context) {
   context.bind(clip);
@@ -323,20 +282,15 @@ void sampleTracks(const Clip& clip, double time, std::span<Srt> output, QuatInte
       applyAt(track, keys[static_cast<std::size_t>(track.timeline)], output[static_cast<std::size_t>(track.joint)], method);
     return;
   }
-  lerpChannels(clip.linearTranslations(), tracks, keys, output, &Srt::translation);
-  lerpChannels(clip.linearScales(), tracks, keys, output, &Srt::scale);
-  const std::span<const Clip::Channel> rotations = clip.linearRotations();
-  const std::span<const SlerpArc> arcs = clip.slerpArcs();
-  QuatBatch batch;
-  for (const Clip::Channel& c : rotations) {
-    const KeyPair& k = keys[c.timeline];
-    if (k.first == k.second) {
-      output[c.joint].rotation = quatAt(tracks[c.track], k, method);
-    } else {
-      queueRotation(tracks[c.track], k, method, arcs[c.arcs + k.first], batch, output[c.joint].rotation);
+  const std::span<const KeyBlocks> blocks = clip.linearBlocks();
+  for (std::size_t t = 0; t < blocks.size(); ++t) {
+    if (keys[t].first != keys[t].second) {
+      blocks[t].sample(keys[t], method, output);
+      continue;
     }
+    for (const std::uint32_t i : blocks[t].tracks())  // outside the keys: the end key held
+      applyAt(tracks[i], keys[t], output[static_cast<std::size_t>(tracks[i].joint)], method);
   }
-  batch.flush();
   for (const std::uint32_t i : clip.otherTracks())
     applyAt(tracks[i], keys[static_cast<std::size_t>(tracks[i].timeline)], output[static_cast<std::size_t>(tracks[i].joint)],
             method);

@@ -7,24 +7,14 @@
 
 #include <glm/glm.hpp>
 
+#include "anim/key_blocks.h"
 #include "anim/skeleton.h"
+#include "anim/track.h"
 #include "core/keyframe.h"
 #include "core/math.h"
 #include "core/result.h"
 
 namespace engine {
-
-// One animated part of one joint. `values` has one entry per key (three for
-// CubicSpline: in-tangent, value, out-tangent); translation and scale use xyz,
-// rotation is x, y, z, w as in glTF.
-struct Track {
-  int joint = -1;
-  AnimPath path = AnimPath::Translation;
-  Interpolation interpolation = Interpolation::Linear;
-  std::vector<float> times;
-  std::vector<glm::vec4> values;
-  int timeline = -1;  // set by Clip::build: the index of `times` in Clip::timelines()
-};
 
 // The morph target weights of one mesh node: `targets` weights per key (three
 // blocks of `targets` per key for CubicSpline: in-tangents, values, out-tangents,
@@ -80,24 +70,12 @@ class Clip {
   // Unique to each built clip (copies share it, having the same keys): what a
   // SamplingContext recognises its clip by, as an address can be reused.
   std::uint64_t id() const { return id_; }
-  // The tracks as sampleTracks walks them, grouped so that each loop is one kind:
-  // LINEAR translations, scales and rotations, and the rest (STEP, CUBICSPLINE)
-  // by index. Empty when two tracks drive the same part of one joint (glTF
-  // forbids it): such a clip is sampled track by track, in order, as the last
-  // track must win.
-  struct Channel {
-    std::uint32_t track;     // index in tracks()
-    std::uint32_t timeline;  // the track's
-    std::uint32_t joint;     // the track's
-    std::uint32_t arcs;      // rotations: where its key pairs' arcs start in slerpArcs()
-  };
-  std::span<const Channel> linearTranslations() const { return linear_[0]; }
-  std::span<const Channel> linearRotations() const { return linear_[1]; }
-  std::span<const Channel> linearScales() const { return linear_[2]; }
+  // The tracks as sampleTracks walks them: the LINEAR ones of each timeline in
+  // KeyBlocks (indexed as timelines()), the rest (STEP, CUBICSPLINE) by index. Empty
+  // when two tracks drive the same part of one joint (glTF forbids it): such a clip
+  // is sampled track by track, in order, as the last track must win.
+  std::span<const KeyBlocks> linearBlocks() const { return blocks_; }
   std::span<const std::uint32_t> otherTracks() const { return others_; }
-  // slerpArc of each pair of consecutive keys of each LINEAR rotation, computed
-  // once here: playback then pays no atan2 (arc k of a channel: keys k and k+1).
-  std::span<const SlerpArc> slerpArcs() const { return arcs_; }
   bool grouped() const { return grouped_; }
   // 1 + the largest joint a track drives (0 without tracks).
   std::size_t jointsDriven() const { return jointsDriven_; }
@@ -110,18 +88,13 @@ class Clip {
   std::uint64_t id_ = 0;
   double duration_ = 0.0;
   std::vector<std::vector<float>> timelines_;
-  std::vector<Channel> linear_[3];  // by AnimPath
+  std::vector<KeyBlocks> blocks_;
   std::vector<std::uint32_t> others_;
-  std::vector<SlerpArc> arcs_;
   bool grouped_ = false;
   std::size_t jointsDriven_ = 0;
   std::vector<Track> tracks_;
   std::vector<MorphTrack> morphTracks_;
 };
-
-// How LINEAR rotation keys are interpolated: slerp is exact (constant angular
-// speed); nlerp is the cheaper shortcut whose error the benchmarks measure.
-enum class QuatInterpolation { Slerp, Nlerp };
 
 // Where a timeline found its keys last time: the index of the first key after
 // the time it sampled (0 to start with). Sampling with a cursor gives exactly the
@@ -143,15 +116,6 @@ glm::quat sampleQuat(const Track& track, double time,
 // track.targets), held like sampleVec3 outside the keys.
 void sampleWeights(const MorphTrack& track, double time, std::span<float> out);
 void sampleWeights(const MorphTrack& track, double time, std::span<float> out, KeyCursor& cursor);
-
-// The keys around a time: first == second outside the keys, where the nearest end
-// value is held.
-struct KeyPair {
-  std::size_t first = 0;
-  std::size_t second = 0;
-  float u = 0.0f;  // 0 at first, 1 at second
-  double interval = 0.0;
-};
 
 // What one character's playback of one clip keeps between frames (ozz's
 // SamplingJob::Context): a key cursor per timeline and per morph track. Owned by

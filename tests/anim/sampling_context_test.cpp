@@ -1,5 +1,5 @@
 // SamplingContext (key cursors per timeline) and the grouped, batched sampling it
-// takes (Clip::linearRotations, slerp arcs per key pair, QuatBatch) against the
+// takes (Clip::linearBlocks: LINEAR keys in SoA blocks, four tracks at a time) against the
 // search from scratch that SamplingJob and MorphSamplingJob do without one: every
 // output bit must match, for any sequence of times.
 #include <gtest/gtest.h>
