@@ -24,10 +24,11 @@ struct Lanes {
 // Slerp's weights for one rotation, or nlerp's: slerpAt's expressions exactly. theta
 // is 0 where the arc hands over to nlerp (slerpArc's `nlerp`), and above 0 otherwise
 // (twice the atan2 of a |a - b| of at least kSlerpNlerpBelow).
-void rotationWeights(float theta, float invSin, float u, QuatInterpolation method, float& wa, float& wb) {
+[[maybe_unused]] void rotationWeights(float theta, float invSin, float u, QuatInterpolation method, float& wa,
+                                      float& wb) {
   if (method == QuatInterpolation::Slerp && theta > 0.0f) {
-    wa = std::sin((1.0f - u) * theta) * invSin;
-    wb = std::sin(u * theta) * invSin;
+    wa = slerpSin((1.0f - u) * theta) * invSin;
+    wb = slerpSin(u * theta) * invSin;
   } else {
     wa = 1.0f - u;
     wb = u;
@@ -39,6 +40,27 @@ void rotationWeights(float theta, float invSin, float u, QuatInterpolation metho
 __m128 dot4(__m128 ax, __m128 ay, __m128 az, __m128 aw, __m128 bx, __m128 by, __m128 bz, __m128 bw) {
   return _mm_add_ps(_mm_add_ps(_mm_mul_ps(aw, bw), _mm_mul_ps(ax, bx)),
                     _mm_add_ps(_mm_mul_ps(ay, by), _mm_mul_ps(az, bz)));
+}
+
+// slerpSin, lane by lane.
+__m128 sin4(__m128 x) {
+  const __m128 x2 = _mm_mul_ps(x, x);
+  __m128 p = _mm_set1_ps(kSinPolynomial[0]);
+  for (int i = 1; i < 5; ++i) p = _mm_add_ps(_mm_mul_ps(p, x2), _mm_set1_ps(kSinPolynomial[i]));
+  return _mm_add_ps(x, _mm_mul_ps(_mm_mul_ps(x, x2), p));
+}
+
+// rotationWeights, lane by lane: slerp's where theta > 0, nlerp's elsewhere.
+void rotationWeights4(const float* theta, const float* invSin, float u, QuatInterpolation method, __m128& wa,
+                      __m128& wb) {
+  wa = _mm_set1_ps(1.0f - u), wb = _mm_set1_ps(u);
+  if (method != QuatInterpolation::Slerp) return;
+  const __m128 th = _mm_loadu_ps(theta), slerps = _mm_cmpgt_ps(th, _mm_setzero_ps());
+  if (_mm_movemask_ps(slerps) == 0) return;
+  const __m128 inv = _mm_loadu_ps(invSin);
+  const __m128 sa = _mm_mul_ps(sin4(_mm_mul_ps(wa, th)), inv), sb = _mm_mul_ps(sin4(_mm_mul_ps(wb, th)), inv);
+  wa = _mm_or_ps(_mm_and_ps(slerps, sa), _mm_andnot_ps(slerps, wa));
+  wb = _mm_or_ps(_mm_and_ps(slerps, sb), _mm_andnot_ps(slerps, wb));
 }
 
 // a + d u for four tracks at once, then each into its joint.
@@ -63,13 +85,8 @@ void rotateLanes(Lanes f, std::span<const std::uint32_t> joints, float u, QuatIn
                  aw = _mm_loadu_ps(f[3] + g);
     const __m128 bx = _mm_loadu_ps(f[4] + g), by = _mm_loadu_ps(f[5] + g), bz = _mm_loadu_ps(f[6] + g),
                  bw = _mm_loadu_ps(f[7] + g);
-    __m128 wa = _mm_set1_ps(1.0f - u), wb = _mm_set1_ps(u);
-    if (method == QuatInterpolation::Slerp &&
-        _mm_movemask_ps(_mm_cmpgt_ps(_mm_loadu_ps(f[8] + g), _mm_setzero_ps())) != 0) {
-      float a[4], b[4];
-      for (std::size_t l = 0; l < 4; ++l) rotationWeights(f[8][g + l], f[9][g + l], u, method, a[l], b[l]);
-      wa = _mm_setr_ps(a[0], a[1], a[2], a[3]), wb = _mm_setr_ps(b[0], b[1], b[2], b[3]);
-    }
+    __m128 wa, wb;
+    rotationWeights4(f[8] + g, f[9] + g, u, method, wa, wb);
     const __m128 qx = _mm_add_ps(_mm_mul_ps(ax, wa), _mm_mul_ps(bx, wb));
     const __m128 qy = _mm_add_ps(_mm_mul_ps(ay, wa), _mm_mul_ps(by, wb));
     const __m128 qz = _mm_add_ps(_mm_mul_ps(az, wa), _mm_mul_ps(bz, wb));
