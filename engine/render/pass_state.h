@@ -38,8 +38,12 @@ inline constexpr PassState kCubeShadowPass{.depthFunc = GL_LESS, .cull = false, 
 constexpr PassState opaquePassFor(bool leftHanded) {
   return PassState{.frontFace = GLenum(leftHanded ? GL_CW : GL_CCW)};
 }
-// The sky: behind everything, written where nothing is.
+// The sky into a cube map: no depth, every texel.
 inline constexpr PassState kSkyPass{.depthTest = false, .depthWrite = false, .cull = false};
+// The sky in a view, after its opaque surfaces: sky.vert puts it on the far plane
+// (depth 0 in reverse-Z, the value the depth is cleared to), so it is shaded only
+// where nothing was drawn.
+inline constexpr PassState kSkyBehindPass{.depthFunc = GL_GEQUAL, .depthWrite = false, .cull = false};
 // BLEND materials after the opaque ones: tested against their depth, writing none.
 constexpr PassState blendPassFor(bool leftHanded) {
   return PassState{.depthWrite = false, .frontFace = GLenum(leftHanded ? GL_CW : GL_CCW), .blend = true};

@@ -172,6 +172,7 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
     drawTerrainCulled(view);
     culler->bindCommands();
   }
+  if (status) drawSkyBehind(view);
   if (status && lists.refracts) {
     copyTransmissionSource();
     transmissionSource.bind(gl::binding::kTransmissionSource);

@@ -295,6 +295,7 @@ struct SceneRenderer::Impl {
                  const IndirectDraw* indirect);
   glm::mat4 shapeModel(const ShapeDraw& shape) const;
   void drawSky(const glm::dmat4& viewProjection, bool sunDisk = true);
+  void drawSkyBehind(const View& view);
   Status drawWorld(const View& view, int skipShape, bool useProbes);
   Status makeProbes();
   Status renderProbes(const glm::dvec3& cameraPosition);
