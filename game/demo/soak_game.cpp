@@ -79,12 +79,17 @@ void SoakGame::update(double time, double dt) {
     nextReload_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() + reloadEvery_;
   }
   if (!error_) return;
-  orbit(elapsed);
   scene_->update(time, dt);
 }
 
 engine::Status SoakGame::render(const engine::FrameInfo& frame) {
   if (!error_) return error_;
+  // The camera moves every frame, not every step: a frame with no step (frames
+  // faster than the fixed step) would stand still, and a still camera makes
+  // objects of its own (the kept sun map), in some builds and not in others as the
+  // machine's load decides, and the count of GL objects compared across builds
+  // would differ with no leak.
+  if (started_) orbit(std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
   ++frames_;
   ++framesSinceReload_;
   return scene_->render(frame);
