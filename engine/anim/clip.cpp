@@ -251,6 +251,10 @@ void Clip::groupTracks() {
     }
   }
   for (std::size_t t = 0; t < timelines_.size(); ++t) blocks_.emplace_back(tracks_, linear[t], timelines_[t].size());
+  std::vector<unsigned> parts(jointsDriven_, 0u);  // a bit per AnimPath
+  for (const Track& t : tracks_) parts[static_cast<std::size_t>(t.joint)] |= 1u << static_cast<unsigned>(t.path);
+  for (std::size_t j = 0; j < parts.size(); ++j)
+    if (parts[j] != 7u) partlyDriven_.push_back(static_cast<std::uint32_t>(j));
 }
 
 int Clip::timelineOf(const std::vector<float>& times) {

@@ -77,6 +77,11 @@ class Clip {
   std::span<const KeyBlocks> linearBlocks() const { return blocks_; }
   std::span<const std::uint32_t> otherTracks() const { return others_; }
   bool grouped() const { return grouped_; }
+  // Grouped clips: the joints below jointsDriven() with a part (translation,
+  // rotation or scale) that no track drives, which keeps its rest value. Every part
+  // of the other joints below it is written by sampleTracks, so a sampler need not
+  // copy their rest pose first.
+  std::span<const std::uint32_t> partlyDrivenJoints() const { return partlyDriven_; }
   // 1 + the largest joint a track drives (0 without tracks).
   std::size_t jointsDriven() const { return jointsDriven_; }
 
@@ -90,6 +95,7 @@ class Clip {
   std::vector<std::vector<float>> timelines_;
   std::vector<KeyBlocks> blocks_;
   std::vector<std::uint32_t> others_;
+  std::vector<std::uint32_t> partlyDriven_;
   bool grouped_ = false;
   std::size_t jointsDriven_ = 0;
   std::vector<Track> tracks_;

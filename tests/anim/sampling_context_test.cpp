@@ -57,7 +57,9 @@ struct Fixture {
 
   // `shareJoints`: tracks drive joints 0-5 over and over, so that several drive one
   // joint's part and the last must win (glTF forbids it; the clip is not grouped).
-  explicit Fixture(unsigned seed = 11, bool shareJoints = false) {
+  // `fullJoints`: each joint gets a translation, a rotation and a scale (the three
+  // tracks of one timeline and interpolation), so that no part keeps its rest value.
+  explicit Fixture(unsigned seed = 11, bool shareJoints = false, bool fullJoints = false) {
     morphs.first.assign(kJoints, -1);
     morphs.targets.assign(kJoints, 0);
     morphs.first[2] = 0, morphs.targets[2] = 4, morphs.first[5] = 4, morphs.targets[5] = 3;
@@ -74,7 +76,8 @@ struct Fixture {
     for (const auto& times : timelines)
       for (Interpolation in : {Interpolation::Step, Interpolation::Linear, Interpolation::CubicSpline})
         for (AnimPath path : {AnimPath::Translation, AnimPath::Rotation, AnimPath::Scale})
-          raw.tracks.push_back(makeTrack(shareJoints ? joint++ % 6 : joint++, path, in, times, rng));
+          raw.tracks.push_back(
+              makeTrack(shareJoints ? joint++ % 6 : fullJoints ? joint++ / 3 : joint++, path, in, times, rng));
     std::uniform_real_distribution<float> w(0.0f, 1.0f);
     for (Interpolation in : {Interpolation::Step, Interpolation::Linear, Interpolation::CubicSpline}) {
       const std::size_t node = in == Interpolation::Linear ? 5 : 2, targets = node == 5 ? 3 : 4;
@@ -104,6 +107,8 @@ void expectSameAsSearch(const Clip& clip, const Skeleton& skeleton, const MorphL
   std::vector<float> cursorWeights(morphs.size()), searchWeights(morphs.size());
   SamplingContext context;
   for (double t : times) {
+    // Whatever the output held before (here NaNs): every value is written.
+    std::memset(static_cast<void*>(cursor.data()), 0xFF, cursor.size() * sizeof(Srt));
     ASSERT_TRUE((SamplingJob{&clip, t, skeleton.restPose(), cursor, rotations, &context}.run()));
     ASSERT_TRUE((SamplingJob{&clip, t, skeleton.restPose(), search, rotations}.run()));
     ASSERT_TRUE(sameBits(cursor, search)) << "pose differs at time " << t;
@@ -143,6 +148,19 @@ TEST(SamplingContext, MatchesTheSearchBitForBitOnEveryInterpolation) {
         expectSameAsSearch(f.clip, f.skeleton, f.morphs, times, q);
         if (HasFatalFailure()) return;
       }
+}
+
+// Joints driven in every part: the sampler writes them without their rest pose
+// first (Clip::partlyDrivenJoints), and must write all of each.
+TEST(SamplingContext, MatchesTheSearchWhenEveryPartIsDriven) {
+  const Fixture f(5, false, true);
+  ASSERT_TRUE(f.clip.grouped());
+  ASSERT_LT(f.clip.partlyDrivenJoints().size(), f.clip.jointsDriven());
+  for (const auto& times : timeSequences(f.clip, 4))
+    for (QuatInterpolation q : {QuatInterpolation::Slerp, QuatInterpolation::Nlerp}) {
+      expectSameAsSearch(f.clip, f.skeleton, f.morphs, times, q);
+      if (HasFatalFailure()) return;
+    }
 }
 
 TEST(SamplingContext, MatchesTheSearchWhenTracksShareATarget) {
