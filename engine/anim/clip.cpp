@@ -7,8 +7,6 @@
 namespace engine {
 namespace {
 
-glm::quat toQuat(const glm::vec4& v) { return glm::quat(v.w, v.x, v.y, v.z); }
-
 // Key times, for joint and morph tracks alike: at least one, finite, >= 0, sorted.
 Status validateTimes(const std::vector<float>& times, const std::string& name) {
   if (times.empty()) return makeError(name + ": has no keys");

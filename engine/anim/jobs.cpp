@@ -307,10 +307,9 @@ bool SamplingJob::run() const {
     for (const std::uint32_t j : clip->partlyDrivenJoints()) output[j] = restPose[j];
     std::copy(restPose.begin() + std::ptrdiff_t(clip->jointsDriven()), restPose.end(),
               output.begin() + std::ptrdiff_t(clip->jointsDriven()));
-    sampleTracks(*clip, time, output, rotations, *context);
-    return true;
+  } else {
+    std::copy(restPose.begin(), restPose.end(), output.begin());
   }
-  std::copy(restPose.begin(), restPose.end(), output.begin());
   const std::span<const Track> tracks = clip->tracks();
   if (context == nullptr) {
     for (const Track& track : tracks) applyTrack(track, time, output[static_cast<std::size_t>(track.joint)], rotations);

@@ -12,28 +12,12 @@
 namespace engine {
 namespace {
 
-glm::quat toQuat(const glm::vec4& v) { return glm::quat(v.w, v.x, v.y, v.z); }
-
 // A group's floats in one interval: `lanes` floats per component array.
 struct Lanes {
   const float* data;
   std::size_t lanes;
   const float* operator[](std::size_t array) const { return data + array * lanes; }
 };
-
-// Slerp's weights for one rotation, or nlerp's: slerpAt's expressions exactly. theta
-// is 0 where the arc hands over to nlerp (slerpArc's `nlerp`), and above 0 otherwise
-// (twice the atan2 of a |a - b| of at least kSlerpNlerpBelow).
-[[maybe_unused]] void rotationWeights(float theta, float invSin, float u, QuatInterpolation method, float& wa,
-                                      float& wb) {
-  if (method == QuatInterpolation::Slerp && theta > 0.0f) {
-    wa = slerpSin((1.0f - u) * theta) * invSin;
-    wb = slerpSin(u * theta) * invSin;
-  } else {
-    wa = 1.0f - u;
-    wb = u;
-  }
-}
 
 #if defined(__SSE2__)
 // glm::dot of two quaternions, lane by lane: (w w' + x x') + (y y' + z z').
@@ -50,7 +34,9 @@ __m128 sin4(__m128 x) {
   return _mm_add_ps(x, _mm_mul_ps(_mm_mul_ps(x, x2), p));
 }
 
-// rotationWeights, lane by lane: slerp's where theta > 0, nlerp's elsewhere.
+// Slerp's weights for four rotations, or nlerp's: slerpAt's expressions exactly,
+// lane by lane. theta is 0 where the arc hands over to nlerp (slerpArc's `nlerp`),
+// and above 0 otherwise (twice the atan2 of a |a - b| of at least kSlerpNlerpBelow).
 void rotationWeights4(const float* theta, const float* invSin, float u, QuatInterpolation method, __m128& wa,
                       __m128& wb) {
   wa = _mm_set1_ps(1.0f - u), wb = _mm_set1_ps(u);
@@ -108,6 +94,17 @@ void rotateLanes(Lanes f, std::span<const std::uint32_t> joints, float u, QuatIn
   }
 }
 #else
+// rotationWeights4's, for one rotation.
+void rotationWeights(float theta, float invSin, float u, QuatInterpolation method, float& wa, float& wb) {
+  if (method == QuatInterpolation::Slerp && theta > 0.0f) {
+    wa = slerpSin((1.0f - u) * theta) * invSin;
+    wb = slerpSin(u * theta) * invSin;
+  } else {
+    wa = 1.0f - u;
+    wb = u;
+  }
+}
+
 void lerpLanes(Lanes f, std::span<const std::uint32_t> joints, float u, std::span<Srt> out, glm::vec3 Srt::*part) {
   for (std::size_t l = 0; l < joints.size(); ++l)
     out[joints[l]].*part = glm::vec3(f[0][l], f[1][l], f[2][l]) + glm::vec3(f[3][l], f[4][l], f[5][l]) * u;

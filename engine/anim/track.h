@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "core/keyframe.h"
 
@@ -21,6 +22,9 @@ struct Track {
   std::vector<glm::vec4> values;
   int timeline = -1;  // set by Clip::build: the index of `times` in Clip::timelines()
 };
+
+// A rotation key as a quaternion (values hold x, y, z, w; glm takes w first).
+inline glm::quat toQuat(const glm::vec4& v) { return glm::quat(v.w, v.x, v.y, v.z); }
 
 // How LINEAR rotation keys are interpolated: slerp is exact (constant angular
 // speed); nlerp is the cheaper shortcut whose error the benchmarks measure.

@@ -176,6 +176,7 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   if (status && lists.refracts) {
     copyTransmissionSource();
     transmissionSource.bind(gl::binding::kTransmissionSource);
+    applyPassState(opaquePassFor(view.mirrored));
     status = drawItems(lists.transmissive, pass, &transmissiveCommands);
   }
   if (status && !lists.blend.empty()) {

@@ -272,7 +272,6 @@ void SceneRenderer::Impl::drawSkyBehind(const View& view) {
   if (!scene.sky.enabled) return;
   applyPassState(kSkyBehindPass);
   drawSky(view.viewProjection);
-  applyPassState(opaquePassFor(view.mirrored));  // the transmissive draws' state
 }
 
 // Everything a colour pass shows, into the bound HDR framebuffer (cleared): the
@@ -299,6 +298,7 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   if (lists->refracts) {
     if (view.main) copyTransmissionSource();
     transmissionSource.bind(gl::binding::kTransmissionSource);
+    applyPassState(opaquePassFor(view.mirrored));
     if (auto s = drawItems(lists->transmissive, pass); !s) return s;
   }
   if (lists->blend.empty()) return Ok{};

@@ -85,12 +85,12 @@ struct PassInputs {
 // draw (culling off, or a primitive without clusters).
 using ItemCommands = std::vector<std::vector<IndirectDraw>>;
 
-// The opaque and the blended draws of one view; the opaque ones of transmissive
-// materials (KHR_materials_transmission) apart, as they refract the others.
 // A depth map compared in hardware (sampler2DShadow), for the sun: its two maps and
 // the near map's copy of its static casters, one format, as glCopyImageSubData needs.
 gl::Texture makeSunShadowMap(int size);
 
+// The opaque and the blended draws of one view; the opaque ones of transmissive
+// materials (KHR_materials_transmission) apart, as they refract the others.
 struct DrawLists {
   std::vector<DrawItem> opaque, transmissive, blend;
   bool refracts = false;  // some item, opaque or blended, is transmissive
