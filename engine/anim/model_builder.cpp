@@ -103,8 +103,9 @@ bool skinVertices(const PrimitiveData& prim, const Skin& skin, std::span<const g
 }
 
 // A zero normal (a degenerate matrix, or targets that cancel it) stays zero
-// instead of becoming NaN.
-glm::vec3 unitOrZero(const glm::vec3& v) { return glm::dot(v, v) > 0.0f ? glm::normalize(v) : glm::vec3(0.0f); }
+// instead of becoming NaN. (jobs.cpp's unitOrZero divides by the square root, and
+// its last bits differ: the skinning job's and these normals each keep their own.)
+glm::vec3 normalizedOrZero(const glm::vec3& v) { return glm::dot(v, v) > 0.0f ? glm::normalize(v) : glm::vec3(0.0f); }
 
 // glTF applies a rigid node's whole matrix: the normals take its inverse
 // transpose, renormalised.
@@ -112,7 +113,7 @@ void moveRigidly(const glm::mat4& world, std::span<glm::vec3> positions, std::sp
   for (glm::vec3& p : positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
   if (normals.empty()) return;
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
-  for (glm::vec3& n : normals) n = unitOrZero(normalMatrix * n);
+  for (glm::vec3& n : normals) n = normalizedOrZero(normalMatrix * n);
 }
 
 }  // namespace
@@ -149,7 +150,7 @@ bool posePrimitive(const PrimitiveData& prim, const PrimitivePose& pose, std::sp
   // Linear blend skinning renormalises; dual quaternions only rotate, and a
   // morphed normal need not be unit length.
   if (morphed)
-    for (glm::vec3& n : outNormals) n = unitOrZero(n);
+    for (glm::vec3& n : outNormals) n = normalizedOrZero(n);
   return true;
 }
 

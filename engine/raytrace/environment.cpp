@@ -5,6 +5,8 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "core/image.h"
+
 namespace engine::rt {
 namespace latlong {
 // GLSL's built-ins and types, for the included text only (as core/brdf.h does).
@@ -23,11 +25,6 @@ namespace {
 // The gradient sky and the background are smooth (the sun disk aside, which a
 // sampler takes from the sun light): a 512 x 256 table resolves them.
 constexpr glm::ivec2 kAnalyticResolution{512, 256};
-
-int wrap(int i, int n) {
-  const int r = i % n;
-  return r < 0 ? r + n : r;
-}
 
 }  // namespace
 
@@ -86,7 +83,7 @@ glm::vec3 Environment::bilinear(glm::vec2 uv) const {
   const float x = uv.x * float(image.width) - 0.5f, y = uv.y * float(image.height) - 0.5f;
   const float x0f = std::floor(x), y0f = std::floor(y);
   const float fx = x - x0f, fy = y - y0f;
-  const int x0 = wrap(int(x0f), image.width), x1 = wrap(int(x0f) + 1, image.width);
+  const int x0 = wrapTexel(int(x0f), image.width), x1 = wrapTexel(int(x0f) + 1, image.width);
   const int y0 = std::clamp(int(y0f), 0, image.height - 1), y1 = std::clamp(int(y0f) + 1, 0, image.height - 1);
   const glm::vec3 top = glm::mix(image.at(x0, y0), image.at(x1, y0), fx);
   const glm::vec3 bottom = glm::mix(image.at(x0, y1), image.at(x1, y1), fx);

@@ -19,12 +19,6 @@ const std::array<float, 256>& decodeTable() {
   return table;
 }
 
-// Wraps a texel index into [0, n), for negative indices too.
-int wrap(int i, int n) {
-  const int r = i % n;
-  return r < 0 ? r + n : r;
-}
-
 // GL's wrap of texel index i of n (OpenGL 4.5 core, 8.14.2): repeat; clamp to the
 // edge texel; mirrored repeat, (n - 1) - mirror((i mod 2n) - n) with mirror(a) = a
 // for a >= 0, -(1 + a) otherwise.
@@ -32,12 +26,12 @@ int wrapIndex(int i, int n, TextureWrap mode) {
   switch (mode) {
     case TextureWrap::ClampToEdge: return std::clamp(i, 0, n - 1);
     case TextureWrap::MirroredRepeat: {
-      const int a = wrap(i, 2 * n) - n;
+      const int a = wrapTexel(i, 2 * n) - n;
       return (n - 1) - (a >= 0 ? a : -(1 + a));
     }
     case TextureWrap::Repeat: break;
   }
-  return wrap(i, n);
+  return wrapTexel(i, n);
 }
 
 // A coordinate reduced to one period of its wrap (two for mirrored repeat), so that
