@@ -27,8 +27,6 @@ struct Image {
 // Reverses the row order (GL reads bottom row first).
 void flipVertically(Image& image);
 
-// Limits on untrusted images, checked from the header before any pixel is
-// decoded, so that a small file cannot claim gigabytes.
 // Texel index i wrapped into [0, n), negative indices too (a repeating texture's
 // and a lat-long image's columns).
 inline int wrapTexel(int i, int n) {
@@ -36,6 +34,8 @@ inline int wrapTexel(int i, int n) {
   return r < 0 ? r + n : r;
 }
 
+// Limits on untrusted images, checked from the header before any pixel is
+// decoded, so that a small file cannot claim gigabytes.
 inline constexpr std::uint64_t kMaxImageFileBytes = 256ull * 1024 * 1024;
 inline constexpr int kMaxImageSide = 16384;
 // 8192 x 8192: 256 MiB as RGBA8, which the decoder holds twice at its peak.
