@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #if defined(__SSE2__)
 #include <xmmintrin.h>
@@ -126,9 +127,8 @@ void skinDualQuat(const SkinningJob& job) {
 
 #if defined(__SSE2__)
 // toMatrix of four joints at once, one joint per SSE lane (SoA), then each
-// parent * local product with glm's operations in glm's order (a column sums its
-// four terms left to right): the bits of parent * toMatrix(local), without a 4x4
-// local matrix built per joint in scalar code.
+// parent * local product as timesAffine sums it: its bits, without a 4x4 local
+// matrix built per joint in scalar code.
 class LocalMatrices4 {
  public:
   explicit LocalMatrices4(const Srt* srt) {
@@ -163,19 +163,14 @@ class LocalMatrices4 {
     store(9, tx), store(10, ty), store(11, tz);
   }
 
-  // out = parent * (lane `j`'s local matrix).
-  void times(const glm::mat4& parent, std::size_t j, glm::mat4& out) const {
-    const __m128 p0 = _mm_loadu_ps(&parent[0][0]), p1 = _mm_loadu_ps(&parent[1][0]);
-    const __m128 p2 = _mm_loadu_ps(&parent[2][0]), p3 = _mm_loadu_ps(&parent[3][0]);
-    const auto column = [&](int first, float w) {
-      __m128 c = _mm_add_ps(_mm_mul_ps(p0, _mm_set1_ps(m_[first][j])), _mm_mul_ps(p1, _mm_set1_ps(m_[first + 1][j])));
-      c = _mm_add_ps(c, _mm_mul_ps(p2, _mm_set1_ps(m_[first + 2][j])));
-      return _mm_add_ps(c, _mm_mul_ps(p3, _mm_set1_ps(w)));
-    };
-    _mm_storeu_ps(&out[0][0], column(0, 0.0f));
-    _mm_storeu_ps(&out[1][0], column(3, 0.0f));
-    _mm_storeu_ps(&out[2][0], column(6, 0.0f));
-    _mm_storeu_ps(&out[3][0], column(9, 1.0f));
+  // parent * (lane `j`'s local matrix), timesAffine's sums.
+  Columns times(const Columns& parent, std::size_t j) const {
+    const __m128 *p = parent.c;
+    const auto term = [&](int column, int row) { return _mm_mul_ps(p[row], _mm_set1_ps(m_[3 * column + row][j])); };
+    Columns out;
+    for (int c = 0; c < 3; ++c) out.c[c] = _mm_add_ps(_mm_add_ps(term(c, 0), term(c, 1)), term(c, 2));
+    out.c[3] = _mm_add_ps(_mm_add_ps(term(3, 0), term(3, 1)), _mm_add_ps(term(3, 2), p[3]));
+    return out;
   }
 
  private:
@@ -353,23 +348,43 @@ bool BlendingJob::run() const {
 
 bool LocalToModelJob::validate() const {
   if (locals.size() != parents.size() || models.size() != parents.size()) return false;
-  for (std::size_t i = 0; i < parents.size(); ++i)
-    if (parents[i] < -1 || parents[i] >= static_cast<int>(i)) return false;
-  return true;
+  if (parents.size() > std::numeric_limits<std::uint32_t>::max()) return false;
+  // -1 <= parents[i] < i as one unsigned compare, without an early exit, so that the
+  // compiler tests four parents at a time: run() validates every call, and a branch
+  // per joint was a tenth of its time.
+  std::uint32_t bad = 0;
+  const std::uint32_t n = static_cast<std::uint32_t>(parents.size());
+  for (std::uint32_t i = 0; i < n; ++i) bad |= static_cast<std::uint32_t>(parents[i] + 1) > i;
+  return bad == 0;
 }
 
 bool LocalToModelJob::run() const {
   if (!validate()) return false;
-  std::size_t i = 0;
 #if defined(__SSE2__)
-  for (; i + 4 <= parents.size(); i += 4) {
-    const LocalMatrices4 local(&locals[i]);
-    for (std::size_t j = 0; j < 4; ++j)
-      local.times(parents[i + j] < 0 ? root : models[static_cast<std::size_t>(parents[i + j])], j, models[i + j]);
+  // Depth-first order makes a joint's parent most often the joint before it: its
+  // matrix is taken from the registers it was computed in, not reloaded from the
+  // store just made, so a chain of joints waits on arithmetic only.
+  const auto load = [](const glm::mat4& m) {
+    return Columns{{_mm_loadu_ps(&m[0][0]), _mm_loadu_ps(&m[1][0]), _mm_loadu_ps(&m[2][0]), _mm_loadu_ps(&m[3][0])}};
+  };
+  Columns last{};
+  for (std::size_t i = 0; i < parents.size(); i += 4) {
+    const std::size_t n = std::min<std::size_t>(4, parents.size() - i);
+    Srt tail[4];  // the last block's joints, padded with identities
+    if (n < 4) std::copy_n(&locals[i], n, tail);
+    const LocalMatrices4 local(n < 4 ? tail : &locals[i]);
+    for (std::size_t j = 0; j < n; ++j) {
+      const int parent = parents[i + j];
+      const Columns p = parent >= 0 && std::size_t(parent) + 1 == i + j ? last
+                        : load(parent < 0 ? root : models[std::size_t(parent)]);
+      last = local.times(p, j);
+      for (int c = 0; c < 4; ++c) _mm_storeu_ps(&models[i + j][c][0], last.c[c]);
+    }
   }
+#else
+  for (std::size_t i = 0; i < parents.size(); ++i)
+    models[i] = timesAffine(parents[i] < 0 ? root : models[std::size_t(parents[i])], toMatrix(locals[i]));
 #endif
-  for (; i < parents.size(); ++i)
-    models[i] = (parents[i] < 0 ? root : models[static_cast<std::size_t>(parents[i])]) * toMatrix(locals[i]);
   return true;
 }
 

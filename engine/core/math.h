@@ -32,6 +32,17 @@ inline glm::mat4 toMatrix(const Srt& srt) {
   return m;
 }
 
+// parent * local where local's bottom row is (0, 0, 0, 1), as toMatrix makes it:
+// each column sums only the terms local has, in a tree, ((p0 x + p1 y) + p2 z) and
+// ((p0 tx + p1 ty) + (p2 tz + p3)), so that a chain of joints waits on two additions
+// per joint, not three. LocalToModelJob computes exactly this, four lanes at a time.
+inline glm::mat4 timesAffine(const glm::mat4& p, const glm::mat4& local) {
+  glm::mat4 out;
+  for (int c = 0; c < 3; ++c) out[c] = (p[0] * local[c].x + p[1] * local[c].y) + p[2] * local[c].z;
+  out[3] = (p[0] * local[3].x + p[1] * local[3].y) + (p[2] * local[3].z + p[3]);
+  return out;
+}
+
 // Splits an affine matrix into Srt the way three.js does: scale = column lengths,
 // a negative determinant flips the x scale, rotation from the unscaled columns.
 // Shear cannot be represented and is lost (glTF forbids it on animated nodes).

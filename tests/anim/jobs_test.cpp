@@ -92,28 +92,32 @@ TEST(LocalToModel, NonUniformAndZeroScale) {
   EXPECT_TRUE(std::isfinite(outP[0].x) && std::isfinite(outN[0].x));
 }
 
-// The job builds local matrices four at a time (SSE where there is SSE);
-// it must give the bits of glm's parent * toMatrix(local), under a root that is
-// not the identity, with negative, non-uniform and zero scales.
-TEST(LocalToModel, SameBitsAsTheGlmProduct) {
+// The job builds local matrices four at a time (SSE where there is SSE) and keeps
+// the parent in registers when it is the joint before; it must give the bits of
+// timesAffine(parent, toMatrix(local)), under a root that is not the identity, with
+// negative, non-uniform and zero scales, parents before and right before.
+TEST(LocalToModel, SameBitsAsTheScalarProduct) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-3.0f, 3.0f);
-  std::vector<int> parents;
-  std::vector<Srt> locals;
-  for (int i = 0; i < 203; ++i) {  // not a multiple of 4: the job works in fours
-    parents.push_back(i == 0 || i % 37 == 0 ? -1 : int(rng() % unsigned(i)));
-    const glm::quat q = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
-    glm::vec3 scale(u(rng), u(rng), u(rng));
-    if (i % 11 == 0) scale.y = 0.0f;
-    locals.push_back(Srt{scale, q, glm::vec3(u(rng), u(rng), u(rng))});
-  }
   const glm::mat4 root = glm::translate(glm::mat4(1.0f), glm::vec3(1, -2, 3)) *
                          glm::mat4_cast(glm::angleAxis(0.7f, glm::normalize(glm::vec3(1, 2, 3))));
-  std::vector<glm::mat4> models(parents.size()), expected(parents.size());
-  ASSERT_TRUE((LocalToModelJob{parents, locals, root, models}.run()));
-  for (std::size_t i = 0; i < parents.size(); ++i) {
-    expected[i] = (parents[i] < 0 ? root : expected[std::size_t(parents[i])]) * toMatrix(locals[i]);
-    EXPECT_EQ(std::memcmp(&models[i], &expected[i], sizeof(glm::mat4)), 0) << "joint " << i;
+  // Every length of a last block of fours, and one long skeleton.
+  for (const int count : {1, 2, 3, 4, 5, 6, 7, 8, 203}) {
+    std::vector<int> parents;
+    std::vector<Srt> locals;
+    for (int i = 0; i < count; ++i) {
+      parents.push_back(i == 0 || i % 37 == 0 ? -1 : i % 3 == 0 ? i - 1 : int(rng() % unsigned(i)));
+      const glm::quat q = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+      glm::vec3 scale(u(rng), u(rng), u(rng));
+      if (i % 11 == 0) scale.y = 0.0f;
+      locals.push_back(Srt{scale, q, glm::vec3(u(rng), u(rng), u(rng))});
+    }
+    std::vector<glm::mat4> models(parents.size()), expected(parents.size());
+    ASSERT_TRUE((LocalToModelJob{parents, locals, root, models}.run()));
+    for (std::size_t i = 0; i < parents.size(); ++i) {
+      expected[i] = timesAffine(parents[i] < 0 ? root : expected[std::size_t(parents[i])], toMatrix(locals[i]));
+      EXPECT_EQ(std::memcmp(&models[i], &expected[i], sizeof(glm::mat4)), 0) << count << " joints, joint " << i;
+    }
   }
 }
 
