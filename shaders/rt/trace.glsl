@@ -93,6 +93,11 @@ struct RtTriangleRay {
   float sx, sy, sz;
 };
 
+// v's components kx, ky, kz by selects: a vector indexed at run time is an array a
+// GPU compiler may keep in local memory, and this runs for every triangle tested.
+float rtPick(vec3 v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
+vec3 rtPermute(vec3 v, RtTriangleRay r) { return vec3(rtPick(v, r.kx), rtPick(v, r.ky), rtPick(v, r.kz)); }
+
 RtTriangleRay rtTriangleRay(vec3 o, vec3 d) {
   RtTriangleRay r;
   r.o = o;
@@ -100,9 +105,10 @@ RtTriangleRay rtTriangleRay(vec3 o, vec3 d) {
   r.kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
   r.kx = r.kz == 2 ? 0 : r.kz + 1;
   r.ky = r.kx == 2 ? 0 : r.kx + 1;
-  r.sx = -d[r.kx] / d[r.kz];
-  r.sy = -d[r.ky] / d[r.kz];
-  r.sz = 1.0 / d[r.kz];
+  vec3 dt = rtPermute(d, r);
+  r.sx = -dt.x / dt.z;
+  r.sy = -dt.y / dt.z;
+  r.sz = 1.0 / dt.z;
   return r;
 }
 
@@ -120,9 +126,9 @@ float rtEdgeExact(float ax, float ay, float bx, float by) {
 // The hit's t (0 when missed, as t > 0 always for a hit) and barycentrics.
 float rtTriangleT(RtTriangleRay r, float tMax, vec3 p0, vec3 p1, vec3 p2, out vec3 bary) {
   precise vec3 a = p0 - r.o, b = p1 - r.o, c = p2 - r.o;
-  precise vec3 p0t = vec3(a[r.kx], a[r.ky], a[r.kz]);
-  precise vec3 p1t = vec3(b[r.kx], b[r.ky], b[r.kz]);
-  precise vec3 p2t = vec3(c[r.kx], c[r.ky], c[r.kz]);
+  precise vec3 p0t = rtPermute(a, r);
+  precise vec3 p1t = rtPermute(b, r);
+  precise vec3 p2t = rtPermute(c, r);
   p0t.x += r.sx * p0t.z;
   p0t.y += r.sy * p0t.z;
   p1t.x += r.sx * p1t.z;
@@ -184,13 +190,16 @@ RtBoxRay rtBoxRay(vec3 o, vec3 d) {
   return r;
 }
 
-// Four children's boxes: which the ray enters before tMax, and where.
-bvec4 rtBoxes4(RtBoxRay r, RtNode node, int side, float tMax, out vec4 tEntry) {
+// Four children's boxes of node `ref`: which the ray enters before tMax, and where.
+// The rows are read from the buffer where the ray's signs pick them: a copy of the
+// node indexed by those signs would be an array indexed at run time, which a GPU
+// compiler keeps in each thread's local memory, node after node.
+bvec4 rtBoxes4(RtBoxRay r, uint ref, int side, float tMax, out vec4 tEntry) {
   precise vec4 t0 = vec4(-rtInfinity());
   precise vec4 t1 = vec4(rtInfinity());
   for (int axis = 0; axis < 3; ++axis) {
-    precise vec4 n = (node.box[RT_SIDES * r.nearRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
-    precise vec4 f = (node.box[RT_SIDES * r.farRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
+    precise vec4 n = (rtNodes[ref].box[RT_SIDES * r.nearRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
+    precise vec4 f = (rtNodes[ref].box[RT_SIDES * r.farRow[axis] + side] - vec4(r.o[axis])) * r.inv[axis];
     // NaN (a ray in a slab's plane) keeps the interval, as the CPU's max and min do.
     t0 = mix(max(n, t0), t0, isnan(n));
     t1 = mix(min(f, t1), t1, isnan(f));
@@ -202,11 +211,10 @@ bvec4 rtBoxes4(RtBoxRay r, RtNode node, int side, float tMax, out vec4 tEntry) {
 
 // One box (an instance's bounds), the same test.
 bool rtBox(RtBoxRay r, vec3 lo, vec3 hi, float tMax) {
-  vec3 rows[2] = vec3[2](lo, hi);
   precise float t0 = -rtInfinity(), t1 = rtInfinity();
   for (int axis = 0; axis < 3; ++axis) {
-    precise float n = (rows[r.nearRow[axis] / 3][axis] - r.o[axis]) * r.inv[axis];
-    precise float f = (rows[r.farRow[axis] / 3][axis] - r.o[axis]) * r.inv[axis];
+    precise float n = ((r.nearRow[axis] < 3 ? lo[axis] : hi[axis]) - r.o[axis]) * r.inv[axis];
+    precise float f = ((r.farRow[axis] < 3 ? lo[axis] : hi[axis]) - r.o[axis]) * r.inv[axis];
     if (!isnan(n)) t0 = max(n, t0);
     if (!isnan(f)) t1 = min(f, t1);
   }
@@ -229,10 +237,9 @@ bool rtTraverse(uint root, vec3 o, vec3 d, bool anyHit, inout RtHit hit) {
   for (;;) {
     bool popNext = false;
     while ((ref & RT_LEAF_BIT) == 0u) {
-      RtNode node = rtNodes[ref];
       vec4 tEntry[RT_SIDES];
       bvec4 hits[RT_SIDES];
-      for (int side = 0; side < RT_SIDES; ++side) hits[side] = rtBoxes4(boxRay, node, side, hit.t, tEntry[side]);
+      for (int side = 0; side < RT_SIDES; ++side) hits[side] = rtBoxes4(boxRay, ref, side, hit.t, tEntry[side]);
       // Every child hit, pushed sorted with the nearest on top (ties: lower slot on
       // top), then the top popped: Embree's order, as the CPU's.
       int base = top;
@@ -244,7 +251,7 @@ bool rtTraverse(uint root, vec3 o, vec3 d, bool anyHit, inout RtHit hit) {
           stackRef[at] = stackRef[at - 1];
           stackT[at] = stackT[at - 1];
         }
-        stackRef[at] = node.child[k / 4][k % 4];
+        stackRef[at] = rtNodes[ref].child[k / 4][k % 4];
         stackT[at] = tk;
       }
       if (top == base) {
@@ -256,11 +263,11 @@ bool rtTraverse(uint root, vec3 o, vec3 d, bool anyHit, inout RtHit hit) {
     if (!popNext) {
       uint leaf = ref & (RT_MAX_TRIANGLES - 1u);
       int count = int((ref >> 28) & 3u) + 1;
-      RtLeaf l = rtLeaves[leaf];
       for (int lane = 0; lane < count; ++lane) {
-        vec3 p0 = vec3(l.p[0][lane], l.p[1][lane], l.p[2][lane]);
-        vec3 p1 = vec3(l.p[3][lane], l.p[4][lane], l.p[5][lane]);
-        vec3 p2 = vec3(l.p[6][lane], l.p[7][lane], l.p[8][lane]);
+        // From the buffer, as the nodes: `lane` indexes at run time.
+        vec3 p0 = vec3(rtLeaves[leaf].p[0][lane], rtLeaves[leaf].p[1][lane], rtLeaves[leaf].p[2][lane]);
+        vec3 p1 = vec3(rtLeaves[leaf].p[3][lane], rtLeaves[leaf].p[4][lane], rtLeaves[leaf].p[5][lane]);
+        vec3 p2 = vec3(rtLeaves[leaf].p[6][lane], rtLeaves[leaf].p[7][lane], rtLeaves[leaf].p[8][lane]);
         vec3 bary;
         float t = rtTriangleT(triRay, hit.t, p0, p1, p2, bary);
         if (t > 0.0) {
