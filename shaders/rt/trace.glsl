@@ -241,24 +241,35 @@ bool rtTraverse(uint root, vec3 o, vec3 d, bool anyHit, inout RtHit hit) {
       bvec4 hits[RT_SIDES];
       for (int side = 0; side < RT_SIDES; ++side) hits[side] = rtBoxes4(boxRay, ref, side, hit.t, tEntry[side]);
       // Every child hit, pushed sorted with the nearest on top (ties: lower slot on
-      // top), then the top popped: Embree's order, as the CPU's.
-      int base = top;
-      for (int k = 0; k < RT_WIDTH; ++k) {
-        if (!hits[k / 4][k % 4]) continue;
-        float tk = tEntry[k / 4][k % 4];
-        int at = top++;
-        for (; at > base && stackT[at - 1] <= tk; --at) {
-          stackRef[at] = stackRef[at - 1];
-          stackT[at] = stackT[at - 1];
-        }
-        stackRef[at] = rtNodes[ref].child[k / 4][k % 4];
-        stackT[at] = tk;
-      }
-      if (top == base) {
+      // top), then the top popped: Embree's order, as the CPU's. Each child's place
+      // is its rank, the number of hit children that go below it (farther, or as far
+      // and of a higher slot), counted in registers: no insertion loop shifting the
+      // stack in local memory, and the nearest goes straight to `ref`, unstored.
+      int count = 0;
+      for (int k = 0; k < RT_WIDTH; ++k) count += hits[k / 4][k % 4] ? 1 : 0;
+      if (count == 0) {
         popNext = true;
         break;
       }
-      ref = stackRef[--top];
+      uint nearest = 0u;
+      for (int k = 0; k < RT_WIDTH; ++k) {
+        if (!hits[k / 4][k % 4]) continue;
+        float tk = tEntry[k / 4][k % 4];
+        int rank = 0;
+        for (int j = 0; j < RT_WIDTH; ++j) {
+          float tj = tEntry[j / 4][j % 4];
+          rank += hits[j / 4][j % 4] && (tj > tk || (tj == tk && j > k)) ? 1 : 0;
+        }
+        uint child = rtNodes[ref].child[k / 4][k % 4];
+        if (rank == count - 1) {
+          nearest = child;
+        } else {
+          stackRef[top + rank] = child;
+          stackT[top + rank] = tk;
+        }
+      }
+      top += count - 1;
+      ref = nearest;
     }
     if (!popNext) {
       uint leaf = ref & (RT_MAX_TRIANGLES - 1u);
