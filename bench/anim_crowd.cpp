@@ -106,7 +106,9 @@ void sample(const Crowd& crowd, Character& c, double time) {
 }
 
 void toModel(const Crowd& crowd, Character& c) {
-  if (!LocalToModelJob{crowd.animated->skeleton.parents(), c.locals, glm::mat4(1.0f), c.models}.run())
+  if (!LocalToModelJob{crowd.animated->skeleton.parents(), c.locals, glm::mat4(1.0f), c.models,
+                       crowd.animated->staticModels}
+           .run())
     fail("LocalToModelJob rejected its inputs");
 }
 

@@ -347,7 +347,8 @@ bool BlendingJob::run() const {
 }
 
 bool LocalToModelJob::validate() const {
-  if (locals.size() != parents.size() || models.size() != parents.size()) return false;
+  if (locals.size() != parents.size() || models.size() != parents.size() || fixed.size() > parents.size())
+    return false;
   if (parents.size() > std::numeric_limits<std::uint32_t>::max()) return false;
   // -1 <= parents[i] < i as one unsigned compare, without an early exit, so that the
   // compiler tests four parents at a time: run() validates every call, and a branch
@@ -367,8 +368,10 @@ bool LocalToModelJob::run() const {
   const auto load = [](const glm::mat4& m) {
     return Columns{{_mm_loadu_ps(&m[0][0]), _mm_loadu_ps(&m[1][0]), _mm_loadu_ps(&m[2][0]), _mm_loadu_ps(&m[3][0])}};
   };
-  Columns last{};
-  for (std::size_t i = 0; i < parents.size(); i += 4) {
+  std::copy(fixed.begin(), fixed.end(), models.begin());
+  const std::size_t first = fixed.size();
+  Columns last = first > 0 ? load(models[first - 1]) : Columns{};
+  for (std::size_t i = first; i < parents.size(); i += 4) {
     const std::size_t n = std::min<std::size_t>(4, parents.size() - i);
     Srt tail[4];  // the last block's joints, padded with identities
     if (n < 4) std::copy_n(&locals[i], n, tail);
@@ -382,7 +385,8 @@ bool LocalToModelJob::run() const {
     }
   }
 #else
-  for (std::size_t i = 0; i < parents.size(); ++i)
+  std::copy(fixed.begin(), fixed.end(), models.begin());
+  for (std::size_t i = fixed.size(); i < parents.size(); ++i)
     models[i] = timesAffine(parents[i] < 0 ? root : models[std::size_t(parents[i])], toMatrix(locals[i]));
 #endif
   return true;

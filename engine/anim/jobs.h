@@ -94,6 +94,10 @@ struct LocalToModelJob {
   std::span<const Srt> locals;
   glm::mat4 root{1.0f};
   std::span<glm::mat4> models;
+  // Optional: the model matrices of the first fixed.size() joints, copied rather
+  // than computed (a model's static ancestors: AnimatedModel::staticModels). The
+  // caller vouches that they are what the job would compute from `locals` and `root`.
+  std::span<const glm::mat4> fixed{};
 
   bool validate() const;
   [[nodiscard]] bool run() const;

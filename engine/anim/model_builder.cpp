@@ -37,6 +37,24 @@ RawClip makeRawClip(const AnimationData& animation) {
   return raw;
 }
 
+namespace {
+
+// AnimatedModel::staticModels: the rest pose's model matrices up to the first joint
+// any clip drives (depth-first order puts a joint's ancestors before it).
+Status findStaticModels(AnimatedModel& out) {
+  const std::span<const int> parents = out.skeleton.parents();
+  std::size_t first = parents.size();
+  for (const Clip& clip : out.clips)
+    for (const Track& track : clip.tracks()) first = std::min(first, static_cast<std::size_t>(track.joint));
+  std::vector<glm::mat4> rest(parents.size());
+  if (auto s = runJob(LocalToModelJob{parents, out.skeleton.restPose(), glm::mat4(1.0f), rest}, "rest pose"); !s)
+    return s;
+  out.staticModels.assign(rest.begin(), rest.begin() + std::ptrdiff_t(first));
+  return Ok{};
+}
+
+}  // namespace
+
 Result<AnimatedModel> buildAnimatedModel(const ModelData& model) {
   auto skeleton = Skeleton::build(makeRawSkeleton(model));
   if (!skeleton) return makeError(model.path + ": " + skeleton.error().message);
@@ -46,6 +64,7 @@ Result<AnimatedModel> buildAnimatedModel(const ModelData& model) {
     if (!clip) return makeError(model.path + ": animation " + std::to_string(a) + ": " + clip.error().message);
     out.clips.push_back(std::move(clip.value()));
   }
+  if (auto s = findStaticModels(out); !s) return makeError(model.path + ": " + s.error().message);
   for (const SkinData& skin : model.skins) {
     Skin runtime;
     for (int node : skin.joints) runtime.joints.push_back(out.skeleton.jointOfRaw(node));

@@ -17,6 +17,10 @@ struct AnimatedModel {
   std::vector<Clip> clips;    // one per glTF animation, same order
   std::vector<Skin> skins;    // one per glTF skin, same order
   MorphLayout morphs;         // each mesh node's morph weights in one flat array
+  // The model matrices (identity root) of the joints before the first one a clip
+  // drives: their ancestors come before them, so nothing moves them (COLLADA2GLTF's
+  // Z_UP, Blender's Armature). LocalToModelJob::fixed copies them every frame.
+  std::vector<glm::mat4> staticModels{};
 };
 
 RawSkeleton makeRawSkeleton(const ModelData& model);

@@ -22,7 +22,9 @@ Result<std::shared_ptr<const ModelAsset>> ModelAsset::load(const std::string& pa
 }
 
 Status jointsFromLocals(const ModelAsset& asset, std::span<const Srt> locals, std::span<glm::mat4> joints) {
-  return runJob(LocalToModelJob{asset.animated.skeleton.parents(), locals, glm::mat4(1.0f), joints}, asset.model.path);
+  return runJob(LocalToModelJob{asset.animated.skeleton.parents(), locals, glm::mat4(1.0f), joints,
+                                asset.animated.staticModels},
+                asset.model.path);
 }
 
 Status playerPose(const ModelAsset& asset, Player& player, bool bindPose, std::vector<Srt>& locals, Pose& pose) {

@@ -64,7 +64,9 @@ Status samplePose(const ModelAsset& asset, int clip, double clipTime, std::vecto
 // pose when `bindPose`, nothing plays or the player has no clip: the viewer's and
 // the characters' way to pose. `locals` is scratch, resized as needed.
 Status playerPose(const ModelAsset& asset, Player& player, bool bindPose, std::vector<Srt>& locals, Pose& pose);
-// The model-space joint matrices of `locals` (LocalToModelJob, identity root).
+// The model-space joint matrices of `locals` (LocalToModelJob, identity root): the
+// rest pose or a pose of the asset's clips, whose static ancestors are copied from
+// AnimatedModel::staticModels rather than computed.
 Status jointsFromLocals(const ModelAsset& asset, std::span<const Srt> locals, std::span<glm::mat4> joints);
 
 }  // namespace engine

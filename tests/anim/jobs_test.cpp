@@ -121,6 +121,37 @@ TEST(LocalToModel, SameBitsAsTheScalarProduct) {
   }
 }
 
+// A fixed prefix is copied, and the joints after it are computed from it: given the
+// full job's own first K matrices, every K gives the full job's bits; given other
+// matrices, the descendants follow those.
+TEST(LocalToModel, FixedPrefixIsCopiedAndTheRestBuiltOnIt) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+  std::vector<int> parents;
+  std::vector<Srt> locals;
+  for (int i = 0; i < 23; ++i) {
+    parents.push_back(i == 0 ? -1 : i % 4 == 0 ? int(rng() % unsigned(i)) : i - 1);
+    locals.push_back(Srt{glm::vec3(u(rng), u(rng), u(rng)), glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng))),
+                         glm::vec3(u(rng), u(rng), u(rng))});
+  }
+  const glm::mat4 root = glm::translate(glm::mat4(1.0f), glm::vec3(3, 1, -2));
+  std::vector<glm::mat4> full(parents.size()), models(parents.size());
+  ASSERT_TRUE((LocalToModelJob{parents, locals, root, full}.run()));
+  for (std::size_t k = 0; k <= parents.size(); ++k) {
+    std::fill(models.begin(), models.end(), glm::mat4(0.0f));
+    ASSERT_TRUE((LocalToModelJob{parents, locals, root, models, std::span(full).first(k)}.run()));
+    EXPECT_EQ(std::memcmp(models.data(), full.data(), full.size() * sizeof(glm::mat4)), 0) << k << " fixed";
+  }
+  // The first two joints fixed elsewhere: joint 2 (child of 1) is built on joint 1's.
+  const std::vector<glm::mat4> moved{glm::mat4(2.0f), glm::translate(glm::mat4(1.0f), glm::vec3(7, 0, 0))};
+  ASSERT_TRUE((LocalToModelJob{parents, locals, root, models, moved}.run()));
+  EXPECT_EQ(models[1], moved[1]);
+  const glm::mat4 expected = timesAffine(moved[1], toMatrix(locals[2]));
+  EXPECT_EQ(std::memcmp(&models[2], &expected, sizeof(glm::mat4)), 0);
+  std::vector<glm::mat4> tooMany(parents.size() + 1);
+  EXPECT_FALSE((LocalToModelJob{parents, locals, root, models, tooMany}.validate()));
+}
+
 TEST(LocalToModel, ValidateRejectsChildrenBeforeParents) {
   std::vector<int> parents{1, -1};
   std::vector<Srt> locals(2);

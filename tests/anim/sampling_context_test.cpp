@@ -204,5 +204,37 @@ TEST(SamplingContext, MatchesTheSearchOnTheShippedCharacter) {
   }
 }
 
+// The static ancestors a model's joints are built on (AnimatedModel::staticModels)
+// give the bits of computing them, at every time of every clip: CesiumMan's Z_UP,
+// Armature and mesh node, and the shipped robot's.
+TEST(StaticModels, PoseAsTheWholeSkeletonDoes) {
+  const std::string cesium = std::string(ENGINE_SOURCE_DIR) + "/../shared/conformance/assets/CesiumMan/glTF-Binary/CesiumMan.glb";
+  for (const std::string& path : {cesium, std::string(ENGINE_SOURCE_DIR) + "/assets/models/character.gltf"}) {
+    auto data = loadGltf(path);
+    ASSERT_TRUE(data) << data.error().message;
+    auto animated = buildAnimatedModel(*data);
+    ASSERT_TRUE(animated);
+    if (path == cesium) {
+      ASSERT_EQ(animated->staticModels.size(), 3u);
+      EXPECT_EQ(animated->skeleton.name(0), "Z_UP");
+      EXPECT_EQ(animated->skeleton.name(1), "Armature");
+      EXPECT_EQ(animated->skeleton.name(2), "Cesium_Man");  // the mesh's node, before the joints
+    }
+    const Skeleton& skeleton = animated->skeleton;
+    std::vector<Srt> locals(skeleton.restPose().size());
+    std::vector<glm::mat4> fixed(locals.size()), full(locals.size());
+    std::mt19937 rng(4);
+    for (const Clip& clip : animated->clips) {
+      std::uniform_real_distribution<double> u(0.0, clip.duration());
+      for (int i = 0; i < 200; ++i) {
+        ASSERT_TRUE((SamplingJob{&clip, u(rng), skeleton.restPose(), locals}.run()));
+        ASSERT_TRUE((LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), fixed, animated->staticModels}.run()));
+        ASSERT_TRUE((LocalToModelJob{skeleton.parents(), locals, glm::mat4(1.0f), full}.run()));
+        ASSERT_EQ(std::memcmp(fixed.data(), full.data(), full.size() * sizeof(glm::mat4)), 0) << path;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace engine
