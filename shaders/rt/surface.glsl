@@ -132,12 +132,8 @@ Surface surfaceAt(RtHit hit, vec3 o, vec3 d) {
     }
     s.uvPerMetre = surface.x;
   } else {
-    // From the buffer (a copy indexed by `lane` would live in local memory).
-    uint leaf = hit.slot / 4u;
-    int lane = int(hit.slot % 4u);
-    vec3 p0 = vec3(rtLeaves[leaf].p[0][lane], rtLeaves[leaf].p[1][lane], rtLeaves[leaf].p[2][lane]);
-    vec3 p1 = vec3(rtLeaves[leaf].p[3][lane], rtLeaves[leaf].p[4][lane], rtLeaves[leaf].p[5][lane]);
-    vec3 p2 = vec3(rtLeaves[leaf].p[6][lane], rtLeaves[leaf].p[7][lane], rtLeaves[leaf].p[8][lane]);
+    vec3 p0, p1, p2;
+    rtLeafTriangle(hit.slot / 4u, int(hit.slot % 4u), p0, p1, p2);
     vec3 b = hit.bary;
     precise vec3 p = b.x * p0 + b.y * p1 + b.z * p2;
     s.p = p;

@@ -222,6 +222,14 @@ bool rtBox(RtBoxRay r, vec3 lo, vec3 hi, float tMax) {
   return t0 <= t1 && t1 > 0.0 && t0 < tMax;
 }
 
+// Triangle `lane` of leaf `leaf`, read from the buffer: a copy of the leaf indexed
+// by `lane` at run time would be kept in each thread's local memory.
+void rtLeafTriangle(uint leaf, int lane, out vec3 p0, out vec3 p1, out vec3 p2) {
+  p0 = vec3(rtLeaves[leaf].p[0][lane], rtLeaves[leaf].p[1][lane], rtLeaves[leaf].p[2][lane]);
+  p1 = vec3(rtLeaves[leaf].p[3][lane], rtLeaves[leaf].p[4][lane], rtLeaves[leaf].p[5][lane]);
+  p2 = vec3(rtLeaves[leaf].p[6][lane], rtLeaves[leaf].p[7][lane], rtLeaves[leaf].p[8][lane]);
+}
+
 // ---- The BVH8 traversal (bvh_traverse.inl) ----
 
 // The nearest hit (anyHit: the first) in the BVH under `root` before hit.t, which it
@@ -275,10 +283,8 @@ bool rtTraverse(uint root, vec3 o, vec3 d, bool anyHit, inout RtHit hit) {
       uint leaf = ref & (RT_MAX_TRIANGLES - 1u);
       int count = int((ref >> 28) & 3u) + 1;
       for (int lane = 0; lane < count; ++lane) {
-        // From the buffer, as the nodes: `lane` indexes at run time.
-        vec3 p0 = vec3(rtLeaves[leaf].p[0][lane], rtLeaves[leaf].p[1][lane], rtLeaves[leaf].p[2][lane]);
-        vec3 p1 = vec3(rtLeaves[leaf].p[3][lane], rtLeaves[leaf].p[4][lane], rtLeaves[leaf].p[5][lane]);
-        vec3 p2 = vec3(rtLeaves[leaf].p[6][lane], rtLeaves[leaf].p[7][lane], rtLeaves[leaf].p[8][lane]);
+        vec3 p0, p1, p2;
+        rtLeafTriangle(leaf, lane, p0, p1, p2);
         vec3 bary;
         float t = rtTriangleT(triRay, hit.t, p0, p1, p2, bary);
         if (t > 0.0) {
