@@ -361,6 +361,8 @@ bool LocalToModelJob::validate() const {
 
 bool LocalToModelJob::run() const {
   if (!validate()) return false;
+  std::copy(fixed.begin(), fixed.end(), models.begin());
+  const std::size_t first = fixed.size();
 #if defined(__SSE2__)
   // Depth-first order makes a joint's parent most often the joint before it: its
   // matrix is taken from the registers it was computed in, not reloaded from the
@@ -368,14 +370,10 @@ bool LocalToModelJob::run() const {
   const auto load = [](const glm::mat4& m) {
     return Columns{{_mm_loadu_ps(&m[0][0]), _mm_loadu_ps(&m[1][0]), _mm_loadu_ps(&m[2][0]), _mm_loadu_ps(&m[3][0])}};
   };
-  std::copy(fixed.begin(), fixed.end(), models.begin());
-  const std::size_t first = fixed.size();
   Columns last = first > 0 ? load(models[first - 1]) : Columns{};
-  for (std::size_t i = first; i < parents.size(); i += 4) {
-    const std::size_t n = std::min<std::size_t>(4, parents.size() - i);
-    Srt tail[4];  // the last block's joints, padded with identities
-    if (n < 4) std::copy_n(&locals[i], n, tail);
-    const LocalMatrices4 local(n < 4 ? tail : &locals[i]);
+  // Joints i .. i + n - 1, whose locals are srt[0 .. n - 1].
+  const auto block = [&](const Srt* srt, std::size_t i, std::size_t n) {
+    const LocalMatrices4 local(srt);
     for (std::size_t j = 0; j < n; ++j) {
       const int parent = parents[i + j];
       const Columns p = parent >= 0 && std::size_t(parent) + 1 == i + j ? last
@@ -383,10 +381,16 @@ bool LocalToModelJob::run() const {
       last = local.times(p, j);
       for (int c = 0; c < 4; ++c) _mm_storeu_ps(&models[i + j][c][0], last.c[c]);
     }
+  };
+  std::size_t i = first;
+  for (; i + 4 <= parents.size(); i += 4) block(&locals[i], i, 4);
+  if (i < parents.size()) {
+    Srt tail[4];  // the last joints, padded with identities
+    std::copy(locals.begin() + std::ptrdiff_t(i), locals.end(), tail);
+    block(tail, i, parents.size() - i);
   }
 #else
-  std::copy(fixed.begin(), fixed.end(), models.begin());
-  for (std::size_t i = fixed.size(); i < parents.size(); ++i)
+  for (std::size_t i = first; i < parents.size(); ++i)
     models[i] = timesAffine(parents[i] < 0 ? root : models[std::size_t(parents[i])], toMatrix(locals[i]));
 #endif
   return true;

@@ -40,17 +40,17 @@ RawClip makeRawClip(const AnimationData& animation) {
 namespace {
 
 // AnimatedModel::staticModels: the rest pose's model matrices up to the first joint
-// any clip drives (depth-first order puts a joint's ancestors before it).
+// any clip drives. Depth-first order puts a joint's ancestors before it, so those
+// joints are a skeleton of their own.
 Status findStaticModels(AnimatedModel& out) {
   const std::span<const int> parents = out.skeleton.parents();
   std::size_t first = parents.size();
   for (const Clip& clip : out.clips)
     for (const Track& track : clip.tracks()) first = std::min(first, static_cast<std::size_t>(track.joint));
-  std::vector<glm::mat4> rest(parents.size());
-  if (auto s = runJob(LocalToModelJob{parents, out.skeleton.restPose(), glm::mat4(1.0f), rest}, "rest pose"); !s)
-    return s;
-  out.staticModels.assign(rest.begin(), rest.begin() + std::ptrdiff_t(first));
-  return Ok{};
+  out.staticModels.resize(first);
+  return runJob(LocalToModelJob{parents.first(first), out.skeleton.restPose().first(first), glm::mat4(1.0f),
+                                out.staticModels},
+                "rest pose");
 }
 
 }  // namespace
