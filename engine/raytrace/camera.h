@@ -45,9 +45,17 @@ class PinholeCamera {
     return ray;
   }
 
+  const glm::dvec3& position() const { return position_; }
   const glm::dvec3& right() const { return right_; }
   const glm::dvec3& up() const { return up_; }
   const glm::dvec3& forward() const { return forward_; }
+  // What generateRay and clippedToFarPlane compute with (the packets' own copy of
+  // their arithmetic, raytrace/whitted_packets.cpp, reads them here).
+  double farPlane() const { return farPlane_; }
+  double xScale() const { return xScale_; }
+  double yScale() const { return yScale_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
 
  private:
   glm::dvec3 position_, forward_, right_, up_{0, 1, 0};

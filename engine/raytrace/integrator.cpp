@@ -10,6 +10,7 @@
 #include "raytrace/ray_cone.h"
 #include "raytrace/rng.h"
 #include "raytrace/tile_render.h"
+#include "raytrace/whitted_packets.h"
 
 namespace engine::rt {
 namespace {
@@ -238,6 +239,85 @@ class Tracer {
   float pixelSpread_ = 0.0f;
 };
 
+// The Whitted tracer's image with the first hits eight samples at a time
+// (whitted_packets.h): the pixels' sample positions drawn as renderPixel draws them,
+// the mirrors' rays finished by the scalar Li, the sums and means taken as there, so
+// each pixel is renderPixel's bit for bit.
+class PacketTracer {
+ public:
+  PacketTracer(const Tracer<float>& scalar, const WhittedPackets& packets, const RtScene& scene,
+               const RenderSettings& settings)
+      : scalar_(scalar), packets_(packets), scene_(scene), settings_(settings),
+        strata_(strataFor(std::max(1, settings.samplesPerPixel))),
+        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
+
+  void renderSpan(int x0, int x1, int y, glm::vec3* out, RayCounters& counters) const {
+    constexpr int kLanes = WhittedPackets::kLanes;
+    const int spp = std::max(1, settings_.samplesPerPixel);
+    double px[kLanes], py[kLanes];
+    int pixel[kLanes];
+    int filled = 0;
+    const auto flush = [&] {
+      WhittedPackets::Sample samples[kLanes];
+      packets_.trace(px, py, filled, samples, counters.shadow);
+      for (int i = 0; i < filled; ++i) {
+        const glm::vec3 c = finish(samples[i], counters);
+        // One sample is the pixel's colour as it is; more are summed from zero.
+        out[pixel[i]] = spp == 1 ? c : out[pixel[i]] + c;
+      }
+      filled = 0;
+    };
+    const auto add = [&](int x, double sx, double sy) {
+      ++counters.primary;
+      px[filled] = sx, py[filled] = sy, pixel[filled] = x - x0;
+      if (++filled == kLanes) flush();
+    };
+    for (int x = x0; x < x1; ++x) {
+      out[x - x0] = glm::vec3(0.0f);
+      if (spp == 1) {
+        add(x, x + 0.5, y + 0.5);
+        continue;
+      }
+      Pcg32 rng = Pcg32::forPixel(settings_.seed, x, y);
+      for (int j = 0; j < strata_.y; ++j) {
+        for (int i = 0; i < strata_.x; ++i) {
+          const double sx = x + (i + double(rng.uniform())) / strata_.x;
+          const double sy = y + (j + double(rng.uniform())) / strata_.y;
+          add(x, sx, sy);
+        }
+      }
+    }
+    if (filled > 0) flush();
+    if (spp > 1) {
+      for (int x = x0; x < x1; ++x) out[x - x0] = out[x - x0] / float(spp);
+    }
+  }
+
+ private:
+  // Tracer::Li past the first hit: the environment where the sample escaped, else the
+  // mirror's ray traced on (its cone widened to the hit, as footprintAt leaves it) and
+  // the fog.
+  glm::vec3 finish(const WhittedPackets::Sample& s, RayCounters& counters) const {
+    if (!s.hit) return scene_.environment().radiance(s.direction);
+    glm::vec3 color = s.color;
+    if (s.reflection > 0.0f) {
+      RayCone cone{0.0f, pixelSpread_};
+      cone.width += cone.spread * s.distance;
+      ++counters.reflection;
+      Pcg32 unused(0, 0);  // point and sun lights draw no random numbers
+      color += s.reflection * scalar_.Li(s.reflected, 1, unused, counters, cone);
+    }
+    return scene_.fogged(color, s.distance);
+  }
+
+  const Tracer<float>& scalar_;
+  const WhittedPackets& packets_;
+  const RtScene& scene_;
+  const RenderSettings& settings_;
+  glm::ivec2 strata_;
+  float pixelSpread_ = 0.0f;
+};
+
 }  // namespace
 
 Integrator::Integrator(const RtScene& scene, RenderSettings settings) : scene_(&scene), settings_(std::move(settings)) {
@@ -247,7 +327,11 @@ Integrator::Integrator(const RtScene& scene, RenderSettings settings) : scene_(&
 RenderResult Integrator::render() const {
   if (pathLights_) return renderPathTraced(*scene_, *pathLights_, settings_);
   if (settings_.precision == Precision::Double) return detail::renderTiles(Tracer<double>(*scene_, settings_), settings_);
-  return detail::renderTiles(Tracer<float>(*scene_, settings_), settings_);
+  const Tracer<float> tracer(*scene_, settings_);
+  if (const std::optional<WhittedPackets> packets = WhittedPackets::create(*scene_, settings_)) {
+    return detail::renderTiles(PacketTracer(tracer, *packets, *scene_, settings_), settings_);
+  }
+  return detail::renderTiles(tracer, settings_);
 }
 
 glm::vec3 Integrator::renderPixel(int x, int y, RayCounters* counters) const {

@@ -1,0 +1,86 @@
+#pragma once
+// The Whitted tracer's first hit eight camera samples at a time, for the course's
+// scenes: spheres and planes, classic materials without textures, point and sun lights.
+// Each lane runs the scalar tracer's operations in its order (the camera's double
+// arithmetic, Sphere and Plane::intersect, the hit record, offsetRayOrigin, shadow rays,
+// classicReflected), so every sample's colour is the scalar tracer's bit for bit;
+// rays that leave a mirror go on in the scalar tracer (integrator.cpp), which has them
+// at a few per cent of the samples. Rays in packets, the shapes tested against eight
+// rays at once, shading out of the intersection loop: issue 14's course room.
+//
+// Compiled for AVX2 and used only where the CPU has it; elsewhere, and for any scene
+// with something more (meshes, textures, area lights, which draw random numbers between
+// a pixel's samples, PBR shading, transparency), the scalar tracer renders.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/camera.h"
+#include "raytrace/ray.h"
+
+namespace engine::rt {
+
+class RtScene;
+struct RenderSettings;
+
+class WhittedPackets {
+ public:
+  static constexpr int kLanes = 8;
+
+  // The packets for `scene` rendered with `settings`, or nothing where they do not
+  // apply (see above) and the scalar tracer must render.
+  static std::optional<WhittedPackets> create(const RtScene& scene, const RenderSettings& settings);
+
+  // What one camera sample's first hit gives the scalar tracer to finish.
+  struct Sample {
+    bool hit = false;
+    glm::vec3 direction{0.0f};  // the camera ray's, for the environment where it escapes
+    // On a hit: ambient, direct light and emission; the distance travelled (fog);
+    // and the mirror's share with the ray it continues along (share 0: none).
+    glm::vec3 color{0.0f};
+    float distance = 0.0f;
+    float reflection = 0.0f;
+    Ray<float> reflected;
+  };
+
+  // The samples at image points (px[i], py[i]) in pixels, i < count <= kLanes, as
+  // PinholeCamera::generateRay and clippedToFarPlane make their rays. Adds the shadow
+  // rays traced to `shadowRays`.
+  void trace(const double* px, const double* py, int count, Sample* out, std::uint64_t& shadowRays) const;
+
+  // The shapes, one table for spheres and planes (spheres first), as floats per field
+  // so that a lane's shape is one gather; public for the kernel's helpers only.
+  struct ShapeTable {
+    std::vector<float> ax, ay, az, b;  // sphere: centre, radius; plane: normal, d
+    std::vector<int> material;
+    std::size_t spheres = 0, planes = 0;
+  };
+  struct Square {  // a bounded plane's square (RtScene::PlaneSquare), in double
+    glm::dvec3 point{0.0}, axisU{0.0}, axisV{0.0};
+    double extent = 0.0;  // 0: unbounded
+  };
+  struct MaterialTable {  // the classic model's weights, a field per vector
+    std::vector<float> r, g, b, ambient, diffuse, specular, shininess, reflection, er, eg, eb;
+  };
+  struct Light {
+    bool sun = false, falloff = false, shadows = true;
+    glm::vec3 position{0.0f};  // point: where it is; sun: its unit direction (toward the light)
+    glm::vec3 radiance{0.0f};  // colour * intensity
+  };
+
+ private:
+  WhittedPackets(const PinholeCamera& camera) : camera_(camera) {}
+
+  ShapeTable shapes_;
+  std::vector<Square> squares_;  // one per plane
+  bool boundedPlanes_ = false;
+  MaterialTable materials_;
+  bool highlights_ = false;  // whether any material has specular > 0
+  std::vector<Light> lights_;
+  PinholeCamera camera_;
+  bool mirrors_ = false;  // whether reflections go on (maxDepth > 0)
+};
+
+}  // namespace engine::rt

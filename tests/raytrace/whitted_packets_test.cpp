@@ -1,0 +1,164 @@
+// The Whitted tracer's packets (raytrace/whitted_packets.h) against its scalar path:
+// Integrator::render() takes the packets where they apply, renderPixel() never does,
+// and every pixel must be the same float bits, with the same ray counts. Random rooms
+// of spheres and planes (bounded and not, near and far from the origin, tiny and huge),
+// classic materials with highlights, mirrors and emission, point lights with and
+// without fall-off, suns, fog, a sky or a background, every mirror depth and several
+// sample counts, on image sizes that leave packets and tiles partly filled.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "asset/scene_file.h"
+#include "raytrace/integrator.h"
+#include "raytrace/rt_scene.h"
+#include "raytrace/scene_builder.h"
+#include "raytrace/whitted_packets.h"
+#include "test_scenes.h"
+
+namespace {
+
+bool sameBits(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// render() against renderPixel() over the whole image, bit for bit, and the ray counts.
+void expectPacketsAreTheScalarTracer(const rt::RtScene& scene, const rt::RenderSettings& settings,
+                                     const std::string& what) {
+  ASSERT_TRUE(rt::WhittedPackets::create(scene, settings).has_value()) << what << ": the packets must apply";
+  const rt::Integrator integrator(scene, settings);
+  const rt::RenderResult image = integrator.render();
+  rt::RayCounters scalar;
+  int differing = 0;
+  for (int y = 0; y < settings.height; ++y) {
+    for (int x = 0; x < settings.width; ++x) {
+      const glm::vec3 expected = integrator.renderPixel(x, y, &scalar);
+      const glm::vec3 actual = image.image.at(x, y);
+      if (!sameBits(actual, expected) && ++differing <= 3) {
+        ADD_FAILURE() << what << ": pixel " << x << "," << y << " is (" << actual.r << ", " << actual.g << ", "
+                      << actual.b << "), the scalar tracer's (" << expected.r << ", " << expected.g << ", "
+                      << expected.b << ")";
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0) << what;
+  EXPECT_EQ(image.rays.primary, scalar.primary) << what;
+  EXPECT_EQ(image.rays.shadow, scalar.shadow) << what;
+  EXPECT_EQ(image.rays.reflection, scalar.reflection) << what;
+}
+
+glm::dvec3 randomUnit(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  return glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
+}
+
+// A room: the camera at `origin` plus a few units, shapes around what it looks at.
+rt::RtScene randomRoom(std::mt19937& rng, const glm::dvec3& origin) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
+  const glm::dvec3 eye = origin + glm::dvec3(in(-1, 1), in(0.5, 2), in(-4, -2));
+  rt::RtScene scene = emptyScene(lookAt(eye, origin + glm::dvec3(in(-1, 1), in(0, 1.5), in(1, 4)), in(30, 90)));
+  if (u(rng) < 0.5) {
+    engine::SkyDesc sky;  // the gradient, with the last sun's disk
+    scene.setSky(sky);
+  }
+  if (u(rng) < 0.3) {
+    engine::FogDesc fog;
+    fog.enabled = true;
+    fog.density = float(in(0.01, 0.3));
+    scene.setFog(fog);
+  }
+  const int materials = 6;
+  for (int m = 0; m < materials; ++m) {
+    MaterialDesc d = classic(glm::vec3(in(0, 1), in(0, 1), in(0, 1)), float(in(0, 0.3)), float(in(0.2, 1)));
+    if (u(rng) < 0.4) d.specular = float(in(0.1, 1)), d.shininess = float(in(1, 200));
+    if (u(rng) < 0.3) d.reflection = float(in(0.2, 1));
+    if (u(rng) < 0.15) d.emission = glm::vec3(float(in(0, 2)), float(in(0, 2)), float(in(0, 2)));
+    scene.addMaterial(d);
+  }
+  const auto material = [&] { return int(u(rng) * materials) + 1; };  // 0 is the default
+  const int spheres = 1 + int(u(rng) * 5);
+  for (int s = 0; s < spheres; ++s) {
+    const double radius = std::pow(10.0, in(-2, 0.5));
+    scene.addSphere(origin + glm::dvec3(in(-3, 3), in(0, 3), in(0, 6)), radius, material());
+  }
+  const int planes = int(u(rng) * 6);
+  for (int p = 0; p < planes; ++p) {
+    const glm::dvec3 normal = p < 2 ? glm::dvec3(0, p == 0 ? 1 : -1, 0) : randomUnit(rng);
+    const glm::dvec3 point = origin + glm::dvec3(in(-3, 3), p == 1 ? 3.5 : in(-0.5, 0.2), in(0, 7));
+    scene.addPlane(point, normal, material(), u(rng) < 0.4 ? in(0.5, 4) : 0.0);
+  }
+  const int lights = 1 + int(u(rng) * 3);
+  for (int l = 0; l < lights; ++l) {
+    LightDesc light = pointLight(origin + glm::dvec3(in(-2, 2), in(1, 3.4), in(0, 5)));
+    if (u(rng) < 0.3) {
+      light.type = LightType::Sun;
+      light.direction = randomUnit(rng);
+    }
+    light.color = glm::vec3(float(in(0.3, 1)), float(in(0.3, 1)), float(in(0.3, 1)));
+    light.intensity = float(in(0.5, 3));
+    light.falloff = u(rng) < 0.5;
+    light.shadows = u(rng) < 0.85;
+    scene.addLight(light);
+  }
+  return scene;
+}
+
+TEST(WhittedPackets, RandomRoomsAreTheScalarTracerBitForBit) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "the packets need AVX2";
+  std::mt19937 rng(20261204);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int sampleCounts[] = {1, 2, 4, 7, 9};
+  for (int room = 0; room < 300; ++room) {
+    // A third of the rooms far from the origin, where float's rounding is coarse.
+    const glm::dvec3 origin = room % 3 == 2 ? glm::dvec3(1e4 * u(rng), -3e3, 2e4 * u(rng)) : glm::dvec3(0.0);
+    const rt::RtScene scene = randomRoom(rng, origin);
+    rt::RenderSettings settings;
+    settings.width = 13 + int(u(rng) * 30);
+    settings.height = 7 + int(u(rng) * 20);
+    settings.samplesPerPixel = sampleCounts[room % 5];
+    settings.maxDepth = room % 7 == 0 ? 0 : 1 + room % 5;
+    settings.seed = std::uint64_t(room) * 7919u + 1u;
+    settings.tileSize = room % 2 == 0 ? 16 : 5;
+    expectPacketsAreTheScalarTracer(scene, settings, "room " + std::to_string(room));
+    if (HasFailure()) return;
+  }
+}
+
+rt::RtScene sceneFile(const char* name) {
+  auto desc = engine::loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + name);
+  EXPECT_TRUE(desc) << desc.error().message;
+  auto scene = rt::buildRtScene(*desc, 0.0, 240);
+  EXPECT_TRUE(scene) << scene.error().message;
+  return std::move(*scene);
+}
+
+// The course room as the benchmark renders it (issue 14's goal 4), at a smaller size.
+TEST(WhittedPackets, TheCourseRoomIsTheScalarTracerBitForBit) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "the packets need AVX2";
+  rt::RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.samplesPerPixel = 4;
+  expectPacketsAreTheScalarTracer(sceneFile("cornell.json"), settings, "cornell.json");
+}
+
+// What the packets leave to the scalar tracer: an area light (its shadow samples draw
+// from the pixel's stream between its samples), meshes, PBR shading, double precision.
+TEST(WhittedPackets, LeaveWhatTheyDoNotTraceToTheScalarTracer) {
+  rt::RenderSettings settings;
+  EXPECT_FALSE(rt::WhittedPackets::create(sceneFile("cornell_soft.json"), settings));
+  EXPECT_FALSE(rt::WhittedPackets::create(sceneFile("materials.json"), settings));
+  rt::RenderSettings doubles;
+  doubles.precision = rt::Precision::Double;
+  EXPECT_FALSE(rt::WhittedPackets::create(sceneFile("cornell.json"), doubles));
+  rt::RtScene mesh = emptyScene(lookAt({0, 0, -3}, {0, 0, 0}));
+  mesh.addSphere({0, 0, 0}, 1.0, 0);
+  rt::RtMesh triangle;
+  triangle.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  triangle.indices = {0, 1, 2};
+  ASSERT_TRUE(mesh.addMesh(triangle));
+  mesh.build();
+  EXPECT_FALSE(rt::WhittedPackets::create(mesh, settings));
+}
+
+}  // namespace
