@@ -22,6 +22,7 @@ inline std::uint64_t mixBits(std::uint64_t v) {
 
 class Pcg32 {
  public:
+  Pcg32() = default;  // a placeholder to assign a seeded generator to
   Pcg32(std::uint64_t seed, std::uint64_t stream) { setSequence(seed, stream); }
 
   // A generator for pixel (x, y) of an image rendered with `seed`.

@@ -3,7 +3,6 @@
 #include <immintrin.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -31,7 +30,9 @@ std::optional<WhittedPackets> WhittedPackets::create(const RtScene& scene, const
     p.shapes_.ax.push_back(q.normal.x), p.shapes_.ay.push_back(q.normal.y), p.shapes_.az.push_back(q.normal.z);
     p.shapes_.b.push_back(q.d), p.shapes_.material.push_back(q.material);
     const RtScene::PlaneSquare& square = scene.planeSquare(i);
-    p.squares_.push_back(Square{square.point, square.axisU, square.axisV, square.extent});
+    const glm::vec3 centre(square.point);
+    p.squares_.push_back(Square{square.point, square.axisU, square.axisV, square.extent, centre,
+                                std::abs(centre.x) + std::abs(centre.y) + std::abs(centre.z), float(square.extent)});
     p.boundedPlanes_ = p.boundedPlanes_ || square.extent > 0.0;
   }
   p.shapes_.spheres = scene.floatSpheres().size();
@@ -165,7 +166,7 @@ Rays primaryRays(const PinholeCamera& camera, const double* px, const double* py
 
 // Sphere<float>::intersect in every lane (shape_packs.cpp's sphereTest, eight wide):
 // the lanes of `live` that hit, their distance in tOut.
-F sphereTest(const Rays& r, const glm::vec3& centre, float radius, F tMax, F live, F& tOut) {
+[[gnu::always_inline]] inline F sphereTest(const Rays& r, const glm::vec3& centre, float radius, F tMax, F live, F& tOut) {
   const F zero = _mm256_setzero_ps();
   const V3 oc = sub(r.o, broadcast(centre));
   const F rad = set1(radius);
@@ -193,7 +194,7 @@ F sphereTest(const Rays& r, const glm::vec3& centre, float radius, F tMax, F liv
 }
 
 // Plane<float>::intersect in every lane.
-F planeTest(const Rays& r, const glm::vec3& normal, float d, F tMax, F live, F& tOut) {
+[[gnu::always_inline]] inline F planeTest(const Rays& r, const glm::vec3& normal, float d, F tMax, F live, F& tOut) {
   const F zero = _mm256_setzero_ps();
   const V3 n = broadcast(normal);
   const F denom = dot(n, r.d);
@@ -208,7 +209,7 @@ V3 pointAt(const Rays& r, F t) { return add(r.o, mul(r.d, t)); }
 // pbrt's nextUp and nextDown (ray.h) in every lane where `mask` is set: one step of
 // the bit pattern away from zero's side, +-0 stepping as +0 up and -0 down, the
 // infinity in the direction of the step left alone.
-F stepUp(F v, F mask) {
+[[gnu::always_inline]] inline F stepUp(F v, F mask) {
   const F zero = _mm256_setzero_ps();
   const F w = select(_mm256_cmp_ps(v, zero, _CMP_EQ_OQ), zero, v);
   const I one = _mm256_set1_epi32(1), minusOne = _mm256_set1_epi32(-1);
@@ -217,7 +218,7 @@ F stepUp(F v, F mask) {
       _mm256_add_epi32(_mm256_castps_si256(w), _mm256_blendv_epi8(minusOne, one, _mm256_castps_si256(up))));
   return select(bitAnd(mask, _mm256_cmp_ps(v, set1(kInf), _CMP_NEQ_UQ)), stepped, v);
 }
-F stepDown(F v, F mask) {
+[[gnu::always_inline]] inline F stepDown(F v, F mask) {
   const F zero = _mm256_setzero_ps();
   const F w = select(_mm256_cmp_ps(v, zero, _CMP_EQ_OQ), set1(-0.0f), v);
   const I one = _mm256_set1_epi32(1), minusOne = _mm256_set1_epi32(-1);
@@ -228,7 +229,7 @@ F stepDown(F v, F mask) {
 }
 
 // offsetRayOrigin in every lane.
-V3 offsetOrigin(const V3& p, const V3& pError, const V3& n, const V3& w) {
+[[gnu::always_inline]] inline V3 offsetOrigin(const V3& p, const V3& pError, const V3& n, const V3& w) {
   const F along = dot({absolute(n.x), absolute(n.y), absolute(n.z)}, pError);
   V3 offset = mul(n, along);
   const F flip = less(dot(w, n), _mm256_setzero_ps());
@@ -267,11 +268,18 @@ struct Scene {
   F onSquare(std::size_t plane, const Rays& r, F t, F hit) const {
     const WhittedPackets::Square& q = squares[plane];
     if (!boundedPlanes || q.extent <= 0.0) return hit;
+    // ShapePacks::clearlyOnSquare: the lanes inside the square whatever the rounding
+    // need no exact test.
+    const V3 p = pointAt(r, t);
+    const F l1 = add(add(absolute(sub(p.x, set1(q.centre.x))), absolute(sub(p.y, set1(q.centre.y)))),
+                     absolute(sub(p.z, set1(q.centre.z))));
+    const F clearly = _mm256_cmp_ps(add(l1, mul(set1(1e-5f), add(l1, set1(q.size)))), set1(q.extentF), _CMP_LE_OQ);
+    if ((bits(hit) & ~bits(clearly)) == 0) return hit;
     alignas(32) float ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes], ts[kLanes];
     _mm256_store_ps(ox, r.o.x), _mm256_store_ps(oy, r.o.y), _mm256_store_ps(oz, r.o.z);
     _mm256_store_ps(dx, r.d.x), _mm256_store_ps(dy, r.d.y), _mm256_store_ps(dz, r.d.z), _mm256_store_ps(ts, t);
     int mask = bits(hit);
-    for (int m = mask; m != 0; m &= m - 1) {
+    for (int m = mask & ~bits(clearly); m != 0; m &= m - 1) {
       const int lane = __builtin_ctz(unsigned(m));
       const glm::vec3 point = glm::vec3(ox[lane], oy[lane], oz[lane]) + glm::vec3(dx[lane], dy[lane], dz[lane]) * ts[lane];
       const glm::dvec3 local = glm::dvec3(point) - q.point;
@@ -349,7 +357,7 @@ F gather(const std::vector<float>& table, I index) { return _mm256_i32gather_ps(
 
 }  // namespace
 
-void WhittedPackets::trace(const double* px, const double* py, int count, Sample* out, std::uint64_t& shadowRays) const {
+void WhittedPackets::trace(const double* px, const double* py, int count, Lanes& out, std::uint64_t& shadowRays) const {
   // Lanes past count repeat the first sample; their answers are dropped.
   alignas(32) double xs[kLanes], ys[kLanes];
   for (int i = 0; i < kLanes; ++i) xs[i] = px[i < count ? i : 0], ys[i] = py[i < count ? i : 0];
@@ -437,20 +445,12 @@ void WhittedPackets::trace(const double* px, const double* py, int count, Sample
     ro = offsetOrigin(h.p, h.pError, h.n, r);
   }
 
-  alignas(32) float lanes[15][kLanes];
-  const F columns[15] = {ray.d.x, ray.d.y, ray.d.z, color.x, color.y, color.z, distance,
-                         bitAnd(share, mirrored), r.x, r.y, r.z, ro.x, ro.y, ro.z, h.hit};
-  for (int c = 0; c < 15; ++c) _mm256_store_ps(lanes[c], columns[c]);
-  for (int i = 0; i < count; ++i) {
-    Sample& s = out[i];
-    s.hit = std::bit_cast<std::uint32_t>(lanes[14][i]) != 0;
-    s.direction = {lanes[0][i], lanes[1][i], lanes[2][i]};
-    if (!s.hit) continue;
-    s.color = {lanes[3][i], lanes[4][i], lanes[5][i]};
-    s.distance = lanes[6][i];
-    s.reflection = lanes[7][i];
-    s.reflected = Ray<float>{{lanes[11][i], lanes[12][i], lanes[13][i]}, {lanes[8][i], lanes[9][i], lanes[10][i]}};
-  }
+  out.hits = bits(h.hit) & ((1 << count) - 1);
+  _mm256_store_ps(out.dx, ray.d.x), _mm256_store_ps(out.dy, ray.d.y), _mm256_store_ps(out.dz, ray.d.z);
+  _mm256_store_ps(out.r, color.x), _mm256_store_ps(out.g, color.y), _mm256_store_ps(out.b, color.z);
+  _mm256_store_ps(out.distance, distance), _mm256_store_ps(out.reflection, bitAnd(share, mirrored));
+  _mm256_store_ps(out.ox, ro.x), _mm256_store_ps(out.oy, ro.y), _mm256_store_ps(out.oz, ro.z);
+  _mm256_store_ps(out.rx, r.x), _mm256_store_ps(out.ry, r.y), _mm256_store_ps(out.rz, r.z);
 }
 
 #if defined(__clang__)

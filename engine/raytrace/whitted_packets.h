@@ -33,22 +33,25 @@ class WhittedPackets {
   // apply (see above) and the scalar tracer must render.
   static std::optional<WhittedPackets> create(const RtScene& scene, const RenderSettings& settings);
 
-  // What one camera sample's first hit gives the scalar tracer to finish.
-  struct Sample {
-    bool hit = false;
-    glm::vec3 direction{0.0f};  // the camera ray's, for the environment where it escapes
-    // On a hit: ambient, direct light and emission; the distance travelled (fog);
-    // and the mirror's share with the ray it continues along (share 0: none).
-    glm::vec3 color{0.0f};
-    float distance = 0.0f;
-    float reflection = 0.0f;
-    Ray<float> reflected;
+  // What eight camera samples' first hits give the scalar tracer to finish, a lane
+  // per sample: on a hit (bit i of `hits`), ambient, direct light and emission, the
+  // distance travelled (fog), and the mirror's share (0: none) with the ray it goes on
+  // along; where the sample escapes, the camera ray's direction (the environment).
+  struct Lanes {
+    int hits = 0;
+    alignas(32) float r[kLanes], g[kLanes], b[kLanes], distance[kLanes], reflection[kLanes];
+    alignas(32) float dx[kLanes], dy[kLanes], dz[kLanes];  // the camera rays' directions
+    alignas(32) float ox[kLanes], oy[kLanes], oz[kLanes], rx[kLanes], ry[kLanes], rz[kLanes];  // the mirrors' rays
+
+    glm::vec3 color(int i) const { return {r[i], g[i], b[i]}; }
+    glm::vec3 direction(int i) const { return {dx[i], dy[i], dz[i]}; }
+    Ray<float> reflected(int i) const { return Ray<float>{{ox[i], oy[i], oz[i]}, {rx[i], ry[i], rz[i]}}; }
   };
 
   // The samples at image points (px[i], py[i]) in pixels, i < count <= kLanes, as
   // PinholeCamera::generateRay and clippedToFarPlane make their rays. Adds the shadow
   // rays traced to `shadowRays`.
-  void trace(const double* px, const double* py, int count, Sample* out, std::uint64_t& shadowRays) const;
+  void trace(const double* px, const double* py, int count, Lanes& out, std::uint64_t& shadowRays) const;
 
   // The shapes, one table for spheres and planes (spheres first), as floats per field
   // so that a lane's shape is one gather; public for the kernel's helpers only.
@@ -60,6 +63,10 @@ class WhittedPackets {
   struct Square {  // a bounded plane's square (RtScene::PlaneSquare), in double
     glm::dvec3 point{0.0}, axisU{0.0}, axisV{0.0};
     double extent = 0.0;  // 0: unbounded
+    // In float for the quick test that settles most hits (ShapePacks::clearlyOnSquare):
+    // the centre, its |x| + |y| + |z|, the half side.
+    glm::vec3 centre{0.0f};
+    float size = 0.0f, extentF = 0.0f;
   };
   struct MaterialTable {  // the classic model's weights, a field per vector
     std::vector<float> r, g, b, ambient, diffuse, specular, shininess, reflection, er, eg, eb;

@@ -124,6 +124,20 @@ TEST(WhittedPackets, RandomRoomsAreTheScalarTracerBitForBit) {
   }
 }
 
+// More samples a pixel than a block of the packets holds (256): such spans go to the
+// scalar tracer whole.
+TEST(WhittedPackets, ManySamplesAPixelAreTheScalarTracer) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "the packets need AVX2";
+  std::mt19937 rng(7);
+  for (int spp : {255, 256, 257, 300}) {
+    rt::RenderSettings settings;
+    settings.width = 9;
+    settings.height = 5;
+    settings.samplesPerPixel = spp;
+    expectPacketsAreTheScalarTracer(randomRoom(rng, glm::dvec3(0.0)), settings, std::to_string(spp) + " spp");
+  }
+}
+
 rt::RtScene sceneFile(const char* name) {
   auto desc = engine::loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + name);
   EXPECT_TRUE(desc) << desc.error().message;
