@@ -69,7 +69,10 @@ std::optional<WhittedPackets> WhittedPackets::create(const RtScene& scene, const
 #pragma GCC push_options
 #pragma GCC target("avx2")
 #endif
+// Named, as well as anonymous: the unity build puts shape_packs.cpp's helpers of the
+// same names (for four lanes) in the same translation unit.
 namespace {
+namespace lanes8 {
 
 using F = __m256;
 using I = __m256i;
@@ -251,10 +254,6 @@ struct Hits {
   I material;
 };
 
-}  // namespace
-
-namespace {
-
 // What the kernel needs of WhittedPackets' tables, passed to the helpers below.
 struct Scene {
   const WhittedPackets::ShapeTable& shapes;
@@ -355,9 +354,11 @@ struct Scene {
 
 F gather(const std::vector<float>& table, I index) { return _mm256_i32gather_ps(table.data(), index, 4); }
 
+}  // namespace lanes8
 }  // namespace
 
 void WhittedPackets::trace(const double* px, const double* py, int count, Lanes& out, std::uint64_t& shadowRays) const {
+  using namespace lanes8;
   // Lanes past count repeat the first sample; their answers are dropped.
   alignas(32) double xs[kLanes], ys[kLanes];
   for (int i = 0; i < kLanes; ++i) xs[i] = px[i < count ? i : 0], ys[i] = py[i < count ? i : 0];
