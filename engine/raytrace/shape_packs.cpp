@@ -30,7 +30,7 @@ __m128 copySign(__m128 magnitude, __m128 sign) {
 struct SphereLanesIn {
   __m128 ocx, ocy, ocz, dx, dy, dz, a, radius, tMax;
 };
-__m128 sphereTest(const SphereLanesIn& s, __m128 live, __m128& tOut) {
+[[gnu::always_inline]] inline __m128 sphereTest(const SphereLanesIn& s, __m128 live, __m128& tOut) {
   const __m128 zero = _mm_setzero_ps();
   tOut = zero;
   const __m128 halfB = dot3(s.ocx, s.ocy, s.ocz, s.dx, s.dy, s.dz);
@@ -67,7 +67,7 @@ struct Lanes3 {
 struct PlaneLanesIn {
   __m128 nx, ny, nz, d;
 };
-__m128 planeTest(const PlaneLanesIn& p, const Lanes3& o, const Lanes3& d, __m128 tMax, __m128 live, __m128& tOut) {
+[[gnu::always_inline]] inline __m128 planeTest(const PlaneLanesIn& p, const Lanes3& o, const Lanes3& d, __m128 tMax, __m128 live, __m128& tOut) {
   const __m128 zero = _mm_setzero_ps();
   const __m128 denom = dot3(p.nx, p.ny, p.nz, d.x, d.y, d.z);
   const __m128 along = dot3(p.nx, p.ny, p.nz, o.x, o.y, o.z);
