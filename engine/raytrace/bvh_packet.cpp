@@ -21,17 +21,12 @@
 #include <cmath>
 #include <limits>
 
+#include "raytrace/avx2_region.h"
 #include "raytrace/bvh.h"
 
 namespace engine::rt {
 
-// GCC's target pragma, or clang's equivalent (the sanitizer tree builds with clang).
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2")
-#endif
+ENGINE_AVX2_BEGIN
 namespace {
 
 constexpr int kLanes = Bvh::kPacketSize;
@@ -289,11 +284,7 @@ bool tracePacketAvx2(const Bvh::View& bvh, const Ray<float>* rays, BvhHit<float>
 
 }  // namespace
 
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+ENGINE_AVX2_END
 
 bool Bvh::tracePacket8(const Ray<float>* rays, BvhHit<float>* hits, std::uint32_t& hitMask) const {
   return triangleCount_ > 0 && __builtin_cpu_supports("avx2") && tracePacketAvx2(view(), rays, hits, hitMask);

@@ -9,6 +9,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "raytrace/avx2_region.h"
 #include "raytrace/bvh.h"
 
 namespace engine::rt {
@@ -250,13 +251,7 @@ using BoxTest = std::conditional_t<std::is_same_v<T, float>, ChildBoxTestSse, Ch
 #include "raytrace/bvh_traverse.inl"
 }  // namespace sse
 
-// GCC's target pragma, or clang's equivalent (the sanitizer tree builds with clang).
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2")
-#endif
+ENGINE_AVX2_BEGIN
 namespace avx2 {
 
 // Float rays with AVX2: all eight boxes in one register, as ChildBoxTestSse computes
@@ -295,11 +290,7 @@ template <typename T>
 using BoxTest = std::conditional_t<std::is_same_v<T, float>, ChildBoxTestAvx2, ChildBoxTest<T>>;
 #include "raytrace/bvh_traverse.inl"
 }  // namespace avx2
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+ENGINE_AVX2_END
 
 namespace {
 std::atomic<Bvh::Isa> gIsa{__builtin_cpu_supports("avx2") ? Bvh::Isa::kAvx2 : Bvh::Isa::kSse2};

@@ -407,6 +407,7 @@ void RtScene::clearMeshes() {
   meshes_.clear();
   meshFirstTriangle_.clear();
   groups_.assign(1, Group{});
+  boxedTriangles_ = false;
 }
 
 std::size_t RtScene::triangleCount() const {
@@ -436,6 +437,7 @@ double RtScene::buildGroup(int groupIndex) {
   Group& group = groups_[std::size_t(groupIndex)];
   group.bvh.build(group.triangles);
   group.topologyDirty = group.moved = false;
+  boxedTriangles_ = triangleCount() > 0;
   return secondsSince(start);
 }
 
@@ -616,7 +618,7 @@ void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional
   // ray misses, or that lie behind the nearest hit so far, cost one box test rather
   // than a traversal's setup and its root node's eight boxes.
   result.reset();
-  if (!groups_.empty()) {  // BoundsRay's three divisions only where there are boxes
+  if (boxedTriangles_) {  // BoundsRay's three divisions only where there are boxes
     const BoundsRay<T> boxes(ray);
     const Group* hitGroup = nullptr;
     std::optional<BvhHit<T>> meshHit;
@@ -661,7 +663,7 @@ void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional
 template <typename T>
 bool RtScene::intersectAny(const Ray<T>& ray) const {
   if (anyShape(ray)) return true;
-  if (groups_.empty()) return false;  // BoundsRay's three divisions, for nothing
+  if (!boxedTriangles_) return false;  // BoundsRay's three divisions, for nothing
   const BoundsRay<T> boxes(ray);
   for (const Group& group : groups_) {
     if (boxes.hits(group.bvh.bounds(), ray) && group.bvh.intersectAny(ray)) return true;

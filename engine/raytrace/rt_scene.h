@@ -386,6 +386,9 @@ class RtScene {
   std::vector<RtMesh> meshes_;
   std::vector<std::uint32_t> meshFirstTriangle_;  // into its group's triangles
   std::vector<Group> groups_{1};
+  // Whether any group's BVH holds a triangle: group 0 is always there, empty in a
+  // scene of spheres and planes, whose rays then skip the groups' boxes altogether.
+  bool boxedTriangles_ = false;
 };
 
 }  // namespace engine::rt

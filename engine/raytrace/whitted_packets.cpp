@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/brdf.h"
+#include "raytrace/avx2_region.h"
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
 
@@ -62,13 +63,7 @@ std::optional<WhittedPackets> WhittedPackets::create(const RtScene& scene, const
   return p;
 }
 
-// GCC's target pragma, or clang's equivalent (the sanitizer tree builds with clang).
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2")
-#endif
+ENGINE_AVX2_BEGIN
 // Named, as well as anonymous: the unity build puts shape_packs.cpp's helpers of the
 // same names (for four lanes) in the same translation unit.
 namespace {
@@ -454,10 +449,6 @@ void WhittedPackets::trace(const double* px, const double* py, int count, Lanes&
   _mm256_store_ps(out.rx, r.x), _mm256_store_ps(out.ry, r.y), _mm256_store_ps(out.rz, r.z);
 }
 
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+ENGINE_AVX2_END
 
 }  // namespace engine::rt
