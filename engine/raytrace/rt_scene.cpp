@@ -343,6 +343,7 @@ void RtScene::addSphere(const glm::dvec3& center, double radius, int material) {
   spheresD_.push_back(Sphere<double>{center, radius, material});
   spheresF_.push_back(Sphere<float>{glm::vec3(center), float(radius), material});
   packs_.setSpheres(spheresF_);
+  lanes_.addSphere(spheresF_.back());
 }
 
 void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent) {
@@ -355,6 +356,8 @@ void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int ma
   std::vector<ShapePacks::Square> squares;
   for (const PlaneUv& q : planeUvs_) squares.push_back({q.point, q.extent});
   packs_.setPlanes(planesF_, squares);
+  const PlaneUv& q = planeUvs_.back();
+  lanes_.addPlane(planesF_.back(), q.point, q.axisU, q.axisV, q.extent);
 }
 
 int RtScene::addGroup() {
@@ -600,6 +603,14 @@ bool RtScene::onSquareOf(const void* scene, std::size_t plane, const Ray<float>&
 
 void RtScene::intersectMany(const Ray<float>* const* rays, std::size_t count,
                             std::optional<SurfaceInteraction<float>>* out) const {
+  // Eight rays at a time where there are no triangles and the CPU has AVX2.
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (!boxedTriangles_ && lanes_.size() > 0 && avx2) {
+    for (std::size_t first = 0; first < count; first += lanes8::kLanes) {
+      intersectEight(rays + first, int(std::min<std::size_t>(lanes8::kLanes, count - first)), out + first);
+    }
+    return;
+  }
   for (std::size_t first = 0; first < count; first += 4) {
     const int n = int(std::min<std::size_t>(4, count - first));
     ShapePacks::Nearest nearest[4];
@@ -636,29 +647,83 @@ void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional
     }
   }
   if (kind == 1) {
-    const auto& sphereList = spheres<T>();
     SurfaceInteraction<T>& si = result.emplace();
-    sphereList[index].fillInteraction(ray, ray.tMax, si);
-    const float scale = materials_[size_t(si.material)].textureScale;
-    if (extras_[size_t(si.material)].readsUv()) si.uv = sphereUv(glm::dvec3(si.n)) * scale;
-    // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
-    si.uvPerMetre = scale / (float(std::numbers::pi) * std::sqrt(2.0f) * float(sphereList[index].radius));
-    si.uv1 = si.uv;
+    spheres<T>()[index].fillInteraction(ray, ray.tMax, si);
+    shapeUv(kind, index, si);
     return;
   }
   if (kind == 2) {
     SurfaceInteraction<T>& si = result.emplace();
     planes<T>()[index].fillInteraction(ray, ray.tMax, si);
-    if (extras_[size_t(si.material)].readsUv()) {
+    shapeUv(kind, index, si);
+  }
+}
+
+template <typename T>
+void RtScene::shapeUv(int kind, std::size_t index, SurfaceInteraction<T>& si) const {
+  const float scale = materials_[size_t(si.material)].textureScale;
+  const bool readsUv = extras_[size_t(si.material)].readsUv();
+  if (kind == 1) {
+    if (readsUv) si.uv = sphereUv(glm::dvec3(si.n)) * scale;
+    // u runs once around (2 pi r), v from pole to pole (pi r): their geometric mean.
+    si.uvPerMetre = scale / (float(std::numbers::pi) * std::sqrt(2.0f) * float(spheres<T>()[index].radius));
+  } else {
+    if (readsUv) {
       const PlaneUv& q = planeUvs_[index];
       const glm::dvec3 local = glm::dvec3(si.p) - q.point;
       si.uv = glm::vec2(glm::dvec2(glm::dot(local, q.axisU) + q.extent, glm::dot(local, q.axisV) + q.extent) *
-                        double(materials_[size_t(si.material)].textureScale));
+                        double(scale));
     }
-    si.uvPerMetre = materials_[size_t(si.material)].textureScale;
-    si.uv1 = si.uv;
+    si.uvPerMetre = scale;
+  }
+  si.uv1 = si.uv;
+}
+
+ENGINE_AVX2_BEGIN
+void RtScene::intersectEight(const Ray<float>* const* rays, int count,
+                             std::optional<SurfaceInteraction<float>>* out) const {
+  using namespace lanes8;
+  // Lanes past count repeat the first ray; their answers are dropped.
+  alignas(32) float in[7][kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    const Ray<float>& r = *rays[i < count ? i : 0];
+    in[0][i] = r.o.x, in[1][i] = r.o.y, in[2][i] = r.o.z, in[3][i] = r.d.x, in[4][i] = r.d.y, in[5][i] = r.d.z;
+    in[6][i] = r.tMax;
+  }
+  Rays r;
+  r.o = {_mm256_load_ps(in[0]), _mm256_load_ps(in[1]), _mm256_load_ps(in[2])};
+  r.d = {_mm256_load_ps(in[3]), _mm256_load_ps(in[4]), _mm256_load_ps(in[5])};
+  r.dd = dot(r.d, r.d);
+  r.tMax = _mm256_load_ps(in[6]);
+  const Shapes shapes{lanes_};
+  F t;
+  I shape;
+  shapes.nearest(r, t, shape);
+  const Hits h = shapes.record(r, t, shape);
+  alignas(32) float f[10][kLanes];
+  const F columns[10] = {t, h.p.x, h.p.y, h.p.z, h.pError.x, h.pError.y, h.pError.z, h.n.x, h.n.y, h.n.z};
+  for (int c = 0; c < 10; ++c) _mm256_store_ps(f[c], columns[c]);
+  alignas(32) int index[kLanes], material[kLanes];
+  _mm256_store_si256(reinterpret_cast<I*>(index), shape);
+  _mm256_store_si256(reinterpret_cast<I*>(material), h.material);
+  for (int i = 0; i < count; ++i) {
+    out[i].reset();
+    if (index[i] < 0) continue;
+    SurfaceInteraction<float>& si = out[i].emplace();
+    si.t = f[0][i];
+    si.p = {f[1][i], f[2][i], f[3][i]};
+    si.pError = {f[4][i], f[5][i], f[6][i]};
+    si.n = si.ns = {f[7][i], f[8][i], f[9][i]};
+    si.material = material[i];
+    const std::size_t s = std::size_t(index[i]);
+    if (s < lanes_.spheres) {
+      shapeUv(1, s, si);
+    } else {
+      shapeUv(2, s - lanes_.spheres, si);
+    }
   }
 }
+ENGINE_AVX2_END
 
 template <typename T>
 bool RtScene::intersectAny(const Ray<T>& ray) const {

@@ -28,6 +28,7 @@
 #include "raytrace/bvh.h"
 #include "raytrace/environment.h"
 #include "raytrace/ray.h"
+#include "raytrace/shape_lanes.h"
 #include "raytrace/shape_packs.h"
 #include "raytrace/shapes.h"
 #include "raytrace/terrain_material.h"
@@ -278,6 +279,8 @@ class RtScene {
   }
   std::uint32_t meshFirstTriangle(MeshId mesh) const { return meshFirstTriangle_[std::size_t(mesh)]; }
   std::size_t sphereCount() const { return spheresF_.size(); }
+  // The spheres and planes as the eight-lane kernels read them (shape_lanes.h).
+  const ShapeLanes& shapeLanes() const { return lanes_; }
   std::size_t planeCount() const { return planesF_.size(); }
 
   // What a material has beyond its MaterialDesc: textures (indices into textures_,
@@ -333,6 +336,13 @@ class RtScene {
   // written into `result` where it is kept (a record returned was copied).
   template <typename T>
   void pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result) const;
+  // The rest of a sphere's (kind 1) or plane's (2) hit record once fillInteraction has
+  // made it: texture coordinates where its material reads them, their scale per metre.
+  template <typename T>
+  void shapeUv(int kind, std::size_t index, SurfaceInteraction<T>& si) const;
+  // intersectMany of up to eight rays in a scene without triangles, in one AVX2 pass
+  // over the shapes (shape_lanes.h).
+  void intersectEight(const Ray<float>* const* rays, int count, std::optional<SurfaceInteraction<float>>* out) const;
   // onPlaneSquare as ShapePacks asks it.
   static bool onSquareOf(const void* scene, std::size_t plane, const Ray<float>& ray, float t);
   Status checkMaterial(int material) const;  // an error naming it when out of range
@@ -371,8 +381,10 @@ class RtScene {
   std::vector<Sphere<double>> spheresD_;
   std::vector<Plane<float>> planesF_;
   std::vector<Plane<double>> planesD_;
-  // The float shapes again, four to a pack, for float rays (shape_packs.h).
+  // The float shapes again, four to a pack, for float rays (shape_packs.h), and as
+  // one table for eight rays at once (shape_lanes.h).
   ShapePacks packs_;
+  ShapeLanes lanes_;
 
   struct Group {
     std::vector<std::uint32_t> meshes;

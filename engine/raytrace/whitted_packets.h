@@ -23,6 +23,7 @@
 namespace engine::rt {
 
 class RtScene;
+struct ShapeLanes;
 struct RenderSettings;
 
 class WhittedPackets {
@@ -53,21 +54,7 @@ class WhittedPackets {
   // rays traced to `shadowRays`.
   void trace(const double* px, const double* py, int count, Lanes& out, std::uint64_t& shadowRays) const;
 
-  // The shapes, one table for spheres and planes (spheres first), as floats per field
-  // so that a lane's shape is one gather; public for the kernel's helpers only.
-  struct ShapeTable {
-    std::vector<float> ax, ay, az, b;  // sphere: centre, radius; plane: normal, d
-    std::vector<int> material;
-    std::size_t spheres = 0, planes = 0;
-  };
-  struct Square {  // a bounded plane's square (RtScene::PlaneSquare), in double
-    glm::dvec3 point{0.0}, axisU{0.0}, axisV{0.0};
-    double extent = 0.0;  // 0: unbounded
-    // In float for the quick test that settles most hits (ShapePacks::clearlyOnSquare):
-    // the centre, its |x| + |y| + |z|, the half side.
-    glm::vec3 centre{0.0f};
-    float size = 0.0f, extentF = 0.0f;
-  };
+  // Public for the kernel's helpers only.
   struct MaterialTable {  // the classic model's weights, a field per vector
     std::vector<float> r, g, b, ambient, diffuse, specular, shininess, reflection, er, eg, eb;
   };
@@ -80,9 +67,7 @@ class WhittedPackets {
  private:
   WhittedPackets(const PinholeCamera& camera) : camera_(camera) {}
 
-  ShapeTable shapes_;
-  std::vector<Square> squares_;  // one per plane
-  bool boundedPlanes_ = false;
+  const ShapeLanes* shapes_ = nullptr;  // the scene's (RtScene::shapeLanes)
   MaterialTable materials_;
   bool highlights_ = false;  // whether any material has specular > 0
   std::vector<Light> lights_;
