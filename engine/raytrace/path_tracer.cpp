@@ -7,6 +7,7 @@
 
 #include "raytrace/bsdf.h"
 #include "raytrace/camera.h"
+#include "raytrace/camera_lanes.h"
 #include "raytrace/ray_cone.h"
 #include "raytrace/rng.h"
 #include "raytrace/tile_render.h"
@@ -89,6 +90,7 @@ class PathTracer {
     const int first = std::max(0, settings_.firstSample), spp = std::max(1, settings_.samplesPerPixel);
     std::vector<Path>& paths = batch_.paths;
     paths.clear();
+    batch_.px.clear(), batch_.py.clear();
     for (int x = x0; x < x1; ++x) {
       Pcg32 pixelRng = Pcg32::forPixel(settings_.seed, x, y);
       const double offsetX = double(pixelRng.uniform()), offsetY = double(pixelRng.uniform());
@@ -96,11 +98,12 @@ class PathTracer {
         constexpr double kR2x = 0.75487766624669276, kR2y = 0.56984029099805327;  // 1/g, 1/g^2, g^3 = g + 1
         const double jx = offsetX + kR2x * double(s), jy = offsetY + kR2y * double(s);
         ++counters.primary;
-        const Ray<T> ray =
-            camera_.clippedToFarPlane(camera_.generateRay<T>(x + (jx - std::floor(jx)), y + (jy - std::floor(jy))));
-        paths.push_back(Path(ray, Pcg32::forSample(settings_.seed, x, y, s), RayCone{0.0f, pixelSpread_}));
+        batch_.px.push_back(x + (jx - std::floor(jx)));
+        batch_.py.push_back(y + (jy - std::floor(jy)));
+        paths.push_back(Path(Ray<T>{}, Pcg32::forSample(settings_.seed, x, y, s), RayCone{0.0f, pixelSpread_}));
       }
     }
+    cameraRays(paths);
     // A few dozen paths at a time: enough for whole quads of rays, few enough that
     // their hits stay in the cache however many samples a pixel takes.
     constexpr std::size_t kBatch = 64;
@@ -143,10 +146,37 @@ class PathTracer {
   // allocates.
   struct Batch {
     std::vector<Path> paths;
+    std::vector<double> px, py;  // the paths' image points
+    std::vector<float> dx, dy, dz, tMax;  // their camera rays, eight at a time
     std::vector<std::size_t> live;
     std::vector<const Ray<T>*> rays;
     std::vector<std::optional<SurfaceInteraction<T>>> hits;
   };
+
+  // The camera's ray through each path's image point (batch_.px, py): eight at a
+  // time where the CPU has AVX2 (camera_lanes.h, the same rays bit for bit).
+  void cameraRays(std::vector<Path>& paths) const {
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (std::is_same_v<T, float> && avx2) {
+      const std::size_t n = paths.size();
+      batch_.dx.resize(n), batch_.dy.resize(n), batch_.dz.resize(n), batch_.tMax.resize(n);
+      lanes8::cameraRays(camera_, batch_.px.data(), batch_.py.data(), n, batch_.dx.data(), batch_.dy.data(),
+                         batch_.dz.data(), batch_.tMax.data());
+      const Vec3<T> origin(camera_.position());
+      for (std::size_t i = 0; i < n; ++i) {
+        paths[i].ray.o = origin;
+        paths[i].ray.d = Vec3<T>(batch_.dx[i], batch_.dy[i], batch_.dz[i]);
+        paths[i].ray.tMax = T(batch_.tMax[i]);
+      }
+      return;
+    }
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      const Ray<T> ray = camera_.clippedToFarPlane(camera_.generateRay<T>(batch_.px[i], batch_.py[i]));
+      paths[i].ray.o = ray.o;
+      paths[i].ray.d = ray.d;
+      paths[i].ray.tMax = ray.tMax;
+    }
+  }
 
   // Every path to its end, all of them a bounce at a time: the nearest hits of all
   // the paths still going, then each one's bounce. (Their shadow rays are traced one

@@ -7,10 +7,12 @@
 // sample counts, on image sizes that leave packets and tiles partly filled.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstring>
 #include <random>
 
 #include "asset/scene_file.h"
+#include "raytrace/camera_lanes.h"
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
 #include "raytrace/scene_builder.h"
@@ -136,6 +138,40 @@ TEST(WhittedPackets, ManySamplesAPixelAreTheScalarTracer) {
     settings.samplesPerPixel = spp;
     expectPacketsAreTheScalarTracer(randomRoom(rng, glm::dvec3(0.0)), settings, std::to_string(spp) + " spp");
   }
+}
+
+// The camera's rays eight at a time (camera_lanes.h: the Whitted packets and the path
+// tracer's spans) against PinholeCamera's one at a time, bit for bit: a million image
+// points on random cameras, from 1 to 179 degrees, images of 1 to 8192 pixels a
+// side, points anywhere in the image and past its edges, cameras looking straight
+// up and down, near planes far away.
+TEST(CameraLanes, AreTheScalarCameraBitForBit) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "the lanes need AVX2";
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+  std::uint64_t clipped = 0;
+  for (int c = 0; c < 2000; ++c) {
+    engine::CameraDesc desc = lookAt(glm::dvec3(u(rng) - 0.5, u(rng), u(rng)) * std::pow(10.0, 5.0 * u(rng)),
+                                     glm::dvec3(u(rng), u(rng), u(rng)) * 10.0 - 5.0, 1.0 + 178.0 * u(rng));
+    if (c % 10 == 0) desc.forward = glm::dvec3(0, c % 20 == 0 ? 1 : -1, 0), desc.up = glm::dvec3(0, 0, 1);
+    desc.farPlane = std::pow(10.0, 4.0 * u(rng) - 1.0);
+    const int w = 1 + int(std::pow(8192.0, u(rng))), h = 1 + int(std::pow(8192.0, u(rng)));
+    const rt::PinholeCamera camera(desc, w, h);
+    double px[500], py[500];
+    for (int i = 0; i < 500; ++i) px[i] = (1.2 * u(rng) - 0.1) * w, py[i] = (1.2 * u(rng) - 0.1) * h;
+    float dx[500], dy[500], dz[500], tMax[500];
+    rt::lanes8::cameraRays(camera, px, py, 500, dx, dy, dz, tMax);
+    for (int i = 0; i < 500; ++i) {
+      const rt::Ray<float> ray = camera.clippedToFarPlane(camera.generateRay<float>(px[i], py[i]));
+      ASSERT_EQ(bits(dx[i]), bits(ray.d.x)) << "camera " << c << " point " << i;
+      ASSERT_EQ(bits(dy[i]), bits(ray.d.y)) << "camera " << c << " point " << i;
+      ASSERT_EQ(bits(dz[i]), bits(ray.d.z)) << "camera " << c << " point " << i;
+      ASSERT_EQ(bits(tMax[i]), bits(ray.tMax)) << "camera " << c << " point " << i;
+      clipped += std::isinf(ray.tMax) ? 0 : 1;
+    }
+  }
+  EXPECT_GT(clipped, 900000u);  // nearly every ray ends at the far plane
 }
 
 rt::RtScene sceneFile(const char* name) {
