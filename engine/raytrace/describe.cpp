@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "raytrace/whitted_packets.h"
+
 namespace engine::rt {
 namespace {
 
@@ -26,6 +28,19 @@ std::string environmentOf(const Environment& environment) {
   return environment.isConstant() ? "environment: background colour" : "environment: gradient sky";
 }
 
+// How many rays meet the spheres and planes at once: the Whitted tracer's packets
+// (whitted_packets.h) or its samples one at a time and why; the path tracer's bounces
+// eight or four to a pass (RtScene::intersectMany).
+std::string lanesOf(const RtScene& scene, const RenderSettings& s) {
+  const bool avx2 = __builtin_cpu_supports("avx2");
+  if (s.method == Method::Path) {
+    if (s.precision == Precision::Double) return "shapes: one ray at a time (double precision)";
+    return scene.triangleCount() == 0 && avx2 ? "shapes: eight rays at a time (AVX2)" : "shapes: four rays at a time (SSE)";
+  }
+  if (const char* why = WhittedPackets::unsupported(scene, s)) return std::string("packets: none, one sample at a time (") + why + ")";
+  return "packets: eight camera samples at a time, shadow rays too (AVX2)";
+}
+
 }  // namespace
 
 std::string describe(const RtScene& scene, const RenderSettings& s) {
@@ -37,6 +52,7 @@ std::string describe(const RtScene& scene, const RenderSettings& s) {
   out += line;
   out += path ? ", roulette from depth " + std::to_string(s.rouletteDepth) + "\n"
               : ", " + std::to_string(s.shadowSamples) + "x" + std::to_string(s.shadowSamples) + " area shadow rays\n";
+  out += lanesOf(scene, s) + "\n";
   std::size_t meshTriangles = 0, textured = 0, layered = 0;
   for (const RtMesh& m : scene.meshes()) meshTriangles += m.indices.size() / 3;
   for (int m = 0; m < int(scene.materials().size()); ++m) {

@@ -251,39 +251,42 @@ class PacketTracer {
         strata_(strataFor(std::max(1, settings.samplesPerPixel))),
         pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
 
+  // Eight pixels at a time, a lane each, their samples in step: each lane's positions
+  // and area-light points drawn from its pixel's stream in renderPixel's order, the
+  // samples summed in their order and averaged.
   void renderSpan(int x0, int x1, int y, glm::vec3* out, RayCounters& counters) const {
-    const int spp = std::max(1, settings_.samplesPerPixel);
-    if (spp > kSamples) {  // more samples than a block holds: the scalar tracer
-      for (int x = x0; x < x1; ++x) out[x - x0] = scalar_.renderPixel(x, y, counters);
-      return;
-    }
-    const int pixelsPerBlock = std::min(kPixels, kSamples / spp);
-    for (int x = x0; x < x1; x += pixelsPerBlock) {
-      const int pixels = std::min(pixelsPerBlock, x1 - x);
-      renderBlock(x, pixels, y, spp, out + (x - x0), counters);
-    }
+    for (int x = x0; x < x1; x += kLanes) renderLanes(x, std::min(kLanes, x1 - x), y, out + (x - x0), counters);
   }
 
  private:
-  static constexpr int kLanes = WhittedPackets::kLanes, kPixels = 16, kSamples = 256;
+  static constexpr int kLanes = WhittedPackets::kLanes;
 
-  // Pixels x .. x + pixels - 1 of row y: their sample positions first, then the
-  // samples eight at a time, each pixel's summed in its order and averaged.
-  void renderBlock(int x, int pixels, int y, int spp, glm::vec3* out, RayCounters& counters) const {
-    alignas(32) double px[kSamples + kLanes], py[kSamples + kLanes];
-    samplePositions(x, pixels, y, spp, px, py);
-    const int count = pixels * spp;
-    counters.primary += std::uint64_t(count);
-    for (int p = 0; p < pixels; ++p) out[p] = glm::vec3(0.0f);
+  void renderLanes(int x, int pixels, int y, glm::vec3* out, RayCounters& counters) const {
+    const int spp = std::max(1, settings_.samplesPerPixel);
+    Pcg32 rngs[kLanes];
+    for (int p = 0; p < pixels; ++p) rngs[p] = Pcg32::forPixel(settings_.seed, x + p, y);
+    double px[kLanes], py[kLanes];
     WhittedPackets::Lanes lanes;
-    for (int first = 0; first < count; first += kLanes) {
-      const int n = std::min(kLanes, count - first);
-      packets_.trace(px + first, py + first, n, lanes, counters.shadow);
-      for (int i = 0; i < n; ++i) {
-        const glm::vec3 c = finish(lanes, i, counters);
-        glm::vec3& pixel = out[(first + i) / spp];
-        // One sample is the pixel's colour as it is; more are summed from zero.
-        pixel = spp == 1 ? c : pixel + c;
+    for (int p = 0; p < pixels; ++p) out[p] = glm::vec3(0.0f);
+    for (int j = 0; j < strata_.y; ++j) {
+      for (int i = 0; i < strata_.x; ++i) {
+        for (int p = 0; p < pixels; ++p) {
+          if (spp == 1) {
+            px[p] = x + p + 0.5, py[p] = y + 0.5;
+            continue;
+          }
+          const double u = i + double(rngs[p].uniform());
+          const double v = j + double(rngs[p].uniform());
+          px[p] = x + p + (stratumX_ > 0.0 ? u * stratumX_ : u / strata_.x);
+          py[p] = y + (stratumY_ > 0.0 ? v * stratumY_ : v / strata_.y);
+        }
+        counters.primary += std::uint64_t(pixels);
+        packets_.trace(px, py, pixels, rngs, lanes, counters.shadow);
+        for (int p = 0; p < pixels; ++p) {
+          const glm::vec3 c = finish(lanes, p, rngs[p], counters);
+          // One sample is the pixel's colour as it is; more are summed from zero.
+          out[p] = spp == 1 ? c : out[p] + c;
+        }
       }
     }
     if (spp > 1) {
@@ -291,53 +294,31 @@ class PacketTracer {
     }
   }
 
-  // renderPixel's sample positions for each pixel, in its order, pixel after pixel:
-  // the stratum plus a draw from the pixel's stream, x's draw before y's. The
-  // pixels' streams are drawn side by side, so that their chains of multiplies
-  // overlap, and a power-of-two count of strata divides by multiplying (exact).
-  void samplePositions(int x, int pixels, int y, int spp, double* px, double* py) const {
-    if (spp == 1) {
-      for (int p = 0; p < pixels; ++p) px[p] = x + p + 0.5, py[p] = y + 0.5;
-      return;
-    }
-    Pcg32 rngs[kPixels];
-    for (int p = 0; p < pixels; ++p) rngs[p] = Pcg32::forPixel(settings_.seed, x + p, y);
-    const auto stratum = [](int n) { return (n & (n - 1)) == 0 ? 1.0 / n : 0.0; };
-    const double scaleX = stratum(strata_.x), scaleY = stratum(strata_.y);
-    int s = 0;
-    for (int j = 0; j < strata_.y; ++j) {
-      for (int i = 0; i < strata_.x; ++i, ++s) {
-        for (int p = 0; p < pixels; ++p) {
-          const double u = i + double(rngs[p].uniform());
-          const double v = j + double(rngs[p].uniform());
-          px[p * spp + s] = x + p + (scaleX > 0.0 ? u * scaleX : u / strata_.x);
-          py[p * spp + s] = y + (scaleY > 0.0 ? v * scaleY : v / strata_.y);
-        }
-      }
-    }
-  }
-
   // Tracer::Li past the first hit: the environment where the sample escaped, else the
   // mirror's ray traced on (its cone widened to the hit, as footprintAt leaves it) and
   // the fog.
-  glm::vec3 finish(const WhittedPackets::Lanes& lanes, int i, RayCounters& counters) const {
+  glm::vec3 finish(const WhittedPackets::Lanes& lanes, int i, Pcg32& rng, RayCounters& counters) const {
     if ((lanes.hits >> i & 1) == 0) return scene_.environment().radiance(lanes.direction(i));
     glm::vec3 color = lanes.color(i);
     if (lanes.reflection[i] > 0.0f) {
       RayCone cone{0.0f, pixelSpread_};
       cone.width += cone.spread * lanes.distance[i];
       ++counters.reflection;
-      Pcg32 unused(0, 0);  // point and sun lights draw no random numbers
-      color += lanes.reflection[i] * scalar_.Li(lanes.reflected(i), 1, unused, counters, cone);
+      color += lanes.reflection[i] * scalar_.Li(lanes.reflected(i), 1, rng, counters, cone);
     }
     return scene_.fogged(color, lanes.distance[i]);
   }
+
+  // 1 / n for a power-of-two count of strata n, where dividing by n is multiplying by
+  // it exactly (the division's latency off the streams' chains); 0 otherwise.
+  static double exactInverse(int n) { return (n & (n - 1)) == 0 ? 1.0 / n : 0.0; }
 
   const Tracer<float>& scalar_;
   const WhittedPackets& packets_;
   const RtScene& scene_;
   const RenderSettings& settings_;
   glm::ivec2 strata_;
+  double stratumX_ = exactInverse(strata_.x), stratumY_ = exactInverse(strata_.y);
   float pixelSpread_ = 0.0f;
 };
 

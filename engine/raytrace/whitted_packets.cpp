@@ -15,18 +15,25 @@
 
 namespace engine::rt {
 
-std::optional<WhittedPackets> WhittedPackets::create(const RtScene& scene, const RenderSettings& settings) {
-  if (!__builtin_cpu_supports("avx2") || settings.precision != Precision::Float) return std::nullopt;
-  if (scene.triangleCount() != 0 || scene.render().shading != Shading::Classic) return std::nullopt;
-  if (scene.sphereCount() + scene.planeCount() == 0) return std::nullopt;
-  if (scene.hasTransparency() || scene.hasSingleSided() || scene.hasTextures()) return std::nullopt;
-  for (const LightDesc& light : scene.lights()) {
-    if (light.type != LightType::Point && light.type != LightType::Sun) return std::nullopt;
+const char* WhittedPackets::unsupported(const RtScene& scene, const RenderSettings& settings) {
+  if (!__builtin_cpu_supports("avx2")) return "the CPU has no AVX2";
+  if (settings.precision != Precision::Float) return "double precision";
+  if (scene.triangleCount() != 0) return "triangles";
+  if (scene.sphereCount() + scene.planeCount() == 0) return "no spheres or planes";
+  if (scene.render().shading != Shading::Classic) return "PBR shading";
+  if (scene.hasTransparency() || scene.hasSingleSided()) return "transparent or single-sided materials";
+  if (scene.hasTextures()) return "textures";
+  for (int m = 0; m < int(scene.materials().size()); ++m) {
+    if (scene.extras(m).unlit) return "an unlit material";
   }
+  return nullptr;
+}
+
+std::optional<WhittedPackets> WhittedPackets::create(const RtScene& scene, const RenderSettings& settings) {
+  if (unsupported(scene, settings)) return std::nullopt;
   WhittedPackets p(PinholeCamera(scene.camera(), settings.width, settings.height));
   p.shapes_ = &scene.shapeLanes();
   for (int m = 0; m < int(scene.materials().size()); ++m) {
-    if (scene.extras(m).unlit) return std::nullopt;
     // Without textures or terrain layers a material is the same at every hit.
     const HitMaterial h = scene.materialAt(m, HitUv(), 0.0f, 0.0, glm::vec3(0.0f, 1.0f, 0.0f));
     MaterialTable& t = p.materials_;
@@ -34,25 +41,26 @@ std::optional<WhittedPackets> WhittedPackets::create(const RtScene& scene, const
     t.ambient.push_back(h.ambient), t.diffuse.push_back(h.diffuse), t.specular.push_back(h.specular);
     t.shininess.push_back(h.shininess), t.reflection.push_back(h.reflection);
     t.er.push_back(h.emission.r), t.eg.push_back(h.emission.g), t.eb.push_back(h.emission.b);
-    p.highlights_ = p.highlights_ || h.specular > 0.0f;
   }
   for (const LightDesc& light : scene.lights()) {
     Light l;
-    l.sun = light.type == LightType::Sun;
+    l.type = light.type;
     l.falloff = light.falloff;
     l.shadows = light.shadows;
     // As Tracer::sampleLight forms them.
-    l.position = l.sun ? glm::normalize(Vec3<float>(light.direction)) : Vec3<float>(light.position);
+    l.position = l.type == LightType::Sun ? glm::normalize(Vec3<float>(light.direction)) : Vec3<float>(light.position);
     l.radiance = light.color * light.intensity;
+    l.edgeU = Vec3<float>(light.edgeU), l.edgeV = Vec3<float>(light.edgeV);
     p.lights_.push_back(l);
   }
   p.mirrors_ = settings.maxDepth > 0;
+  p.shadowSamples_ = std::max(1, settings.shadowSamples);
   return p;
 }
 
 ENGINE_AVX2_BEGIN
 namespace {
-namespace camera8 {
+namespace whitted8 {
 using namespace lanes8;
 
 Rays primaryRays(const PinholeCamera& camera, const double* px, const double* py) {
@@ -68,96 +76,158 @@ Rays primaryRays(const PinholeCamera& camera, const double* px, const double* py
 
 F gather(const std::vector<float>& table, I index) { return _mm256_i32gather_ps(table.data(), index, 4); }
 
-}  // namespace camera8
+// What Tracer::Li knows of a hit before its lights, lane by lane.
+struct Surface {
+  const Hits& hit;
+  F live;      // the lanes with a hit, of the samples asked for
+  V3 n;        // the shading normal, turned to the viewer
+  V3 toEye;
+  I material;
+  V3 albedo;
+  F diffuse;
+};
+
+// classicReflected where the light is seen (`lit`): albedo * diffuse * N.L in the
+// lanes, plus the highlight where a lane's material has one (the scalar function, for
+// its pow).
+V3 reflectedLanes(const WhittedPackets::MaterialTable& materials, const Surface& s, const V3& wi, F lit) {
+  const F zero = _mm256_setzero_ps();
+  const F nDotL = glmMax(dot(s.n, wi), zero);
+  const V3 f = add(mul(s.albedo, mul(s.diffuse, nDotL)), V3{zero, zero, zero});
+  alignas(32) float spec[kLanes];
+  _mm256_store_ps(spec, gather(materials.specular, s.material));
+  int highlighted = 0;
+  for (int i = 0; i < kLanes; ++i) highlighted |= spec[i] > 0.0f ? 1 << i : 0;
+  if ((highlighted &= bits(lit)) == 0) return f;
+  alignas(32) float lanes[15][kLanes];
+  const F columns[15] = {s.n.x,  s.n.y,  s.n.z,      s.toEye.x,  s.toEye.y,  s.toEye.z, wi.x, wi.y,
+                         wi.z,   s.albedo.x, s.albedo.y, s.albedo.z, f.x,        f.y,       f.z};
+  for (int c = 0; c < 15; ++c) _mm256_store_ps(lanes[c], columns[c]);
+  alignas(32) int material[kLanes];
+  _mm256_store_si256(reinterpret_cast<I*>(material), s.material);
+  for (int m = highlighted; m != 0; m &= m - 1) {
+    const int i = __builtin_ctz(unsigned(m));
+    const auto k = std::size_t(material[i]);
+    const glm::vec3 g = brdf::classicReflected({lanes[0][i], lanes[1][i], lanes[2][i]}, {lanes[3][i], lanes[4][i], lanes[5][i]},
+                                               {lanes[6][i], lanes[7][i], lanes[8][i]}, {lanes[9][i], lanes[10][i], lanes[11][i]},
+                                               materials.diffuse[k], spec[i], materials.shininess[k]);
+    lanes[12][i] = g.x, lanes[13][i] = g.y, lanes[14][i] = g.z;
+  }
+  return {_mm256_load_ps(lanes[12]), _mm256_load_ps(lanes[13]), _mm256_load_ps(lanes[14])};
+}
+
+// The share of an area light's N x N stratified, jittered points each lane sees
+// (Tracer::areaVisibility): each live lane draws its points from its own stream.
+F areaVisibility(const WhittedPackets::Light& light, int n, const Shapes& shapes, const Surface& s, Pcg32* rngs,
+                 std::uint64_t& shadowRays) {
+  const Hits& h = s.hit;
+  const F one = set1(1.0f);
+  F visible = _mm256_setzero_ps();
+  const int live = bits(s.live);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      alignas(32) float u[kLanes] = {}, w[kLanes] = {};
+      for (int m = live; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(unsigned(m));
+        u[k] = (float(i) + rngs[k].uniform()) / float(n) - 0.5f;
+        w[k] = (float(j) + rngs[k].uniform()) / float(n) - 0.5f;
+      }
+      const V3 target = add(add(broadcast(light.position), mul(broadcast(light.edgeU), _mm256_load_ps(u))),
+                            mul(broadcast(light.edgeV), _mm256_load_ps(w)));
+      Rays shadow;
+      shadow.o = offsetOrigin(h.p, h.pError, h.n, sub(target, h.p));
+      shadow.d = sub(target, shadow.o);
+      shadow.dd = dot(shadow.d, shadow.d);
+      shadow.tMax = one;
+      visible = add(visible, andNot(shapes.blocked(shadow, s.live), one));
+      shadowRays += std::uint64_t(__builtin_popcount(unsigned(live)));
+    }
+  }
+  return div(visible, set1(float(n * n)));
+}
+
+// Tracer::sampleLight and shadeClassic's term for one light: its direction and
+// radiance at the hit, the shadow rays' verdict, and colour + radiance * visibility *
+// f where the light is seen.
+V3 addLight(const WhittedPackets::MaterialTable& materials, const WhittedPackets::Light& light, int areaSamples,
+            const Shapes& shapes, const Surface& s, Pcg32* rngs, V3 color, std::uint64_t& shadowRays) {
+  const Hits& h = s.hit;
+  V3 wi, radiance = broadcast(light.radiance);
+  Rays shadow{};  // a point or a sun light's one shadow ray
+  F visibility = set1(1.0f);
+  if (light.type == LightType::Sun) {
+    wi = broadcast(light.position);
+    shadow.o = offsetOrigin(h.p, h.pError, h.n, wi);
+    shadow.d = wi;
+    shadow.tMax = set1(kInf);
+  } else if (light.type == LightType::Point) {
+    const V3 target = broadcast(light.position);
+    const V3 toLight = sub(target, h.p);
+    const F dist2 = dot(toLight, toLight);
+    wi = div(toLight, _mm256_sqrt_ps(dist2));
+    if (light.falloff) radiance = div(radiance, dist2);
+    shadow.o = offsetOrigin(h.p, h.pError, h.n, toLight);
+    shadow.d = sub(target, shadow.o);
+    shadow.tMax = set1(1.0f);
+  } else {  // area: toward its centre, glm::normalize's v * (1 / |v|)
+    const V3 toCentre = sub(broadcast(light.position), h.p);
+    wi = mul(toCentre, div(set1(1.0f), _mm256_sqrt_ps(dot(toCentre, toCentre))));
+  }
+  F lit = s.live;
+  if (light.shadows && light.type == LightType::Area) {
+    visibility = areaVisibility(light, areaSamples, shapes, s, rngs, shadowRays);
+    lit = bitAnd(s.live, greater(visibility, _mm256_setzero_ps()));
+  } else if (light.shadows) {
+    shadow.dd = dot(shadow.d, shadow.d);
+    lit = andNot(shapes.blocked(shadow, s.live), s.live);
+    shadowRays += std::uint64_t(__builtin_popcount(unsigned(bits(s.live))));
+  }
+  if (bits(lit) == 0) return color;
+  return select(lit, add(color, mul(mul(radiance, visibility), reflectedLanes(materials, s, wi, lit))), color);
+}
+
+}  // namespace whitted8
 }  // namespace
 
-void WhittedPackets::trace(const double* px, const double* py, int count, Lanes& out, std::uint64_t& shadowRays) const {
-  using namespace lanes8;
-  using namespace camera8;
+void WhittedPackets::trace(const double* px, const double* py, int count, Pcg32* rngs, Lanes& out,
+                           std::uint64_t& shadowRays) const {
+  using namespace whitted8;
   // Lanes past count repeat the first sample; their answers are dropped.
   alignas(32) double xs[kLanes], ys[kLanes];
   for (int i = 0; i < kLanes; ++i) xs[i] = px[i < count ? i : 0], ys[i] = py[i < count ? i : 0];
   Rays ray = primaryRays(camera_, xs, ys);
-  const Shapes scene{*shapes_};
+  const Shapes shapes{*shapes_};
   F t;
   I shape;
-  scene.nearest(ray, t, shape);
-  const Hits h = scene.record(ray, t, shape);
+  shapes.nearest(ray, t, shape);
+  const Hits h = shapes.record(ray, t, shape);
   const F zero = _mm256_setzero_ps();
-  const F live = bitAnd(h.hit, laneMask((1 << count) - 1));
 
-  // Tracer::Li: v, the distance, the normal that faces the viewer.
-  const F invLength = div(set1(1.0f), _mm256_sqrt_ps(ray.dd));
-  const V3 v = mul(ray.d, invLength);
+  // Tracer::Li: v, the distance, the normal that faces the viewer, the material.
+  const V3 v = mul(ray.d, div(set1(1.0f), _mm256_sqrt_ps(ray.dd)));
   const F distance = mul(t, _mm256_sqrt_ps(ray.dd));
-  const V3 n = select(greater(dot(h.n, v), zero), V3{negate(h.n.x), negate(h.n.y), negate(h.n.z)}, h.n);
   const I material = _mm256_and_si256(h.material, _mm256_castps_si256(h.hit));
-  const V3 albedo = {gather(materials_.r, material), gather(materials_.g, material), gather(materials_.b, material)};
-  const F diffuse = gather(materials_.diffuse, material);
+  const Surface s{h,
+                  bitAnd(h.hit, laneMask((1 << count) - 1)),
+                  select(greater(dot(h.n, v), zero), V3{negate(h.n.x), negate(h.n.y), negate(h.n.z)}, h.n),
+                  {negate(v.x), negate(v.y), negate(v.z)},
+                  material,
+                  {gather(materials_.r, material), gather(materials_.g, material), gather(materials_.b, material)},
+                  gather(materials_.diffuse, material)};
 
-  // shadeClassic.
-  V3 color = mul(albedo, gather(materials_.ambient, material));
-  const V3 toEye = {negate(v.x), negate(v.y), negate(v.z)};
+  // shadeClassic: ambient, each light, then the emission.
+  V3 color = mul(s.albedo, gather(materials_.ambient, material));
   for (const Light& light : lights_) {
-    V3 wi, radiance = broadcast(light.radiance);
-    Rays shadow;
-    if (light.sun) {
-      wi = broadcast(light.position);
-      shadow.o = offsetOrigin(h.p, h.pError, h.n, wi);
-      shadow.d = wi;
-      shadow.tMax = set1(kInf);
-    } else {
-      const V3 target = broadcast(light.position);
-      const V3 toLight = sub(target, h.p);
-      const F dist2 = dot(toLight, toLight);
-      wi = div(toLight, _mm256_sqrt_ps(dist2));
-      if (light.falloff) radiance = div(radiance, dist2);
-      shadow.o = offsetOrigin(h.p, h.pError, h.n, toLight);
-      shadow.d = sub(target, shadow.o);
-      shadow.tMax = set1(1.0f);
-    }
-    F lit = live;
-    if (light.shadows) {
-      shadow.dd = dot(shadow.d, shadow.d);
-      lit = andNot(scene.blocked(shadow, live), live);
-      shadowRays += std::uint64_t(__builtin_popcount(unsigned(bits(live))));
-    }
-    if (bits(lit) == 0) continue;
-    // classicReflected without the highlight; lanes with one take the scalar function.
-    const F nDotL = glmMax(dot(n, wi), zero);
-    V3 reflected = add(mul(albedo, mul(diffuse, nDotL)), V3{zero, zero, zero});
-    if (highlights_) {
-      alignas(32) float f[3][kLanes], spec[kLanes];
-      _mm256_store_ps(spec, gather(materials_.specular, material));
-      _mm256_store_ps(f[0], reflected.x), _mm256_store_ps(f[1], reflected.y), _mm256_store_ps(f[2], reflected.z);
-      alignas(32) float lanes[12][kLanes];
-      const F columns[12] = {n.x, n.y, n.z, toEye.x, toEye.y, toEye.z, wi.x, wi.y, wi.z, albedo.x, albedo.y, albedo.z};
-      for (int c = 0; c < 12; ++c) _mm256_store_ps(lanes[c], columns[c]);
-      alignas(32) int materials[kLanes];
-      _mm256_store_si256(reinterpret_cast<I*>(materials), material);
-      for (int m = bits(lit); m != 0; m &= m - 1) {
-        const int i = __builtin_ctz(unsigned(m));
-        if (spec[i] <= 0.0f) continue;
-        const glm::vec3 g = brdf::classicReflected(
-            {lanes[0][i], lanes[1][i], lanes[2][i]}, {lanes[3][i], lanes[4][i], lanes[5][i]},
-            {lanes[6][i], lanes[7][i], lanes[8][i]}, {lanes[9][i], lanes[10][i], lanes[11][i]},
-            materials_.diffuse[std::size_t(materials[i])], spec[i], materials_.shininess[std::size_t(materials[i])]);
-        f[0][i] = g.x, f[1][i] = g.y, f[2][i] = g.z;
-      }
-      reflected = {_mm256_load_ps(f[0]), _mm256_load_ps(f[1]), _mm256_load_ps(f[2])};
-    }
-    // radiance * visibility (1) * f, where the light is seen.
-    color = select(lit, add(color, mul(mul(radiance, set1(1.0f)), reflected)), color);
+    color = addLight(materials_, light, shadowSamples_, shapes, s, rngs, color, shadowRays);
   }
   color = add(color, V3{gather(materials_.er, material), gather(materials_.eg, material), gather(materials_.eb, material)});
 
   // The mirror: R = V + 2 N c1 with c1 = -N.V, leaving from the offset point.
   const F share = mirrors_ ? gather(materials_.reflection, material) : zero;
-  const F mirrored = bitAnd(live, greater(share, zero));
+  const F mirrored = bitAnd(s.live, greater(share, zero));
   V3 r{zero, zero, zero}, ro{zero, zero, zero};
   if (bits(mirrored) != 0) {
-    const F c1 = negate(dot(n, v));
-    r = add(v, mul(n, mul(set1(2.0f), c1)));
+    r = add(v, mul(s.n, mul(set1(2.0f), negate(dot(s.n, v)))));
     ro = offsetOrigin(h.p, h.pError, h.n, r);
   }
 

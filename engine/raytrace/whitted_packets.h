@@ -8,9 +8,13 @@
 // at a few per cent of the samples. Rays in packets, the shapes tested against eight
 // rays at once, shading out of the intersection loop: issue 14's course room.
 //
+// The lanes are eight pixels side by side at the same sample, each with its own random
+// stream, so that an area light's shadow samples draw from each pixel's stream between
+// its samples as the scalar tracer draws them.
+//
 // Compiled for AVX2 and used only where the CPU has it; elsewhere, and for any scene
-// with something more (meshes, textures, area lights, which draw random numbers between
-// a pixel's samples, PBR shading, transparency), the scalar tracer renders.
+// with something more (meshes, textures, PBR shading, transparency), the scalar tracer
+// renders.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -19,6 +23,7 @@
 
 #include "raytrace/camera.h"
 #include "raytrace/ray.h"
+#include "raytrace/rng.h"
 
 namespace engine::rt {
 
@@ -33,6 +38,8 @@ class WhittedPackets {
   // The packets for `scene` rendered with `settings`, or nothing where they do not
   // apply (see above) and the scalar tracer must render.
   static std::optional<WhittedPackets> create(const RtScene& scene, const RenderSettings& settings);
+  // Why they do not apply (what --describe prints), or null where they do.
+  static const char* unsupported(const RtScene& scene, const RenderSettings& settings);
 
   // What eight camera samples' first hits give the scalar tracer to finish, a lane
   // per sample: on a hit (bit i of `hits`), ambient, direct light and emission, the
@@ -50,18 +57,21 @@ class WhittedPackets {
   };
 
   // The samples at image points (px[i], py[i]) in pixels, i < count <= kLanes, as
-  // PinholeCamera::generateRay and clippedToFarPlane make their rays. Adds the shadow
-  // rays traced to `shadowRays`.
-  void trace(const double* px, const double* py, int count, Lanes& out, std::uint64_t& shadowRays) const;
+  // PinholeCamera::generateRay and clippedToFarPlane make their rays. An area light's
+  // shadow rays draw from rngs[i], in the scalar tracer's order. Adds the shadow rays
+  // traced to `shadowRays`.
+  void trace(const double* px, const double* py, int count, Pcg32* rngs, Lanes& out, std::uint64_t& shadowRays) const;
 
   // Public for the kernel's helpers only.
   struct MaterialTable {  // the classic model's weights, a field per vector
     std::vector<float> r, g, b, ambient, diffuse, specular, shininess, reflection, er, eg, eb;
   };
   struct Light {
-    bool sun = false, falloff = false, shadows = true;
-    glm::vec3 position{0.0f};  // point: where it is; sun: its unit direction (toward the light)
+    LightType type = LightType::Point;
+    bool falloff = false, shadows = true;
+    glm::vec3 position{0.0f};  // point: where it is; sun: its unit direction (toward the light); area: its centre
     glm::vec3 radiance{0.0f};  // colour * intensity
+    glm::vec3 edgeU{0.0f}, edgeV{0.0f};  // area: the rectangle's edges
   };
 
  private:
@@ -69,10 +79,10 @@ class WhittedPackets {
 
   const ShapeLanes* shapes_ = nullptr;  // the scene's (RtScene::shapeLanes)
   MaterialTable materials_;
-  bool highlights_ = false;  // whether any material has specular > 0
   std::vector<Light> lights_;
   PinholeCamera camera_;
   bool mirrors_ = false;  // whether reflections go on (maxDepth > 0)
+  int shadowSamples_ = 1;  // an area light's N x N
 };
 
 }  // namespace engine::rt

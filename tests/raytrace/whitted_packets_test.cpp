@@ -3,8 +3,9 @@
 // and every pixel must be the same float bits, with the same ray counts. Random rooms
 // of spheres and planes (bounded and not, near and far from the origin, tiny and huge),
 // classic materials with highlights, mirrors and emission, point lights with and
-// without fall-off, suns, fog, a sky or a background, every mirror depth and several
-// sample counts, on image sizes that leave packets and tiles partly filled.
+// without fall-off, suns, area lights of 1 to 4 x 4 shadow rays, fog, a sky or a
+// background, every mirror depth and several sample counts, on image sizes that leave
+// packets and tiles partly filled.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -13,6 +14,7 @@
 
 #include "asset/scene_file.h"
 #include "raytrace/camera_lanes.h"
+#include "raytrace/describe.h"
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
 #include "raytrace/scene_builder.h"
@@ -92,9 +94,13 @@ rt::RtScene randomRoom(std::mt19937& rng, const glm::dvec3& origin) {
   const int lights = 1 + int(u(rng) * 3);
   for (int l = 0; l < lights; ++l) {
     LightDesc light = pointLight(origin + glm::dvec3(in(-2, 2), in(1, 3.4), in(0, 5)));
-    if (u(rng) < 0.3) {
+    if (const double kind = u(rng); kind < 0.25) {
       light.type = LightType::Sun;
       light.direction = randomUnit(rng);
+    } else if (kind < 0.5) {  // a rectangle: its shadow rays draw from the pixel's stream
+      light.type = LightType::Area;
+      light.edgeU = randomUnit(rng) * in(0.1, 2);
+      light.edgeV = glm::normalize(glm::cross(light.edgeU, randomUnit(rng))) * in(0.1, 2);
     }
     light.color = glm::vec3(float(in(0.3, 1)), float(in(0.3, 1)), float(in(0.3, 1)));
     light.intensity = float(in(0.5, 3));
@@ -121,13 +127,13 @@ TEST(WhittedPackets, RandomRoomsAreTheScalarTracerBitForBit) {
     settings.maxDepth = room % 7 == 0 ? 0 : 1 + room % 5;
     settings.seed = std::uint64_t(room) * 7919u + 1u;
     settings.tileSize = room % 2 == 0 ? 16 : 5;
+    settings.shadowSamples = 1 + room % 4;
     expectPacketsAreTheScalarTracer(scene, settings, "room " + std::to_string(room));
     if (HasFailure()) return;
   }
 }
 
-// More samples a pixel than a block of the packets holds (256): such spans go to the
-// scalar tracer whole.
+// Many samples a pixel: the lanes' streams stay in step however many there are.
 TEST(WhittedPackets, ManySamplesAPixelAreTheScalarTracer) {
   if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "the packets need AVX2";
   std::mt19937 rng(7);
@@ -182,22 +188,30 @@ rt::RtScene sceneFile(const char* name) {
   return std::move(*scene);
 }
 
-// The course room as the benchmark renders it (issue 14's goal 4), at a smaller size.
+// The course room as the benchmark renders it (issue 14's goal 4), at a smaller size,
+// with its point light and with its 1 x 1 area light (4 x 4 shadow rays a hit).
 TEST(WhittedPackets, TheCourseRoomIsTheScalarTracerBitForBit) {
   if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "the packets need AVX2";
   rt::RenderSettings settings;
   settings.width = 160;
   settings.height = 90;
   settings.samplesPerPixel = 4;
+  settings.shadowSamples = 4;
   expectPacketsAreTheScalarTracer(sceneFile("cornell.json"), settings, "cornell.json");
+  expectPacketsAreTheScalarTracer(sceneFile("cornell_soft.json"), settings, "cornell_soft.json");
 }
 
-// What the packets leave to the scalar tracer: an area light (its shadow samples draw
-// from the pixel's stream between its samples), meshes, PBR shading, double precision.
+// What the packets leave to the scalar tracer: meshes, PBR shading, double precision;
+// --describe says which path the tracer takes, and why.
 TEST(WhittedPackets, LeaveWhatTheyDoNotTraceToTheScalarTracer) {
   rt::RenderSettings settings;
-  EXPECT_FALSE(rt::WhittedPackets::create(sceneFile("cornell_soft.json"), settings));
-  EXPECT_FALSE(rt::WhittedPackets::create(sceneFile("materials.json"), settings));
+  const rt::RtScene materials = sceneFile("materials.json");
+  EXPECT_FALSE(rt::WhittedPackets::create(materials, settings));
+  EXPECT_NE(rt::describe(materials, settings).find("packets: none, one sample at a time ("), std::string::npos);
+  if (__builtin_cpu_supports("avx2")) {
+    EXPECT_EQ(rt::WhittedPackets::unsupported(sceneFile("cornell_soft.json"), settings), nullptr);
+    EXPECT_NE(rt::describe(sceneFile("cornell.json"), settings).find("packets: eight camera samples"), std::string::npos);
+  }
   rt::RenderSettings doubles;
   doubles.precision = rt::Precision::Double;
   EXPECT_FALSE(rt::WhittedPackets::create(sceneFile("cornell.json"), doubles));
