@@ -1,6 +1,7 @@
 #pragma once
 // The Whitted tracer's first hit eight camera samples at a time, for the course's
-// scenes: spheres and planes, classic materials without textures, point and sun lights.
+// scenes: spheres and planes, classic materials without textures, point, sun and area
+// lights.
 // Each lane runs the scalar tracer's operations in its order (the camera's double
 // arithmetic, Sphere and Plane::intersect, the hit record, offsetRayOrigin, shadow rays,
 // classicReflected), so every sample's colour is the scalar tracer's bit for bit;
@@ -21,6 +22,7 @@
 
 #include <glm/glm.hpp>
 
+#include "asset/scene_desc.h"
 #include "raytrace/camera.h"
 #include "raytrace/ray.h"
 #include "raytrace/rng.h"
