@@ -325,16 +325,18 @@ class PacketTracer {
 }  // namespace
 
 Integrator::Integrator(const RtScene& scene, RenderSettings settings) : scene_(&scene), settings_(std::move(settings)) {
-  if (settings_.method == Method::Path) pathLights_ = preparePathLights(scene);
+  if (settings_.method == Method::Path) {
+    pathLights_ = preparePathLights(scene);
+  } else if (std::optional<WhittedPackets> packets = WhittedPackets::create(scene, settings_)) {
+    packets_ = std::make_shared<const WhittedPackets>(std::move(*packets));
+  }
 }
 
 RenderResult Integrator::render() const {
   if (pathLights_) return renderPathTraced(*scene_, *pathLights_, settings_);
   if (settings_.precision == Precision::Double) return detail::renderTiles(Tracer<double>(*scene_, settings_), settings_);
   const Tracer<float> tracer(*scene_, settings_);
-  if (const std::optional<WhittedPackets> packets = WhittedPackets::create(*scene_, settings_)) {
-    return detail::renderTiles(PacketTracer(tracer, *packets, *scene_, settings_), settings_);
-  }
+  if (packets_) return detail::renderTiles(PacketTracer(tracer, *packets_, *scene_, settings_), settings_);
   return detail::renderTiles(tracer, settings_);
 }
 
@@ -352,16 +354,34 @@ glm::vec3 Integrator::renderPixel(int x, int y, RayCounters* counters) const {
   return c;
 }
 
-glm::vec3 Integrator::renderPixelSamples(int x, int y, int first, int count, RayCounters* counters) const {
-  if (!pathLights_) return renderPixel(x, y, counters);
+RenderSettings Integrator::passSettings(int first, int count) const {
   RenderSettings pass = settings_;
   pass.firstSample = first;
   pass.samplesPerPixel = count;
   pass.totalSamples = settings_.samplesPerPixel;
+  return pass;
+}
+
+glm::vec3 Integrator::renderPixelSamples(int x, int y, int first, int count, RayCounters* counters) const {
+  if (!pathLights_) return renderPixel(x, y, counters);
   RayCounters local;
-  const glm::vec3 c = pathTracePixel(*scene_, *pathLights_, pass, x, y, local);
+  const glm::vec3 c = pathTracePixel(*scene_, *pathLights_, passSettings(first, count), x, y, local);
   if (counters) *counters += local;
   return c;
+}
+
+void Integrator::renderSpanSamples(int x0, int x1, int y, int first, int count, glm::vec3* out,
+                                   RayCounters* counters) const {
+  RayCounters local;
+  if (pathLights_) {
+    pathTraceSpan(*scene_, *pathLights_, passSettings(first, count), x0, x1, y, out, local);
+  } else if (packets_) {
+    const Tracer<float> tracer(*scene_, settings_);
+    PacketTracer(tracer, *packets_, *scene_, settings_).renderSpan(x0, x1, y, out, local);
+  } else {
+    for (int x = x0; x < x1; ++x) out[x - x0] = renderPixel(x, y, &local);
+  }
+  if (counters) *counters += local;
 }
 
 glm::vec3 Integrator::traceRay(const Ray<double>& ray, std::uint64_t seed, RayCounters* counters) const {

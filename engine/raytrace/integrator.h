@@ -83,6 +83,7 @@ struct RenderResult {
 };
 
 struct PathLights;
+class WhittedPackets;
 
 class Integrator {
  public:
@@ -96,6 +97,12 @@ class Integrator {
   // The path tracer's mean of samples [first, first + count) of a pixel (a pass of a
   // progressive render); the Whitted tracer's renderPixel, whatever first and count.
   glm::vec3 renderPixelSamples(int x, int y, int first, int count, RayCounters* counters = nullptr) const;
+  // renderPixelSamples of pixels x0 .. x1 - 1 of row y into out[0 ..], traced as
+  // render() traces a tile's row (the Whitted tracer's packets, the path tracer's
+  // paths side by side): the same colours, faster than pixel by pixel. What the
+  // window's progressive trace calls.
+  void renderSpanSamples(int x0, int x1, int y, int first, int count, glm::vec3* out,
+                         RayCounters* counters = nullptr) const;
   // The radiance along one ray (as a reflected ray at depth 0 would see it), in the
   // chosen precision; the RNG for area-light samples is seeded from `seed`.
   glm::vec3 traceRay(const Ray<double>& ray, std::uint64_t seed = 0, RayCounters* counters = nullptr) const;
@@ -106,6 +113,10 @@ class Integrator {
   const RtScene* scene_;
   RenderSettings settings_;
   std::shared_ptr<const PathLights> pathLights_;  // Method::Path only
+  // The Whitted tracer's packets, where they apply (whitted_packets.h).
+  std::shared_ptr<const WhittedPackets> packets_;
+  // settings_ for samples [first, first + count) of the path tracer's pixels.
+  RenderSettings passSettings(int first, int count) const;
 };
 
 }  // namespace engine::rt

@@ -492,6 +492,15 @@ RenderResult renderPathTraced(const RtScene& scene, const PathLights& lights, co
   return detail::renderTiles(PathTracer<float>(scene, lights, settings), settings);
 }
 
+void pathTraceSpan(const RtScene& scene, const PathLights& lights, const RenderSettings& settings, int x0, int x1,
+                   int y, glm::vec3* out, RayCounters& counters) {
+  if (settings.precision == Precision::Double) {
+    PathTracer<double>(scene, lights, settings).renderSpan(x0, x1, y, out, counters);
+  } else {
+    PathTracer<float>(scene, lights, settings).renderSpan(x0, x1, y, out, counters);
+  }
+}
+
 glm::vec3 pathTracePixel(const RtScene& scene, const PathLights& lights, const RenderSettings& settings, int x, int y,
                          RayCounters& counters) {
   if (settings.precision == Precision::Double) return PathTracer<double>(scene, lights, settings).renderPixel(x, y, counters);

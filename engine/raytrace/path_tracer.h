@@ -82,6 +82,10 @@ struct PathLights {
 std::shared_ptr<const PathLights> preparePathLights(const RtScene& scene);
 
 RenderResult renderPathTraced(const RtScene& scene, const PathLights& lights, const RenderSettings& settings);
+// pathTracePixel of pixels x0 .. x1 - 1 of row y into out[0 ..], their paths traced
+// side by side as render() traces them (the same colours).
+void pathTraceSpan(const RtScene& scene, const PathLights& lights, const RenderSettings& settings, int x0, int x1,
+                   int y, glm::vec3* out, RayCounters& counters);
 glm::vec3 pathTracePixel(const RtScene& scene, const PathLights& lights, const RenderSettings& settings, int x, int y,
                          RayCounters& counters);
 // The radiance arriving along `ray` (as seen by a camera ray: emitters count whole).

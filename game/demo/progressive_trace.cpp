@@ -84,9 +84,7 @@ void ProgressiveTrace::tracePass(int pass, Progress& state) {
     const int x1 = std::min(x0 + kTile, settings_.width), y1 = std::min(y0 + kTile, settings_.height);
     glm::vec3 samples[kTile * kTile];
     for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
-        samples[(y - y0) * kTile + (x - x0)] = integrator_->renderPixelSamples(x, y, pass, perPass, &counters);
-      }
+      integrator_->renderSpanSamples(x0, x1, y, pass, perPass, &samples[(y - y0) * kTile], &counters);
     }
     // The sums and the bytes change together, under the tile's lock: the noise
     // estimate reads both halves of a pixel at one pass count.

@@ -4,7 +4,8 @@
 // finished since the last. The path tracer goes over the image once per sample, up
 // to the settings' spp, so the image is the mean of the samples so far: noisy at
 // once, clearing as it converges, and in the end exactly the offscreen image
-// (renderPixelSamples gives each pixel the same RNG streams as render()). Used by
+// (renderSpanSamples gives each pixel the same RNG streams as render(), and traces a
+// tile's rows as render() does: the Whitted packets, the path tracer's batches). Used by
 // demo --mode raytrace|pathtrace in a window and by the trade panel's reference.
 #include <atomic>
 #include <memory>

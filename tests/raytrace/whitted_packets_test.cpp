@@ -225,4 +225,35 @@ TEST(WhittedPackets, LeaveWhatTheyDoNotTraceToTheScalarTracer) {
   EXPECT_FALSE(rt::WhittedPackets::create(mesh, settings));
 }
 
+// The window's progressive trace takes rows of tiles (Integrator::renderSpanSamples):
+// each pixel must be renderPixelSamples' colour, bit for bit, for both tracers, with
+// and without the packets, over spans of every length and passes of samples.
+TEST(SpanSamples, AreTheirPixelsBitForBit) {
+  std::mt19937 rng(5);
+  for (const char* name : {"cornell.json", "cornell_soft.json", "materials.json"}) {
+    const rt::RtScene scene = sceneFile(name);
+    for (const rt::Method method : {rt::Method::Whitted, rt::Method::Path}) {
+      rt::RenderSettings settings;
+      settings.method = method;
+      settings.width = 64;
+      settings.height = 36;
+      settings.samplesPerPixel = 4;
+      const rt::Integrator integrator(scene, settings);
+      for (int span = 0; span < 12; ++span) {
+        const int x0 = int(rng() % 60), x1 = x0 + 1 + int(rng() % std::uint32_t(64 - x0)), y = int(rng() % 36);
+        const int first = method == rt::Method::Path ? int(rng() % 4) : 0, count = 1 + int(rng() % 3);
+        std::vector<glm::vec3> row(std::size_t(x1 - x0));
+        rt::RayCounters spanRays, pixelRays;
+        integrator.renderSpanSamples(x0, x1, y, first, count, row.data(), &spanRays);
+        for (int x = x0; x < x1; ++x) {
+          const glm::vec3 expected = integrator.renderPixelSamples(x, y, first, count, &pixelRays);
+          ASSERT_TRUE(sameBits(row[std::size_t(x - x0)], expected))
+              << name << (method == rt::Method::Path ? " path" : " Whitted") << " pixel " << x << "," << y;
+        }
+        EXPECT_EQ(spanRays.total(), pixelRays.total()) << name;
+      }
+    }
+  }
+}
+
 }  // namespace
