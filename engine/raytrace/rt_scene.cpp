@@ -356,8 +356,7 @@ void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int ma
   std::vector<ShapePacks::Square> squares;
   for (const PlaneUv& q : planeUvs_) squares.push_back({q.point, q.extent});
   packs_.setPlanes(planesF_, squares);
-  const PlaneUv& q = planeUvs_.back();
-  lanes_.addPlane(planesF_.back(), q.point, q.axisU, q.axisV, q.extent);
+  lanes_.addPlane(planesF_.back(), planeUvs_.back());
 }
 
 int RtScene::addGroup() {
@@ -494,8 +493,7 @@ bool RtScene::onPlaneSquare(std::size_t plane, const Ray<T>& ray, T t) const {
   if constexpr (std::is_same_v<T, float>) {
     if (packs_.clearlyOnSquare(plane, ray, t)) return true;
   }
-  const glm::dvec3 local = glm::dvec3(ray(t)) - q.point;
-  return std::abs(glm::dot(local, q.axisU)) <= q.extent && std::abs(glm::dot(local, q.axisV)) <= q.extent;
+  return q.holds(glm::dvec3(ray(t)));
 }
 
 template <typename T>

@@ -269,10 +269,7 @@ class RtScene {
   // (the BVH's triangle index is its place in its group, meshes in group order).
   const std::vector<Sphere<float>>& floatSpheres() const { return spheresF_; }
   const std::vector<Plane<float>>& floatPlanes() const { return planesF_; }
-  struct PlaneSquare {
-    glm::dvec3 point{0.0}, axisU{1, 0, 0}, axisV{0, 0, 1};
-    double extent = 0.0;  // 0: unbounded
-  };
+  using PlaneSquare = rt::PlaneSquare;
   const PlaneSquare& planeSquare(std::size_t plane) const { return planeUvs_[plane]; }
   const std::vector<std::uint32_t>& groupTriangleMeshes(int group) const {
     return groups_[std::size_t(group)].triangleMesh;

@@ -17,6 +17,7 @@
 
 #include "raytrace/avx2_region.h"
 #include "raytrace/ray.h"
+#include "raytrace/shape_packs.h"
 #include "raytrace/shapes.h"
 
 namespace engine::rt {
@@ -27,13 +28,9 @@ struct ShapeLanes {
   std::vector<float> ax, ay, az, b;  // sphere: centre, radius; plane: normal, d
   std::vector<int> material;
   std::size_t spheres = 0, planes = 0;
-  struct Square {  // a plane's square (RtScene::PlaneSquare), in double
-    glm::dvec3 point{0.0}, axisU{0.0}, axisV{0.0};
-    double extent = 0.0;  // 0: unbounded
-    // In float for the quick test that settles most hits (ShapePacks::clearlyOnSquare):
-    // the centre, its |x| + |y| + |z|, the half side.
-    glm::vec3 centre{0.0f};
-    float size = 0.0f, extentF = 0.0f;
+  struct Square {
+    PlaneSquare exact;
+    ShapePacks::SquareLanes quick;  // the float test that settles most hits
   };
   std::vector<Square> squares;  // one per plane
   bool boundedPlanes = false;
@@ -42,14 +39,11 @@ struct ShapeLanes {
     insert(spheres, s.center, s.radius, s.material);
     ++spheres;
   }
-  void addPlane(const Plane<float>& p, const glm::dvec3& point, const glm::dvec3& axisU, const glm::dvec3& axisV,
-                double extent) {
+  void addPlane(const Plane<float>& p, const PlaneSquare& square) {
     insert(spheres + planes, p.normal, p.d, p.material);
     ++planes;
-    const glm::vec3 c(point);
-    squares.push_back(
-        Square{point, axisU, axisV, extent, c, std::abs(c.x) + std::abs(c.y) + std::abs(c.z), float(extent)});
-    boundedPlanes = boundedPlanes || extent > 0.0;
+    squares.push_back(Square{square, ShapePacks::squareLanesOf({square.point, square.extent})});
+    boundedPlanes = boundedPlanes || square.extent > 0.0;
   }
   std::size_t size() const { return spheres + planes; }
 
@@ -206,14 +200,14 @@ struct Shapes {
   // The lanes of `hit` on plane `plane` whose point at t is on its square, the test
   // RtScene::onPlaneSquare makes (its float pre-test only ever agrees with this one).
   F onSquare(std::size_t plane, const Rays& r, F t, F hit) const {
-    const ShapeLanes::Square& q = shapes.squares[plane];
-    if (!shapes.boundedPlanes || q.extent <= 0.0) return hit;
+    const ShapeLanes::Square& square = shapes.squares[plane];
+    if (!shapes.boundedPlanes || square.exact.extent <= 0.0) return hit;
     // ShapePacks::clearlyOnSquare: the lanes inside the square whatever the rounding
     // need no exact test.
+    const ShapePacks::SquareLanes& q = square.quick;
     const V3 p = pointAt(r, t);
-    const F l1 = add(add(absolute(sub(p.x, set1(q.centre.x))), absolute(sub(p.y, set1(q.centre.y)))),
-                     absolute(sub(p.z, set1(q.centre.z))));
-    const F clearly = _mm256_cmp_ps(add(l1, mul(set1(1e-5f), add(l1, set1(q.size)))), set1(q.extentF), _CMP_LE_OQ);
+    const F l1 = add(add(absolute(sub(p.x, set1(q.x))), absolute(sub(p.y, set1(q.y)))), absolute(sub(p.z, set1(q.z))));
+    const F clearly = _mm256_cmp_ps(add(l1, mul(set1(1e-5f), add(l1, set1(q.size)))), set1(q.extent), _CMP_LE_OQ);
     if ((bits(hit) & ~bits(clearly)) == 0) return hit;
     alignas(32) float ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes], ts[kLanes];
     _mm256_store_ps(ox, r.o.x), _mm256_store_ps(oy, r.o.y), _mm256_store_ps(oz, r.o.z);
@@ -222,10 +216,7 @@ struct Shapes {
     for (int m = mask & ~bits(clearly); m != 0; m &= m - 1) {
       const int lane = __builtin_ctz(unsigned(m));
       const glm::vec3 point = glm::vec3(ox[lane], oy[lane], oz[lane]) + glm::vec3(dx[lane], dy[lane], dz[lane]) * ts[lane];
-      const glm::dvec3 local = glm::dvec3(point) - q.point;
-      if (!(std::abs(glm::dot(local, q.axisU)) <= q.extent && std::abs(glm::dot(local, q.axisV)) <= q.extent)) {
-        mask &= ~(1 << lane);
-      }
+      if (!square.exact.holds(glm::dvec3(point))) mask &= ~(1 << lane);
     }
     return bitAnd(hit, laneMask(mask));
   }
@@ -292,8 +283,6 @@ struct Shapes {
     return h;
   }
 };
-
-
 
 }  // namespace lanes8
 ENGINE_AVX2_END

@@ -92,6 +92,11 @@ void packInto(std::vector<Pack>& packs, const std::vector<Shape>& shapes, const 
 
 }  // namespace
 
+ShapePacks::SquareLanes ShapePacks::squareLanesOf(const Square& square) {
+  const glm::vec3 c(square.point);
+  return {c.x, c.y, c.z, std::abs(c.x) + std::abs(c.y) + std::abs(c.z), float(square.extent)};
+}
+
 ShapePacks::RayLanes::RayLanes(const Ray<float>& ray)
     : o{ray.o.x, ray.o.y, ray.o.z}, d{ray.d.x, ray.d.y, ray.d.z}, dd(glm::dot(ray.d, ray.d)) {}
 
@@ -109,10 +114,7 @@ void ShapePacks::setSpheres(const std::vector<Sphere<float>>& spheres) {
 void ShapePacks::setPlanes(const std::vector<Plane<float>>& planes, const std::vector<Square>& squares) {
   planeCount_ = planes.size();
   squares_.clear();
-  for (const Square& q : squares) {
-    const glm::vec3 c(q.point);
-    squares_.push_back({c.x, c.y, c.z, std::abs(c.x) + std::abs(c.y) + std::abs(c.z), float(q.extent)});
-  }
+  for (const Square& q : squares) squares_.push_back(squareLanesOf(q));
   packInto(planes_, planes, Plane<float>{glm::vec3(0.0f, 1.0f, 0.0f), 0.0f, 0},
            [](PlanePack& pack, std::size_t lane, const Plane<float>& plane) {
              pack.nx[lane] = plane.normal.x;

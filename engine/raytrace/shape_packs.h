@@ -27,6 +27,7 @@ class ShapePacks {
   struct SquareLanes {
     float x, y, z, size, extent;
   };
+  static SquareLanes squareLanesOf(const Square& square);
   // Rebuilt whenever a shape is added. A hit on a bounded plane is kept if its square
   // holds it, which the caller's test decides (nearestOfFour's `onSquare`) unless it
   // is clearly inside.

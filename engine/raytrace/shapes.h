@@ -92,6 +92,22 @@ struct Sphere {
   }
 };
 
+// The square of a plane that the rasterizer draws: its centre, two unit axes in the
+// plane and the half side along them (0: unbounded). A hit off the square misses, so
+// that both renderers see the same ground's edge.
+struct PlaneSquare {
+  glm::dvec3 point{0.0}, axisU{1, 0, 0}, axisV{0, 0, 1};
+  double extent = 0.0;
+
+  // Whether the point p of the plane lies on the square, in double: the exact test
+  // that every quicker one (ShapePacks' and the lanes' float tests) defers to.
+  bool holds(const glm::dvec3& p) const {
+    if (extent <= 0.0) return true;
+    const glm::dvec3 local = p - point;
+    return std::abs(glm::dot(local, axisU)) <= extent && std::abs(glm::dot(local, axisV)) <= extent;
+  }
+};
+
 // The infinite plane dot(n, p) = d.
 template <typename T>
 struct Plane {
