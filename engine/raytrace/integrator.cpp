@@ -15,7 +15,7 @@
 namespace engine::rt {
 namespace {
 
-using detail::strataFor;
+using detail::PixelStrata;
 
 template <typename T>
 struct LightSample {
@@ -29,7 +29,7 @@ class Tracer {
  public:
   Tracer(const RtScene& scene, const RenderSettings& settings)
       : scene_(scene), settings_(settings), camera_(scene.camera(), settings.width, settings.height),
-        strata_(strataFor(std::max(1, settings.samplesPerPixel))),
+        strata_(settings.samplesPerPixel),
         pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
 
   glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
@@ -37,15 +37,14 @@ class Tracer {
     const int spp = std::max(1, settings_.samplesPerPixel);
     if (spp == 1) {
       ++counters.primary;
-      return Li(primaryRay(x + 0.5, y + 0.5), 0, rng, counters, RayCone{0.0f, pixelSpread_});
+      return Li(primaryRay(x + 0.5, y + 0.5), 0, rng, counters, cameraCone());
     }
     glm::vec3 sum(0.0f);
-    for (int j = 0; j < strata_.y; ++j) {
-      for (int i = 0; i < strata_.x; ++i) {
-        const double px = x + (i + double(rng.uniform())) / strata_.x;
-        const double py = y + (j + double(rng.uniform())) / strata_.y;
+    for (int j = 0; j < strata_.count().y; ++j) {
+      for (int i = 0; i < strata_.count().x; ++i) {
+        const glm::dvec2 p = strata_.point(x, y, i, j, rng);
         ++counters.primary;
-        sum += Li(primaryRay(px, py), 0, rng, counters, RayCone{0.0f, pixelSpread_});
+        sum += Li(primaryRay(p.x, p.y), 0, rng, counters, cameraCone());
       }
     }
     return sum / float(spp);
@@ -53,6 +52,10 @@ class Tracer {
 
   // `cone`: the ray's footprint (raytrace/ray_cone.h). `hitDistance`, when given,
   // receives the distance to the surface the ray stops at (left alone when it escapes).
+  // A camera sample's ray cone: its share of the pixel's angle (ray_cone.h).
+  RayCone cameraCone() const { return RayCone{0.0f, pixelSpread_}; }
+  const PixelStrata& strata() const { return strata_; }
+
   glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {},
                float* hitDistance = nullptr) const {
     const std::optional<SurfaceInteraction<T>> hit = firstSolidHit(ray);
@@ -235,7 +238,7 @@ class Tracer {
   const RtScene& scene_;
   const RenderSettings& settings_;
   PinholeCamera camera_;
-  glm::ivec2 strata_;
+  PixelStrata strata_;
   float pixelSpread_ = 0.0f;
 };
 
@@ -247,9 +250,7 @@ class PacketTracer {
  public:
   PacketTracer(const Tracer<float>& scalar, const WhittedPackets& packets, const RtScene& scene,
                const RenderSettings& settings)
-      : scalar_(scalar), packets_(packets), scene_(scene), settings_(settings),
-        strata_(strataFor(std::max(1, settings.samplesPerPixel))),
-        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
+      : scalar_(scalar), packets_(packets), scene_(scene), settings_(settings) {}
 
   // Eight pixels at a time, a lane each, their samples in step: each lane's positions
   // and area-light points drawn from its pixel's stream in renderPixel's order, the
@@ -268,17 +269,12 @@ class PacketTracer {
     double px[kLanes], py[kLanes];
     WhittedPackets::Lanes lanes;
     for (int p = 0; p < pixels; ++p) out[p] = glm::vec3(0.0f);
-    for (int j = 0; j < strata_.y; ++j) {
-      for (int i = 0; i < strata_.x; ++i) {
+    const PixelStrata& strata = scalar_.strata();
+    for (int j = 0; j < strata.count().y; ++j) {
+      for (int i = 0; i < strata.count().x; ++i) {
         for (int p = 0; p < pixels; ++p) {
-          if (spp == 1) {
-            px[p] = x + p + 0.5, py[p] = y + 0.5;
-            continue;
-          }
-          const double u = i + double(rngs[p].uniform());
-          const double v = j + double(rngs[p].uniform());
-          px[p] = x + p + (stratumX_ > 0.0 ? u * stratumX_ : u / strata_.x);
-          py[p] = y + (stratumY_ > 0.0 ? v * stratumY_ : v / strata_.y);
+          const glm::dvec2 q = spp == 1 ? glm::dvec2(x + p + 0.5, y + 0.5) : strata.point(x + p, y, i, j, rngs[p]);
+          px[p] = q.x, py[p] = q.y;
         }
         counters.primary += std::uint64_t(pixels);
         packets_.trace(px, py, pixels, rngs, lanes, counters.shadow);
@@ -301,7 +297,7 @@ class PacketTracer {
     if ((lanes.hits >> i & 1) == 0) return scene_.environment().radiance(lanes.direction(i));
     glm::vec3 color = lanes.color(i);
     if (lanes.reflection[i] > 0.0f) {
-      RayCone cone{0.0f, pixelSpread_};
+      RayCone cone = scalar_.cameraCone();
       cone.width += cone.spread * lanes.distance[i];
       ++counters.reflection;
       color += lanes.reflection[i] * scalar_.Li(lanes.reflected(i), 1, rng, counters, cone);
@@ -309,17 +305,10 @@ class PacketTracer {
     return scene_.fogged(color, lanes.distance[i]);
   }
 
-  // 1 / n for a power-of-two count of strata n, where dividing by n is multiplying by
-  // it exactly (the division's latency off the streams' chains); 0 otherwise.
-  static double exactInverse(int n) { return (n & (n - 1)) == 0 ? 1.0 / n : 0.0; }
-
   const Tracer<float>& scalar_;
   const WhittedPackets& packets_;
   const RtScene& scene_;
   const RenderSettings& settings_;
-  glm::ivec2 strata_;
-  double stratumX_ = exactInverse(strata_.x), stratumY_ = exactInverse(strata_.y);
-  float pixelSpread_ = 0.0f;
 };
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <tbb/partitioner.h>
 
 #include "raytrace/integrator.h"
+#include "raytrace/rng.h"
 
 namespace engine::rt::detail {
 
@@ -25,6 +26,32 @@ inline glm::ivec2 strataFor(int n) {
   while (n % sx != 0) --sx;
   return {sx, n / sx};
 }
+
+// Where the Whitted tracer puts a pixel's samples: stratum (i, j) of the strataFor
+// grid, jittered by two draws from the pixel's stream, x's first. The scalar tracer
+// and its packets both place them here, so that they draw the same streams alike.
+class PixelStrata {
+ public:
+  explicit PixelStrata(int samples)
+      : count_(strataFor(std::max(1, samples))), inverseX_(exactInverse(count_.x)), inverseY_(exactInverse(count_.y)) {}
+
+  glm::ivec2 count() const { return count_; }
+  // The image point of stratum (i, j) of pixel (x, y).
+  glm::dvec2 point(int x, int y, int i, int j, Pcg32& rng) const {
+    const double u = i + double(rng.uniform());
+    const double v = j + double(rng.uniform());
+    return {x + along(u, count_.x, inverseX_), y + along(v, count_.y, inverseY_)};
+  }
+
+ private:
+  // s / n, as a multiply by 1 / n where n is a power of two (exact, the same bits,
+  // without the division's latency on the stream's chain).
+  static double along(double s, int n, double inverse) { return inverse > 0.0 ? s * inverse : s / n; }
+  static double exactInverse(int n) { return (n & (n - 1)) == 0 ? 1.0 / n : 0.0; }
+
+  glm::ivec2 count_;
+  double inverseX_, inverseY_;  // 1 / count where that is exact, else 0
+};
 
 struct AtomicCounters {
   std::atomic<std::uint64_t> primary{0}, shadow{0}, reflection{0};
