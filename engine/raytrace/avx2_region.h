@@ -1,8 +1,8 @@
 #pragma once
 // The functions between ENGINE_AVX2_BEGIN and ENGINE_AVX2_END are compiled for AVX2,
-// whatever the build's target; callers run them only where __builtin_cpu_supports
-// says the CPU has it. GCC's target pragma, or clang's equivalent (the sanitizer tree
-// builds with clang).
+// whatever the build's target; callers run them only where cpuHasAvx2() says the CPU
+// has it. GCC's target pragma, or clang's equivalent (the sanitizer tree builds with
+// clang).
 #if defined(__clang__)
 #define ENGINE_AVX2_BEGIN _Pragma("clang attribute push(__attribute__((target(\"avx2\"))), apply_to = function)")
 #define ENGINE_AVX2_END _Pragma("clang attribute pop")
@@ -10,3 +10,11 @@
 #define ENGINE_AVX2_BEGIN _Pragma("GCC push_options") _Pragma("GCC target(\"avx2\")")
 #define ENGINE_AVX2_END _Pragma("GCC pop_options")
 #endif
+
+namespace engine::rt {
+// Whether the CPU runs AVX2, asked of it once.
+inline bool cpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+}  // namespace engine::rt

@@ -287,7 +287,7 @@ bool tracePacketAvx2(const Bvh::View& bvh, const Ray<float>* rays, BvhHit<float>
 ENGINE_AVX2_END
 
 bool Bvh::tracePacket8(const Ray<float>* rays, BvhHit<float>* hits, std::uint32_t& hitMask) const {
-  return triangleCount_ > 0 && __builtin_cpu_supports("avx2") && tracePacketAvx2(view(), rays, hits, hitMask);
+  return triangleCount_ > 0 && cpuHasAvx2() && tracePacketAvx2(view(), rays, hits, hitMask);
 }
 
 std::uint32_t Bvh::intersect8(std::span<const Ray<float>, kPacketSize> rays,

@@ -293,13 +293,13 @@ using BoxTest = std::conditional_t<std::is_same_v<T, float>, ChildBoxTestAvx2, C
 ENGINE_AVX2_END
 
 namespace {
-std::atomic<Bvh::Isa> gIsa{__builtin_cpu_supports("avx2") ? Bvh::Isa::kAvx2 : Bvh::Isa::kSse2};
+std::atomic<Bvh::Isa> gIsa{cpuHasAvx2() ? Bvh::Isa::kAvx2 : Bvh::Isa::kSse2};
 }  // namespace
 
 Bvh::Isa Bvh::isa() { return gIsa.load(std::memory_order_relaxed); }
 
 void Bvh::setIsa(Isa isa) {
-  if (isa == Isa::kAvx2 && !__builtin_cpu_supports("avx2")) return;
+  if (isa == Isa::kAvx2 && !cpuHasAvx2()) return;
   gIsa.store(isa, std::memory_order_relaxed);
 }
 

@@ -32,10 +32,9 @@ std::string environmentOf(const Environment& environment) {
 // (whitted_packets.h) or its samples one at a time and why; the path tracer's bounces
 // eight or four to a pass (RtScene::intersectMany).
 std::string lanesOf(const RtScene& scene, const RenderSettings& s) {
-  const bool avx2 = __builtin_cpu_supports("avx2");
   if (s.method == Method::Path) {
     if (s.precision == Precision::Double) return "shapes: one ray at a time (double precision)";
-    return scene.triangleCount() == 0 && avx2 ? "shapes: eight rays at a time (AVX2)" : "shapes: four rays at a time (SSE)";
+    return scene.eightRaysAtATime() ? "shapes: eight rays at a time (AVX2)" : "shapes: four rays at a time (SSE)";
   }
   if (const char* why = WhittedPackets::unsupported(scene, s)) return std::string("packets: none, one sample at a time (") + why + ")";
   return "packets: eight camera samples at a time, shadow rays too (AVX2)";

@@ -156,8 +156,7 @@ class PathTracer {
   // The camera's ray through each path's image point (batch_.px, py): eight at a
   // time where the CPU has AVX2 (camera_lanes.h, the same rays bit for bit).
   void cameraRays(std::vector<Path>& paths) const {
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (std::is_same_v<T, float> && avx2) {
+    if (std::is_same_v<T, float> && cpuHasAvx2()) {
       const std::size_t n = paths.size();
       batch_.dx.resize(n), batch_.dy.resize(n), batch_.dz.resize(n), batch_.tMax.resize(n);
       lanes8::cameraRays(camera_, batch_.px.data(), batch_.py.data(), n, batch_.dx.data(), batch_.dy.data(),

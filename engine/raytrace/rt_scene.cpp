@@ -601,9 +601,7 @@ bool RtScene::onSquareOf(const void* scene, std::size_t plane, const Ray<float>&
 
 void RtScene::intersectMany(const Ray<float>* const* rays, std::size_t count,
                             std::optional<SurfaceInteraction<float>>* out) const {
-  // Eight rays at a time where there are no triangles and the CPU has AVX2.
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (!boxedTriangles_ && lanes_.size() > 0 && avx2) {
+  if (eightRaysAtATime()) {
     for (std::size_t first = 0; first < count; first += lanes8::kLanes) {
       intersectEight(rays + first, int(std::min<std::size_t>(lanes8::kLanes, count - first)), out + first);
     }

@@ -231,9 +231,13 @@ class RtScene {
   template <typename T>
   std::optional<SurfaceInteraction<T>> intersect(const Ray<T>& ray) const;
   // intersect() of each of several float rays (a batch of paths, a bounce at a time),
-  // the same answers bit for bit; the spheres and planes meet four rays at a time.
+  // the same answers bit for bit; the spheres and planes meet four or eight rays at a
+  // time.
   void intersectMany(const Ray<float>* const* rays, std::size_t count,
                      std::optional<SurfaceInteraction<float>>* out) const;
+  // Whether intersectMany takes eight rays to a pass (no triangles, and AVX2) rather
+  // than four.
+  bool eightRaysAtATime() const { return !boxedTriangles_ && lanes_.size() > 0 && cpuHasAvx2(); }
   template <typename T>
   bool intersectAny(const Ray<T>& ray) const;
   // The share of light that passes along a shadow ray: 0 or 1 past opaque surfaces

@@ -16,7 +16,7 @@
 namespace engine::rt {
 
 const char* WhittedPackets::unsupported(const RtScene& scene, const RenderSettings& settings) {
-  if (!__builtin_cpu_supports("avx2")) return "the CPU has no AVX2";
+  if (!cpuHasAvx2()) return "the CPU has no AVX2";
   if (settings.precision != Precision::Float) return "double precision";
   if (scene.triangleCount() != 0) return "triangles";
   if (scene.sphereCount() + scene.planeCount() == 0) return "no spheres or planes";
