@@ -30,6 +30,10 @@ void flipVertically(Image& image);
 // Texel index i wrapped into [0, n), negative indices too (a repeating texture's
 // and a lat-long image's columns).
 inline int wrapTexel(int i, int n) {
+  // Most indices are in range already (a bilinear tap's neighbour leaves it only at
+  // an edge): no division for them, which measured a third of the ray tracer's
+  // texture reads.
+  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;
   const int r = i % n;
   return r < 0 ? r + n : r;
 }

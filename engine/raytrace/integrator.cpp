@@ -5,7 +5,9 @@
 #include <optional>
 
 #include "core/brdf.h"
+#include "raytrace/avx2_region.h"
 #include "raytrace/camera.h"
+#include "raytrace/camera_lanes.h"
 #include "raytrace/path_tracer.h"
 #include "raytrace/ray_cone.h"
 #include "raytrace/rng.h"
@@ -55,6 +57,7 @@ class Tracer {
   // A camera sample's ray cone: its share of the pixel's angle (ray_cone.h).
   RayCone cameraCone() const { return RayCone{0.0f, pixelSpread_}; }
   const PixelStrata& strata() const { return strata_; }
+  const PinholeCamera& camera() const { return camera_; }
 
   glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {},
                float* hitDistance = nullptr) const {
@@ -311,6 +314,59 @@ class PacketTracer {
   const RenderSettings& settings_;
 };
 
+// The scalar Whitted tracer a row at a time, for scenes the packets do not take
+// (triangles, textures, PBR): each sample's camera rays made for eight pixels at once
+// (camera_lanes.h, the same rays bit for bit), then traced one by one by Tracer::Li.
+// Each pixel's stream is drawn in renderPixel's order (a sample's position, then its
+// light samples), its samples summed and averaged as there: renderPixel's bits.
+class SpanTracer {
+ public:
+  SpanTracer(const Tracer<float>& scalar, const RenderSettings& settings) : scalar_(scalar), settings_(settings) {}
+
+  void renderSpan(int x0, int x1, int y, glm::vec3* out, RayCounters& counters) const {
+    for (int x = x0; x < x1; x += kLanes) {
+      renderLanes(x, std::min(kLanes, x1 - x), y, out + (x - x0), counters);
+    }
+  }
+
+ private:
+  static constexpr int kLanes = 8;  // lanes8::cameraRays' rays at a time
+
+  void renderLanes(int x, int pixels, int y, glm::vec3* out, RayCounters& counters) const {
+    const int spp = std::max(1, settings_.samplesPerPixel);
+    Pcg32 rngs[kLanes];
+    for (int p = 0; p < pixels; ++p) rngs[p] = Pcg32::forPixel(settings_.seed, x + p, y);
+    // Lanes past `pixels` repeat the first point; their rays are not traced.
+    double px[kLanes], py[kLanes];
+    alignas(32) float dx[kLanes], dy[kLanes], dz[kLanes], tMax[kLanes];
+    const Vec3<float> origin(scalar_.camera().position());
+    const PixelStrata& strata = scalar_.strata();
+    for (int j = 0; j < strata.count().y; ++j) {
+      for (int i = 0; i < strata.count().x; ++i) {
+        for (int p = 0; p < kLanes; ++p) {
+          const glm::dvec2 q = p >= pixels ? glm::dvec2(px[0], py[0])
+                               : spp == 1  ? glm::dvec2(x + p + 0.5, y + 0.5)
+                                           : strata.point(x + p, y, i, j, rngs[p]);
+          px[p] = q.x, py[p] = q.y;
+        }
+        lanes8::cameraRays(scalar_.camera(), px, py, dx, dy, dz, tMax);
+        for (int p = 0; p < pixels; ++p) {
+          ++counters.primary;
+          const Ray<float> ray{origin, Vec3<float>(dx[p], dy[p], dz[p]), tMax[p]};
+          const glm::vec3 c = scalar_.Li(ray, 0, rngs[p], counters, scalar_.cameraCone());
+          out[p] = spp == 1 ? c : (i == 0 && j == 0 ? glm::vec3(0.0f) : out[p]) + c;
+        }
+      }
+    }
+    if (spp > 1) {
+      for (int p = 0; p < pixels; ++p) out[p] = out[p] / float(spp);
+    }
+  }
+
+  const Tracer<float>& scalar_;
+  const RenderSettings& settings_;
+};
+
 }  // namespace
 
 Integrator::Integrator(const RtScene& scene, RenderSettings settings) : scene_(&scene), settings_(std::move(settings)) {
@@ -326,6 +382,7 @@ RenderResult Integrator::render() const {
   if (settings_.precision == Precision::Double) return detail::renderTiles(Tracer<double>(*scene_, settings_), settings_);
   const Tracer<float> tracer(*scene_, settings_);
   if (packets_) return detail::renderTiles(PacketTracer(tracer, *packets_, *scene_, settings_), settings_);
+  if (cpuHasAvx2()) return detail::renderTiles(SpanTracer(tracer, settings_), settings_);
   return detail::renderTiles(tracer, settings_);
 }
 
@@ -367,6 +424,9 @@ void Integrator::renderSpanSamples(int x0, int x1, int y, int first, int count, 
   } else if (packets_) {
     const Tracer<float> tracer(*scene_, settings_);
     PacketTracer(tracer, *packets_, *scene_, settings_).renderSpan(x0, x1, y, out, local);
+  } else if (settings_.precision == Precision::Float && cpuHasAvx2()) {
+    const Tracer<float> tracer(*scene_, settings_);
+    SpanTracer(tracer, settings_).renderSpan(x0, x1, y, out, local);
   } else {
     for (int x = x0; x < x1; ++x) out[x - x0] = renderPixel(x, y, &local);
   }

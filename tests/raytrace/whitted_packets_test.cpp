@@ -26,9 +26,7 @@ namespace {
 bool sameBits(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // render() against renderPixel() over the whole image, bit for bit, and the ray counts.
-void expectPacketsAreTheScalarTracer(const rt::RtScene& scene, const rt::RenderSettings& settings,
-                                     const std::string& what) {
-  ASSERT_TRUE(rt::WhittedPackets::create(scene, settings).has_value()) << what << ": the packets must apply";
+void expectRenderIsRenderPixel(const rt::RtScene& scene, const rt::RenderSettings& settings, const std::string& what) {
   const rt::Integrator integrator(scene, settings);
   const rt::RenderResult image = integrator.render();
   rt::RayCounters scalar;
@@ -48,6 +46,12 @@ void expectPacketsAreTheScalarTracer(const rt::RtScene& scene, const rt::RenderS
   EXPECT_EQ(image.rays.primary, scalar.primary) << what;
   EXPECT_EQ(image.rays.shadow, scalar.shadow) << what;
   EXPECT_EQ(image.rays.reflection, scalar.reflection) << what;
+}
+
+void expectPacketsAreTheScalarTracer(const rt::RtScene& scene, const rt::RenderSettings& settings,
+                                     const std::string& what) {
+  ASSERT_TRUE(rt::WhittedPackets::create(scene, settings).has_value()) << what << ": the packets must apply";
+  expectRenderIsRenderPixel(scene, settings, what);
 }
 
 glm::dvec3 randomUnit(std::mt19937& rng) {
@@ -223,6 +227,34 @@ TEST(WhittedPackets, LeaveWhatTheyDoNotTraceToTheScalarTracer) {
   ASSERT_TRUE(mesh.addMesh(triangle));
   mesh.build();
   EXPECT_FALSE(rt::WhittedPackets::create(mesh, settings));
+}
+
+// Scenes the packets leave to the scalar tracer (meshes, textures, PBR, area lights)
+// are rendered a row at a time with the camera's rays made eight at once
+// (integrator.cpp's SpanTracer): still renderPixel's bits and ray counts, at sample
+// counts whose strata are square, not, and one, on sizes that leave lanes empty.
+TEST(SpanTracer, IsTheScalarTracerBitForBit) {
+  for (const char* name : {"materials.json", "demo.json", "materials.json + area light"}) {
+    const bool area = std::string(name).ends_with("area light");
+    rt::RtScene scene = sceneFile(area ? "materials.json" : name);
+    if (area) {  // light samples drawn from the pixel's stream between its positions
+      engine::LightDesc light;
+      light.type = engine::LightType::Area;
+      light.position = scene.camera().position + glm::dvec3(0.0, 4.0, 0.0);
+      light.edgeU = glm::dvec3(2.0, 0.0, 0.0);
+      light.edgeV = glm::dvec3(0.0, 0.0, 2.0);
+      scene.addLight(light);
+    }
+    for (const int spp : {1, 3, 4}) {
+      rt::RenderSettings settings;
+      settings.width = 45;
+      settings.height = 26;
+      settings.samplesPerPixel = spp;
+      settings.shadowSamples = 2;
+      settings.maxDepth = 3;
+      expectRenderIsRenderPixel(scene, settings, std::string(name) + " at " + std::to_string(spp) + " spp");
+    }
+  }
 }
 
 // The window's progressive trace takes rows of tiles (Integrator::renderSpanSamples):
