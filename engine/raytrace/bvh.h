@@ -103,6 +103,10 @@ class Bvh {
   static constexpr int kMaxSahDepth = 48;
   static constexpr int kStackSize = (kWidth - 1) * (kMaxSahDepth + 28) + 1;
 
+  // One node's eight boxes against a float ray, as the traversal tests a node's
+  // children (the same answers bit for bit): the mask of the boxes entered before tMax
+  // and their entry distances. For a caller's own node of boxes (RtScene's roots).
+  static int testBoxes(const Node& node, const Ray<float>& ray, float tMax, float tEntry[kWidth]);
   // What the traversal reads; also what raytrace/gpu_layout.h flattens for the GPU.
   struct View {
     const Node* nodes;

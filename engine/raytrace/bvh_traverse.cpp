@@ -289,6 +289,10 @@ class ChildBoxTestAvx2 : public SimdBoxRows {
 template <typename T>
 using BoxTest = std::conditional_t<std::is_same_v<T, float>, ChildBoxTestAvx2, ChildBoxTest<T>>;
 #include "raytrace/bvh_traverse.inl"
+
+int testBoxes(const Bvh::Node& node, const Ray<float>& ray, float tMax, float tEntry[Bvh::kWidth]) {
+  return ChildBoxTestAvx2(ray)(node, tMax, tEntry);
+}
 }  // namespace avx2
 ENGINE_AVX2_END
 
@@ -301,6 +305,11 @@ Bvh::Isa Bvh::isa() { return gIsa.load(std::memory_order_relaxed); }
 void Bvh::setIsa(Isa isa) {
   if (isa == Isa::kAvx2 && !cpuHasAvx2()) return;
   gIsa.store(isa, std::memory_order_relaxed);
+}
+
+int Bvh::testBoxes(const Node& node, const Ray<float>& ray, float tMax, float tEntry[kWidth]) {
+  if (isa() == Isa::kAvx2) return avx2::testBoxes(node, ray, tMax, tEntry);
+  return ChildBoxTestSse(ray)(node, tMax, tEntry);
 }
 
 template <typename T, bool kAnyHit>

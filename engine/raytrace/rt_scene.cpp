@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <limits>
 #include <string>
 #include <type_traits>
 
@@ -58,6 +59,8 @@ template <typename V, typename Hit>
 V atHit(const std::vector<V>& values, const Hit& hit, std::uint32_t i0, std::uint32_t i1, std::uint32_t i2) {
   return float(hit.b0) * values[i0] + float(hit.b1) * values[i1] + float(hit.b2) * values[i2];
 }
+
+float maxAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 }  // namespace
 
@@ -344,6 +347,7 @@ void RtScene::addSphere(const glm::dvec3& center, double radius, int material) {
   spheresF_.push_back(Sphere<float>{glm::vec3(center), float(radius), material});
   packs_.setSpheres(spheresF_);
   lanes_.addSphere(spheresF_.back());
+  updateRoots();
 }
 
 void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int material, double extent) {
@@ -410,6 +414,7 @@ void RtScene::clearMeshes() {
   meshFirstTriangle_.clear();
   groups_.assign(1, Group{});
   boxedTriangles_ = false;
+  updateRoots();
 }
 
 std::size_t RtScene::triangleCount() const {
@@ -440,6 +445,7 @@ double RtScene::buildGroup(int groupIndex) {
   group.bvh.build(group.triangles);
   group.topologyDirty = group.moved = false;
   boxedTriangles_ = triangleCount() > 0;
+  updateRoots();
   return secondsSince(start);
 }
 
@@ -450,7 +456,63 @@ double RtScene::refitGroup(int groupIndex) {
   Group& group = groups_[std::size_t(groupIndex)];
   group.bvh.refit(group.triangles);
   group.moved = false;
+  updateRoots();
   return secondsSince(start);
+}
+
+Bvh::Node RtScene::noRoots() {
+  Bvh::Node node{};
+  for (int lane = 0; lane < Bvh::kWidth; ++lane) {
+    for (int axis = 0; axis < 3; ++axis) {
+      node.box[axis][lane] = std::numeric_limits<float>::infinity();
+      node.box[axis + 3][lane] = -std::numeric_limits<float>::infinity();
+    }
+    node.child[lane] = Bvh::kNoChild;
+  }
+  return node;
+}
+
+void RtScene::updateRoots() {
+  roots_ = noRoots();
+  Bounds3f lanes[Bvh::kWidth];
+  float extent = 1.0f;
+  const auto grow = [&](const Bounds3f& b) {
+    if (b.empty()) return;
+    extent = std::max({extent, maxAbs(b.min), maxAbs(b.max)});
+  };
+  for (std::size_t g = 0; g < groups_.size() && g < std::size_t(kSphereLane); ++g) {
+    lanes[g] = groups_[g].bvh.bounds();
+    grow(lanes[g]);
+  }
+  Bounds3f spheres;
+  for (const Sphere<float>& s : spheresF_) {
+    spheres.extend(s.center - glm::vec3(s.radius));
+    spheres.extend(s.center + glm::vec3(s.radius));
+  }
+  grow(spheres);
+  // The float sphere test may accept a ray that passes outside the sphere by its
+  // rounding, a few float epsilons of the distances involved (at most the origin's,
+  // within the limit, and the sphere's): 2e-5 of the limit is over a hundred times that.
+  rootsOriginLimit_ = std::isfinite(extent) ? 16.0f * extent : -1.0f;
+  if (!spheres.empty()) {
+    const glm::vec3 margin(2e-5f * rootsOriginLimit_);
+    spheres.min -= margin;
+    spheres.max += margin;
+  }
+  lanes[kSphereLane] = spheres;
+  for (int lane = 0; lane < Bvh::kWidth; ++lane) {
+    for (int axis = 0; axis < 3; ++axis) {
+      roots_.box[axis][lane] = lanes[lane].min[axis];
+      roots_.box[axis + 3][lane] = lanes[lane].max[axis];
+    }
+  }
+}
+
+RtScene::RootHits RtScene::testRoots(const Ray<float>& ray) const {
+  RootHits hits;
+  hits.mask = Bvh::testBoxes(roots_, ray, ray.tMax, hits.tEntry);
+  if (!(maxAbs(ray.o) <= rootsOriginLimit_)) hits.mask |= 1 << kSphereLane;
+  return hits;
 }
 
 double RtScene::build() {
@@ -530,10 +592,10 @@ SurfaceInteraction<T> RtScene::meshInteraction(const Group& group, const BvhHit<
 }
 
 template <typename T>
-int RtScene::nearestShape(Ray<T>& ray, std::size_t& index) const {
+int RtScene::nearestShape(Ray<T>& ray, std::size_t& index, bool testSpheres) const {
   int kind = 0;
   if constexpr (std::is_same_v<T, float>) {
-    if (const int sphere = packs_.nearestSphere(ray, ray.tMax); sphere >= 0) {
+    if (const int sphere = testSpheres ? packs_.nearestSphere(ray, ray.tMax) : -1; sphere >= 0) {
       kind = 1;
       index = std::size_t(sphere);
     }
@@ -567,9 +629,9 @@ int RtScene::nearestShape(Ray<T>& ray, std::size_t& index) const {
 }
 
 template <typename T>
-bool RtScene::anyShape(const Ray<T>& ray) const {
+bool RtScene::anyShape(const Ray<T>& ray, bool testSpheres) const {
   if constexpr (std::is_same_v<T, float>) {
-    return packs_.anySphere(ray) ||
+    return (testSpheres && packs_.anySphere(ray)) ||
            packs_.forEachPlaneHit(ray, ray.tMax, [&](std::size_t plane, float t) { return onPlaneSquare(plane, ray, t); });
   }
   for (const auto& s : spheres<T>()) {
@@ -589,8 +651,16 @@ std::optional<SurfaceInteraction<T>> RtScene::intersect(const Ray<T>& rayIn) con
   Ray<T> ray{rayIn.o, rayIn.d, rayIn.tMax};
   // Which shape won: 0 none, 1 sphere, 2 plane; shapes shorten tMax as they hit.
   std::size_t index = 0;
-  const int kind = nearestShape(ray, index);
   std::optional<SurfaceInteraction<T>> result;
+  if constexpr (std::is_same_v<T, float>) {
+    if (boxedTriangles_ && rootsUsable()) {
+      const RootHits roots = testRoots(ray);
+      const int kind = nearestShape(ray, index, roots.spheres());
+      pastShapes(ray, kind, index, result, &roots);
+      return result;
+    }
+  }
+  const int kind = nearestShape(ray, index);
   pastShapes(ray, kind, index, result);
   return result;
 }
@@ -620,21 +690,37 @@ void RtScene::intersectMany(const Ray<float>* const* rays, std::size_t count,
 }
 
 template <typename T>
-void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result) const {
+void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result,
+                         const RootHits* roots) const {
   // Each group's root box is tested against the shortened tMax first, so groups the
   // ray misses, or that lie behind the nearest hit so far, cost one box test rather
   // than a traversal's setup and its root node's eight boxes.
   result.reset();
   if (boxedTriangles_) {  // BoundsRay's three divisions only where there are boxes
-    const BoundsRay<T> boxes(ray);
     const Group* hitGroup = nullptr;
     std::optional<BvhHit<T>> meshHit;
-    for (const Group& group : groups_) {
-      if (!boxes.hits(group.bvh.bounds(), ray)) continue;
+    const auto visit = [&](const Group& group) {
       if (auto hit = group.bvh.intersect(ray)) {
         ray.tMax = hit->hit.t;
         meshHit = hit;
         hitGroup = &group;
+      }
+    };
+    bool visited = false;
+    if constexpr (std::is_same_v<T, float>) {
+      if (rootsUsable()) {
+        const RootHits own = roots ? RootHits{} : testRoots(ray);
+        const RootHits& hits = roots ? *roots : own;
+        for (std::size_t g = 0; g < groups_.size(); ++g) {
+          if (hits.group(g, ray.tMax)) visit(groups_[g]);
+        }
+        visited = true;
+      }
+    }
+    if (!visited) {
+      const BoundsRay<T> boxes(ray);
+      for (const Group& group : groups_) {
+        if (boxes.hits(group.bvh.bounds(), ray)) visit(group);
       }
     }
     if (hitGroup) {
@@ -723,6 +809,16 @@ ENGINE_AVX2_END
 
 template <typename T>
 bool RtScene::intersectAny(const Ray<T>& ray) const {
+  if constexpr (std::is_same_v<T, float>) {
+    if (boxedTriangles_ && rootsUsable()) {
+      const RootHits roots = testRoots(ray);
+      if (anyShape(ray, roots.spheres())) return true;
+      for (std::size_t g = 0; g < groups_.size(); ++g) {
+        if (roots.group(g, ray.tMax) && groups_[g].bvh.intersectAny(ray)) return true;
+      }
+      return false;
+    }
+  }
   if (anyShape(ray)) return true;
   if (!boxedTriangles_) return false;  // BoundsRay's three divisions, for nothing
   const BoundsRay<T> boxes(ray);

@@ -328,15 +328,35 @@ class RtScene {
   // The nearest sphere and plane hits (kind 1 or 2, or 0) with ray.tMax shortened to
   // them, and whether any exists: four shapes at a time for float rays, one at a time
   // for double.
+  // `testSpheres` false: the ray misses every sphere (RootHits::spheres), none is tested.
   template <typename T>
-  int nearestShape(Ray<T>& ray, std::size_t& index) const;
+  int nearestShape(Ray<T>& ray, std::size_t& index, bool testSpheres = true) const;
   template <typename T>
-  bool anyShape(const Ray<T>& ray) const;
+  bool anyShape(const Ray<T>& ray, bool testSpheres = true) const;
+  // The groups' root boxes and the spheres' box side by side as one 8-wide BVH node,
+  // tested once per float ray (Bvh::testBoxes, all at once) in place of a scalar box
+  // test per group, and so that rays that miss every sphere test none: lane g is
+  // group g's root box, the last lane a box around the spheres, widened so that every
+  // hit the float sphere test finds lies within it. Used when there are at most seven
+  // groups; remade whenever a group's tree or the spheres change.
+  static constexpr int kSphereLane = Bvh::kWidth - 1;
+  struct RootHits {
+    int mask = 0;
+    alignas(32) float tEntry[Bvh::kWidth];
+    // Group g's box entered before tMax: the scalar intersectBounds' answer.
+    bool group(std::size_t g, float tMax) const { return (mask >> g & 1) && tEntry[g] < tMax; }
+    bool spheres() const { return (mask >> kSphereLane & 1) != 0; }
+  };
+  bool rootsUsable() const { return groups_.size() <= std::size_t(kSphereLane); }
+  RootHits testRoots(const Ray<float>& ray) const;
+  void updateRoots();
   // intersect() once the spheres and planes have shortened ray.tMax to their nearest
   // (kind 1 or 2 at `index`, 0 none): the meshes, then the winner's interaction,
-  // written into `result` where it is kept (a record returned was copied).
+  // written into `result` where it is kept (a record returned was copied). `roots`:
+  // the ray's RootHits at its tMax before the shapes, when the caller has them.
   template <typename T>
-  void pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result) const;
+  void pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result,
+                  const RootHits* roots = nullptr) const;
   // The rest of a sphere's (kind 1) or plane's (2) hit record once fillInteraction has
   // made it: texture coordinates where its material reads them, their scale per metre.
   template <typename T>
@@ -402,6 +422,12 @@ class RtScene {
   // Whether any group's BVH holds a triangle: group 0 is always there, empty in a
   // scene of spheres and planes, whose rays then skip the groups' boxes altogether.
   bool boxedTriangles_ = false;
+  // See RootHits. Rays from beyond rootsOriginLimit_ (16 times the farthest box
+  // coordinate) test the spheres regardless: the box's margin is sized for rays from
+  // within it. Empty boxes until updateRoots.
+  Bvh::Node roots_ = noRoots();
+  float rootsOriginLimit_ = -1.0f;
+  static Bvh::Node noRoots();
 };
 
 }  // namespace engine::rt
