@@ -1,5 +1,6 @@
 #version 450 core
-// HDR to display: exposure, tone map, then the output curve; with supersampling
+// HDR to display: exposure, tone map, then the output curve (common/output.glsl,
+// which DIRECT_OUTPUT's fragment shaders apply themselves); with supersampling
 // each output pixel averages its N x N HDR samples after tone mapping (the course's
 // "render larger, average down"). The scene renderer builds the one variant its
 // settings need: SUPERSAMPLE N, TONE_MAP 0 none (clamp) / 1 Reinhard / 2 ACES
@@ -13,22 +14,10 @@ layout(location = 0) out vec4 o_color;
 #ifndef SUPERSAMPLE
 #define SUPERSAMPLE 1
 #endif
-#ifndef TONE_MAP
-#define TONE_MAP 2
-#endif
-
-vec3 toneMap(vec3 c) {
-  c *= u_exposure;
-#if TONE_MAP == 1
-  return c / (1.0 + c);
-#elif TONE_MAP == 2
-  return clamp((c * (2.51 * c + 0.03)) / (c * (2.43 * c + 0.59) + 0.14), 0.0, 1.0);
-#else
-  return clamp(c, 0.0, 1.0);
-#endif
-}
 
 #include "common/output.glsl"
+
+vec3 toneMap(vec3 c) { return toneMapped(c * u_exposure); }
 
 void main() {
 #if SUPERSAMPLE == 1

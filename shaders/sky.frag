@@ -41,9 +41,15 @@ vec3 skyRadiance(vec3 d) {
 }
 #endif
 
+#ifdef DIRECT_OUTPUT
+#include "common/output.glsl"
+#endif
+
 void main() {
   vec3 color = skyRadiance(normalize(v_direction));
-#ifdef HDR_OUTPUT
+#if defined(DIRECT_OUTPUT)
+  o_color = targetColor(color, 1.0);  // the view's display value (common/output.glsl)
+#elif defined(HDR_OUTPUT)
   o_color = vec4(color, 1.0);  // the post pass applies exposure and tone map
 #else
   o_color = vec4(color / (1.0 + color), 1.0);

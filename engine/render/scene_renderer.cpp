@@ -3,9 +3,14 @@
 namespace engine {
 namespace {
 
-// common/output.glsl's displayValue on the CPU (the direct path's clear colour).
-glm::vec3 displayValue(glm::vec3 c, OutputCurve curve) {
+// common/output.glsl's targetColor under DIRECT_OUTPUT on the CPU (the direct path's
+// clear colour): exposure, the tone map, then the curve.
+glm::vec3 displayValue(glm::vec3 c, const RenderDesc& render) {
+  c *= render.exposure;
+  if (render.toneMap == ToneMap::Reinhard) c = c / (1.0f + c);
+  if (render.toneMap == ToneMap::Aces) c = (c * (2.51f * c + 0.03f)) / (c * (2.43f * c + 0.59f) + 0.14f);
   c = glm::clamp(c, 0.0f, 1.0f);
+  const OutputCurve curve = render.output;
   if (curve == OutputCurve::Gamma22) return glm::pow(c, glm::vec3(1.0f / 2.2f));
   const glm::vec3 high = 1.055f * glm::pow(c, glm::vec3(1.0f / 2.4f)) - 0.055f;
   return glm::mix(c * 12.92f, high, glm::step(glm::vec3(0.0031308f), c));
@@ -239,7 +244,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   glViewport(0, 0, targetWidth, targetHeight);
   glDisable(GL_FRAMEBUFFER_SRGB);
   applyPassState(opaquePassFor(scene.camera.leftHanded));  // depth writes on, for the clear
-  const glm::vec3 background = directOutput ? displayValue(scene.sky.background, render.output) : scene.sky.background;
+  const glm::vec3 background = directOutput ? displayValue(scene.sky.background, render) : scene.sky.background;
   glClearColor(background.r, background.g, background.b, 1.0f);
   glClearDepth(0.0);  // reverse-Z: far is 0
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -382,8 +387,8 @@ std::string SceneRenderer::describe() const {
   if (s.transmissionPass) out << " transmission(copy + mips)";
   if (s.blendPass) out << " blend(sorted)";
   if (s.directOutput) {
-    out << " direct(display values from the fragment shaders, RGBA8, no post pass; into the caller's framebuffer"
-           " when it is single-sample RGBA8 with float depth, else copied)";
+    out << " direct(display values from the fragment shaders: exposure, tone map and curve applied there; RGBA8, no"
+           " post pass; into the caller's framebuffer when it is single-sample RGBA8 with float depth, else copied)";
   } else {
     out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   }

@@ -242,12 +242,12 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
   return Ok{};
 }
 
-void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk) {
-  sky.use();
+void SceneRenderer::Impl::drawSky(const gl::Program& program, const glm::dmat4& viewProjection, bool sunDisk) {
+  program.use();
   if (skyImage) {
     const float radians = glm::radians(scene.sky.rotationDegrees);
-    sky.set("u_skyIntensity", scene.sky.intensity);
-    sky.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
+    program.set("u_skyIntensity", scene.sky.intensity);
+    program.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
     skyImage.bind(gl::binding::kSkyImage);
   } else {
     Lighting lighting;
@@ -256,9 +256,9 @@ void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk
     lighting.skyZenith = scene.sky.zenith;
     lighting.skyHorizon = scene.sky.horizon;
     lighting.skyGround = scene.sky.ground;
-    setSkyUniforms(sky, lighting);
+    setSkyUniforms(program, lighting);
   }
-  sky.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+  program.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
   emptyVao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   ++stats->drawCalls;
@@ -271,7 +271,7 @@ void SceneRenderer::Impl::drawSky(const glm::dmat4& viewProjection, bool sunDisk
 void SceneRenderer::Impl::drawSkyBehind(const View& view) {
   if (!scene.sky.enabled) return;
   applyPassState(kSkyBehindPass);
-  drawSky(view.viewProjection);
+  drawSky(directOutput ? skyDisplay : sky, view.viewProjection);
 }
 
 // Everything a colour pass shows, into the bound HDR framebuffer (cleared): the

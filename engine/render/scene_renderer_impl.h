@@ -153,7 +153,9 @@ struct SceneRenderer::Impl {
   std::optional<SkinMode> skinModeOverride;  // every model's, when set
   QuatInterpolation rotations = QuatInterpolation::Slerp;
   DebugView debugView = DebugView::None;
-  gl::Program sky, post;
+  // sky: linear radiance (the HDR target, the environment cube); skyDisplay: with
+  // directOutput, the view's display values.
+  gl::Program sky, skyDisplay, post;
   gl::Texture skyImage;  // the sky's lat-long image, when the scene has one
   // The PBR ambient (render/ibl.h); built at load for Ambient::Sh and ::Ibl only.
   Ambient ambient = Ambient::Hemisphere;
@@ -294,7 +296,7 @@ struct SceneRenderer::Impl {
   void drawShape(const ShapeDraw& shape, const gl::Program& program, const PassInputs& pass,
                  const IndirectDraw* indirect);
   glm::mat4 shapeModel(const ShapeDraw& shape) const;
-  void drawSky(const glm::dmat4& viewProjection, bool sunDisk = true);
+  void drawSky(const gl::Program& program, const glm::dmat4& viewProjection, bool sunDisk = true);
   void drawSkyBehind(const View& view);
   Status drawWorld(const View& view, int skipShape, bool useProbes);
   Status makeProbes();
@@ -308,6 +310,8 @@ struct SceneRenderer::Impl {
   Status renderFrame(const Camera& camera, int width, int height);
   Status deformCharacters();
   bool needsNoHdrTarget() const;
+  // What the fragment shaders of a directOutput scene are built with (common/output.glsl).
+  std::vector<std::string> displayDefines() const;
   Status makePost();
   bool usesSkinCache(const ModelData& model, const ModelDesc& desc) const;
   std::string describeSkinCache() const;

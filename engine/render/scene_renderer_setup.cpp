@@ -2,6 +2,8 @@
 // models and shapes drawn.
 #include "render/scene_renderer_impl.h"
 
+#include <cstdio>
+
 namespace engine {
 namespace {
 
@@ -102,8 +104,8 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
   directOutput = !options.hdrTarget && needsNoHdrTarget();
   if (directOutput) {
-    defines.push_back("DIRECT_OUTPUT 1");
-    if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
+    const std::vector<std::string> display = displayDefines();
+    defines.insert(defines.end(), display.begin(), display.end());
   }
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
@@ -167,6 +169,12 @@ Status SceneRenderer::Impl::makeSky() {
   auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
   if (!program) return program.error();
   sky = std::move(program).value();
+  if (!directOutput) return Ok{};
+  std::vector<std::string> display = displayDefines();
+  display.insert(display.end(), defines.begin() + 1, defines.end());  // SKY_IMAGE, not HDR_OUTPUT
+  auto view = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, display);
+  if (!view) return view.error();
+  skyDisplay = std::move(view).value();
   return Ok{};
 }
 
@@ -206,7 +214,7 @@ Status SceneRenderer::Impl::makeEnvironmentLighting() {
     glClearColor(background.r, background.g, background.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     if (scene.sky.enabled) {
-      drawSky(projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]), false);
+      drawSky(sky, projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]), false);
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
@@ -273,14 +281,27 @@ Status SceneRenderer::Impl::loadMaterials() {
 // read what is behind). The fragment shaders then write display values
 // (common/output.glsl); the bytes differ from the post pass's by at most one level,
 // where it rounded the radiance to half floats first (SceneRenderer.DirectOutput...).
+// Exposure, the tone map and the curve are per pixel, so the fragment shaders apply
+// them as well as a post pass (the sky's too). What needs the linear image: MSAA's
+// resolve and supersampling's average (both before the tone map), blending and
+// transmission (in linear light), the probes' cubes (linear radiance for the scene's
+// own shaders), the debug views (their values as they are).
 bool SceneRenderer::Impl::needsNoHdrTarget() const {
-  if (render.toneMap != ToneMap::None || render.exposure != 1.0f || render.msaa > 1 || render.supersample > 1) return false;
-  if (scene.sky.enabled || !probes.empty() || debugView != DebugView::None) return false;
+  if (render.msaa > 1 || render.supersample > 1) return false;
+  if (!probes.empty() || debugView != DebugView::None) return false;
   for (const auto& asset : source->assets()) {
     for (const MaterialData& m : asset->model.materials)
       if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
   }
   return true;
+}
+
+std::vector<std::string> SceneRenderer::Impl::displayDefines() const {
+  char exposure[32];
+  std::snprintf(exposure, sizeof(exposure), "EXPOSURE %.9g", double(render.exposure));  // the float's exact value
+  std::vector<std::string> defines{"DIRECT_OUTPUT 1", "TONE_MAP " + std::to_string(int(render.toneMap)), exposure};
+  if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
+  return defines;
 }
 
 // Whether an instance deforms in the skin cache. render.skinning auto sends it

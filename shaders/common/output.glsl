@@ -1,7 +1,25 @@
-// The display's curve, once for the post pass and for DIRECT_OUTPUT: a scene that
-// needs no HDR target (scene_renderer.cpp's directOutput: no tone map, exposure 1,
-// no MSAA, supersampling, sky, probes, blending or transmission) has its fragment
-// shaders write display values into an RGBA8 target, and no post pass runs.
+// The display's end of the pipeline, once for the post pass and for DIRECT_OUTPUT:
+// exposure, the tone map and the output curve. A scene that needs no HDR target
+// (scene_renderer_setup.cpp's needsNoHdrTarget: no MSAA, supersampling, probes,
+// blending or transmission) has its fragment shaders apply them and write display
+// values into an RGBA8 target, and no post pass runs. Variants: TONE_MAP 0 none
+// (clamp) / 1 Reinhard / 2 ACES (Narkowicz fit); OUTPUT_GAMMA22 (the course's 1/2.2;
+// else sRGB); with DIRECT_OUTPUT, EXPOSURE (the post pass takes it as a uniform).
+#ifndef TONE_MAP
+#define TONE_MAP 2
+#endif
+
+// c: linear radiance times the exposure.
+vec3 toneMapped(vec3 c) {
+#if TONE_MAP == 1
+  return c / (1.0 + c);
+#elif TONE_MAP == 2
+  return clamp((c * (2.51 * c + 0.03)) / (c * (2.43 * c + 0.59) + 0.14), 0.0, 1.0);
+#else
+  return clamp(c, 0.0, 1.0);
+#endif
+}
+
 vec3 srgbEncoded(vec3 c) {
   return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
@@ -16,10 +34,11 @@ vec3 displayValue(vec3 c) {
 }
 
 // What a shaded fragment writes: linear radiance into the HDR target, or with
-// DIRECT_OUTPUT its display value, opaque (as the post pass writes it).
+// DIRECT_OUTPUT its display value, opaque (as the post pass writes it: the same
+// curve on the radiance before the HDR target's rounding to half floats).
 vec4 targetColor(vec3 linear, float alpha) {
 #ifdef DIRECT_OUTPUT
-  return vec4(displayValue(clamp(linear, 0.0, 1.0)), 1.0);
+  return vec4(displayValue(clamp(toneMapped(linear * float(EXPOSURE)), 0.0, 1.0)), 1.0);
 #else
   return vec4(linear, alpha);
 #endif

@@ -1,7 +1,8 @@
 // A scene with no HDR effect skips the HDR target and the post pass: its fragment
-// shaders write display values (common/output.glsl) into an RGBA8 target that is
-// copied out. The post pass rounded the radiance to half floats before the same
-// curve, so the two paths may differ by one level, and by no more.
+// shaders apply the exposure, the tone map and the curve (common/output.glsl) and
+// write display values into an RGBA8 target. The post pass rounded the radiance to
+// half floats before the same curve, so the two paths may differ by one level, and by
+// no more.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -54,6 +55,28 @@ DirectFrame renderDirectOrPost(const SceneDesc& scene, bool hdrTarget) {
   return {target->readPixels(), (*renderer)->describe()};
 }
 
+// The direct frame against the post pass's: a level at most, and few of them.
+void expectWithinOneLevelOfThePostPass(const SceneDesc& scene, const std::string& what) {
+  const DirectFrame direct = renderDirectOrPost(scene, false), post = renderDirectOrPost(scene, true);
+  EXPECT_NE(direct.described.find("direct("), std::string::npos) << direct.described;
+  EXPECT_NE(post.described.find("post("), std::string::npos) << post.described;
+  ASSERT_EQ(direct.image.pixels.size(), post.image.pixels.size());
+  int largest = 0;
+  size_t differing = 0;
+  for (size_t i = 0; i < direct.image.pixels.size(); ++i) {
+    const int d = std::abs(int(direct.image.pixels[i]) - int(post.image.pixels[i]));
+    largest = std::max(largest, d);
+    differing += d != 0;
+  }
+  EXPECT_LE(largest, 1);
+  // Only values near a level's boundary move with the half-float rounding:
+  // measured 0.4 % (sRGB) and 5.6-6.3 % (gamma 2.2) of the channels (RGBA;
+  // alpha never). A broken curve (linear values, the curve or the tone map applied
+  // twice or not at all) moves nearly all of them, and by far more than one level.
+  std::printf("%s: %zu of %zu channels differ by one level\n", what.c_str(), differing, direct.image.pixels.size());
+  EXPECT_LT(differing, direct.image.pixels.size() / 8);
+}
+
 std::string directOutputScene(const char* shading, const char* output) {
   char text[4096];
   std::snprintf(text, sizeof(text), kDirectOutputScene, shading, output);
@@ -71,35 +94,36 @@ TEST_P(DirectOutput, DiffersFromThePostPassByAtMostOneLevel) {
       SCOPED_TRACE(std::string(shading) + ", " + output);
       auto scene = parseScene(directOutputScene(shading, output), std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/direct.json");
       ASSERT_TRUE(scene.ok()) << scene.error().message;
-      const DirectFrame direct = renderDirectOrPost(*scene, false), post = renderDirectOrPost(*scene, true);
-      EXPECT_NE(direct.described.find("direct("), std::string::npos) << direct.described;
-      EXPECT_NE(post.described.find("post("), std::string::npos) << post.described;
-      ASSERT_EQ(direct.image.pixels.size(), post.image.pixels.size());
-      int largest = 0;
-      size_t differing = 0;
-      for (size_t i = 0; i < direct.image.pixels.size(); ++i) {
-        const int d = std::abs(int(direct.image.pixels[i]) - int(post.image.pixels[i]));
-        largest = std::max(largest, d);
-        differing += d != 0;
-      }
-      EXPECT_LE(largest, 1);
-      // Only values near a level's boundary move with the half-float rounding:
-      // measured 0.4 % (sRGB) and 5.6-6.3 % (gamma 2.2) of the channels (RGBA;
-      // alpha never). A broken curve (linear values, or the curve applied twice)
-      // moves nearly all of them, and by far more than one level.
-      std::printf("%s, %s: %zu of %zu channels differ by one level\n", shading, output, differing,
-                  direct.image.pixels.size());
-      EXPECT_LT(differing, direct.image.pixels.size() / 8);
+      expectWithinOneLevelOfThePostPass(*scene, std::string(shading) + ", " + output);
     }
   }
 }
 
-// What needs the linear image keeps the HDR target: a tone map, MSAA, a sky.
+// Exposure and the tone maps are per pixel too, and the sky writes display values
+// like the surfaces: scenes with them go direct, within a level of the post pass.
+TEST_P(DirectOutput, ToneMapsExposureAndTheSkyGoDirectWithinOneLevel) {
+  const std::string base = directOutputScene("pbr", "srgb");
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"tonemap\": \"none\"", "\"tonemap\": \"aces\""},
+        {"\"tonemap\": \"none\"", "\"tonemap\": \"reinhard\", \"exposure\": 2.5"},
+        {"\"tonemap\": \"none\"", "\"tonemap\": \"aces\", \"exposure\": 0.7"},
+        {"\"enabled\": false", "\"enabled\": true"}}) {
+    SCOPED_TRACE(to);
+    std::string text = base;
+    text.replace(text.find(from), from.size(), to);
+    auto scene = parseScene(text, std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/direct.json");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    expectWithinOneLevelOfThePostPass(*scene, to);
+  }
+}
+
+// What needs the linear image keeps the HDR target: MSAA's resolve and supersampling's
+// average come before the tone map.
 TEST_P(DirectOutput, ScenesThatNeedTheHdrTargetKeepIt) {
   const std::string base = directOutputScene("pbr", "srgb");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\"tonemap\": \"none\"", "\"tonemap\": \"aces\""},
-                                 {"\"tonemap\": \"none\"", "\"tonemap\": \"none\", \"msaa\": 4"},
-                                 {"\"enabled\": false", "\"enabled\": true"}}) {
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"tonemap\": \"none\"", "\"tonemap\": \"aces\", \"msaa\": 4"},
+        {"\"tonemap\": \"none\"", "\"tonemap\": \"none\", \"supersample\": 2"}}) {
     std::string text = base;
     text.replace(text.find(from), from.size(), to);
     auto scene = parseScene(text, std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/direct.json");
