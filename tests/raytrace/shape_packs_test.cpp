@@ -189,6 +189,21 @@ class RandomShapes {
   glm::dvec3 centre_{0.0};
 };
 
+// intersect() and intersectAny() of one ray against the scalar loop's answer, the
+// distance bit for bit; counts the hits.
+void expectTheScalarAnswer(const rt::RtScene& scene, const rt::Ray<float>& ray, std::uint32_t seed, int i,
+                           std::uint64_t& hits) {
+  const ScalarAnswer expected = scalarNearest(scene, ray);
+  const auto hit = scene.intersect(ray);
+  ASSERT_EQ(hit.has_value(), expected.material >= 0) << "seed " << seed << " ray " << i;
+  ASSERT_EQ(scene.intersectAny(ray), expected.material >= 0) << "seed " << seed << " ray " << i;
+  if (!hit) return;
+  ++hits;
+  ASSERT_EQ(hit->material, expected.material) << "seed " << seed << " ray " << i;
+  ASSERT_EQ(std::bit_cast<std::uint32_t>(hit->t), std::bit_cast<std::uint32_t>(expected.t))
+      << "seed " << seed << " ray " << i << ": " << hit->t << " against " << expected.t;
+}
+
 TEST(ShapePacks, FourAtATimeIsTheScalarLoopBitForBit) {
   std::uint64_t rays = 0, hits = 0, multiPackScenes = 0;
   for (std::uint32_t seed = 1; seed <= 200; ++seed) {
@@ -197,15 +212,8 @@ TEST(ShapePacks, FourAtATimeIsTheScalarLoopBitForBit) {
     for (int i = 0; i < 10000; ++i, ++rays) {
       rt::Ray<float> ray = random.ray(scene);
       if (i % 5 == 0) random.towardSquareEdge(scene, ray);  // where the square's quick test must defer
-      const ScalarAnswer expected = scalarNearest(scene, ray);
-      const auto hit = scene.intersect(ray);
-      ASSERT_EQ(hit.has_value(), expected.material >= 0) << "seed " << seed << " ray " << i;
-      ASSERT_EQ(scene.intersectAny(ray), expected.material >= 0) << "seed " << seed << " ray " << i;
-      if (!hit) continue;
-      ++hits;
-      ASSERT_EQ(hit->material, expected.material) << "seed " << seed << " ray " << i;
-      ASSERT_EQ(std::bit_cast<std::uint32_t>(hit->t), std::bit_cast<std::uint32_t>(expected.t))
-          << "seed " << seed << " ray " << i << ": " << hit->t << " against " << expected.t;
+      expectTheScalarAnswer(scene, ray, seed, i, hits);
+      if (HasFatalFailure()) return;
     }
     multiPackScenes += scene.sphereCount() + scene.planeCount() > 4 ? 1 : 0;
   }
@@ -229,15 +237,8 @@ TEST(ShapePacks, PastTheRootBoxesTheScalarLoopBitForBit) {
     for (int i = 0; i < 10000; ++i, ++rays) {
       rt::Ray<float> ray = random.ray(scene);
       if (i % 3 == 0) random.fromAfar(ray);
-      const ScalarAnswer expected = scalarNearest(scene, ray);
-      const auto hit = scene.intersect(ray);
-      ASSERT_EQ(hit.has_value(), expected.material >= 0) << "seed " << seed << " ray " << i;
-      ASSERT_EQ(scene.intersectAny(ray), expected.material >= 0) << "seed " << seed << " ray " << i;
-      if (!hit) continue;
-      ++hits;
-      ASSERT_EQ(hit->material, expected.material) << "seed " << seed << " ray " << i;
-      ASSERT_EQ(std::bit_cast<std::uint32_t>(hit->t), std::bit_cast<std::uint32_t>(expected.t))
-          << "seed " << seed << " ray " << i << ": " << hit->t << " against " << expected.t;
+      expectTheScalarAnswer(scene, ray, seed, i, hits);
+      if (HasFatalFailure()) return;
     }
   }
   EXPECT_GT(hits, rays / 4);
