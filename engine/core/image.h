@@ -31,8 +31,7 @@ void flipVertically(Image& image);
 // and a lat-long image's columns).
 inline int wrapTexel(int i, int n) {
   // Most indices are in range already (a bilinear tap's neighbour leaves it only at
-  // an edge): no division for them, which measured a third of the ray tracer's
-  // texture reads.
+  // an edge): no division for them, on the ray tracer's every texture read.
   if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;
   const int r = i % n;
   return r < 0 ? r + n : r;

@@ -245,6 +245,44 @@ class Tracer {
   float pixelSpread_ = 0.0f;
 };
 
+// Up to eight pixels of a row side by side, a lane each, their samples in step and in
+// renderPixel's order for each pixel: per stratum, each lane's image point drawn from
+// its own pixel's stream, then `trace(px, py, rngs)` (the lanes' first hits, which
+// may draw from the streams too) and `colour(p, rngs[p])` each lane's sample, the
+// samples summed from zero and averaged as renderPixel does. Lanes past `pixels`
+// repeat the first point and are not coloured.
+constexpr int kRowLanes = 8;
+
+template <typename Trace, typename Colour>
+void sampleLanes(const PixelStrata& strata, const RenderSettings& settings, int x, int pixels, int y,
+                 glm::vec3* out, RayCounters& counters, Trace&& trace, Colour&& colour) {
+  const int spp = std::max(1, settings.samplesPerPixel);
+  Pcg32 rngs[kRowLanes];
+  for (int p = 0; p < pixels; ++p) rngs[p] = Pcg32::forPixel(settings.seed, x + p, y);
+  double px[kRowLanes], py[kRowLanes];
+  for (int p = 0; p < pixels; ++p) out[p] = glm::vec3(0.0f);
+  for (int j = 0; j < strata.count().y; ++j) {
+    for (int i = 0; i < strata.count().x; ++i) {
+      for (int p = 0; p < kRowLanes; ++p) {
+        const glm::dvec2 q = p >= pixels ? glm::dvec2(px[0], py[0])
+                             : spp == 1  ? glm::dvec2(x + p + 0.5, y + 0.5)
+                                         : strata.point(x + p, y, i, j, rngs[p]);
+        px[p] = q.x, py[p] = q.y;
+      }
+      counters.primary += std::uint64_t(pixels);
+      trace(px, py, rngs);
+      for (int p = 0; p < pixels; ++p) {
+        const glm::vec3 c = colour(p, rngs[p]);
+        // One sample is the pixel's colour as it is; more are summed from zero.
+        out[p] = spp == 1 ? c : out[p] + c;
+      }
+    }
+  }
+  if (spp > 1) {
+    for (int p = 0; p < pixels; ++p) out[p] = out[p] / float(spp);
+  }
+}
+
 // The Whitted tracer's image with the first hits eight samples at a time
 // (whitted_packets.h): the pixels' sample positions drawn as renderPixel draws them,
 // the mirrors' rays finished by the scalar Li, the sums and means taken as there, so
@@ -264,33 +302,14 @@ class PacketTracer {
 
  private:
   static constexpr int kLanes = WhittedPackets::kLanes;
+  static_assert(kLanes == kRowLanes);
 
   void renderLanes(int x, int pixels, int y, glm::vec3* out, RayCounters& counters) const {
-    const int spp = std::max(1, settings_.samplesPerPixel);
-    Pcg32 rngs[kLanes];
-    for (int p = 0; p < pixels; ++p) rngs[p] = Pcg32::forPixel(settings_.seed, x + p, y);
-    double px[kLanes], py[kLanes];
     WhittedPackets::Lanes lanes;
-    for (int p = 0; p < pixels; ++p) out[p] = glm::vec3(0.0f);
-    const PixelStrata& strata = scalar_.strata();
-    for (int j = 0; j < strata.count().y; ++j) {
-      for (int i = 0; i < strata.count().x; ++i) {
-        for (int p = 0; p < pixels; ++p) {
-          const glm::dvec2 q = spp == 1 ? glm::dvec2(x + p + 0.5, y + 0.5) : strata.point(x + p, y, i, j, rngs[p]);
-          px[p] = q.x, py[p] = q.y;
-        }
-        counters.primary += std::uint64_t(pixels);
-        packets_.trace(px, py, pixels, rngs, lanes, counters.shadow);
-        for (int p = 0; p < pixels; ++p) {
-          const glm::vec3 c = finish(lanes, p, rngs[p], counters);
-          // One sample is the pixel's colour as it is; more are summed from zero.
-          out[p] = spp == 1 ? c : out[p] + c;
-        }
-      }
-    }
-    if (spp > 1) {
-      for (int p = 0; p < pixels; ++p) out[p] = out[p] / float(spp);
-    }
+    sampleLanes(
+        scalar_.strata(), settings_, x, pixels, y, out, counters,
+        [&](const double* px, const double* py, Pcg32* rngs) { packets_.trace(px, py, pixels, rngs, lanes, counters.shadow); },
+        [&](int p, Pcg32& rng) { return finish(lanes, p, rng, counters); });
   }
 
   // Tracer::Li past the first hit: the environment where the sample escaped, else the
@@ -330,37 +349,20 @@ class SpanTracer {
   }
 
  private:
-  static constexpr int kLanes = 8;  // lanes8::cameraRays' rays at a time
+  static constexpr int kLanes = kRowLanes;  // lanes8::cameraRays' rays at a time
 
   void renderLanes(int x, int pixels, int y, glm::vec3* out, RayCounters& counters) const {
-    const int spp = std::max(1, settings_.samplesPerPixel);
-    Pcg32 rngs[kLanes];
-    for (int p = 0; p < pixels; ++p) rngs[p] = Pcg32::forPixel(settings_.seed, x + p, y);
-    // Lanes past `pixels` repeat the first point; their rays are not traced.
-    double px[kLanes], py[kLanes];
     alignas(32) float dx[kLanes], dy[kLanes], dz[kLanes], tMax[kLanes];
     const Vec3<float> origin(scalar_.camera().position());
-    const PixelStrata& strata = scalar_.strata();
-    for (int j = 0; j < strata.count().y; ++j) {
-      for (int i = 0; i < strata.count().x; ++i) {
-        for (int p = 0; p < kLanes; ++p) {
-          const glm::dvec2 q = p >= pixels ? glm::dvec2(px[0], py[0])
-                               : spp == 1  ? glm::dvec2(x + p + 0.5, y + 0.5)
-                                           : strata.point(x + p, y, i, j, rngs[p]);
-          px[p] = q.x, py[p] = q.y;
-        }
-        lanes8::cameraRays(scalar_.camera(), px, py, dx, dy, dz, tMax);
-        for (int p = 0; p < pixels; ++p) {
-          ++counters.primary;
+    sampleLanes(
+        scalar_.strata(), settings_, x, pixels, y, out, counters,
+        [&](const double* px, const double* py, Pcg32*) {
+          lanes8::cameraRays(scalar_.camera(), px, py, dx, dy, dz, tMax);
+        },
+        [&](int p, Pcg32& rng) {
           const Ray<float> ray{origin, Vec3<float>(dx[p], dy[p], dz[p]), tMax[p]};
-          const glm::vec3 c = scalar_.Li(ray, 0, rngs[p], counters, scalar_.cameraCone());
-          out[p] = spp == 1 ? c : (i == 0 && j == 0 ? glm::vec3(0.0f) : out[p]) + c;
-        }
-      }
-    }
-    if (spp > 1) {
-      for (int p = 0; p < pixels; ++p) out[p] = out[p] / float(spp);
-    }
+          return scalar_.Li(ray, 0, rng, counters, scalar_.cameraCone());
+        });
   }
 
   const Tracer<float>& scalar_;

@@ -155,27 +155,27 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   return buildVariants();
 }
 
-// The sky pass's program: the gradient, or the SKY_IMAGE variant with its texture,
-// uploaded once.
+// The sky pass's programs: the gradient, or the SKY_IMAGE variant with its texture,
+// uploaded once; linear (HDR_OUTPUT) for the HDR target and the environment cube,
+// and with directOutput a second that writes the view's display values.
 Status SceneRenderer::Impl::makeSky() {
   if (!scene.sky.enabled) return Ok{};
-  std::vector<std::string> defines{"HDR_OUTPUT 1"};
+  std::vector<std::string> variant;
   if (!scene.sky.image.empty()) {
     auto image = readLinearImage(scene.sky.image);
     if (!image) return makeError(scene.path + ": /sky/image: " + image.error().message);
     skyImage = uploadSkyImage(*image);
-    defines.push_back("SKY_IMAGE 1");
+    variant.push_back("SKY_IMAGE 1");
   }
-  auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
-  if (!program) return program.error();
-  sky = std::move(program).value();
-  if (!directOutput) return Ok{};
-  std::vector<std::string> display = displayDefines();
-  display.insert(display.end(), defines.begin() + 1, defines.end());  // SKY_IMAGE, not HDR_OUTPUT
-  auto view = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, display);
-  if (!view) return view.error();
-  skyDisplay = std::move(view).value();
-  return Ok{};
+  const auto build = [&](std::vector<std::string> defines, gl::Program& out) -> Status {
+    defines.insert(defines.end(), variant.begin(), variant.end());
+    auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
+    if (!program) return program.error();
+    out = std::move(program).value();
+    return Ok{};
+  };
+  if (auto s = build({"HDR_OUTPUT 1"}, sky); !s) return s;
+  return directOutput ? build(displayDefines(), skyDisplay) : Ok{};
 }
 
 // The one post variant these settings need (post.frag says why not uniforms);
@@ -275,17 +275,14 @@ Status SceneRenderer::Impl::loadMaterials() {
 }
 
 // Whether the frame can skip the HDR target and the post pass (issue 14: a scene
-// with no HDR effect pays for none): nothing to tone map or expose, no samples to
-// resolve or average, and nothing that reads or blends the linear image (the sky
-// and probes are drawn linear for the environment too, blending and transmission
-// read what is behind). The fragment shaders then write display values
-// (common/output.glsl); the bytes differ from the post pass's by at most one level,
-// where it rounded the radiance to half floats first (SceneRenderer.DirectOutput...).
-// Exposure, the tone map and the curve are per pixel, so the fragment shaders apply
-// them as well as a post pass (the sky's too). What needs the linear image: MSAA's
-// resolve and supersampling's average (both before the tone map), blending and
-// transmission (in linear light), the probes' cubes (linear radiance for the scene's
-// own shaders), the debug views (their values as they are).
+// with no HDR effect pays for none). Exposure, the tone map and the curve are per
+// pixel, so the fragment shaders apply them as well as a post pass (the sky's view
+// variant too) and write display values (common/output.glsl); the bytes differ from
+// the post pass's by at most one level, where it rounded the radiance to half floats
+// first (DirectOutput tests). What needs the linear image: MSAA's resolve and
+// supersampling's average (both before the tone map), blending and transmission (in
+// linear light), the probes' cubes (linear radiance for the scene's own shaders), the
+// debug views (their values as they are).
 bool SceneRenderer::Impl::needsNoHdrTarget() const {
   if (render.msaa > 1 || render.supersample > 1) return false;
   if (!probes.empty() || debugView != DebugView::None) return false;
