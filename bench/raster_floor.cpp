@@ -3,7 +3,8 @@
 //   raster_floor [SCENE.json] [--offscreen egl|osmesa] [--size WxH] [--time T] [--frames N]
 //
 // The floor draws the same triangles the scene shows at time T (characters skinned on
-// the CPU, the terrain's CDLOD selection for this camera, boxes, spheres and planes
+// the CPU, the terrain's CDLOD selection for this camera less what its opaque planes
+// hide (as the renderer leaves it out), boxes, spheres and planes
 // tessellated as the rasterizer does) with one program, one vertex array and one draw
 // call per frame, no shadows, no post pass. Frames of the real renderer and of the
 // floor alternate in one process, so both see the same machine load; the table gives
@@ -30,6 +31,8 @@
 #include "terrain/scene_terrain.h"
 #include "terrain/terrain.h"
 #include "render/render_target.h"
+#include "render/terrain_cull.h"
+#include "scene/shapes.h"
 #include "render/scene_renderer.h"
 
 namespace {
@@ -46,20 +49,37 @@ void appendShape(engine::ShapeData& out, const engine::ShapeData& shape, const g
   for (std::uint32_t i : shape.indices) out.indices.push_back(base + i);
 }
 
+// The opaque planes as the renderer's view sees them (render/plane_occlusion.h).
+std::vector<engine::cull::ScreenQuad> planeQuads(const engine::SceneDesc& scene, const glm::dmat4& viewProjection,
+                                                 glm::dvec2 viewport) {
+  std::vector<engine::cull::ScreenQuad> quads;
+  for (const engine::PrimitiveDesc& p : scene.primitives) {
+    if (p.type != engine::PrimitiveType::Plane || scene.materials[size_t(p.material)].layers.transmissive()) continue;
+    auto corners = engine::planeCorners(engine::primitiveTransform(p, scene.camera.farPlane));
+    for (glm::dvec3& c : corners) c -= scene.camera.position;
+    if (auto q = engine::cull::screenQuad(corners, viewProjection, viewport)) quads.push_back(std::move(*q));
+  }
+  return quads;
+}
+
 // The terrain patches the rasterizer draws from this camera (its CDLOD selection,
-// culled to the view), camera-relative as patchVertices gives them.
-engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& scene, const glm::mat4& viewProjection,
-                             int height) {
+// culled to the view, less what its opaque planes hide), camera-relative as
+// patchVertices gives them.
+engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& scene, const glm::dmat4& viewProjection,
+                             glm::ivec2 size) {
+  const int height = size.y;
   auto field = engine::terrain::Terrain::create(engine::terrain::settingsFromScene(scene.terrain));
   if (!field) return engine::makeError(scene.path + ": /terrain: " + field.error().message);
   engine::terrain::LodCamera camera;
   camera.position = scene.camera.position;
-  camera.viewProjection = viewProjection;
+  camera.viewProjection = glm::mat4(viewProjection);
   camera.fovY = glm::radians(scene.camera.fovyDegrees);
   camera.viewportHeight = height;
   // The block errors the view needs, as the renderer measures them.
   engine::terrain::measureBlocks(*field, camera, scene.terrain.errorPixels);
-  const auto selection = engine::terrain::selectLod(*field, camera, scene.terrain.errorPixels);
+  auto selection = engine::terrain::selectLod(*field, camera, scene.terrain.errorPixels);
+  engine::removeHiddenPatches(*field, selection, planeQuads(scene, viewProjection, glm::dvec2(size)), viewProjection,
+                              glm::dvec2(size));
   const std::vector<std::uint32_t> indices = engine::terrain::patchIndices();
   for (const auto& patch : selection.patches) {
     const auto base = static_cast<std::uint32_t>(out.vertices.size());
@@ -75,14 +95,15 @@ engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& sc
 // skinned on the CPU with the same jobs (the ray tracer's scene builder), kept when
 // their box meets the view as the rasterizer culls them; the terrain's selection;
 // analytic shapes tessellated as the rasterizer does.
-engine::Result<engine::ShapeData> floorGeometry(const engine::SceneDesc& scene, double time, int height,
-                                                const glm::mat4& viewProjection) {
+engine::Result<engine::ShapeData> floorGeometry(const engine::SceneDesc& scene, double time, glm::ivec2 size,
+                                                const glm::dmat4& viewProjection) {
+  const int height = size.y;
   engine::SceneDesc withoutTerrain = scene;
   withoutTerrain.terrain.enabled = false;
   auto rt = engine::rt::buildRtScene(withoutTerrain, time, height);
   if (!rt) return rt.error();
   const glm::dvec3 eye = scene.camera.position;
-  const auto frustum = engine::terrain::Frustum::fromViewProjection(viewProjection);
+  const auto frustum = engine::terrain::Frustum::fromViewProjection(glm::mat4(viewProjection));
   engine::ShapeData out;
   for (const engine::rt::RtMesh& mesh : rt->meshes()) {
     engine::ShapeData shape;
@@ -101,7 +122,7 @@ engine::Result<engine::ShapeData> floorGeometry(const engine::SceneDesc& scene, 
     appendShape(out, engine::shapeForPrimitive(p), engine::primitiveTransform(p, scene.camera.farPlane), eye);
   }
   if (scene.terrain.enabled) {
-    if (auto s = appendTerrain(out, scene, viewProjection, height); !s) return s.error();
+    if (auto s = appendTerrain(out, scene, viewProjection, size); !s) return s.error();
   }
   return out;
 }
@@ -189,7 +210,7 @@ int main(int argc, char** argv) {
   if (!renderer) return fail(renderer.error().message);
   const engine::Camera camera = (*renderer)->initialCamera();
   const glm::dmat4 viewProjection = viewProjectionOf(scene->camera, double(width) / double(height));
-  auto geometry = floorGeometry(*scene, time, height, glm::mat4(viewProjection));
+  auto geometry = floorGeometry(*scene, time, {width, height}, viewProjection);
   if (!geometry) return fail(geometry.error().message);
   Floor floor;
   if (auto s = floor.init(*geometry, options.shaderDir); !s) return fail(s.error().message);

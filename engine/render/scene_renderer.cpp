@@ -254,6 +254,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   mainView.viewProjection = viewProjection;
   std::copy(std::begin(planes), std::end(planes), std::begin(mainView.planes));
   mainView.fovy = fovy;
+  mainView.width = targetWidth;
   mainView.height = targetHeight;
   beginTimer("world");
   const Status world = drawWorld(mainView, -1, true);

@@ -14,6 +14,7 @@
 #include "anim/clip.h"
 #include "render/camera.h"
 #include "render/model_renderer.h"
+#include "render/plane_occlusion.h"
 #include "scene/model_asset.h"
 
 namespace engine {
@@ -51,6 +52,11 @@ struct SceneRenderOptions {
   // Tests only: GPU culling's depth margin (cull::View::depthMargin); a negative
   // one culls what is in front, and the culled image must then differ.
   float gpuCullingDepthMargin = cull::kDepthMargin;
+  // Tests only: false draws the terrain patches an opaque plane hides (the
+  // reference the occlusion is tested against, render/plane_occlusion.h); the
+  // occlusion's pixel margin, whose negative values hide what shows.
+  bool planeOcclusion = true;
+  double planeOcclusionPixelMargin = cull::kPlanePixelMargin;
   // Replaces every model's skinning (lbs, dqs, none: the bind pose).
   std::optional<SkinMode> skinModeOverride;
   // Replace render.shading, render.exposure (> 0), render.tonemap, render.output.
@@ -75,6 +81,9 @@ struct SceneStats {
   int objectsCulled = 0;
   int objectsDrawn = 0;
   int terrainTriangles = 0;
+  // The terrain's patches left out because an opaque plane hides them
+  // (render/plane_occlusion.h), over the frame's views.
+  int terrainPatchesHidden = 0;
   // Terrain blocks whose errors are still to be measured for this view (a few a
   // frame): until none are, the terrain's level of detail may still coarsen.
   int terrainBlocksPending = 0;

@@ -203,7 +203,8 @@ std::vector<cull::Cluster> SceneRenderer::Impl::terrainPatchBoxes(const terrain:
 // first half). Each command is a run of the instance buffer's patches
 // (cull::kInstances), so they are drawn in the same order as the one instanced draw.
 void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
-  const auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
+  auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
+  hidePatchesBehindPlanes(selection, view, -1);
   const auto prepared = terrainRenderer->prepare(selection);
   stats->drawCalls += 1;
   stats->terrainTriangles = int(prepared.trianglesDrawn);

@@ -292,7 +292,7 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   // culled against the depth of what went before.
   if (terrain) {
     applyPassState(opaquePassFor(view.mirrored));
-    drawTerrain(view.viewProjection, view.fovy, view.height);
+    drawTerrain(view, skipShape);
   }
   drawSkyBehind(view);
   if (lists->refracts) {
@@ -334,11 +334,32 @@ void SceneRenderer::Impl::measureTerrain(double fovy, int viewportHeight) {
   stats->terrainBlocksPending = int(terrain::measureBlocks(*terrain, camera, terrainError));
 }
 
-void SceneRenderer::Impl::drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight) {
-  const auto selection = selectTerrain(glm::mat4(viewProjection), fovy, viewportHeight);
+void SceneRenderer::Impl::drawTerrain(const View& view, int skipShape) {
+  auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
+  hidePatchesBehindPlanes(selection, view, skipShape);
   const auto drawn = terrainRenderer->draw(selection, eye, [this](const gl::Program& p) { setUniforms(p); });
   stats->drawCalls += 1;
   stats->terrainTriangles = int(drawn.trianglesDrawn);
+}
+
+// The selection's patches that one of the view's opaque planes hides wholly
+// (render/plane_occlusion.h), left out: the image is the same, less the cost of
+// rasterizing what would fail the depth test everywhere. `skipShape` (a probe's
+// own mirror) is not drawn in the view, so it hides nothing.
+void SceneRenderer::Impl::hidePatchesBehindPlanes(terrain::LodSelection& selection, const View& view,
+                                                  int skipShape) const {
+  if (!planeOcclusion) return;
+  const glm::dvec2 viewport(view.width, view.height);
+  std::vector<cull::ScreenQuad> quads;
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    const ShapeDraw& s = shapes[i];
+    if (s.mesh != quad.get() || int(i) == skipShape || scene.materials[size_t(s.material)].layers.transmissive()) continue;
+    auto corners = planeCorners(s.world);
+    for (glm::dvec3& c : corners) c -= eye;
+    if (auto q = cull::screenQuad(corners, view.viewProjection, viewport)) quads.push_back(std::move(*q));
+  }
+  stats->terrainPatchesHidden +=
+      int(removeHiddenPatches(*terrain, selection, quads, view.viewProjection, viewport, planeOcclusionPixelMargin));
 }
 
 // What the transmissive draws refract: the view's colour so far (sky, terrain and
@@ -396,7 +417,7 @@ Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
       view.viewProjection = projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]);
       frustumPlanes(view.viewProjection, view.planes);
       view.fovy = glm::half_pi<double>();
-      view.height = probeSize;
+      view.width = view.height = probeSize;
       fillFrame(probe.center, glm::mat4(view.viewProjection));
       glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probe.cube.id(), 0, face);
       probeFbo.bind();

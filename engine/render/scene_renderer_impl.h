@@ -65,7 +65,7 @@ struct View {
   glm::dmat4 viewProjection{1.0};
   glm::dvec4 planes[6];
   double fovy = 1.0;
-  int height = 1;
+  int width = 1, height = 1;
   bool mirrored = false;  // a left-handed camera: faces wind the other way
   // The camera's own view: only it copies its opaque pass for transmissive surfaces
   // to refract (probe views refract the camera's last copy).
@@ -228,6 +228,9 @@ struct SceneRenderer::Impl {
   std::unique_ptr<GpuCuller> terrainCuller;  // the terrain's patches, a table of their own each frame
   std::unique_ptr<HiZPyramid> hiz;
   float cullDepthMargin = cull::kDepthMargin;
+  // Terrain patches hidden by opaque planes are left out (render/plane_occlusion.h).
+  bool planeOcclusion = true;
+  double planeOcclusionPixelMargin = cull::kPlanePixelMargin;
   std::map<const GpuMesh*, std::uint32_t> shapeClusterBase;
   std::map<const GpuPrimitive*, std::uint32_t> primitiveClusterBase;
   Status makeCuller();
@@ -237,6 +240,7 @@ struct SceneRenderer::Impl {
   void cullPhase(GpuCuller& with, std::size_t firstJob, std::size_t endJob, const View& view, bool occlusion);
   std::vector<cull::Cluster> terrainPatchBoxes(const terrain::LodSelection& selection) const;
   void drawTerrainCulled(const View& view);
+  void hidePatchesBehindPlanes(terrain::LodSelection& selection, const View& view, int skipShape) const;
   Status drawCulled(const View& view, const DrawLists& lists, bool useProbes);
   bool isOccluder(const DrawItem& item) const;
   void buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders);
@@ -265,7 +269,7 @@ struct SceneRenderer::Impl {
   Status loadTerrain(const std::vector<std::string>& defines);
   terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void measureTerrain(double fovy, int viewportHeight);
-  void drawTerrain(const glm::dmat4& viewProjection, double fovy, int viewportHeight);
+  void drawTerrain(const View& view, int skipShape);
   struct SunBox {
     glm::dmat4 view{1.0}, projection{1.0};  // camera-relative world -> the light's clip space
     glm::mat4 shadowMatrix{1.0f};           // camera-relative world -> map [0,1]^3

@@ -48,6 +48,8 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   render.lodPixels = options.lodPixelsOverride.value_or(render.lodPixels);
   render.gpuCulling = options.gpuCullingOverride.value_or(render.gpuCulling);
   cullDepthMargin = options.gpuCullingDepthMargin;
+  planeOcclusion = options.planeOcclusion;
+  planeOcclusionPixelMargin = options.planeOcclusionPixelMargin;
   render.shading = options.shadingOverride.value_or(render.shading);
   if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
   render.toneMap = options.toneMapOverride.value_or(render.toneMap);

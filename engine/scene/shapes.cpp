@@ -60,6 +60,13 @@ glm::dmat4 primitiveTransform(const PrimitiveDesc& p, double farPlane) {
   return glm::dmat4(1.0);
 }
 
+std::array<glm::dvec3, 4> planeCorners(const glm::dmat4& world) {
+  const glm::dvec2 local[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  std::array<glm::dvec3, 4> out;
+  for (size_t c = 0; c < 4; ++c) out[c] = glm::dvec3(world * glm::dvec4(local[c].x, 0.0, local[c].y, 1.0));
+  return out;
+}
+
 ShapeData makePlane(float size, int cells, float uvRepeat) {
   ShapeData mesh;
   const float half = size * 0.5f;

@@ -2,6 +2,7 @@
 // The analytic shapes of a scene file as triangle meshes, GL-free: the rasterizer
 // uploads them (render/mesh.h) and the ray tracer traces the boxes' triangles and
 // takes the planes' texture axes from the same transforms, so both draw one shape.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -36,6 +37,8 @@ ShapeData makeSphere(float radius, int rings, int segments);
 ShapeData shapeForPrimitive(const PrimitiveDesc& primitive);
 double planeExtent(const PrimitiveDesc& plane, double farPlane);
 glm::dmat4 primitiveTransform(const PrimitiveDesc& primitive, double farPlane);
+// The corners of the unit plane (2 wide) placed by `world`, in order around it.
+std::array<glm::dvec3, 4> planeCorners(const glm::dmat4& world);
 
 // The rotation taking unit vector `from` to unit vector `to` (a half turn about x
 // when they are opposite): a plane's placement, and so its texture axes.

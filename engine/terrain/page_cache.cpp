@@ -4,6 +4,20 @@
 
 namespace engine::terrain {
 
+void HeightPage::measurePatches() {
+  for (int q = 0; q < 4; ++q) {
+    const int i0 = (q & 1) * kPatchQuads, j0 = (q >> 1) * kPatchQuads;
+    HeightRange& r = patchRanges[std::size_t(q)];
+    r = {at(i0, j0), at(i0, j0)};
+    for (int j = j0; j <= j0 + kPatchQuads; ++j) {
+      for (int i = i0; i <= i0 + kPatchQuads; ++i) {
+        r.min = std::min(r.min, at(i, j));
+        r.max = std::max(r.max, at(i, j));
+      }
+    }
+  }
+}
+
 PageCache::PageCache(std::size_t budgetBytes, Generator generate)
     : budget_(budgetBytes), generate_(std::move(generate)) {
   stats_.budgetBytes = budget_;
@@ -20,6 +34,7 @@ std::shared_ptr<const HeightPage> PageCache::get(const PageKey& key) {
   page->key = key;
   page->heights.resize(kPageSamples);
   generate_(key, *page);
+  page->measurePatches();
   // Evict before inserting, so the budget holds at every moment, not just after.
   while (!lru_.empty() && stats_.bytes + kPageBytes > budget_) {
     index_.erase(lru_.back()->key);

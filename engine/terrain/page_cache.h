@@ -3,6 +3,7 @@
 // quadtree node at that node's own stride (2^level samples), which is all its grid
 // ever reads, so a far node costs the same memory as a near one. The cache never
 // holds more than its byte budget: inserting past it evicts the oldest pages first.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -10,6 +11,8 @@
 #include <memory>
 #include <unordered_map>
 #include <vector>
+
+#include "terrain/height_source.h"
 
 namespace engine::terrain {
 
@@ -44,7 +47,12 @@ struct HeightPage {
   // kPageSide^2 heights (metres above the terrain origin), row-major by z; entry
   // (i + 1, j + 1) is node sample (i, j), i.e. global sample origin + (i, j) * stride.
   std::vector<float> heights;
+  // The least and greatest of the samples each of the node's 2 x 2 patches reads,
+  // borders out ([qx * kPatchQuads, qx * kPatchQuads + kPatchQuads] in i, and so
+  // in j), entry qx + 2 * qz: the heights a patch's grid lies between, for culling.
+  std::array<HeightRange, 4> patchRanges{};
   float at(int i, int j) const { return heights[std::size_t(j + 1) * kPageSide + (i + 1)]; }
+  void measurePatches();
 };
 
 struct PageCacheStats {

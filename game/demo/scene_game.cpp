@@ -208,6 +208,7 @@ engine::Game::Counters SceneGame::frameCounters() {
                     {"objects_drawn", s.objectsDrawn},
                     {"objects_culled", s.objectsCulled},
                     {"terrain_triangles", s.terrainTriangles},
+                    {"terrain_patches_hidden", s.terrainPatchesHidden},
                     {"vertices_deformed", double(s.verticesDeformed)},
                     {"frame_copies", s.frameCopies},
                     {"sun_static_kept", s.sunStaticKept},

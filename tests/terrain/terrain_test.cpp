@@ -304,6 +304,31 @@ TEST(TerrainPaging, CacheEvictsWithinItsBudgetAndRemakesPagesExactly) {
   EXPECT_EQ(t->normalAt(17.3, 1999.1), normalBefore);
 }
 
+// Each page's four patch ranges are the least and greatest of the samples the
+// patch's grid reads, straight from the source (indices clamped at the field's
+// edge), on pages of three levels, the field's edges included.
+TEST(TerrainPaging, PatchRangesAreTheExtremesOfThePatchesSamples) {
+  auto t = Terrain::create(test::noiseSettings(1024.0, 300.0));
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  for (const PageKey key : {PageKey{0, 0, 0}, PageKey{0, 3, 5}, PageKey{1, 2, 1}, PageKey{2, 1, 1}, PageKey{0, 15, 15}}) {
+    const auto page = t->page(key);
+    const int s = Terrain::stride(key.level);
+    for (int q = 0; q < 4; ++q) {
+      float lo = 1e30f, hi = -1e30f;
+      for (int j = 0; j <= kPatchQuads; ++j)
+        for (int i = 0; i <= kPatchQuads; ++i) {
+          const float h = t->sample((key.nx * kNodeQuads + (q & 1) * kPatchQuads + i) * s,
+                                    (key.nz * kNodeQuads + (q >> 1) * kPatchQuads + j) * s);
+          lo = std::min(lo, h);
+          hi = std::max(hi, h);
+        }
+      EXPECT_EQ(page->patchRanges[size_t(q)].min, lo) << key.level << " " << key.nx << " " << key.nz << " " << q;
+      EXPECT_EQ(page->patchRanges[size_t(q)].max, hi);
+      EXPECT_LT(lo, hi);
+    }
+  }
+}
+
 // The 16 km x 16 km field at 1 m spacing (16385^2 samples, 1 GiB as floats) flown
 // across at low altitude: pages are made as the selection needs them, and the cache
 // never holds more than the stated budget.
