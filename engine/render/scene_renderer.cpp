@@ -407,7 +407,10 @@ std::string SceneRenderer::describe() const {
   }
   out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes (" << stats_.programsNeeded << " needed), "
       << stats_.objectsDrawn << " objects drawn, " << stats_.objectsCulled << " culled";
-  if (s.terrain) out << ", " << stats_.terrainTriangles << " terrain triangles";
+  if (s.terrain) {
+    out << ", " << stats_.terrainTriangles << " terrain triangles, " << stats_.terrainPatchesHidden
+        << " terrain patches hidden by opaque planes";
+  }
   out << "\n";
   return out.str();
 }

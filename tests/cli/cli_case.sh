@@ -328,6 +328,8 @@ for key in ("draw_calls", "program_changes", "triangles_all_passes", "objects_dr
 # render.skinning auto: only the dual-quaternion robot (4486 vertices) goes
 # through the skin cache; the LBS robots skin in the vertex shaders.
 assert counters["vertices_deformed"] == 4486, counters["vertices_deformed"]
+# The plaza's ground hides the valley floor's patches (render/plane_occlusion.h).
+assert counters["terrain_patches_hidden"] > 0, counters["terrain_patches_hidden"]
 PY
     ;;
   imgdiff)
@@ -344,7 +346,8 @@ PY
     # in the skin cache.
     for want in "sky" "terrain(cdlod" "opaque+fog" "lbs4+textured" "lbs4+depth" "shading: pbr" \
                 "skinning(skin cache: 1 primitives" "skin-cache variants: dqs4+normals" \
-                "ibl(brdf-lut(32x32) sh9(from cube 128) prefiltered(cube 128, 5 levels 128..8" "ambient ibl (built once in"; do
+                "ibl(brdf-lut(32x32) sh9(from cube 128) prefiltered(cube 128, 5 levels 128..8" "ambient ibl (built once in" \
+                "terrain patches hidden by opaque planes"; do
       grep -qF "$want" "$OUT" || { echo "FAIL: --describe lacks $want"; cat "$OUT"; exit 1; }
     done
     # Its robots have a base colour texture and nothing else: no material variant
