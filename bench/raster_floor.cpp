@@ -32,7 +32,6 @@
 #include "terrain/terrain.h"
 #include "render/render_target.h"
 #include "render/terrain_cull.h"
-#include "scene/shapes.h"
 #include "render/scene_renderer.h"
 
 namespace {
@@ -47,19 +46,6 @@ void appendShape(engine::ShapeData& out, const engine::ShapeData& shape, const g
     out.vertices.push_back({glm::vec3(p), glm::vec3(glm::normalize(normalMatrix * glm::dvec3(v.normal))), v.uv});
   }
   for (std::uint32_t i : shape.indices) out.indices.push_back(base + i);
-}
-
-// The opaque planes as the renderer's view sees them (render/plane_occlusion.h).
-std::vector<engine::cull::ScreenQuad> planeQuads(const engine::SceneDesc& scene, const glm::dmat4& viewProjection,
-                                                 glm::dvec2 viewport) {
-  std::vector<engine::cull::ScreenQuad> quads;
-  for (const engine::PrimitiveDesc& p : scene.primitives) {
-    if (p.type != engine::PrimitiveType::Plane || scene.materials[size_t(p.material)].layers.transmissive()) continue;
-    auto corners = engine::planeCorners(engine::primitiveTransform(p, scene.camera.farPlane));
-    for (glm::dvec3& c : corners) c -= scene.camera.position;
-    if (auto q = engine::cull::screenQuad(corners, viewProjection, viewport)) quads.push_back(std::move(*q));
-  }
-  return quads;
 }
 
 // The terrain patches the rasterizer draws from this camera (its CDLOD selection,
@@ -78,8 +64,8 @@ engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& sc
   // The block errors the view needs, as the renderer measures them.
   engine::terrain::measureBlocks(*field, camera, scene.terrain.errorPixels);
   auto selection = engine::terrain::selectLod(*field, camera, scene.terrain.errorPixels);
-  engine::removeHiddenPatches(*field, selection, planeQuads(scene, viewProjection, glm::dvec2(size)), viewProjection,
-                              glm::dvec2(size));
+  const auto planes = engine::cull::opaquePlanes(scene, scene.camera.position, viewProjection, glm::dvec2(size));
+  engine::removeHiddenPatches(*field, selection, planes, viewProjection, glm::dvec2(size));
   const std::vector<std::uint32_t> indices = engine::terrain::patchIndices();
   for (const auto& patch : selection.patches) {
     const auto base = static_cast<std::uint32_t>(out.vertices.size());

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/shapes.h"
+
 namespace engine::cull {
 
 namespace {
@@ -65,6 +67,20 @@ std::optional<ScreenQuad> screenQuad(const std::array<glm::dvec3, 4>& corners, c
   if (!(std::abs(area) > 0.0)) return std::nullopt;
   if (area < 0.0) std::reverse(quad.outline.begin(), quad.outline.end());
   return quad;
+}
+
+std::vector<ScreenQuad> opaquePlanes(const SceneDesc& scene, const glm::dvec3& eye, const glm::dmat4& viewProjection,
+                                     glm::dvec2 viewport, int skip) {
+  std::vector<ScreenQuad> quads;
+  for (size_t i = 0; i < scene.primitives.size(); ++i) {
+    const PrimitiveDesc& p = scene.primitives[i];
+    if (p.type != PrimitiveType::Plane || int(i) == skip || scene.materials[size_t(p.material)].layers.transmissive())
+      continue;
+    auto corners = planeCorners(primitiveTransform(p, scene.camera.farPlane));
+    for (glm::dvec3& c : corners) c -= eye;
+    if (auto q = screenQuad(corners, viewProjection, viewport)) quads.push_back(std::move(*q));
+  }
+  return quads;
 }
 
 bool hidesBox(const ScreenQuad& quad, const glm::dvec3& lo, const glm::dvec3& hi, const glm::dmat4& viewProjection,

@@ -21,6 +21,8 @@
 
 #include <glm/glm.hpp>
 
+#include "asset/scene_desc.h"
+
 namespace engine::cull {
 
 inline constexpr double kPlanePixelMargin = 2.0;
@@ -40,6 +42,12 @@ struct ScreenQuad {
 // plane shape is). Nothing when the eye lies in its plane or it is out of view.
 std::optional<ScreenQuad> screenQuad(const std::array<glm::dvec3, 4>& corners, const glm::dmat4& viewProjection,
                                      glm::dvec2 viewport);
+
+// The scene's plane shapes whose material lets nothing through, as a view from
+// `eye` with `viewProjection` (camera-relative) sees them; shape `skip` (a
+// reflection probe's own mirror, not drawn in its views) left out.
+std::vector<ScreenQuad> opaquePlanes(const SceneDesc& scene, const glm::dvec3& eye, const glm::dmat4& viewProjection,
+                                     glm::dvec2 viewport, int skip = -1);
 
 // Whether the quad hides the box (camera-relative, lo..hi) from the eye, margins
 // included. False whenever a corner lies behind the eye. `pixelMargin` other than

@@ -350,14 +350,7 @@ void SceneRenderer::Impl::hidePatchesBehindPlanes(terrain::LodSelection& selecti
                                                   int skipShape) const {
   if (!planeOcclusion) return;
   const glm::dvec2 viewport(view.width, view.height);
-  std::vector<cull::ScreenQuad> quads;
-  for (size_t i = 0; i < shapes.size(); ++i) {
-    const ShapeDraw& s = shapes[i];
-    if (s.mesh != quad.get() || int(i) == skipShape || scene.materials[size_t(s.material)].layers.transmissive()) continue;
-    auto corners = planeCorners(s.world);
-    for (glm::dvec3& c : corners) c -= eye;
-    if (auto q = cull::screenQuad(corners, view.viewProjection, viewport)) quads.push_back(std::move(*q));
-  }
+  const auto quads = cull::opaquePlanes(scene, eye, view.viewProjection, viewport, skipShape);
   stats->terrainPatchesHidden +=
       int(removeHiddenPatches(*terrain, selection, quads, view.viewProjection, viewport, planeOcclusionPixelMargin));
 }
