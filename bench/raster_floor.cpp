@@ -53,14 +53,13 @@ void appendShape(engine::ShapeData& out, const engine::ShapeData& shape, const g
 // patchVertices gives them.
 engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& scene, const glm::dmat4& viewProjection,
                              glm::ivec2 size) {
-  const int height = size.y;
   auto field = engine::terrain::Terrain::create(engine::terrain::settingsFromScene(scene.terrain));
   if (!field) return engine::makeError(scene.path + ": /terrain: " + field.error().message);
   engine::terrain::LodCamera camera;
   camera.position = scene.camera.position;
   camera.viewProjection = glm::mat4(viewProjection);
   camera.fovY = glm::radians(scene.camera.fovyDegrees);
-  camera.viewportHeight = height;
+  camera.viewportHeight = size.y;
   // The block errors the view needs, as the renderer measures them.
   engine::terrain::measureBlocks(*field, camera, scene.terrain.errorPixels);
   auto selection = engine::terrain::selectLod(*field, camera, scene.terrain.errorPixels);
@@ -83,10 +82,9 @@ engine::Status appendTerrain(engine::ShapeData& out, const engine::SceneDesc& sc
 // analytic shapes tessellated as the rasterizer does.
 engine::Result<engine::ShapeData> floorGeometry(const engine::SceneDesc& scene, double time, glm::ivec2 size,
                                                 const glm::dmat4& viewProjection) {
-  const int height = size.y;
   engine::SceneDesc withoutTerrain = scene;
   withoutTerrain.terrain.enabled = false;
-  auto rt = engine::rt::buildRtScene(withoutTerrain, time, height);
+  auto rt = engine::rt::buildRtScene(withoutTerrain, time, size.y);
   if (!rt) return rt.error();
   const glm::dvec3 eye = scene.camera.position;
   const auto frustum = engine::terrain::Frustum::fromViewProjection(glm::mat4(viewProjection));

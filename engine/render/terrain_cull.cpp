@@ -5,10 +5,8 @@
 namespace engine {
 
 terrain::HeightRange patchHeights(const terrain::Terrain& terrain, const terrain::LodPatch& patch) {
-  const int s = terrain::Terrain::stride(patch.level);
-  const int qx = (patch.gx / s) % terrain::kNodeQuads / terrain::kPatchQuads;
-  const int qz = (patch.gz / s) % terrain::kNodeQuads / terrain::kPatchQuads;
-  return terrain.page(patch.node)->patchRanges[size_t(qx + 2 * qz)];
+  const glm::ivec2 quarter = terrain::patchPageOrigin(patch) / terrain::kPatchQuads;
+  return terrain.page(patch.node)->patchRanges[size_t(quarter.x + 2 * quarter.y)];
 }
 
 cull::Cluster terrainPatchBox(const terrain::Terrain& terrain, const terrain::LodSelection& selection,

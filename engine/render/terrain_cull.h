@@ -2,7 +2,6 @@
 // GPU culling of the terrain's CDLOD patches (render/gpu_cull.h): each patch's box,
 // the cluster the cull tests it by. GL-free.
 #include <cstdint>
-
 #include <vector>
 
 #include "render/cull_math.h"

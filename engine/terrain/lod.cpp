@@ -325,7 +325,8 @@ glm::vec3 patchVertex(const LodSelection& sel, const LodPatch& patch, const Heig
   const float qrx = float(qx - sel.cameraCell.x) - sel.cameraFraction.x;
   const float qrz = float(qz - sel.cameraCell.y) - sel.cameraFraction.y;
   // Position of the patch inside its node's page, in the level's samples.
-  const int li = (patch.gx / s) % kNodeQuads + i, lj = (patch.gz / s) % kNodeQuads + j;
+  const glm::ivec2 origin = patchPageOrigin(patch);
+  const int li = origin.x + i, lj = origin.y + j;
   const float hp = page.at(li, lj), hq = page.at(li - oddX, lj - oddZ);
   const float w = 1.0f - k;
   const float x = (rx * w + qrx * k) * sel.spacing;
@@ -350,7 +351,8 @@ glm::vec3 patchNormal(const LodSelection& sel, const LodPatch& patch, const Heig
   const int s = Terrain::stride(patch.level);
   const float k = morphFactor(sel, patch.level, patch.gx + i * s, patch.gz + j * s);
   const int oddX = i & 1, oddZ = j & 1;
-  const int li = (patch.gx / s) % kNodeQuads + i, lj = (patch.gz / s) % kNodeQuads + j;
+  const glm::ivec2 origin = patchPageOrigin(patch);
+  const int li = origin.x + i, lj = origin.y + j;
   const float step = float(s) * sel.spacing;
   const float w = 1.0f - k;
   return glm::normalize(pageNormal(page, li, lj, step) * w + pageNormal(page, li - oddX, lj - oddZ, step) * k);

@@ -72,6 +72,13 @@ struct LodPatch {
 // level-0 patch lies in its own node (and has no error).
 PageKey patchArea(const LodPatch& patch);
 
+// Where the patch's vertex (0, 0) lies in its node's page, in the level's samples:
+// (0 or kPatchQuads, 0 or kPatchQuads), as terrain.vert's `local` reads it.
+inline glm::ivec2 patchPageOrigin(const LodPatch& patch) {
+  const int s = Terrain::stride(patch.level);
+  return {(patch.gx / s) % kNodeQuads, (patch.gz / s) % kNodeQuads};
+}
+
 struct LodStats {
   std::size_t patches = 0;
   std::size_t triangles = 0;
