@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "anim/model_builder.h"
+#include "raytrace/ground_split.h"
 #include "raytrace/tone_map.h"
 #include "scene/scene.h"
 #include "terrain/lod.h"
@@ -128,10 +129,28 @@ Status skinInstance(const ModelAsset& asset, std::span<const int> materials, con
   return Ok{};
 }
 
+// Adds `mesh` to its group, and first the triangles of it that lie behind `ground`
+// (when there is one) to group `behindGroup`, made at the first such triangle
+// (raytrace/ground_split.h).
+Status addSplitAtGround(RtMesh mesh, const std::optional<GroundPlane>& ground, int& behindGroup, RtScene& scene) {
+  if (ground) {
+    RtMesh behind = takeTrianglesBehind(mesh, *ground);
+    if (!behind.indices.empty()) {
+      if (behindGroup < 0) behindGroup = scene.addGroup();
+      behind.group = behindGroup;
+      if (auto added = scene.addMesh(std::move(behind)); !added) return added.error();
+    }
+  }
+  if (mesh.indices.empty()) return Ok{};
+  if (auto added = scene.addMesh(std::move(mesh)); !added) return added.error();
+  return Ok{};
+}
+
 // The terrain as the rasterizer draws it from the scene's camera: the CDLOD patches
-// selected for this view, each a grid of morphed vertices, in world space.
+// selected for this view, each a grid of morphed vertices, in world space. What lies
+// behind the scene's ground goes to group `behindGroup`.
 Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int viewportHeight, RtScene& scene,
-                  SceneBuildStats& stats) {
+                  SceneBuildStats& stats, int& behindGroup) {
   const CameraDesc& c = desc.camera;
   terrain::LodCamera camera;
   camera.position = c.position;
@@ -161,6 +180,7 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
   // offset must be the same).
   const glm::vec2 uvOffset = terrain::layerUvOffset(c.position - field.origin());
   const std::vector<std::uint32_t> indices = terrain::patchIndices();
+  const std::optional<GroundPlane> ground = groundPlane(desc);
   for (const auto& patch : selection.patches) {
     RtMesh mesh;
     mesh.material = material;
@@ -172,8 +192,7 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
     mesh.indices = indices;
     stats.triangles += int(mesh.indices.size() / 3);
     ++stats.meshes;
-    auto added = scene.addMesh(std::move(mesh));
-    if (!added) return added.error();
+    if (auto added = addSplitAtGround(std::move(mesh), ground, behindGroup, scene); !added) return added;
   }
   return Ok{};
 }
@@ -218,11 +237,13 @@ Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, i
     }
     out.instances_.push_back(std::move(instance));
   }
+  int behindGroup = -1;  // the static triangles behind the scene's ground
   if (const terrain::Terrain* field = out.source_->terrain()) {
-    if (auto s = addTerrain(desc, *field, viewportHeight, rt, stats); !s) return s.error();
+    if (auto s = addTerrain(desc, *field, viewportHeight, rt, stats, behindGroup); !s) return s.error();
   }
   stats.skinSeconds = secondsSince(start);
   stats.bvhSeconds = rt.buildGroup(0);
+  if (behindGroup >= 0) stats.bvhSeconds += rt.buildGroup(behindGroup);
   for (const Instance& instance : out.instances_) {
     InstanceStats is;
     for (const RtMesh& mesh : instance.meshes) is.triangles += int(mesh.indices.size() / 3);

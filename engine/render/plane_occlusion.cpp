@@ -73,10 +73,8 @@ std::vector<ScreenQuad> opaquePlanes(const SceneDesc& scene, const glm::dvec3& e
                                      glm::dvec2 viewport, int skip) {
   std::vector<ScreenQuad> quads;
   for (size_t i = 0; i < scene.primitives.size(); ++i) {
-    const PrimitiveDesc& p = scene.primitives[i];
-    if (p.type != PrimitiveType::Plane || int(i) == skip || scene.materials[size_t(p.material)].layers.transmissive())
-      continue;
-    auto corners = planeCorners(primitiveTransform(p, scene.camera.farPlane));
+    if (int(i) == skip || !isOpaquePlane(scene, i)) continue;
+    auto corners = planeCorners(primitiveTransform(scene.primitives[i], scene.camera.farPlane));
     for (glm::dvec3& c : corners) c -= eye;
     if (auto q = screenQuad(corners, viewProjection, viewport)) quads.push_back(std::move(*q));
   }

@@ -60,6 +60,11 @@ glm::dmat4 primitiveTransform(const PrimitiveDesc& p, double farPlane) {
   return glm::dmat4(1.0);
 }
 
+bool isOpaquePlane(const SceneDesc& scene, std::size_t index) {
+  const PrimitiveDesc& p = scene.primitives[index];
+  return p.type == PrimitiveType::Plane && !scene.materials[size_t(p.material)].layers.transmissive();
+}
+
 std::array<glm::dvec3, 4> planeCorners(const glm::dmat4& world) {
   const glm::dvec2 local[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
   std::array<glm::dvec3, 4> out;

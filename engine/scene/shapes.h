@@ -37,6 +37,10 @@ ShapeData makeSphere(float radius, int rings, int segments);
 ShapeData shapeForPrimitive(const PrimitiveDesc& primitive);
 double planeExtent(const PrimitiveDesc& plane, double farPlane);
 glm::dmat4 primitiveTransform(const PrimitiveDesc& primitive, double farPlane);
+// Whether primitive `index` of the scene is a plane shape whose material lets no
+// light through: it hides what lies behind it (render/plane_occlusion.h) and bounds
+// the tracers' terrain split (raytrace/ground_split.h).
+bool isOpaquePlane(const SceneDesc& scene, std::size_t index);
 // The corners of the unit plane (2 wide) placed by `world`, in order around it.
 std::array<glm::dvec3, 4> planeCorners(const glm::dmat4& world);
 
