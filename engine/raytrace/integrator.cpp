@@ -134,7 +134,11 @@ class Tracer {
       rest = Ray<T>{hit->spawnRay(rest.d).o, rest.d, rest.tMax - hit->t};
       hit = scene_.intersect(rest);
     }
-    return std::nullopt;
+    // Every return names `hit`, so it is built in the caller's frame (NRVO) rather
+    // than copied there: the copy read the record back in 16-byte loads over the
+    // intersection's narrower stores of it, a store-forwarding stall on every ray.
+    hit.reset();
+    return hit;
   }
 
   // The camera's ray through the image point, ending at the far plane as the

@@ -98,7 +98,9 @@ ShapePacks::SquareLanes ShapePacks::squareLanesOf(const Square& square) {
 }
 
 ShapePacks::RayLanes::RayLanes(const Ray<float>& ray)
-    : o{ray.o.x, ray.o.y, ray.o.z}, d{ray.d.x, ray.d.y, ray.d.z}, dd(glm::dot(ray.d, ray.d)) {}
+    : o{_mm_set1_ps(ray.o.x), _mm_set1_ps(ray.o.y), _mm_set1_ps(ray.o.z)},
+      d{_mm_set1_ps(ray.d.x), _mm_set1_ps(ray.d.y), _mm_set1_ps(ray.d.z)},
+      dd(_mm_set1_ps(glm::dot(ray.d, ray.d))) {}
 
 void ShapePacks::setSpheres(const std::vector<Sphere<float>>& spheres) {
   sphereCount_ = spheres.size();
@@ -126,12 +128,12 @@ void ShapePacks::setPlanes(const std::vector<Plane<float>>& planes, const std::v
 
 // Sphere<float>::intersect on four spheres; see there for why each step is as it is.
 int ShapePacks::sphereHits(const SpherePack& pack, const RayLanes& ray, float tMax, float t[4]) {
-  const __m128 ocx = _mm_sub_ps(_mm_set1_ps(ray.o[0]), _mm_load_ps(pack.cx));
-  const __m128 ocy = _mm_sub_ps(_mm_set1_ps(ray.o[1]), _mm_load_ps(pack.cy));
-  const __m128 ocz = _mm_sub_ps(_mm_set1_ps(ray.o[2]), _mm_load_ps(pack.cz));
+  const __m128 ocx = _mm_sub_ps(ray.o[0], _mm_load_ps(pack.cx));
+  const __m128 ocy = _mm_sub_ps(ray.o[1], _mm_load_ps(pack.cy));
+  const __m128 ocz = _mm_sub_ps(ray.o[2], _mm_load_ps(pack.cz));
   __m128 hitT;
-  const __m128 hit = sphereTest({ocx, ocy, ocz, _mm_set1_ps(ray.d[0]), _mm_set1_ps(ray.d[1]), _mm_set1_ps(ray.d[2]),
-                                 _mm_set1_ps(ray.dd), _mm_load_ps(pack.radius), _mm_set1_ps(tMax)},
+  const __m128 hit = sphereTest({ocx, ocy, ocz, ray.d[0], ray.d[1], ray.d[2], ray.dd, _mm_load_ps(pack.radius),
+                                 _mm_set1_ps(tMax)},
                                 filledLanes(pack.count), hitT);
   _mm_store_ps(t, hitT);
   return _mm_movemask_ps(hit);
@@ -141,8 +143,7 @@ int ShapePacks::sphereHits(const SpherePack& pack, const RayLanes& ray, float tM
 int ShapePacks::planeHits(const PlanePack& pack, const RayLanes& ray, float tMax, float t[4]) {
   __m128 hitT;
   const __m128 hit = planeTest({_mm_load_ps(pack.nx), _mm_load_ps(pack.ny), _mm_load_ps(pack.nz), _mm_load_ps(pack.d)},
-                               {_mm_set1_ps(ray.o[0]), _mm_set1_ps(ray.o[1]), _mm_set1_ps(ray.o[2])},
-                               {_mm_set1_ps(ray.d[0]), _mm_set1_ps(ray.d[1]), _mm_set1_ps(ray.d[2])},
+                               {ray.o[0], ray.o[1], ray.o[2]}, {ray.d[0], ray.d[1], ray.d[2]},
                                _mm_set1_ps(tMax), filledLanes(pack.count), hitT);
   _mm_store_ps(t, hitT);
   return _mm_movemask_ps(hit);

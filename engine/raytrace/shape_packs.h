@@ -8,6 +8,7 @@
 // bit, and the nearest of several (the lower index on a tie) is the one the scalar
 // loop, which shortens tMax as it goes, would keep.
 #include <cstdint>
+#include <xmmintrin.h>
 #include <vector>
 
 #include "raytrace/shapes.h"
@@ -83,11 +84,14 @@ class ShapePacks {
     float nx[4], ny[4], nz[4], d[4];
     int count = 0;
   };
-  // The ray's scalars every lane shares.
+  // The ray's scalars every lane shares, broadcast once. Read from the ray one float
+  // at a time: a copy of its arrays was compiled to 8-byte loads, one of which
+  // straddled the caller's separate stores of o.z and d.x, a store-forwarding stall
+  // on every ray.
   struct RayLanes {
     explicit RayLanes(const Ray<float>& ray);
-    float o[3], d[3];
-    float dd;  // dot(d, d), as glm sums it
+    __m128 o[3], d[3];
+    __m128 dd;  // dot(d, d), as glm sums it
   };
   static int sphereHits(const SpherePack& pack, const RayLanes& ray, float tMax, float t[4]);
   static int planeHits(const PlanePack& pack, const RayLanes& ray, float tMax, float t[4]);
