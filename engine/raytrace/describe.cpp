@@ -8,6 +8,25 @@
 namespace engine::rt {
 namespace {
 
+// Each BVH group by name with its triangles; a run of groups alike (a crowd of one
+// model) as one entry with its count.
+std::string groupsOf(const RtScene& scene) {
+  std::string out = "BVH groups:";
+  for (int g = 0; g < scene.groupCount();) {
+    const std::size_t triangles = scene.groupTriangleMeshes(g).size();
+    int same = 1;
+    while (g + same < scene.groupCount() && scene.groupName(g + same) == scene.groupName(g) &&
+           scene.groupTriangleMeshes(g + same).size() == triangles) {
+      ++same;
+    }
+    out += (g == 0 ? " " : ", ") + (scene.groupName(g).empty() ? "group " + std::to_string(g) : scene.groupName(g));
+    out += same > 1 ? " x" + std::to_string(same) + " (" + std::to_string(triangles) + " triangles each)"
+                    : " (" + std::to_string(triangles) + " triangles)";
+    g += same;
+  }
+  return out;
+}
+
 std::string lightsOf(const RtScene& scene) {
   int sun = 0, point = 0, area = 0, shadowed = 0;
   for (const LightDesc& l : scene.lights()) {
@@ -61,6 +80,7 @@ std::string describe(const RtScene& scene, const RenderSettings& s) {
   std::snprintf(line, sizeof(line), "shapes: %zu spheres, %zu planes, %zu meshes (%zu triangles) in %d BVH groups\n",
                 scene.sphereCount(), scene.planeCount(), scene.meshes().size(), meshTriangles, scene.groupCount());
   out += line;
+  out += groupsOf(scene) + "\n";
   out += lightsOf(scene) + "\n";
   std::snprintf(line, sizeof(line), "materials: %zu (%zu textured, %zu with glTF layers), %zu textures, %s shading\n",
                 scene.materials().size(), textured, layered, scene.textures().size(),

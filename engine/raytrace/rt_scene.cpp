@@ -363,8 +363,9 @@ void RtScene::addPlane(const glm::dvec3& point, const glm::dvec3& normal, int ma
   lanes_.addPlane(planesF_.back(), planeUvs_.back());
 }
 
-int RtScene::addGroup() {
+int RtScene::addGroup(std::string name) {
   groups_.emplace_back();
+  groups_.back().name = std::move(name);
   return int(groups_.size() - 1);
 }
 

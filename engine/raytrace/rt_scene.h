@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -209,8 +210,12 @@ class RtScene {
   void setRender(const RenderDesc& render) { render_ = render; }
   void setFog(const FogDesc& fog) { fog_ = fog; }
 
-  // A new, empty BVH group for meshes that move together (one character).
-  int addGroup();
+  // A new, empty BVH group for meshes that move together (one character), or that
+  // rays meet apart from the rest (raytrace/ground_split.h). `name`: what --describe
+  // calls it.
+  int addGroup(std::string name = {});
+  // Group 0 is "static".
+  std::string groupName(int group) const { return group == 0 ? "static" : groups_[std::size_t(group)].name; }
   // Validates the mesh (indices in range, one normal per position, a known material
   // and group); its group's BVH is rebuilt at the next build() or refit().
   Result<MeshId> addMesh(RtMesh mesh);
@@ -408,6 +413,7 @@ class RtScene {
   ShapeLanes lanes_;
 
   struct Group {
+    std::string name;
     std::vector<std::uint32_t> meshes;
     std::vector<TriangleVerts> triangles;     // its meshes' triangles, in mesh order
     std::vector<std::uint32_t> triangleMesh;  // triangle -> mesh

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "anim/model_builder.h"
@@ -136,7 +137,7 @@ Status addSplitAtGround(RtMesh mesh, const std::optional<GroundPlane>& ground, i
   if (ground) {
     RtMesh behind = takeTrianglesBehind(mesh, *ground);
     if (!behind.indices.empty()) {
-      if (behindGroup < 0) behindGroup = scene.addGroup();
+      if (behindGroup < 0) behindGroup = scene.addGroup("behind the ground");
       behind.group = behindGroup;
       if (auto added = scene.addMesh(std::move(behind)); !added) return added.error();
     }
@@ -224,7 +225,7 @@ Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, i
   for (size_t i = 0; i < instances.size(); ++i) {
     const std::string where = desc.path + ": /models/" + std::to_string(i);
     Instance instance;
-    instance.group = rt.addGroup();
+    instance.group = rt.addGroup(std::filesystem::path(out.source_->assetOf(instances[i]).model.path).filename().string());
     if (auto s = out.skin(i, instance.meshes); !s) return makeError(where + ": " + s.error().message);
     for (const RtMesh& mesh : instance.meshes) {
       RtMesh copy = mesh;

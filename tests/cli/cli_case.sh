@@ -419,6 +419,10 @@ PY
     grep -qE "gpu buffers: .*textures [0-9.]+ MiB" "$OUT" || { echo "FAIL: no texture buffer"; cat "$OUT"; exit 1; }
     expect 0 "tracer: path, float" -- "$BIN/demo" "$SRC/assets/scenes/materials.json" --mode pathtrace --describe
     if grep -qF "gpu kernel" "$OUT"; then echo "FAIL: the CPU tracer described a kernel"; cat "$OUT"; exit 1; fi
+    # demo.json's groups: the terrain split at the plaza (raytrace/ground_split.h), the
+    # four characters, each its own group.
+    expect 0 "BVH groups: static \([0-9]+ triangles\), character\.gltf x4 \(7856 triangles each\), behind the ground \([0-9]+ triangles\)" \
+      -- "$BIN/demo" "$SRC/assets/scenes/demo.json" --mode raytrace --describe
     expect 2 "--device gpu: double precision is not supported" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" \
       --mode raytrace --device gpu --rt-precision double --describe ;;
   scene_unknown_clip)
