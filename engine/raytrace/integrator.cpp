@@ -61,7 +61,15 @@ class Tracer {
 
   glm::vec3 Li(const Ray<T>& ray, int depth, Pcg32& rng, RayCounters& counters, RayCone cone = {},
                float* hitDistance = nullptr) const {
-    const std::optional<SurfaceInteraction<T>> hit = firstSolidHit(ray);
+    std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
+    return LiFrom(ray, hit, depth, rng, counters, cone, hitDistance);
+  }
+
+  // Li once `hit`, scene_.intersect(ray), is known (a packet's lane): passed on to the
+  // first surface that is there at all, then shaded.
+  glm::vec3 LiFrom(const Ray<T>& ray, std::optional<SurfaceInteraction<T>>& hit, int depth, Pcg32& rng,
+                   RayCounters& counters, RayCone cone = {}, float* hitDistance = nullptr) const {
+    toFirstSolid(ray, hit);
     if (!hit) return escaped(ray.d);
     const Vec3<T> v = glm::normalize(ray.d);
     const float distance = float(hit->t * glm::length(ray.d));
@@ -115,30 +123,27 @@ class Tracer {
     return share * light;
   }
 
-  // The nearest hit that is there at all: MASK's cut-away parts and single-sided faces
-  // seen from behind are passed, as the rasterizer discards and culls them (at the
-  // full-resolution texture level; BLEND is drawn opaque by this tracer). t is along
-  // `ray` from its origin.
-  std::optional<SurfaceInteraction<T>> firstSolidHit(const Ray<T>& ray) const {
-    std::optional<SurfaceInteraction<T>> hit = scene_.intersect(ray);
-    if (!scene_.hasTransparency() && !scene_.hasSingleSided()) return hit;
+  // `hit`, the nearest, made the nearest that is there at all: MASK's cut-away parts
+  // and single-sided faces seen from behind are passed, as the rasterizer discards and
+  // culls them (at the full-resolution texture level; BLEND is drawn opaque by this
+  // tracer). t is along `ray` from its origin. In place: a record returned was read
+  // back in 16-byte loads over the intersection's narrower stores of it, a
+  // store-forwarding stall on every ray.
+  void toFirstSolid(const Ray<T>& ray, std::optional<SurfaceInteraction<T>>& hit) const {
+    if (!scene_.hasTransparency() && !scene_.hasSingleSided()) return;
     Ray<T> rest = ray;
     T travelled = T(0);
     for (int pass = 0; hit && pass < 64; ++pass) {
       const bool back = glm::dot(hit->n, rest.d) > T(0);
       if (scene_.surfaceOpacity(hit->material, HitUv(hit->uv, hit->uv1, hit->color), 0.0f, back) > 0.0f) {
         hit->t += travelled;
-        return hit;
+        return;
       }
       travelled += hit->t;
       rest = Ray<T>{hit->spawnRay(rest.d).o, rest.d, rest.tMax - hit->t};
       hit = scene_.intersect(rest);
     }
-    // Every return names `hit`, so it is built in the caller's frame (NRVO) rather
-    // than copied there: the copy read the record back in 16-byte loads over the
-    // intersection's narrower stores of it, a store-forwarding stall on every ray.
     hit.reset();
-    return hit;
   }
 
   // The camera's ray through the image point, ending at the far plane as the
@@ -339,12 +344,16 @@ class PacketTracer {
 
 // The scalar Whitted tracer a row at a time, for scenes the packets do not take
 // (triangles, textures, PBR): each sample's camera rays made for eight pixels at once
-// (camera_lanes.h, the same rays bit for bit), then traced one by one by Tracer::Li.
-// Each pixel's stream is drawn in renderPixel's order (a sample's position, then its
-// light samples), its samples summed and averaged as there: renderPixel's bits.
+// (camera_lanes.h, the same rays bit for bit), their first hits found together
+// (RtScene::intersectCoherent: each group's BVH walked once for the eight), then
+// shaded and traced on one by one by Tracer::LiFrom. Each pixel's stream is drawn in
+// renderPixel's order (a sample's position, then its light samples), its samples
+// summed and averaged as there: renderPixel's bits, but where two triangles lie at
+// exactly the same distance and the packet names the other.
 class SpanTracer {
  public:
-  SpanTracer(const Tracer<float>& scalar, const RenderSettings& settings) : scalar_(scalar), settings_(settings) {}
+  SpanTracer(const Tracer<float>& scalar, const RtScene& scene, const RenderSettings& settings)
+      : scalar_(scalar), scene_(scene), settings_(settings) {}
 
   void renderSpan(int x0, int x1, int y, glm::vec3* out, RayCounters& counters) const {
     for (int x = x0; x < x1; x += kLanes) {
@@ -358,18 +367,20 @@ class SpanTracer {
   void renderLanes(int x, int pixels, int y, glm::vec3* out, RayCounters& counters) const {
     alignas(32) float dx[kLanes], dy[kLanes], dz[kLanes], tMax[kLanes];
     const Vec3<float> origin(scalar_.camera().position());
+    Ray<float> rays[kLanes];
+    std::optional<SurfaceInteraction<float>> hits[kLanes];
     sampleLanes(
         scalar_.strata(), settings_, x, pixels, y, out, counters,
         [&](const double* px, const double* py, Pcg32*) {
           lanes8::cameraRays(scalar_.camera(), px, py, dx, dy, dz, tMax);
+          for (int p = 0; p < kLanes; ++p) rays[p] = Ray<float>{origin, Vec3<float>(dx[p], dy[p], dz[p]), tMax[p]};
+          scene_.intersectCoherent(rays, hits);
         },
-        [&](int p, Pcg32& rng) {
-          const Ray<float> ray{origin, Vec3<float>(dx[p], dy[p], dz[p]), tMax[p]};
-          return scalar_.Li(ray, 0, rng, counters, scalar_.cameraCone());
-        });
+        [&](int p, Pcg32& rng) { return scalar_.LiFrom(rays[p], hits[p], 0, rng, counters, scalar_.cameraCone()); });
   }
 
   const Tracer<float>& scalar_;
+  const RtScene& scene_;
   const RenderSettings& settings_;
 };
 
@@ -388,7 +399,7 @@ RenderResult Integrator::render() const {
   if (settings_.precision == Precision::Double) return detail::renderTiles(Tracer<double>(*scene_, settings_), settings_);
   const Tracer<float> tracer(*scene_, settings_);
   if (packets_) return detail::renderTiles(PacketTracer(tracer, *packets_, *scene_, settings_), settings_);
-  if (cpuHasAvx2()) return detail::renderTiles(SpanTracer(tracer, settings_), settings_);
+  if (cpuHasAvx2()) return detail::renderTiles(SpanTracer(tracer, *scene_, settings_), settings_);
   return detail::renderTiles(tracer, settings_);
 }
 
@@ -432,7 +443,7 @@ void Integrator::renderSpanSamples(int x0, int x1, int y, int first, int count, 
     PacketTracer(tracer, *packets_, *scene_, settings_).renderSpan(x0, x1, y, out, local);
   } else if (settings_.precision == Precision::Float && cpuHasAvx2()) {
     const Tracer<float> tracer(*scene_, settings_);
-    SpanTracer(tracer, settings_).renderSpan(x0, x1, y, out, local);
+    SpanTracer(tracer, *scene_, settings_).renderSpan(x0, x1, y, out, local);
   } else {
     for (int x = x0; x < x1; ++x) out[x - x0] = renderPixel(x, y, &local);
   }

@@ -511,9 +511,13 @@ void RtScene::updateRoots() {
 
 RtScene::RootHits RtScene::testRoots(const Ray<float>& ray) const {
   RootHits hits;
+  testRoots(ray, hits);
+  return hits;
+}
+
+void RtScene::testRoots(const Ray<float>& ray, RootHits& hits) const {
   hits.mask = Bvh::testBoxes(roots_, ray, ray.tMax, hits.tEntry);
   if (!(maxAbs(ray.o) <= rootsOriginLimit_)) hits.mask |= 1 << kSphereLane;
-  return hits;
 }
 
 double RtScene::build() {
@@ -729,6 +733,12 @@ void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional
       return;
     }
   }
+  shapeInteraction(ray, kind, index, result);
+}
+
+template <typename T>
+void RtScene::shapeInteraction(const Ray<T>& ray, int kind, std::size_t index,
+                               std::optional<SurfaceInteraction<T>>& result) const {
   if (kind == 1) {
     SurfaceInteraction<T>& si = result.emplace();
     spheres<T>()[index].fillInteraction(ray, ray.tMax, si);
@@ -739,6 +749,55 @@ void RtScene::pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional
     SurfaceInteraction<T>& si = result.emplace();
     planes<T>()[index].fillInteraction(ray, ray.tMax, si);
     shapeUv(kind, index, si);
+  }
+}
+
+void RtScene::intersectCoherent(std::span<const Ray<float>, Bvh::kPacketSize> rays,
+                                std::span<std::optional<SurfaceInteraction<float>>, Bvh::kPacketSize> out) const {
+  constexpr int kLanes = Bvh::kPacketSize;
+  if (!boxedTriangles_ || !rootsUsable()) {
+    for (int i = 0; i < kLanes; ++i) out[std::size_t(i)] = intersect(rays[std::size_t(i)]);
+    return;
+  }
+  // intersect()'s steps lane by lane, each group's traversal shared: the same roots,
+  // shapes and groups in the same order, each lane's tMax shortened as it goes.
+  Ray<float> packet[kLanes];
+  RootHits roots[kLanes];
+  int kind[kLanes];
+  std::size_t index[kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    const Ray<float>& r = rays[std::size_t(i)];
+    packet[i] = Ray<float>{r.o, r.d, r.tMax};
+    testRoots(packet[i], roots[i]);
+    index[i] = 0;
+    kind[i] = nearestShape(packet[i], index[i], roots[i].spheres());
+  }
+  const Group* hitGroup[kLanes] = {};
+  BvhHit<float> meshHit[kLanes];
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    unsigned lanes = 0;
+    for (int i = 0; i < kLanes; ++i) lanes |= unsigned(roots[i].group(g, packet[i].tMax)) << i;
+    if (lanes == 0) continue;
+    const Group& group = groups_[g];
+    // Lanes that miss the group's box take no part: with tMax 0 no hit can be theirs.
+    Ray<float> entering[kLanes];
+    for (int i = 0; i < kLanes; ++i) entering[i] = Ray<float>{packet[i].o, packet[i].d, (lanes >> i & 1) ? packet[i].tMax : 0.0f};
+    BvhHit<float> hits[kLanes];
+    for (unsigned hit = group.bvh.intersect8(entering, hits) & lanes; hit != 0; hit &= hit - 1) {
+      const int i = __builtin_ctz(hit);
+      packet[i].tMax = hits[i].hit.t;
+      meshHit[i] = hits[i];
+      hitGroup[i] = &group;
+    }
+  }
+  for (int i = 0; i < kLanes; ++i) {
+    std::optional<SurfaceInteraction<float>>& result = out[std::size_t(i)];
+    result.reset();
+    if (hitGroup[i]) {
+      result = meshInteraction(*hitGroup[i], meshHit[i]);
+    } else {
+      shapeInteraction(packet[i], kind[i], index[i], result);
+    }
   }
 }
 

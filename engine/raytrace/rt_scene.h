@@ -240,6 +240,15 @@ class RtScene {
   // time.
   void intersectMany(const Ray<float>* const* rays, std::size_t count,
                      std::optional<SurfaceInteraction<float>>* out) const;
+  // intersect() of eight coherent float rays (a camera's row of eight pixels): each
+  // ray's spheres and planes on its own, then each group's BVH for the rays that enter
+  // its box, together (Bvh::intersect8). The same nearest hits bit for bit, but that
+  // of triangles at exactly the same distance either may be named, and that a
+  // triangle an ulp or two before the nearest hit so far, behind a box whose entry the
+  // ray alone rounds to that hit's distance, may be found (the packet's interval box
+  // test enters it): a crate's floor on the plaza, from inside the crate.
+  void intersectCoherent(std::span<const Ray<float>, Bvh::kPacketSize> rays,
+                         std::span<std::optional<SurfaceInteraction<float>>, Bvh::kPacketSize> out) const;
   // Whether intersectMany takes eight rays to a pass (no triangles, and AVX2) rather
   // than four.
   bool eightRaysAtATime() const { return !boxedTriangles_ && lanes_.size() > 0 && cpuHasAvx2(); }
@@ -354,6 +363,9 @@ class RtScene {
   };
   bool rootsUsable() const { return groups_.size() <= std::size_t(kSphereLane); }
   RootHits testRoots(const Ray<float>& ray) const;
+  // The same into `hits` in place (an array's element: assigning one returned read
+  // it back in 16-byte loads over the mask's 4-byte store, a store-forwarding stall).
+  void testRoots(const Ray<float>& ray, RootHits& hits) const;
   void updateRoots();
   // intersect() once the spheres and planes have shortened ray.tMax to their nearest
   // (kind 1 or 2 at `index`, 0 none): the meshes, then the winner's interaction,
@@ -362,6 +374,10 @@ class RtScene {
   template <typename T>
   void pastShapes(Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result,
                   const RootHits* roots = nullptr) const;
+  // The hit record of the sphere (kind 1) or plane (2) at `index` that `ray` meets at
+  // ray.tMax; nothing for kind 0.
+  template <typename T>
+  void shapeInteraction(const Ray<T>& ray, int kind, std::size_t index, std::optional<SurfaceInteraction<T>>& result) const;
   // The rest of a sphere's (kind 1) or plane's (2) hit record once fillInteraction has
   // made it: texture coordinates where its material reads them, their scale per metre.
   template <typename T>
