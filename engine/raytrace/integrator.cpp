@@ -348,8 +348,9 @@ class PacketTracer {
 // (RtScene::intersectCoherent: each group's BVH walked once for the eight), then
 // shaded and traced on one by one by Tracer::LiFrom. Each pixel's stream is drawn in
 // renderPixel's order (a sample's position, then its light samples), its samples
-// summed and averaged as there: renderPixel's bits, but where two triangles lie at
-// exactly the same distance and the packet names the other.
+// summed and averaged as there: renderPixel's bits, but where the packet's hit is not
+// the lone ray's (RtScene::intersectCoherent: two triangles at exactly the same
+// distance, or one an ulp before a hit that the lone ray's box test rounded away).
 class SpanTracer {
  public:
   SpanTracer(const Tracer<float>& scalar, const RtScene& scene, const RenderSettings& settings)
