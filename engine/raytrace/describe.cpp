@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "raytrace/avx2_region.h"
 #include "raytrace/whitted_packets.h"
 
 namespace engine::rt {
@@ -48,14 +49,19 @@ std::string environmentOf(const Environment& environment) {
 }
 
 // How many rays meet the spheres and planes at once: the Whitted tracer's packets
-// (whitted_packets.h) or its samples one at a time and why; the path tracer's bounces
-// eight or four to a pass (RtScene::intersectMany).
+// (whitted_packets.h) or its samples one at a time and why, and then whether a row's
+// camera rays find their first hits together (integrator.cpp's SpanTracer); the path
+// tracer's bounces eight or four to a pass (RtScene::intersectMany).
 std::string lanesOf(const RtScene& scene, const RenderSettings& s) {
   if (s.method == Method::Path) {
     if (s.precision == Precision::Double) return "shapes: one ray at a time (double precision)";
     return scene.eightRaysAtATime() ? "shapes: eight rays at a time (AVX2)" : "shapes: four rays at a time (SSE)";
   }
-  if (const char* why = WhittedPackets::unsupported(scene, s)) return std::string("packets: none, one sample at a time (") + why + ")";
+  if (const char* why = WhittedPackets::unsupported(scene, s)) {
+    const bool rows = s.precision == Precision::Float && cpuHasAvx2();
+    return std::string("packets: none, one sample at a time (") + why + ")" +
+           (rows ? "; first hits eight camera rays at a time (AVX2)" : "");
+  }
   return "packets: eight camera samples at a time, shadow rays too (AVX2)";
 }
 

@@ -213,12 +213,16 @@ TEST(WhittedPackets, LeaveWhatTheyDoNotTraceToTheScalarTracer) {
   EXPECT_FALSE(rt::WhittedPackets::create(materials, settings));
   EXPECT_NE(rt::describe(materials, settings).find("packets: none, one sample at a time ("), std::string::npos);
   if (__builtin_cpu_supports("avx2")) {
+    // The row's camera rays still find their first hits together (SpanTracer).
+    EXPECT_NE(rt::describe(materials, settings).find("; first hits eight camera rays at a time (AVX2)"),
+              std::string::npos);
     EXPECT_EQ(rt::WhittedPackets::unsupported(sceneFile("cornell_soft.json"), settings), nullptr);
     EXPECT_NE(rt::describe(sceneFile("cornell.json"), settings).find("packets: eight camera samples"), std::string::npos);
   }
   rt::RenderSettings doubles;
   doubles.precision = rt::Precision::Double;
   EXPECT_FALSE(rt::WhittedPackets::create(sceneFile("cornell.json"), doubles));
+  EXPECT_EQ(rt::describe(materials, doubles).find("first hits"), std::string::npos);
   rt::RtScene mesh = emptyScene(lookAt({0, 0, -3}, {0, 0, 0}));
   mesh.addSphere({0, 0, 0}, 1.0, 0);
   rt::RtMesh triangle;
