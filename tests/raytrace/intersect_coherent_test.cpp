@@ -12,12 +12,9 @@
 #include <cstring>
 #include <random>
 
-#include "asset/scene_file.h"
 #include "raytrace/camera.h"
 #include "raytrace/rt_scene.h"
-#include "raytrace/scene_builder.h"
-
-namespace rt = engine::rt;
+#include "test_scenes.h"
 
 namespace {
 
@@ -64,16 +61,8 @@ void expectPacketIsOneByOne(const rt::RtScene& scene, const rt::Ray<float> (&ray
   }
 }
 
-rt::RtScene demoScene() {
-  auto desc = engine::loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/demo.json");
-  EXPECT_TRUE(desc) << desc.error().message;
-  auto scene = rt::buildRtScene(*desc, 0.0, 240);
-  EXPECT_TRUE(scene) << scene.error().message;
-  return std::move(*scene);
-}
-
 TEST(IntersectCoherent, CameraRowsAreOneRayAtATime) {
-  const rt::RtScene scene = demoScene();
+  const rt::RtScene scene = sceneFile("demo.json");
   const rt::PinholeCamera camera(scene.camera(), 320, 180);
   Tally tally;
   for (int y = 0; y < 180; ++y) {
@@ -96,7 +85,7 @@ TEST(IntersectCoherent, CameraRowsAreOneRayAtATime) {
 // packet traversal takes), wide (any direction: mixed signs, traced one at a time),
 // and lanes that start elsewhere (a shadow ray's spread of origins along a row).
 TEST(IntersectCoherent, RandomPacketsAreOneRayAtATime) {
-  const rt::RtScene scene = demoScene();
+  const rt::RtScene scene = sceneFile("demo.json");
   std::mt19937 rng(14);
   std::normal_distribution<float> normal;
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);

@@ -1,9 +1,15 @@
 #pragma once
 // Small scenes built in code for the ray tracer's tests (render_test.cpp,
-// path_tracer_test.cpp): a course material, a point light, a camera, an empty room.
+// path_tracer_test.cpp): a course material, a point light, a camera, an empty room;
+// and the project's scene files as the tracer builds them.
 #include <cmath>
+#include <string>
 
+#include <gtest/gtest.h>
+
+#include "asset/scene_file.h"
 #include "raytrace/rt_scene.h"
+#include "raytrace/scene_builder.h"
 
 namespace rt = engine::rt;
 using engine::CameraDesc;
@@ -53,3 +59,12 @@ inline rt::RtScene emptyScene(const CameraDesc& camera) {
   return scene;
 }
 
+
+// assets/scenes/`name` built for the ray tracer at time 0 and 240 rows.
+inline rt::RtScene sceneFile(const std::string& name) {
+  auto desc = engine::loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + name);
+  EXPECT_TRUE(desc) << desc.error().message;
+  auto scene = rt::buildRtScene(*desc, 0.0, 240);
+  EXPECT_TRUE(scene) << scene.error().message;
+  return std::move(*scene);
+}

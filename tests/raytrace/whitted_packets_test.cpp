@@ -184,14 +184,6 @@ TEST(CameraLanes, AreTheScalarCameraBitForBit) {
   EXPECT_GT(clipped, 900000u);  // nearly every ray ends at the far plane
 }
 
-rt::RtScene sceneFile(const char* name) {
-  auto desc = engine::loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + name);
-  EXPECT_TRUE(desc) << desc.error().message;
-  auto scene = rt::buildRtScene(*desc, 0.0, 240);
-  EXPECT_TRUE(scene) << scene.error().message;
-  return std::move(*scene);
-}
-
 // The course room as the benchmark renders it (issue 14's goal 4), at a smaller size,
 // with its point light and with its 1 x 1 area light (4 x 4 shadow rays a hit).
 TEST(WhittedPackets, TheCourseRoomIsTheScalarTracerBitForBit) {
