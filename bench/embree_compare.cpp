@@ -23,12 +23,13 @@
 // Bvh::intersect8, Embree's through rtcIntersect8 (its packet kernels), the same
 // packets on both sides and the same harness (chunks of 128 packets).
 //
-//   build/bin/embree_compare [--runs N] [--time T] [--width W --height H] [--isa sse2|avx2]
+//   build/bin/embree_compare [--runs N] [--time T] [--width W --height H] [--isa sse2|avx2|avx512]
 //                            [--embree-isa ISA] [scene.json ...]
 //
 // Embree picks its kernels by the CPU: on an AVX-512 machine a BVH8 with four-triangle
 // leaves and AVX-512 code; --embree-isa sse4.2 (Embree's max_isa) holds it to SSE and
-// a BVH4. --isa picks ours (default: AVX2 where the CPU has it).
+// a BVH4. --isa picks ours (default: the best the CPU has; avx512 is our AVX2 code
+// compiled with AVX-512VL's registers, see bvh.h).
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -38,6 +39,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <functional>
 #include <numbers>
 #include <span>
@@ -249,36 +251,61 @@ struct Embree {
   }
 };
 
-// Median seconds of `runs` passes of `trace` over every ray, on `threads` workers.
-double timeTrace(const std::vector<rt::Ray<float>>& rays, int threads, int runs,
+// One pass of `trace` over every ray on `threads` workers: its seconds.
+double traceOnce(const std::vector<rt::Ray<float>>& rays, int threads,
                  const std::function<bool(const rt::Ray<float>&)>& trace) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  std::vector<double> times;
   std::vector<char> sink(rays.size());
-  for (int r = 0; r < runs; ++r) {
-    const auto start = Clock::now();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i) sink[i] = trace(rays[i]);
-    });
-    times.push_back(seconds(start));
-  }
-  return median(times);
+  const auto start = Clock::now();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) sink[i] = trace(rays[i]);
+  });
+  return seconds(start);
 }
 
 // The same over packets of eight consecutive rays.
-double timePackets(const std::vector<rt::Ray<float>>& rays, int threads, int runs,
+double packetsOnce(const std::vector<rt::Ray<float>>& rays, int threads,
                    const std::function<unsigned(const rt::Ray<float>*)>& trace) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  std::vector<double> times;
   std::vector<unsigned> sink(rays.size() / 8);
+  const auto start = Clock::now();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sink.size(), 128), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) sink[i] = trace(&rays[8 * i]);
+  });
+  return seconds(start);
+}
+
+// Each pass once a run, in turn, for `runs` runs, each run starting one pass later so
+// that none always follows the same one. The passes of one run are a fraction of a
+// second apart, so a ratio taken within a run is free of the host's slower and faster
+// spells (these machines' speed drifts by a third over minutes), where a ratio of
+// medians taken minutes apart is not. Per pass: its median seconds, and the median
+// over the runs of pass 0's seconds over its own (its speed relative to pass 0's).
+struct Interleaved {
+  std::vector<double> seconds;
+  std::vector<double> speedOverFirst;
+};
+
+Interleaved interleaved(int runs, const std::vector<std::function<double()>>& passes) {
+  const std::size_t n = passes.size();
+  std::vector<std::vector<double>> times(n), ratios(n);
   for (int r = 0; r < runs; ++r) {
-    const auto start = Clock::now();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sink.size(), 128), [&](const auto& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i) sink[i] = trace(&rays[8 * i]);
-    });
-    times.push_back(seconds(start));
+    std::vector<double> run(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t p = (std::size_t(r) + k) % n;
+      run[p] = passes[p]();
+    }
+    for (std::size_t p = 0; p < n; ++p) {
+      times[p].push_back(run[p]);
+      ratios[p].push_back(run[0] / run[p]);
+    }
   }
-  return median(times);
+  Interleaved result;
+  for (std::size_t p = 0; p < n; ++p) {
+    result.seconds.push_back(median(times[p]));
+    result.speedOverFirst.push_back(median(ratios[p]));
+  }
+  return result;
 }
 
 double mrays(std::size_t n, double s) { return double(n) / s / 1e6; }
@@ -302,18 +329,23 @@ void printPacketRows(const std::string& name, std::size_t triangles, const rt::B
     }
   }
   for (int threads : {1, cores}) {
-    const double ours = timePackets(rays, threads, runs, [&](const rt::Ray<float>* r) {
-      std::array<rt::BvhHit<float>, 8> hits;
-      return bvh.intersect8(std::span<const rt::Ray<float>, 8>(r, 8), hits);
+    const Interleaved t = interleaved(runs, {
+        [&] {
+          return packetsOnce(rays, threads, [&](const rt::Ray<float>* r) {
+            std::array<rt::BvhHit<float>, 8> hits;
+            return bvh.intersect8(std::span<const rt::Ray<float>, 8>(r, 8), hits);
+          });
+        },
+        [&] { return traceOnce(rays, threads, [&](const rt::Ray<float>& r) { return bvh.intersect(r).has_value(); }); },
+        [&] { return packetsOnce(rays, threads, [&](const rt::Ray<float>* r) { return medium.nearest8(r); }); },
+        [&] { return packetsOnce(rays, threads, [&](const rt::Ray<float>* r) { return high.nearest8(r); }); },
     });
-    const double single = timeTrace(rays, threads, runs, [&](const rt::Ray<float>& r) { return bvh.intersect(r).has_value(); });
-    const double em = timePackets(rays, threads, runs, [&](const rt::Ray<float>* r) { return medium.nearest8(r); });
-    const double eh = timePackets(rays, threads, runs, [&](const rt::Ray<float>* r) { return high.nearest8(r); });
+    const double ours = t.seconds[0], single = t.seconds[1], em = t.seconds[2], eh = t.seconds[3];
     std::printf("| %s | %zu | primary packets of 8 %zu | %d | %.2f | %.2f | %.2f | %.2f | %.3f%% |\n", name.c_str(), triangles,
-                rays.size(), threads, mrays(rays.size(), ours), mrays(rays.size(), em), mrays(rays.size(), eh), eh / ours,
-                100.0 * double(agree) / double(rays.size()));
+                rays.size(), threads, mrays(rays.size(), ours), mrays(rays.size(), em), mrays(rays.size(), eh),
+                1.0 / t.speedOverFirst[3], 100.0 * double(agree) / double(rays.size()));
     std::printf("|   | | (ours one ray at a time on the same rays: %.2f Mrays/s; packets %.2fx that) | | | | | | |\n",
-                mrays(rays.size(), single), single / ours);
+                mrays(rays.size(), single), 1.0 / t.speedOverFirst[1]);
     std::fflush(stdout);
   }
 }
@@ -382,19 +414,35 @@ int run(const Options& o) {
       if (set.empty()) continue;
       const double agree = double(kind == 0 ? agreeNearest : agreeAny) / double(set.size());
       for (int threads : {1, cores}) {
-        double ours, em, eh;
-        if (kind == 0) {
-          ours = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return bvh.intersect(r).has_value(); });
-          em = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return medium.nearest(r).first != ~0u; });
-          eh = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return high.nearest(r).first != ~0u; });
-        } else {
-          ours = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return bvh.intersectAny(r); });
-          em = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return medium.occluded(r); });
-          eh = timeTrace(set, threads, o.runs, [&](const rt::Ray<float>& r) { return high.occluded(r); });
-        }
+        const auto ourPass = [&, threads](rt::Bvh::Isa isa) {
+          return [&, threads, isa] {
+            const rt::Bvh::Isa chosen = rt::Bvh::isa();
+            rt::Bvh::setIsa(isa);
+            const double t = kind == 0 ? traceOnce(set, threads, [&](const rt::Ray<float>& r) { return bvh.intersect(r).has_value(); })
+                                       : traceOnce(set, threads, [&](const rt::Ray<float>& r) { return bvh.intersectAny(r); });
+            rt::Bvh::setIsa(chosen);
+            return t;
+          };
+        };
+        const auto embreePass = [&, threads](const Embree& e) {
+          return [&, threads] {
+            return kind == 0 ? traceOnce(set, threads, [&](const rt::Ray<float>& r) { return e.nearest(r).first != ~0u; })
+                             : traceOnce(set, threads, [&](const rt::Ray<float>& r) { return e.occluded(r); });
+          };
+        };
+        // On an AVX-512 CPU our AVX2 compile runs too, for what the wider one gains.
+        const bool alsoAvx2 = rt::Bvh::isa() == rt::Bvh::Isa::kAvx512;
+        std::vector<std::function<double()>> passes = {ourPass(rt::Bvh::isa()), embreePass(medium), embreePass(high)};
+        if (alsoAvx2) passes.push_back(ourPass(rt::Bvh::Isa::kAvx2));
+        const Interleaved t = interleaved(o.runs, passes);
+        const double ours = t.seconds[0], em = t.seconds[1], eh = t.seconds[2];
         std::printf("| %s | %zu | %s %zu | %d | %.2f | %.2f | %.2f | %.2f | %.3f%% |\n", name.c_str(), tris.size(),
                     kind == 0 ? "primary (nearest)" : "shadow (any)", set.size(), threads, mrays(set.size(), ours),
-                    mrays(set.size(), em), mrays(set.size(), eh), eh / ours, 100.0 * agree);
+                    mrays(set.size(), em), mrays(set.size(), eh), 1.0 / t.speedOverFirst[2], 100.0 * agree);
+        if (alsoAvx2) {
+          std::printf("|   | | (ours compiled for AVX2 alone: %.2f Mrays/s; with AVX-512VL %.2fx that) | | | | | | |\n",
+                      mrays(set.size(), t.seconds[3]), 1.0 / t.speedOverFirst[3]);
+        }
         std::fflush(stdout);
       }
     }
@@ -404,6 +452,13 @@ int run(const Options& o) {
   std::printf("| scene | triangles | ours | Embree MEDIUM | Embree HIGH |\n|---|---:|---:|---:|---:|\n");
   for (const auto& l : buildLines) std::printf("%s\n", l.c_str());
   return 0;
+}
+
+std::optional<rt::Bvh::Isa> isaNamed(const std::string& name) {
+  if (name == "sse2") return rt::Bvh::Isa::kSse2;
+  if (name == "avx2") return rt::Bvh::Isa::kAvx2;
+  if (name == "avx512") return rt::Bvh::Isa::kAvx512;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -429,13 +484,14 @@ int main(int argc, char** argv) {
       o.height = std::max(1, std::atoi(value()));
     } else if (a == "--isa") {
       const std::string isa = value();
-      if (isa != "sse2" && isa != "avx2") {
-        std::fprintf(stderr, "embree_compare: --isa takes sse2 or avx2, not %s\n", isa.c_str());
+      const auto wanted = isaNamed(isa);
+      if (!wanted) {
+        std::fprintf(stderr, "embree_compare: --isa takes sse2, avx2 or avx512, not %s\n", isa.c_str());
         return 2;
       }
-      rt::Bvh::setIsa(isa == "sse2" ? rt::Bvh::Isa::kSse2 : rt::Bvh::Isa::kAvx2);
-      if ((rt::Bvh::isa() == rt::Bvh::Isa::kAvx2) != (isa == "avx2")) {
-        std::fprintf(stderr, "embree_compare: this CPU has no AVX2\n");
+      rt::Bvh::setIsa(*wanted);
+      if (rt::Bvh::isa() != *wanted) {
+        std::fprintf(stderr, "embree_compare: this CPU has no %s\n", rt::Bvh::isaName(*wanted));
         return 2;
       }
     } else if (a == "--embree-isa") {
@@ -451,6 +507,6 @@ int main(int argc, char** argv) {
   std::printf("Embree %d.%d.%d (max_isa %s) vs engine::rt::Bvh (%s), %dx%d, --runs %d --time %g\n\n",
               RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
               o.embreeIsa.empty() ? "the CPU's best" : o.embreeIsa.c_str(),
-              rt::Bvh::isa() == rt::Bvh::Isa::kAvx2 ? "AVX2" : "SSE2", o.width, o.height, o.runs, o.time);
+              rt::Bvh::isaName(rt::Bvh::isa()), o.width, o.height, o.runs, o.time);
   return run(o);
 }

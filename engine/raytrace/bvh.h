@@ -118,10 +118,12 @@ class Bvh {
   std::size_t leafCount() const { return leaves_.size(); }  // Triangle4 blocks
 
   // The instruction set of float traversal: the best the CPU has unless set otherwise
-  // (tests and benchmarks run both). setIsa(kAvx2) on a CPU without AVX2 is ignored.
-  enum class Isa { kSse2, kAvx2 };
+  // (tests and benchmarks run each). kAvx512 is the AVX2 code compiled with AVX-512VL
+  // allowed (more registers, the same bits). setIsa to one the CPU lacks is ignored.
+  enum class Isa { kSse2, kAvx2, kAvx512 };
   static Isa isa();
   static void setIsa(Isa isa);
+  static const char* isaName(Isa isa);  // "SSE2", "AVX2", "AVX2 with AVX-512VL"
 
  private:
   // Both queries: the traversal for this CPU and precision.

@@ -6,6 +6,7 @@
 #include <immintrin.h>
 
 #include <atomic>
+#include <cstddef>
 #include <limits>
 #include <type_traits>
 
@@ -50,18 +51,21 @@ class ChildBoxTest {
 // exactly as the scalar test's comparisons do (the NaN becomes the unbounded start
 // value), and widening the far distance once after the minimum equals widening each
 // axis' before it, since rounding is monotonic.
+// The rows are kept as offsets in floats from the node's first, pointer-sized: as
+// int row numbers each of the six loads a node took a sign extension and a shift.
 class SimdBoxRows : public ChildBoxTest<float> {
  public:
   explicit SimdBoxRows(const Ray<float>& ray) : ChildBoxTest<float>(ray) {
     for (int axis = 0; axis < 3; ++axis) {
-      nearRow_[axis] = axis + 3 * slabs_.dirIsNeg[axis];
-      farRow_[axis] = axis + 3 * (1 - slabs_.dirIsNeg[axis]);
+      near_[axis] = std::ptrdiff_t(axis + 3 * slabs_.dirIsNeg[axis]) * Bvh::kWidth;
+      far_[axis] = std::ptrdiff_t(axis + 3 * (1 - slabs_.dirIsNeg[axis])) * Bvh::kWidth;
     }
   }
 
  protected:
   static constexpr float kWiden = 1.0f + 2.0f * gamma<float>(3);
-  int nearRow_[3], farRow_[3];
+  static const float* rows(const Bvh::Node& node) { return &node.box[0][0]; }
+  std::ptrdiff_t near_[3], far_[3];
 };
 
 // Float rays with SSE (part of every x86-64): the eight boxes as two halves of four.
@@ -80,8 +84,8 @@ class ChildBoxTestSse : public SimdBoxRows {
       __m128 t0 = _mm_set1_ps(-std::numeric_limits<float>::infinity());
       __m128 t1 = _mm_set1_ps(std::numeric_limits<float>::infinity());
       for (int axis = 0; axis < 3; ++axis) {
-        const __m128 nearSlab = _mm_load_ps(node.box[nearRow_[axis]] + half);
-        const __m128 farSlab = _mm_load_ps(node.box[farRow_[axis]] + half);
+        const __m128 nearSlab = _mm_load_ps(rows(node) + near_[axis] + half);
+        const __m128 farSlab = _mm_load_ps(rows(node) + far_[axis] + half);
         t0 = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(nearSlab, o_[axis]), inv_[axis]), t0);
         t1 = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(farSlab, o_[axis]), inv_[axis]), t1);
       }
@@ -140,7 +144,7 @@ class LeafTest<float> {
     const TriangleRay<float> r(ray);
     const int k[3] = {r.kx, r.ky, r.kz};
     for (int axis = 0; axis < 3; ++axis) {
-      row_[axis] = k[axis];
+      row_[axis] = k[axis];  // pointer-sized, as SimdBoxRows' offsets
       o_[axis] = _mm_set1_ps(ray.o[k[axis]]);
     }
     sx_ = _mm_set1_ps(r.sx);
@@ -240,7 +244,7 @@ class LeafTest<float> {
   }
 
   Ray<float> ray_;
-  int row_[3];
+  std::ptrdiff_t row_[3];
   __m128 o_[3], sx_, sy_, sz_;
 };
 }  // namespace
@@ -255,7 +259,8 @@ ENGINE_AVX2_BEGIN
 namespace avx2 {
 
 // Float rays with AVX2: all eight boxes in one register, as ChildBoxTestSse computes
-// each half. Compiled for AVX2 (the pragma above) and run only where the CPU has it.
+// each half. Compiled for AVX2 (the pragma above) and run only where the CPU has it;
+// inlined into the AVX-512 traversal below as well.
 class ChildBoxTestAvx2 : public SimdBoxRows {
  public:
   explicit ChildBoxTestAvx2(const Ray<float>& ray) : SimdBoxRows(ray) {
@@ -269,8 +274,8 @@ class ChildBoxTestAvx2 : public SimdBoxRows {
     __m256 t0 = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
     __m256 t1 = _mm256_set1_ps(std::numeric_limits<float>::infinity());
     for (int axis = 0; axis < 3; ++axis) {
-      const __m256 nearSlab = _mm256_load_ps(node.box[nearRow_[axis]]);
-      const __m256 farSlab = _mm256_load_ps(node.box[farRow_[axis]]);
+      const __m256 nearSlab = _mm256_load_ps(rows(node) + near_[axis]);
+      const __m256 farSlab = _mm256_load_ps(rows(node) + far_[axis]);
       t0 = _mm256_max_ps(_mm256_mul_ps(_mm256_sub_ps(nearSlab, o_[axis]), inv_[axis]), t0);
       t1 = _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(farSlab, o_[axis]), inv_[axis]), t1);
     }
@@ -296,19 +301,45 @@ int testBoxes(const Bvh::Node& node, const Ray<float>& ray, float tMax, float tE
 }  // namespace avx2
 ENGINE_AVX2_END
 
+// The same AVX2 code compiled once more with AVX-512VL allowed: the same operations,
+// so the same bits (no fused multiply-adds: -ffp-contract=off), but with 32 vector
+// registers the ray's origin and inverse direction stay in registers across the
+// loop instead of being reloaded for every node, and the three compares fold into
+// one ternary logic instruction.
+ENGINE_AVX512_BEGIN
+namespace avx512 {
+template <typename T>
+using BoxTest = std::conditional_t<std::is_same_v<T, float>, avx2::ChildBoxTestAvx2, ChildBoxTest<T>>;
+#include "raytrace/bvh_traverse.inl"
+}  // namespace avx512
+ENGINE_AVX512_END
+
 namespace {
-std::atomic<Bvh::Isa> gIsa{cpuHasAvx2() ? Bvh::Isa::kAvx2 : Bvh::Isa::kSse2};
+Bvh::Isa bestIsa() {
+  if (cpuHasAvx512()) return Bvh::Isa::kAvx512;
+  return cpuHasAvx2() ? Bvh::Isa::kAvx2 : Bvh::Isa::kSse2;
+}
+std::atomic<Bvh::Isa> gIsa{bestIsa()};
 }  // namespace
 
 Bvh::Isa Bvh::isa() { return gIsa.load(std::memory_order_relaxed); }
 
 void Bvh::setIsa(Isa isa) {
-  if (isa == Isa::kAvx2 && !cpuHasAvx2()) return;
+  if ((isa == Isa::kAvx2 && !cpuHasAvx2()) || (isa == Isa::kAvx512 && !cpuHasAvx512())) return;
   gIsa.store(isa, std::memory_order_relaxed);
 }
 
+const char* Bvh::isaName(Isa isa) {
+  switch (isa) {
+    case Isa::kSse2: return "SSE2";
+    case Isa::kAvx2: return "AVX2";
+    case Isa::kAvx512: return "AVX2 with AVX-512VL";
+  }
+  return "?";
+}
+
 int Bvh::testBoxes(const Node& node, const Ray<float>& ray, float tMax, float tEntry[kWidth]) {
-  if (isa() == Isa::kAvx2) return avx2::testBoxes(node, ray, tMax, tEntry);
+  if (isa() != Isa::kSse2) return avx2::testBoxes(node, ray, tMax, tEntry);
   return ChildBoxTestSse(ray)(node, tMax, tEntry);
 }
 
@@ -316,6 +347,7 @@ template <typename T, bool kAnyHit>
 bool Bvh::trace(const Ray<T>& ray, BvhHit<T>& hit) const {
   if (triangleCount_ == 0) return false;
   if constexpr (std::is_same_v<T, float>) {
+    if (isa() == Isa::kAvx512) return avx512::traverse<T, kAnyHit>(view(), ray, hit);
     if (isa() == Isa::kAvx2) return avx2::traverse<T, kAnyHit>(view(), ray, hit);
   }
   return sse::traverse<T, kAnyHit>(view(), ray, hit);

@@ -60,15 +60,18 @@ void expectMatchesBruteForceOnce(const rt::Bvh& bvh, const std::vector<rt::Trian
   EXPECT_GT(hits, rayCount / 10) << "the rays should mostly hit something";
 }
 
-// Every traversal this CPU can run: SSE always, AVX2 where it has it (float only).
+// Every traversal this CPU can run: SSE always, AVX2 and its AVX-512VL compile where
+// it has them (float only).
+constexpr rt::Bvh::Isa kIsas[] = {rt::Bvh::Isa::kSse2, rt::Bvh::Isa::kAvx2, rt::Bvh::Isa::kAvx512};
+
 template <typename T>
 void expectMatchesBruteForce(const rt::Bvh& bvh, const std::vector<rt::TriangleVerts>& tris, std::mt19937& rng,
                              int rayCount) {
   const rt::Bvh::Isa best = rt::Bvh::isa();
-  for (const rt::Bvh::Isa isa : {rt::Bvh::Isa::kSse2, rt::Bvh::Isa::kAvx2}) {
+  for (const rt::Bvh::Isa isa : kIsas) {
     rt::Bvh::setIsa(isa);
     if (rt::Bvh::isa() != isa) continue;
-    SCOPED_TRACE(isa == rt::Bvh::Isa::kSse2 ? "SSE2" : "AVX2");
+    SCOPED_TRACE(rt::Bvh::isaName(isa));
     expectMatchesBruteForceOnce<T>(bvh, tris, rng, rayCount);
   }
   rt::Bvh::setIsa(best);
@@ -160,7 +163,7 @@ TEST(Bvh, RaysAtSharedEdgesAndVerticesNeverSlipThroughTheLeaves) {
   rt::Bvh bvh;
   bvh.build(tris);
   const rt::Bvh::Isa best = rt::Bvh::isa();
-  for (const rt::Bvh::Isa isa : {rt::Bvh::Isa::kSse2, rt::Bvh::Isa::kAvx2}) {
+  for (const rt::Bvh::Isa isa : kIsas) {
     rt::Bvh::setIsa(isa);
     if (rt::Bvh::isa() != isa) continue;
     int rays = 0, misses = 0, disagreements = 0;
@@ -178,7 +181,7 @@ TEST(Bvh, RaysAtSharedEdgesAndVerticesNeverSlipThroughTheLeaves) {
         }
       }
     }
-    EXPECT_EQ(misses, 0) << "of " << rays << " rays, " << (isa == rt::Bvh::Isa::kSse2 ? "SSE2" : "AVX2");
+    EXPECT_EQ(misses, 0) << "of " << rays << " rays, " << rt::Bvh::isaName(isa);
     EXPECT_EQ(disagreements, 0);
   }
   rt::Bvh::setIsa(best);
