@@ -51,6 +51,7 @@ class ChildBoxTest {
 // exactly as the scalar test's comparisons do (the NaN becomes the unbounded start
 // value), and widening the far distance once after the minimum equals widening each
 // axis' before it, since rounding is monotonic.
+//
 // The rows are kept as offsets in floats from the node's first, pointer-sized: as
 // int row numbers each of the six loads a node took a sign extension and a shift.
 class SimdBoxRows : public ChildBoxTest<float> {

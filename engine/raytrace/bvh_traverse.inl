@@ -1,7 +1,8 @@
-// The BVH traversal, written once and compiled once per instruction set: bvh.cpp
-// includes this file inside namespace sse and again inside namespace avx2 under
-// `#pragma GCC target("avx2")` (Embree's way: the same source, one copy per ISA, the
-// best picked at run time). No include guard, no includes: the including namespace
+// The BVH traversal, written once and compiled once per instruction set:
+// bvh_traverse.cpp includes this file inside namespace sse, again inside namespace
+// avx2 under ENGINE_AVX2_BEGIN, and once more inside namespace avx512 under
+// ENGINE_AVX512_BEGIN (Embree's way: the same source, one copy per ISA, the best
+// picked at run time). No include guard, no includes: the including namespace
 // provides BoxTest<T> (the children's boxes against a ray), LeafTest<T> and toT.
 //
 // All of a node's children's boxes are tested at once. Embree's order of cases: no
