@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "raytrace/avx2_region.h"
 #include "raytrace/whitted_packets.h"
 
 namespace engine::rt {
@@ -58,9 +57,8 @@ std::string lanesOf(const RtScene& scene, const RenderSettings& s) {
     return scene.eightRaysAtATime() ? "shapes: eight rays at a time (AVX2)" : "shapes: four rays at a time (SSE)";
   }
   if (const char* why = WhittedPackets::unsupported(scene, s)) {
-    const bool rows = s.precision == Precision::Float && cpuHasAvx2();
     return std::string("packets: none, one sample at a time (") + why + ")" +
-           (rows ? "; first hits eight camera rays at a time (AVX2)" : "");
+           (Integrator::firstHitsInRows(s) ? "; first hits eight camera rays at a time (AVX2)" : "");
   }
   return "packets: eight camera samples at a time, shadow rays too (AVX2)";
 }

@@ -400,7 +400,7 @@ RenderResult Integrator::render() const {
   if (settings_.precision == Precision::Double) return detail::renderTiles(Tracer<double>(*scene_, settings_), settings_);
   const Tracer<float> tracer(*scene_, settings_);
   if (packets_) return detail::renderTiles(PacketTracer(tracer, *packets_, *scene_, settings_), settings_);
-  if (cpuHasAvx2()) return detail::renderTiles(SpanTracer(tracer, *scene_, settings_), settings_);
+  if (firstHitsInRows(settings_)) return detail::renderTiles(SpanTracer(tracer, *scene_, settings_), settings_);
   return detail::renderTiles(tracer, settings_);
 }
 
@@ -416,6 +416,10 @@ glm::vec3 Integrator::renderPixel(int x, int y, RayCounters* counters) const {
   }
   if (counters) *counters += local;
   return c;
+}
+
+bool Integrator::firstHitsInRows(const RenderSettings& settings) {
+  return settings.method == Method::Whitted && settings.precision == Precision::Float && cpuHasAvx2();
 }
 
 RenderSettings Integrator::passSettings(int first, int count) const {
@@ -442,7 +446,7 @@ void Integrator::renderSpanSamples(int x0, int x1, int y, int first, int count, 
   } else if (packets_) {
     const Tracer<float> tracer(*scene_, settings_);
     PacketTracer(tracer, *packets_, *scene_, settings_).renderSpan(x0, x1, y, out, local);
-  } else if (settings_.precision == Precision::Float && cpuHasAvx2()) {
+  } else if (firstHitsInRows(settings_)) {
     const Tracer<float> tracer(*scene_, settings_);
     SpanTracer(tracer, *scene_, settings_).renderSpan(x0, x1, y, out, local);
   } else {

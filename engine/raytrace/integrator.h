@@ -108,6 +108,10 @@ class Integrator {
   glm::vec3 traceRay(const Ray<double>& ray, std::uint64_t seed = 0, RayCounters* counters = nullptr) const;
 
   const RenderSettings& settings() const { return settings_; }
+  // Whether the Whitted tracer, where its packets do not apply, finds each row's
+  // camera rays' first hits eight at a time (integrator.cpp's SpanTracer): float
+  // precision on a CPU with AVX2. render(), renderSpanSamples() and describe() ask it.
+  static bool firstHitsInRows(const RenderSettings& settings);
 
  private:
   const RtScene* scene_;
