@@ -12,6 +12,7 @@
 #include <random>
 
 #include "raytrace/bvh.h"
+#include "isa_sweep.h"
 
 namespace rt = engine::rt;
 
@@ -151,18 +152,11 @@ void checkScene(const std::vector<rt::TriangleVerts>& tris, std::uint32_t seed, 
   check.boundary += local.boundary;
 }
 
-// Each compile of the packet traversal this CPU runs (AVX2, and AVX2 with AVX-512VL's
-// registers), then the CPU's best again.
+// Each compile of the packet traversal this CPU runs: AVX2, and AVX2 with AVX-512VL's
+// registers.
 template <typename Check>
 void forEachPacketIsa(Check check) {
-  const rt::Bvh::Isa best = rt::Bvh::isa();
-  for (const rt::Bvh::Isa isa : {rt::Bvh::Isa::kAvx2, rt::Bvh::Isa::kAvx512}) {
-    rt::Bvh::setIsa(isa);
-    if (rt::Bvh::isa() != isa) continue;
-    SCOPED_TRACE(rt::Bvh::isaName(isa));
-    check();
-  }
-  rt::Bvh::setIsa(best);
+  forEachIsa({rt::Bvh::Isa::kAvx2, rt::Bvh::Isa::kAvx512}, check);
 }
 
 TEST(BvhPacket, EightRaysTogetherAnswerAsOneByOne) {

@@ -10,6 +10,7 @@
 
 #include "raytrace/bvh.h"
 #include "raytrace/rt_scene.h"
+#include "isa_sweep.h"
 
 namespace rt = engine::rt;
 
@@ -62,19 +63,13 @@ void expectMatchesBruteForceOnce(const rt::Bvh& bvh, const std::vector<rt::Trian
 
 // Every traversal this CPU can run: SSE always, AVX2 and its AVX-512VL compile where
 // it has them (float only).
-constexpr rt::Bvh::Isa kIsas[] = {rt::Bvh::Isa::kSse2, rt::Bvh::Isa::kAvx2, rt::Bvh::Isa::kAvx512};
+constexpr std::initializer_list<rt::Bvh::Isa> kIsas = {rt::Bvh::Isa::kSse2, rt::Bvh::Isa::kAvx2,
+                                                       rt::Bvh::Isa::kAvx512};
 
 template <typename T>
 void expectMatchesBruteForce(const rt::Bvh& bvh, const std::vector<rt::TriangleVerts>& tris, std::mt19937& rng,
                              int rayCount) {
-  const rt::Bvh::Isa best = rt::Bvh::isa();
-  for (const rt::Bvh::Isa isa : kIsas) {
-    rt::Bvh::setIsa(isa);
-    if (rt::Bvh::isa() != isa) continue;
-    SCOPED_TRACE(rt::Bvh::isaName(isa));
-    expectMatchesBruteForceOnce<T>(bvh, tris, rng, rayCount);
-  }
-  rt::Bvh::setIsa(best);
+  forEachIsa(kIsas, [&] { expectMatchesBruteForceOnce<T>(bvh, tris, rng, rayCount); });
 }
 
 template <typename T>
@@ -162,10 +157,7 @@ TEST(Bvh, RaysAtSharedEdgesAndVerticesNeverSlipThroughTheLeaves) {
   }
   rt::Bvh bvh;
   bvh.build(tris);
-  const rt::Bvh::Isa best = rt::Bvh::isa();
-  for (const rt::Bvh::Isa isa : kIsas) {
-    rt::Bvh::setIsa(isa);
-    if (rt::Bvh::isa() != isa) continue;
+  forEachIsa(kIsas, [&] {
     int rays = 0, misses = 0, disagreements = 0;
     for (const glm::vec3 origin : {glm::vec3(8, 8, 0), glm::vec3(-3, 2, -1), glm::vec3(20, -5, 2)}) {
       for (int y = 1; y < 2 * kSide; ++y) {
@@ -181,10 +173,9 @@ TEST(Bvh, RaysAtSharedEdgesAndVerticesNeverSlipThroughTheLeaves) {
         }
       }
     }
-    EXPECT_EQ(misses, 0) << "of " << rays << " rays, " << rt::Bvh::isaName(isa);
+    EXPECT_EQ(misses, 0) << "of " << rays << " rays";
     EXPECT_EQ(disagreements, 0);
-  }
-  rt::Bvh::setIsa(best);
+  });
 }
 
 // A 10k-triangle grid (a wavy terrain patch): build and refit times for the report.

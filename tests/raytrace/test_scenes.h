@@ -59,7 +59,6 @@ inline rt::RtScene emptyScene(const CameraDesc& camera) {
   return scene;
 }
 
-
 // assets/scenes/`name` built for the ray tracer at time 0 and 240 rows.
 inline rt::RtScene sceneFile(const std::string& name) {
   auto desc = engine::loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + name);
