@@ -34,6 +34,23 @@ int wrapIndex(int i, int n, TextureWrap mode) {
   return wrapTexel(i, n);
 }
 
+// The two texels a bilinear tap reads, i and i + 1, wrapped, for i = floor(r * n - 0.5)
+// of a coordinate r that reduce() has brought into [0, 1] (two periods for mirrored
+// repeat): i is then in [-1, n - 1] (r * n - 0.5 is exact at the ends for any side
+// an image may have, at most 16384), so repeat and clamp need no division, only a
+// check at each edge: the same indices as wrapIndex gives, tested bit for bit.
+struct TexelPair {
+  int i0, i1;
+};
+inline TexelPair wrapPair(int i, int n, TextureWrap mode) {
+  switch (mode) {
+    case TextureWrap::Repeat: return {i < 0 ? n - 1 : i, i + 1 < n ? i + 1 : 0};
+    case TextureWrap::ClampToEdge: return {std::max(i, 0), std::min(i + 1, n - 1)};
+    case TextureWrap::MirroredRepeat: break;
+  }
+  return {wrapIndex(i, n, mode), wrapIndex(i + 1, n, mode)};
+}
+
 // A coordinate reduced to one period of its wrap (two for mirrored repeat), so that
 // large uv (a plane's tiling far from the origin) keep their fraction's precision;
 // clamping to [0, 1] picks the same edge texels as CLAMP_TO_EDGE does beyond them.
@@ -95,17 +112,19 @@ RtTexture::RtTexture(const Image& image, TextureOrigin origin, TextureEncoding e
   while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(halve(levels_.back()));
 }
 
-glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 uv) const {
+// `reduced`: uv through reduce() (the same at every level).
+inline glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 reduced) const {
   // Texel centres sit at (i + 0.5) / n.
-  const float u = reduce(uv.x, wrapS_) * float(level.width) - 0.5f;
-  const float v = reduce(uv.y, wrapT_) * float(level.height) - 0.5f;
+  const float u = reduced.x * float(level.width) - 0.5f;
+  const float v = reduced.y * float(level.height) - 0.5f;
   if (!std::isfinite(u) || !std::isfinite(v)) return level.texels[0];
   const float fu = std::floor(u), fv = std::floor(v);
   const float tu = u - fu, tv = v - fv;
-  const int x0 = wrapIndex(int(fu), level.width, wrapS_), x1 = wrapIndex(int(fu) + 1, level.width, wrapS_);
-  const int y0 = wrapIndex(int(fv), level.height, wrapT_), y1 = wrapIndex(int(fv) + 1, level.height, wrapT_);
-  const auto at = [&](int x, int y) { return level.texels[std::size_t(y) * std::size_t(level.width) + std::size_t(x)]; };
-  return glm::mix(glm::mix(at(x0, y0), at(x1, y0), tu), glm::mix(at(x0, y1), at(x1, y1), tu), tv);
+  const TexelPair x = wrapPair(int(fu), level.width, wrapS_);
+  const TexelPair y = wrapPair(int(fv), level.height, wrapT_);
+  const glm::vec4* row0 = level.texels.data() + std::size_t(y.i0) * std::size_t(level.width);
+  const glm::vec4* row1 = level.texels.data() + std::size_t(y.i1) * std::size_t(level.width);
+  return glm::mix(glm::mix(row0[x.i0], row0[x.i1], tu), glm::mix(row1[x.i0], row1[x.i1], tu), tv);
 }
 
 RtTexture& RtTexture::setMapping(int texCoord, const glm::mat3& uvTransform) {
@@ -127,6 +146,7 @@ glm::vec4 RtTexture::sampleRgba(const HitUv& hitUv, float footprint) const {
   }
   const float texels = footprint * float(std::max(width(), height()));
   const float lod = texels > 1.0f ? std::min(std::log2(texels), float(levels() - 1)) : 0.0f;
+  uv = {reduce(uv.x, wrapS_), reduce(uv.y, wrapT_)};
   if (!(lod > 0.0f)) return bilinear(levels_[0], uv);
   const int below = int(lod);
   const float t = lod - float(below);

@@ -81,7 +81,7 @@ class RtTexture {
     std::vector<glm::vec4> texels;  // linear RGB and alpha, rows with v = 0 first
   };
   static Level halve(const Level& above);
-  glm::vec4 bilinear(const Level& level, glm::vec2 uv) const;
+  glm::vec4 bilinear(const Level& level, glm::vec2 reduced) const;
 
   std::vector<Level> levels_;
   TextureWrap wrapS_ = TextureWrap::Repeat, wrapT_ = TextureWrap::Repeat;

@@ -322,6 +322,109 @@ TEST(RtTexture, WrapModesMatchGl) {
   EXPECT_FLOAT_EQ(column.sample(glm::vec2(0.5f, 1.125f)).x, 0.0f);
 }
 
+namespace {
+
+// GL's wrap by its modular formula (OpenGL 4.5, 8.14.2), the tracer's before it
+// skipped the division: the oracle for the sweep below.
+int glWrap(int i, int n, engine::TextureWrap mode) {
+  const auto mod = [](int a, int m) { return ((a % m) + m) % m; };
+  switch (mode) {
+    case engine::TextureWrap::ClampToEdge: return std::clamp(i, 0, n - 1);
+    case engine::TextureWrap::MirroredRepeat: {
+      const int a = mod(i, 2 * n) - n;
+      return (n - 1) - (a >= 0 ? a : -(1 + a));
+    }
+    case engine::TextureWrap::Repeat: break;
+  }
+  return mod(i, n);
+}
+
+// One level's bilinear tap, written as texture.cpp wrote it before: each coordinate
+// reduced to its wrap's period, then each of the four texel indices wrapped on its own.
+glm::vec4 oracleBilinear(const rt::RtTexture& t, int level, glm::vec2 uv) {
+  using engine::TextureWrap;
+  const auto reduce = [](float x, TextureWrap mode) {
+    if (mode == TextureWrap::ClampToEdge) return std::clamp(x, 0.0f, 1.0f);
+    if (mode == TextureWrap::MirroredRepeat) return x - 2.0f * std::floor(0.5f * x);
+    return x - std::floor(x);
+  };
+  const glm::ivec2 size = t.levelSize(level);
+  const std::vector<glm::vec4>& texels = t.levelTexels(level);
+  const float u = reduce(uv.x, t.wrapS()) * float(size.x) - 0.5f;
+  const float v = reduce(uv.y, t.wrapT()) * float(size.y) - 0.5f;
+  if (!std::isfinite(u) || !std::isfinite(v)) return texels[0];
+  const float fu = std::floor(u), fv = std::floor(v);
+  const float tu = u - fu, tv = v - fv;
+  const int x0 = glWrap(int(fu), size.x, t.wrapS()), x1 = glWrap(int(fu) + 1, size.x, t.wrapS());
+  const int y0 = glWrap(int(fv), size.y, t.wrapT()), y1 = glWrap(int(fv) + 1, size.y, t.wrapT());
+  const auto at = [&](int x, int y) { return texels[std::size_t(y) * std::size_t(size.x) + std::size_t(x)]; };
+  return glm::mix(glm::mix(at(x0, y0), at(x1, y0), tu), glm::mix(at(x0, y1), at(x1, y1), tu), tv);
+}
+
+bool sameBits(glm::vec4 a, glm::vec4 b) {
+  for (int i = 0; i < 4; ++i)
+    if (std::bit_cast<std::uint32_t>(a[i]) != std::bit_cast<std::uint32_t>(b[i])) return false;
+  return true;
+}
+
+}  // namespace
+
+// The bilinear tap's wrap without a division (each coordinate reduced once, a texel
+// pair wrapped by a check at each edge) gives the very bits of the modular formula:
+// every pair of wrap modes on sizes 1 to 7 and 256, 1.2 M uv: uniform over many
+// periods, within a few ulps of every texel edge and period edge (0, 1, 2, -1, where
+// reduce() rounds to the period's end), far from zero (10^5 periods out) and tiny
+// negatives that reduce to exactly 1.
+TEST(RtTexture, WrapWithoutDivisionMatchesTheModularFormulaBitForBit) {
+  using engine::TextureWrap;
+  const TextureWrap modes[] = {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat};
+  const glm::ivec2 sizes[] = {{1, 1}, {2, 1}, {3, 5}, {7, 4}, {256, 256}};
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<float> wide(-8.0f, 8.0f), unit(0.0f, 1.0f);
+  std::uniform_int_distribution<int> ulps(-4, 4), kind(0, 3);
+  const auto coordinate = [&](int n) {
+    switch (kind(rng)) {
+      case 0: return wide(rng);
+      case 1: {  // near a texel edge or centre, or a period's end, a few ulps either side
+        const float edge = float(std::uniform_int_distribution<int>(-2 * n, 4 * n)(rng)) / float(2 * n);
+        float x = edge;
+        for (int k = ulps(rng); k != 0; k += k > 0 ? -1 : 1) x = std::nextafter(x, k > 0 ? 1e30f : -1e30f);
+        return x;
+      }
+      case 2: return 1e5f + unit(rng) * 64.0f - 32.0f;  // far out: the fraction's precision
+      default: return -std::ldexp(unit(rng), -std::uniform_int_distribution<int>(20, 140)(rng));  // reduces to 1
+    }
+  };
+  int cases = 0;
+  for (const glm::ivec2 size : sizes) {
+    engine::Image image(size.x, size.y);
+    for (auto& byte : image.pixels) byte = std::uint8_t(rng());
+    for (const TextureWrap s : modes)
+      for (const TextureWrap t : modes) {
+        rt::RtTexture texture(image, rt::TextureOrigin::TopLeft);
+        texture.setWrap(s, t);
+        for (int i = 0; i < 50000; ++i, ++cases) {
+          const glm::vec2 uv(coordinate(size.x), coordinate(size.y));
+          const glm::vec4 got = texture.sampleRgba(uv);
+          const glm::vec4 want = oracleBilinear(texture, 0, uv);
+          ASSERT_TRUE(sameBits(got, want)) << size.x << "x" << size.y << " wrap " << int(s) << "/" << int(t)
+                                           << " uv (" << uv.x << ", " << uv.y << ")";
+        }
+      }
+  }
+  EXPECT_EQ(cases, 5 * 9 * 50000);
+  // Trilinear: the coordinates reduced once serve both levels.
+  rt::RtTexture texture = rampTexture(7, 4);
+  texture.setWrap(TextureWrap::MirroredRepeat, TextureWrap::Repeat);
+  for (int i = 0; i < 100000; ++i) {
+    const glm::vec2 uv(coordinate(7), coordinate(4));
+    const float lod = 0.1f + 0.8f * unit(rng);  // between levels 0 and 1: 2^lod texels of level 0
+    const glm::vec4 want = glm::mix(oracleBilinear(texture, 0, uv), oracleBilinear(texture, 1, uv), lod);
+    const glm::vec4 got = texture.sampleRgba(uv, std::exp2(lod) / 7.0f);
+    ASSERT_NEAR(got.x, want.x, 1e-5f) << uv.x << ", " << uv.y;  // lod rounds through exp2 and log2
+  }
+}
+
 // A slot's uv set and KHR_texture_transform: the texture reads set 1 through the
 // matrix, the same matrix the rasterizer takes as a uniform.
 TEST(RtTexture, SamplesItsUvSetThroughTheTransform) {
