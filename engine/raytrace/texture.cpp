@@ -113,7 +113,7 @@ RtTexture::RtTexture(const Image& image, TextureOrigin origin, TextureEncoding e
 }
 
 // `reduced`: uv through reduce() (the same at every level).
-inline glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 reduced) const {
+glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 reduced) const {
   // Texel centres sit at (i + 0.5) / n.
   const float u = reduced.x * float(level.width) - 0.5f;
   const float v = reduced.y * float(level.height) - 0.5f;
