@@ -371,10 +371,11 @@ bool sameBits(glm::vec4 a, glm::vec4 b) {
 
 // The bilinear tap's wrap without a division (each coordinate reduced once, a texel
 // pair wrapped by a check at each edge) gives the very bits of the modular formula:
-// every pair of wrap modes on sizes 1 to 7 and 256, 1.2 M uv: uniform over many
-// periods, within a few ulps of every texel edge and period edge (0, 1, 2, -1, where
-// reduce() rounds to the period's end), far from zero (10^5 periods out) and tiny
-// negatives that reduce to exactly 1.
+// every pair of wrap modes on 1x1, 2x1, 3x5, 7x4 and 256x256 texels, 2.25 M uv:
+// uniform over many periods, within a few ulps of every texel edge and period edge
+// (0, 1, 2, -1, where reduce() rounds to the period's end), far from zero (10^5
+// periods out) and tiny negatives that reduce to exactly 1; and 100 k trilinear
+// taps, whose two levels share the once-reduced coordinates.
 TEST(RtTexture, WrapWithoutDivisionMatchesTheModularFormulaBitForBit) {
   using engine::TextureWrap;
   const TextureWrap modes[] = {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat};
@@ -413,15 +414,16 @@ TEST(RtTexture, WrapWithoutDivisionMatchesTheModularFormulaBitForBit) {
       }
   }
   EXPECT_EQ(cases, 5 * 9 * 50000);
-  // Trilinear: the coordinates reduced once serve both levels.
+  // Trilinear: the coordinates reduced once serve both levels. A footprint of 1 to 2
+  // of level 0's texels puts GL's level of detail, log2 of it, between levels 0 and 1.
   rt::RtTexture texture = rampTexture(7, 4);
   texture.setWrap(TextureWrap::MirroredRepeat, TextureWrap::Repeat);
   for (int i = 0; i < 100000; ++i) {
     const glm::vec2 uv(coordinate(7), coordinate(4));
-    const float lod = 0.1f + 0.8f * unit(rng);  // between levels 0 and 1: 2^lod texels of level 0
+    const float footprint = (1.0f + unit(rng)) / 7.0f;
+    const float lod = std::log2(footprint * 7.0f);
     const glm::vec4 want = glm::mix(oracleBilinear(texture, 0, uv), oracleBilinear(texture, 1, uv), lod);
-    const glm::vec4 got = texture.sampleRgba(uv, std::exp2(lod) / 7.0f);
-    ASSERT_NEAR(got.x, want.x, 1e-5f) << uv.x << ", " << uv.y;  // lod rounds through exp2 and log2
+    ASSERT_TRUE(sameBits(texture.sampleRgba(uv, footprint), want)) << "uv (" << uv.x << ", " << uv.y << ")";
   }
 }
 
