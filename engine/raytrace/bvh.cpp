@@ -34,8 +34,19 @@ struct Split {
   float cost = 0.0f;
 };
 
-// Triangles are tested four at a time, so the SAH counts blocks of four.
-std::uint32_t leafTests(std::uint32_t triangles) { return (triangles + 3) / 4; }
+// A leaf's cost in tests of four triangles at once: half a test to enter it and half a
+// test per triangle, although one test takes up to four. Counted in whole blocks of
+// four (as Embree counts its Triangle4s), the SAH kept a floor's flat triangles in one
+// leaf with triangles of what stands on it, so that the leaf's box had height; every
+// shadow ray leaving the floor started inside that box and tested four triangles.
+// The SAH cannot see it: it takes rays to come from outside a box, not to start on a
+// surface in it. Counted this way, demo.json's tessellated floor gets leaves of its
+// own, flat boxes that rays leaving it miss. Measured (embree_compare, the same rays,
+// one process): shadow rays test 0.99 triangles each instead of 4.63 and run 1.37x
+// as fast; primary rays as fast as before; a third more nodes and leaves; the build
+// about 5 % longer. A leaf cost of 0.25 + 0.25 per triangle changed nothing, and 1 per
+// triangle gained as much on shadow rays and made primary rays 2-3 % slower.
+float leafCost(std::uint32_t triangles) { return 0.5f * float(triangles + 1); }
 
 int binIndex(float c, float lo, float extent, int bins) {
   const int b = int(float(bins) * ((c - lo) / extent));
@@ -46,7 +57,7 @@ int binIndex(float c, float lo, float extent, int bins) {
 // widest axis alone left demo.json's primary rays a fifth slower). The primitives
 // are binned by centroid on every axis in one pass, then each axis is swept from the
 // right for each suffix's area and count, then from the left. Costs are areas times
-// leaf tests, not yet divided by the parent's area.
+// leaf costs, not yet divided by the parent's area.
 template <typename Prim>
 Split bestSplit(std::span<const Prim> prims, const Bounds3f& centroids) {
   // Small nodes get fewer bins: 32 of them cost more to clear and sweep than binning
@@ -82,7 +93,7 @@ Split bestSplit(std::span<const Prim> prims, const Bounds3f& centroids) {
       count += bins[axis][i].count;
       if (count == 0 || rightCount[i + 1] == 0) continue;
       const float cost =
-          acc.surfaceArea() * float(leafTests(count)) + rightArea[i + 1] * float(leafTests(rightCount[i + 1]));
+          acc.surfaceArea() * leafCost(count) + rightArea[i + 1] * leafCost(rightCount[i + 1]);
       if (best.axis < 0 || cost < best.cost) best = Split{axis, binCount, i, cost};
     }
   }
@@ -120,8 +131,8 @@ std::uint32_t Bvh::buildRecursive(std::span<BuildPrim> prims, int depth) {
     const Split best = bestSplit(std::span<const BuildPrim>(prims), centroids);
     const float area = bounds.surfaceArea();
     const float splitCost = kTraversalCost + (area > 0.0f ? best.cost / area : 0.0f);
-    const float leafCost = float(leafTests(std::uint32_t(n)));
-    if (best.axis < 0 || (n <= kMaxLeafTriangles && leafCost <= splitCost)) {
+    const float asLeaf = leafCost(std::uint32_t(n));
+    if (best.axis < 0 || (n <= kMaxLeafTriangles && asLeaf <= splitCost)) {
       if (n <= kMaxLeafTriangles) return makeLeaf(prims);
     } else {
       const float lo = centroids.min[best.axis], extent = centroids.max[best.axis] - lo;
