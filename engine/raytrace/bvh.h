@@ -1,7 +1,8 @@
 #pragma once
 // A bounding volume hierarchy over triangles, shaped after Embree's BVH8 with
 // Triangle4 leaves: built top-down as a binary tree with the binned surface area
-// heuristic (all three axes, a leaf costed per triangle: see bvh.cpp), then
+// heuristic (all three axes, leaves costed in blocks of four triangles, triangles in
+// an axis-aligned plane split from the rest of a leaf: see bvh.cpp), then
 // collapsed into an 8-wide tree whose node holds its eight children's boxes side by
 // side, so that one ray tests them all at once: with AVX2 where the CPU has it
 // (chosen at run time), otherwise as two halves with SSE. A leaf holds up to four

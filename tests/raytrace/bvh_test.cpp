@@ -127,10 +127,10 @@ TEST(Bvh, RefitToTheSamePositionsKeepsEveryBox) {
 
 // A floor of two large triangles with boxes standing on it: each floor triangle's leaf
 // has a flat box (no height), so that rays leaving the floor (shadow rays, bounces)
-// start outside it and enter it only if they go down. With the SAH counting a leaf in
-// blocks of four triangles, the builder put the floor into a leaf with triangles of
-// the boxes, whose box then had height and held every such ray's origin (bvh.cpp's
-// leafCost); with that cost this test fails on 14 of its 40 seeds.
+// start outside it and enter it only if they go down. The SAH alone put the floor
+// into a leaf with triangles of the boxes, whose box then had height and held every
+// such ray's origin; without bvh.cpp's flatGroupFirst this test fails on 14 of its 40
+// seeds.
 TEST(Bvh, AFloorsTrianglesGetFlatLeavesOfTheirOwn) {
   for (unsigned seed = 1; seed <= 40; ++seed) {
     std::mt19937 rng(seed);
