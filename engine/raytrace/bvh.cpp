@@ -2,9 +2,15 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
-
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 
 namespace engine::rt {
 namespace {
@@ -59,6 +65,32 @@ std::size_t flatGroupFirst(std::span<Prim> prims, const Bounds3f& bounds) {
   return 0;
 }
 
+// A pass over a node's primitives, in parts of `grain` across threads where there are
+// at least four parts: `of` sums up a part and `join` adds two sums. Counts and boxes
+// sum to the same bits in any order (integer sums, minima and maxima of finite
+// coordinates), so the result is the one-part result.
+template <typename Sum, typename Prim, typename Of, typename Join>
+Sum reduceOver(std::span<const Prim> prims, std::size_t grain, const Of& of, const Join& join) {
+  if (prims.size() / 4 < grain) return of(prims);
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, prims.size(), grain), Sum{},
+      [&](const tbb::blocked_range<std::size_t>& r, Sum sum) {
+        return join(std::move(sum), of(prims.subspan(r.begin(), r.size())));
+      },
+      join);
+}
+
+// f(begin, end) over [0, n) in parts of `grain` across threads, or at once where there
+// are fewer than four parts.
+template <typename F>
+void forParts(std::size_t n, std::size_t grain, const F& f) {
+  if (n / 4 < grain) return f(0, n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                    [&](const tbb::blocked_range<std::size_t>& r) { f(r.begin(), r.end()); });
+}
+
+using Bins = std::array<std::array<Bin, kBins>, 3>;
+
 int binIndex(float c, float lo, float extent, int bins) {
   const int b = int(float(bins) * ((c - lo) / extent));
   return std::clamp(b, 0, bins - 1);
@@ -70,20 +102,31 @@ int binIndex(float c, float lo, float extent, int bins) {
 // right for each suffix's area and count, then from the left. Costs are areas times
 // leaf costs, not yet divided by the parent's area.
 template <typename Prim>
-Split bestSplit(std::span<const Prim> prims, const Bounds3f& centroids) {
+Split bestSplit(std::span<const Prim> prims, const Bounds3f& centroids, std::size_t grain) {
   // Small nodes get fewer bins: 32 of them cost more to clear and sweep than binning
   // a handful of primitives, and made the builds of small meshes twice as slow.
   const int binCount = int(std::min<std::size_t>(kBins, std::max<std::size_t>(4, prims.size())));
-  std::array<std::array<Bin, kBins>, 3> bins;
-  for (auto& axisBins : bins) std::fill_n(axisBins.begin(), binCount, Bin{});
   const glm::vec3 lo = centroids.min, extent = centroids.max - centroids.min;
-  for (const Prim& p : prims) {
-    for (int axis = 0; axis < 3; ++axis) {
-      Bin& b = bins[axis][extent[axis] > 0.0f ? binIndex(p.centroid[axis], lo[axis], extent[axis], binCount) : 0];
-      ++b.count;
-      b.bounds.extend(p.bounds);
+  const auto binOf = [&](std::span<const Prim> part) {
+    Bins bins;
+    for (const Prim& p : part) {
+      for (int axis = 0; axis < 3; ++axis) {
+        Bin& b = bins[axis][extent[axis] > 0.0f ? binIndex(p.centroid[axis], lo[axis], extent[axis], binCount) : 0];
+        ++b.count;
+        b.bounds.extend(p.bounds);
+      }
     }
-  }
+    return bins;
+  };
+  const Bins bins = reduceOver<Bins>(prims, grain, binOf, [](Bins a, const Bins& b) {
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int i = 0; i < kBins; ++i) {
+        a[axis][i].count += b[axis][i].count;
+        a[axis][i].bounds.extend(b[axis][i].bounds);
+      }
+    }
+    return a;
+  });
   Split best;
   for (int axis = 0; axis < 3; ++axis) {
     if (!(extent[axis] > 0.0f)) continue;
@@ -113,70 +156,149 @@ Split bestSplit(std::span<const Prim> prims, const Bounds3f& centroids) {
 
 }  // namespace
 
-std::uint32_t Bvh::makeLeaf(std::span<BuildPrim> prims) {
+std::uint32_t Bvh::makeLeaf(std::span<BuildPrim> prims, Subtree& out) {
   BinaryNode node;
-  node.offset = std::uint32_t(order_.size() / 4);
+  node.offset = std::uint32_t(out.order.size() / 4);
   node.count = std::uint16_t(prims.size());
   for (std::size_t lane = 0; lane < 4; ++lane) {
     if (lane < prims.size()) node.bounds.extend(prims[lane].bounds);
-    order_.push_back(lane < prims.size() ? prims[lane].index : kNoChild);
+    out.order.push_back(lane < prims.size() ? prims[lane].index : kNoChild);
   }
-  binary_.push_back(node);
-  return std::uint32_t(binary_.size() - 1);
+  out.nodes.push_back(node);
+  return std::uint32_t(out.nodes.size() - 1);
 }
 
-std::uint32_t Bvh::buildRecursive(std::span<BuildPrim> prims, int depth) {
-  depth_ = std::max(depth_, depth + 1);
-  Bounds3f bounds, centroids;
-  for (const BuildPrim& p : prims) {
-    bounds.extend(p.bounds);
-    centroids.extend(p.centroid);
-  }
+// Where a node's primitives divide: they are partitioned in place and the first `mid`
+// go left; or, `leaf`, they make one leaf.
+Bvh::Cut Bvh::cut(std::span<BuildPrim> prims, int depth, std::size_t grain) {
+  Cut c;
+  using Boxes = std::pair<Bounds3f, Bounds3f>;  // of the primitives, of their centroids
+  Bounds3f centroids;
+  std::tie(c.bounds, centroids) = reduceOver<Boxes>(
+      std::span<const BuildPrim>(prims), grain,
+      [](std::span<const BuildPrim> part) {
+        Boxes b;
+        for (const BuildPrim& p : part) {
+          b.first.extend(p.bounds);
+          b.second.extend(p.centroid);
+        }
+        return b;
+      },
+      [](Boxes a, const Boxes& b) {
+        a.first.extend(b.first);
+        a.second.extend(b.second);
+        return a;
+      });
   const std::size_t n = prims.size();
-  if (n <= 1) return makeLeaf(prims);
+  c.leaf = n <= 1;
+  if (c.leaf) return c;
 
   const int widest = centroids.maxExtentAxis();
-  std::size_t mid = n / 2;
   bool split = false;
   // Within the SAH's depth only, as the SAH's own splits (the depth bound in bvh.h).
-  const std::size_t flat = n <= kMaxLeafTriangles && depth < kMaxSahDepth ? flatGroupFirst(prims, bounds) : 0;
+  const std::size_t flat = n <= kMaxLeafTriangles && depth < kMaxSahDepth ? flatGroupFirst(prims, c.bounds) : 0;
   if (flat > 0) {
-    mid = flat;
+    c.mid = flat;
     split = true;
   } else if (centroids.max[widest] > centroids.min[widest] && depth < kMaxSahDepth) {
-    const Split best = bestSplit(std::span<const BuildPrim>(prims), centroids);
-    const float area = bounds.surfaceArea();
+    const Split best = bestSplit(std::span<const BuildPrim>(prims), centroids, grain);
+    const float area = c.bounds.surfaceArea();
     const float splitCost = kTraversalCost + (area > 0.0f ? best.cost / area : 0.0f);
     const float asLeaf = leafCost(std::uint32_t(n));
     if (best.axis < 0 || (n <= kMaxLeafTriangles && asLeaf <= splitCost)) {
-      if (n <= kMaxLeafTriangles) return makeLeaf(prims);
+      c.leaf = n <= kMaxLeafTriangles;
+      if (c.leaf) return c;
     } else {
       const float lo = centroids.min[best.axis], extent = centroids.max[best.axis] - lo;
       auto it = std::partition(prims.begin(), prims.end(), [&](const BuildPrim& p) {
         return binIndex(p.centroid[best.axis], lo, extent, best.bins) <= best.bin;
       });
-      mid = std::size_t(it - prims.begin());
-      split = mid > 0 && mid < n;
+      c.mid = std::size_t(it - prims.begin());
+      split = c.mid > 0 && c.mid < n;
     }
   } else if (n <= kMaxLeafTriangles) {
-    return makeLeaf(prims);
+    c.leaf = true;
+    return c;
   }
   if (!split) {
     // Coincident centroids, too deep, or no useful SAH split: the object median.
-    mid = n / 2;
-    std::nth_element(prims.begin(), prims.begin() + std::ptrdiff_t(mid), prims.end(),
+    c.mid = n / 2;
+    std::nth_element(prims.begin(), prims.begin() + std::ptrdiff_t(c.mid), prims.end(),
                      [&](const BuildPrim& a, const BuildPrim& b) { return a.centroid[widest] < b.centroid[widest]; });
   }
+  return c;
+}
 
+std::uint32_t Bvh::buildRecursive(std::span<BuildPrim> prims, int depth, Subtree& out) {
+  out.depth = std::max(out.depth, depth + 1);
+  const Cut c = cut(prims, depth, kSerial);
+  if (c.leaf) return makeLeaf(prims, out);
+  const std::uint32_t index = std::uint32_t(out.nodes.size());
+  out.nodes.push_back(BinaryNode{});
+  buildRecursive(prims.subspan(0, c.mid), depth + 1, out);
+  const std::uint32_t second = buildRecursive(prims.subspan(c.mid), depth + 1, out);
+  out.nodes[index] = BinaryNode{c.bounds, second, 0};
+  return index;
+}
+
+// The top of the tree, down to subtrees of fewer than `grain` triangles, with
+// each node's two sides built at once (TBB); each subtree is built on its own as
+// buildRecursive builds it, its nodes and leaf blocks numbered from 0. append() then
+// lays them out depth first, as one buildRecursive over everything would have: the
+// same tree, bit for bit, however many threads built it.
+struct Bvh::Piece {
+  Bounds3f bounds;
+  int depth = 0;
+  std::unique_ptr<Piece> left, right;  // a node of the top
+  Subtree subtree;                     // or, with no sides, a subtree
+
+  // Binary nodes and leaf slots, all told.
+  std::pair<std::size_t, std::size_t> size() const {
+    if (!left) return {subtree.nodes.size(), subtree.order.size()};
+    const auto [ln, ls] = left->size();
+    const auto [rn, rs] = right->size();
+    return {1 + ln + rn, ls + rs};
+  }
+};
+
+std::unique_ptr<Bvh::Piece> Bvh::buildTop(std::span<BuildPrim> prims, int depth, std::size_t grain) {
+  auto piece = std::make_unique<Piece>();
+  piece->depth = depth;
+  Cut c;
+  if (prims.size() >= grain) c = cut(prims, depth, grain);
+  if (prims.size() < grain || c.leaf) {
+    piece->subtree.nodes.reserve(2 * prims.size());
+    piece->subtree.order.reserve(4 * prims.size());
+    buildRecursive(prims, depth, piece->subtree);
+    return piece;
+  }
+  piece->bounds = c.bounds;
+  tbb::parallel_invoke([&] { piece->left = buildTop(prims.subspan(0, c.mid), depth + 1, grain); },
+                       [&] { piece->right = buildTop(prims.subspan(c.mid), depth + 1, grain); });
+  return piece;
+}
+
+void Bvh::append(Piece& piece) {
+  depth_ = std::max(depth_, piece.depth + 1);
+  if (!piece.left) {
+    // A subtree's own numbers moved to where it lands: interior nodes name their
+    // second child, leaves their first block.
+    const auto nodeBase = std::uint32_t(binary_.size()), blockBase = std::uint32_t(order_.size() / 4);
+    for (BinaryNode node : piece.subtree.nodes) {
+      node.offset += node.count == 0 ? nodeBase : blockBase;
+      binary_.push_back(node);
+    }
+    order_.insert(order_.end(), piece.subtree.order.begin(), piece.subtree.order.end());
+    depth_ = std::max(depth_, piece.subtree.depth);
+    piece.subtree = {};
+    return;
+  }
   const std::uint32_t index = std::uint32_t(binary_.size());
   binary_.push_back(BinaryNode{});
-  buildRecursive(prims.subspan(0, mid), depth + 1);
-  const std::uint32_t second = buildRecursive(prims.subspan(mid), depth + 1);
-  BinaryNode& node = binary_[index];
-  node.bounds = bounds;
-  node.offset = second;
-  node.count = 0;
-  return index;
+  append(*piece.left);
+  const std::uint32_t second = std::uint32_t(binary_.size());
+  append(*piece.right);
+  binary_[index] = BinaryNode{piece.bounds, second, 0};
 }
 
 // Gathers up to four descendants of a binary interior node, opening the largest
@@ -224,7 +346,7 @@ std::uint32_t Bvh::reference(std::uint32_t binary) {
   return node.count > 0 ? leafRef(node.offset, node.count) : collapse(binary);
 }
 
-void Bvh::build(std::span<const TriangleVerts> triangles) {
+void Bvh::build(std::span<const TriangleVerts> triangles, std::size_t grain) {
   if (triangles.size() >= kMaxTriangles) throw std::length_error("Bvh::build: 2^28 triangles or more");
   nodes_.clear();
   binary_.clear();
@@ -236,16 +358,19 @@ void Bvh::build(std::span<const TriangleVerts> triangles) {
   triangleCount_ = triangles.size();
   if (triangles.empty()) return;
   std::vector<BuildPrim> prims(triangles.size());
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    prims[i].bounds = triangleBounds(triangles[i]);
-    prims[i].centroid = prims[i].bounds.centroid();
-    prims[i].index = std::uint32_t(i);
-  }
-  binary_.reserve(2 * triangles.size());
-  order_.reserve(4 * triangles.size());
-  buildRecursive(prims, 0);
-  order_.shrink_to_fit();
-  fillLeaves(triangles);
+  forParts(prims.size(), grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i != end; ++i) {
+      prims[i].bounds = triangleBounds(triangles[i]);
+      prims[i].centroid = prims[i].bounds.centroid();
+      prims[i].index = std::uint32_t(i);
+    }
+  });
+  const std::unique_ptr<Piece> top = buildTop(prims, 0, grain);
+  const auto [nodes, slots] = top->size();
+  binary_.reserve(nodes);
+  order_.reserve(slots);
+  append(*top);
+  fillLeaves(triangles, grain);
 
   rootBounds_ = binary_[0].bounds;
   nodes_.reserve(binary_.size() / 12 + 1);  // about a seventh of the interior nodes
@@ -287,23 +412,27 @@ void Bvh::refitNode(std::uint32_t index) {
 }
 
 // The leaves' Triangle4s from the triangles in build() order; unused lanes zero.
-void Bvh::fillLeaves(std::span<const TriangleVerts> triangles) {
+void Bvh::fillLeaves(std::span<const TriangleVerts> triangles, std::size_t grain) {
   leaves_.assign(order_.size() / 4, Triangle4{});
-  for (std::size_t slot = 0; slot < order_.size(); ++slot) {
-    if (order_[slot] == kNoChild) continue;
-    const TriangleVerts& t = triangles[order_[slot]];
-    Triangle4& leaf = leaves_[slot / 4];
-    for (int axis = 0; axis < 3; ++axis) {
-      leaf.p[0][axis][slot % 4] = t.p0[axis];
-      leaf.p[1][axis][slot % 4] = t.p1[axis];
-      leaf.p[2][axis][slot % 4] = t.p2[axis];
+  const auto fill = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t slot = begin; slot < end; ++slot) {
+      if (order_[slot] == kNoChild) continue;
+      const TriangleVerts& t = triangles[order_[slot]];
+      Triangle4& leaf = leaves_[slot / 4];
+      for (int axis = 0; axis < 3; ++axis) {
+        leaf.p[0][axis][slot % 4] = t.p0[axis];
+        leaf.p[1][axis][slot % 4] = t.p1[axis];
+        leaf.p[2][axis][slot % 4] = t.p2[axis];
+      }
     }
-  }
+  };
+  // Whole leaves to each part (a multiple of four slots), so no two write one leaf.
+  forParts(leaves_.size(), grain, [&](std::size_t begin, std::size_t end) { fill(4 * begin, 4 * end); });
 }
 
 void Bvh::refit(std::span<const TriangleVerts> triangles) {
   if (triangleCount_ == 0) return;
-  fillLeaves(triangles);
+  fillLeaves(triangles, kParallelGrain);
   // Children follow their parents, so a reverse sweep refits children first.
   for (std::size_t i = nodes_.size(); i-- > 0;) refitNode(std::uint32_t(i));
   rootBounds_ = childBounds(root_);

@@ -8,8 +8,11 @@
 // (chosen at run time), otherwise as two halves with SSE. A leaf holds up to four
 // triangles as structure of arrays, tested together with the watertight test.
 // Stored flat in depth-first order (children follow their parent), refitted bottom-up
-// when vertices move but the triangles stay the same, rebuilt when they do not.
+// when vertices move but the triangles stay the same, rebuilt when they do not. The
+// build runs on TBB's threads and gives the same tree on any number of them.
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -34,8 +37,13 @@ struct BvhHit {
 class Bvh {
  public:
   // Triangles of any size, degenerate ones included (they are never hit); fewer
-  // than 2^28 of them (std::length_error otherwise).
-  void build(std::span<const TriangleVerts> triangles);
+  // than 2^28 of them (std::length_error otherwise). Nodes of at least `grain`
+  // triangles build their two sides at once, and passes over at least four times as
+  // many run in parts of `grain`, on TBB's threads; the tree is the same bits for any
+  // grain and any number of threads (kSerial: all on the calling thread).
+  static constexpr std::size_t kParallelGrain = 2048;
+  static constexpr std::size_t kSerial = SIZE_MAX;
+  void build(std::span<const TriangleVerts> triangles, std::size_t grain = kParallelGrain);
   // The same triangles as the last build(), in the same order, at new positions.
   // The tree keeps its shape, so traversal slows as the motion grows; rebuild then.
   void refit(std::span<const TriangleVerts> triangles);
@@ -144,9 +152,26 @@ class Bvh {
     std::uint32_t index;
   };
 
-  std::uint32_t buildRecursive(std::span<BuildPrim> prims, int depth);
-  std::uint32_t makeLeaf(std::span<BuildPrim> prims);
-  void fillLeaves(std::span<const TriangleVerts> triangles);
+  // A part of the binary tree built on its own, numbered from 0: its nodes, its leaf
+  // slots (as order_) and the depth reached.
+  struct Subtree {
+    std::vector<BinaryNode> nodes;
+    std::vector<std::uint32_t> order;
+    int depth = 0;
+  };
+  struct Cut {
+    Bounds3f bounds;
+    std::size_t mid = 0;
+    bool leaf = false;
+  };
+  struct Piece;
+
+  static Cut cut(std::span<BuildPrim> prims, int depth, std::size_t grain);
+  static std::uint32_t buildRecursive(std::span<BuildPrim> prims, int depth, Subtree& out);
+  static std::uint32_t makeLeaf(std::span<BuildPrim> prims, Subtree& out);
+  static std::unique_ptr<Piece> buildTop(std::span<BuildPrim> prims, int depth, std::size_t grain);
+  void append(Piece& piece);
+  void fillLeaves(std::span<const TriangleVerts> triangles, std::size_t grain);
   std::uint32_t collapse(std::uint32_t binary);
   std::uint32_t reference(std::uint32_t binary);
   Bounds3f childBounds(std::uint32_t ref) const;
