@@ -24,20 +24,54 @@ std::uint64_t splitMix64(std::uint64_t x) {
 // is a convex combination of the lattice values.
 double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
-double valueNoise(std::uint32_t seed, int octave, int period, int ix, int iz) {
-  // Integer division keeps the lattice cell and the fraction exact.
-  const std::int64_t x0 = ix >= 0 ? ix / period : -((-ix + period - 1) / period);
-  const std::int64_t z0 = iz >= 0 ? iz / period : -((-iz + period - 1) / period);
-  const double fx = fade(double(ix - x0 * period) / period);
-  const double fz = fade(double(iz - z0 * period) / period);
-  const double v00 = latticeValue(seed, octave, x0, z0);
-  const double v10 = latticeValue(seed, octave, x0 + 1, z0);
-  const double v01 = latticeValue(seed, octave, x0, z0 + 1);
-  const double v11 = latticeValue(seed, octave, x0 + 1, z0 + 1);
+// A sample's lattice cell along one axis and its faded fraction in it. Integer
+// division keeps both exact.
+struct CellAt {
+  std::int64_t cell;
+  double fade;
+};
+CellAt cellAt(int i, int period) {
+  const std::int64_t c = i >= 0 ? i / period : -((-i + period - 1) / period);
+  return {c, fade(double(i - c * period) / period)};
+}
+
+// The bilinear blend of a cell's four lattice values, written once for sample() and
+// sampleGrid() so that both round alike.
+double blend(double v00, double v10, double v01, double v11, double fx, double fz) {
   const double a = v00 + (v10 - v00) * fx;
   const double b = v01 + (v11 - v01) * fx;
   return a + (b - a) * fz;
 }
+
+double valueNoise(std::uint32_t seed, int octave, int period, int ix, int iz) {
+  const CellAt x = cellAt(ix, period), z = cellAt(iz, period);
+  return blend(latticeValue(seed, octave, x.cell, z.cell), latticeValue(seed, octave, x.cell + 1, z.cell),
+               latticeValue(seed, octave, x.cell, z.cell + 1), latticeValue(seed, octave, x.cell + 1, z.cell + 1),
+               x.fade, z.fade);
+}
+
+// One axis of a grid for one octave: each sample's cell and fade, and the lattice
+// coordinates the grid touches (every cell and the one after it), sorted, with each
+// sample's cell as an index into them (its next cell is the index after).
+struct GridAxis {
+  std::vector<std::int64_t> lattice;
+  std::vector<std::size_t> index;
+  std::vector<double> fades;
+  GridAxis(std::span<const int> at, int period) {
+    std::vector<CellAt> cells;
+    for (int i : at) {
+      cells.push_back(cellAt(i, period));
+      lattice.push_back(cells.back().cell);
+      lattice.push_back(cells.back().cell + 1);
+    }
+    std::sort(lattice.begin(), lattice.end());
+    lattice.erase(std::unique(lattice.begin(), lattice.end()), lattice.end());
+    for (const CellAt& c : cells) {
+      index.push_back(std::size_t(std::lower_bound(lattice.begin(), lattice.end(), c.cell) - lattice.begin()));
+      fades.push_back(c.fade);
+    }
+  }
+};
 
 std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -90,6 +124,32 @@ float NoiseHeights::sample(int ix, int iz) const {
   return float(shape(sum));
 }
 
+void NoiseHeights::sampleGrid(std::span<const int> xs, std::span<const int> zs, std::span<float> out) const {
+  std::vector<double> sums(xs.size() * zs.size(), 0.0);
+  std::vector<double> values;
+  double amplitude = 1.0;
+  int period = params_.basePeriod;
+  for (int o = 0; o < params_.octaves; ++o) {
+    const GridAxis gx(xs, period), gz(zs, period);
+    const std::size_t row = gx.lattice.size();
+    values.resize(row * gz.lattice.size());
+    for (std::size_t j = 0; j < gz.lattice.size(); ++j) {
+      for (std::size_t i = 0; i < row; ++i) values[j * row + i] = latticeValue(params_.seed, o, gx.lattice[i], gz.lattice[j]);
+    }
+    for (std::size_t j = 0; j < zs.size(); ++j) {
+      const double* v0 = &values[gz.index[j] * row];
+      const double* v1 = v0 + row;
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        const std::size_t k = gx.index[i];
+        sums[j * xs.size() + i] += amplitude * blend(v0[k], v0[k + 1], v1[k], v1[k + 1], gx.fades[i], gz.fades[j]);
+      }
+    }
+    amplitude *= 0.5;
+    period /= 2;
+  }
+  for (std::size_t s = 0; s < sums.size(); ++s) out[s] = float(shape(sums[s]));
+}
+
 HeightRange NoiseHeights::bounds(int ix0, int iz0, int ix1, int iz1) const {
   // Scanning more lattice points than this costs more than the tighter bound is
   // worth; such octaves are fine enough that [-1, 1] is nearly their range anyway.
@@ -117,6 +177,12 @@ HeightRange NoiseHeights::bounds(int ix0, int iz0, int ix1, int iz1) const {
     period /= 2;
   }
   return widen(shape(lo), shape(hi));
+}
+
+void HeightSource::sampleGrid(std::span<const int> xs, std::span<const int> zs, std::span<float> out) const {
+  for (std::size_t j = 0; j < zs.size(); ++j) {
+    for (std::size_t i = 0; i < xs.size(); ++i) out[j * xs.size() + i] = sample(xs[i], zs[j]);
+  }
 }
 
 ImageHeights::ImageHeights(int width, int height, std::vector<std::uint16_t> samples,

@@ -5,6 +5,7 @@
 // before any page of the region has been generated.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ class HeightSource {
   virtual ~HeightSource() = default;
   // Sample at integer indices; callers clamp them to [0, cells].
   virtual float sample(int ix, int iz) const = 0;
+  // The samples at every (xs[i], zs[j]), row by row: out[j * xs.size() + i], each
+  // the value sample() gives. Pages and error scans ask for grids this way.
+  virtual void sampleGrid(std::span<const int> xs, std::span<const int> zs, std::span<float> out) const;
   // Bounds over the samples [ix0, ix1] x [iz0, iz1] (inclusive, clamped indices).
   virtual HeightRange bounds(int ix0, int iz0, int ix1, int iz1) const = 0;
   // Bounds over every sample.
@@ -47,6 +51,9 @@ class NoiseHeights final : public HeightSource {
  public:
   explicit NoiseHeights(const NoiseParams& params);
   float sample(int ix, int iz) const override;
+  // sample()'s values bit for bit, with each octave's lattice values hashed once for
+  // the grid where sample() hashes four a sample.
+  void sampleGrid(std::span<const int> xs, std::span<const int> zs, std::span<float> out) const override;
   HeightRange bounds(int ix0, int iz0, int ix1, int iz1) const override;
   HeightRange globalBounds() const override { return {0.0f, params_.heightScale}; }
 

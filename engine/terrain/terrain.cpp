@@ -1,8 +1,11 @@
 #include "terrain/terrain.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
 #include <sstream>
+#include <vector>
 
 namespace engine::terrain {
 namespace {
@@ -117,13 +120,12 @@ Result<Terrain> Terrain::create(const TerrainSettings& settings) {
       settings.pageCacheBytes, [source, cellsX, cellsZ](const PageKey& key, HeightPage& page) {
         const int s = stride(key.level);
         const int gx0 = key.nx * kNodeQuads * s, gz0 = key.nz * kNodeQuads * s;
-        for (int j = -1; j < kPageSide - 1; ++j) {
-          const int gz = std::clamp(gz0 + j * s, 0, cellsZ);
-          for (int i = -1; i < kPageSide - 1; ++i) {
-            const int gx = std::clamp(gx0 + i * s, 0, cellsX);
-            page.heights[std::size_t(j + 1) * kPageSide + (i + 1)] = source->sample(gx, gz);
-          }
+        std::array<int, kPageSide> xs, zs;
+        for (int i = -1; i < kPageSide - 1; ++i) {
+          xs[std::size_t(i + 1)] = std::clamp(gx0 + i * s, 0, cellsX);
+          zs[std::size_t(i + 1)] = std::clamp(gz0 + i * s, 0, cellsZ);
         }
+        source->sampleGrid(xs, zs, std::span<float>(page.heights).first(kPageSamples));
       });
   t.estimateErrors(!settings.heightmap.empty());
   t.blockErrors_ = std::make_unique<std::unordered_map<std::int64_t, BlockErrors>>();
@@ -194,8 +196,8 @@ void Terrain::estimateErrors(bool exact) {
 }
 
 Terrain::BlockErrors Terrain::scanBlock(int bx, int bz) const {
-  // The block's samples once (noise costs ~0.1 us a sample), then every level's
-  // mesh against them.
+  // The block's samples once, as one grid (the noise hashes each lattice point once
+  // for it), then every level's mesh against them.
   const int x0 = bx * kBlockCells, z0 = bz * kBlockCells;
   const int w = std::min(kBlockCells, cellsX_ - x0), d = std::min(kBlockCells, cellsZ_ - z0);
   // Read a coarsest quad beyond the far edges too: a sample there is also the low
@@ -204,8 +206,10 @@ Terrain::BlockErrors Terrain::scanBlock(int bx, int bz) const {
   const int rd = std::min(d + stride(kExactErrorLevels), cellsZ_ - z0);
   const std::size_t row = std::size_t(rw + 1);
   std::vector<float> heights(row * std::size_t(rd + 1));
-  for (int z = 0; z <= rd; ++z)
-    for (int x = 0; x <= rw; ++x) heights[std::size_t(z) * row + std::size_t(x)] = source_->sample(x0 + x, z0 + z);
+  std::vector<int> xs(row), zs(std::size_t(rd + 1));
+  for (std::size_t x = 0; x < xs.size(); ++x) xs[x] = x0 + int(x);
+  for (std::size_t z = 0; z < zs.size(); ++z) zs[z] = z0 + int(z);
+  source_->sampleGrid(xs, zs, heights);
   auto at = [&](int x, int z) { return double(heights[std::size_t(z - z0) * row + std::size_t(x - x0)]); };
   BlockErrors errors{};
   for (int level = 1; level <= kExactErrorLevels; ++level) {

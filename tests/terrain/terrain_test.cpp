@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -147,6 +149,58 @@ TEST(TerrainNoise, BoundsContainEverySample) {
         ASSERT_LE(r.min, h);
         ASSERT_GE(r.max, h);
       }
+  }
+}
+
+// Pages and error scans sample whole grids at once (NoiseHeights::sampleGrid hashes
+// each octave's lattice values once for the grid); every sample must be the bits
+// sample() gives. 2,000 random grids: seeds, base periods 2 to 4096, 1 to 12 octaves,
+// origins far out on both sides of zero (negative cells divide the other way), steps
+// of 1 to 300 samples, axes that repeat a coordinate (pages clamp at the field's
+// edge) or go backwards, 1 to 40 samples a side. Then a clamped page's layout.
+TEST(TerrainNoise, GridSamplesAreThePointSamplesBitForBit) {
+  std::mt19937 rng(2024);
+  std::uniform_int_distribution<int> origin(-3000000, 3000000), side(1, 40), step(1, 300), octaves(1, 12), power(1, 12);
+  std::size_t compared = 0, differing = 0;
+  for (int grid = 0; grid < 2000; ++grid) {
+    NoiseParams p;
+    p.seed = std::uint32_t(rng());
+    p.basePeriod = 1 << power(rng);
+    p.octaves = octaves(rng);
+    p.heightScale = 250.0f;
+    const NoiseHeights noise(p);
+    const auto axis = [&] {
+      std::vector<int> at(std::size_t(side(rng)));
+      int x = grid % 3 == 0 ? std::uniform_int_distribution<int>(-40, 40)(rng) : origin(rng);
+      const int dx = grid % 7 == 0 ? -step(rng) : step(rng);
+      for (int& v : at) {
+        v = x;
+        if (rng() % 5 != 0) x += dx;  // now and then the same coordinate again
+      }
+      return at;
+    };
+    const std::vector<int> xs = axis(), zs = axis();
+    std::vector<float> out(xs.size() * zs.size());
+    noise.sampleGrid(xs, zs, out);
+    for (std::size_t j = 0; j < zs.size(); ++j) {
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        ++compared;
+        differing += std::bit_cast<std::uint32_t>(out[j * xs.size() + i]) !=
+                     std::bit_cast<std::uint32_t>(noise.sample(xs[i], zs[j]));
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0u) << "of " << compared << " samples";
+  EXPECT_GT(compared, 500000u);
+  // A page at a field's far corner: its last columns and rows clamp to the edge.
+  NoiseParams p;
+  p.seed = 9;
+  const NoiseHeights noise(p);
+  const std::vector<int> xs = {990, 994, 998, 1000, 1000, 1000}, zs = {0, 0, 4, 8};
+  std::vector<float> out(xs.size() * zs.size());
+  noise.sampleGrid(xs, zs, out);
+  for (std::size_t j = 0; j < zs.size(); ++j) {
+    for (std::size_t i = 0; i < xs.size(); ++i) EXPECT_EQ(out[j * xs.size() + i], noise.sample(xs[i], zs[j]));
   }
 }
 
