@@ -153,6 +153,26 @@ HeightRange Terrain::regionBounds(int x0, int z0, int x1, int z1) const {
 // increments over levels bounds the error against full resolution.
 double Terrain::deltaOverRegion(int level, int gx0, int gz0, int cells) const {
   const int s = stride(level - 1);
+  // The region's samples, a border of one around it: one grid where it is small (the
+  // probes: the noise hashes each lattice point once for it), point by point where it
+  // is the whole field (an exact estimate reads a heightmap, whose samples are array
+  // reads and whose grid would be as large as the image).
+  constexpr std::size_t kMaxGrid = 1u << 16;
+  const std::size_t side = std::size_t(cells) + 3;
+  std::vector<int> xs, zs;
+  std::vector<float> grid;
+  if (side * side <= kMaxGrid) {
+    for (int a = -1; a <= cells + 1; ++a) {
+      xs.push_back(std::clamp(gx0 + a * s, 0, cellsX_));
+      zs.push_back(std::clamp(gz0 + a * s, 0, cellsZ_));
+    }
+    grid.resize(side * side);
+    source_->sampleGrid(xs, zs, grid);
+  }
+  // Sample (gx0 + a * s, gz0 + b * s), a and b from -1 to cells + 1.
+  const auto at = [&](int a, int b) {
+    return grid.empty() ? double(sample(gx0 + a * s, gz0 + b * s)) : double(grid[std::size_t(b + 1) * side + std::size_t(a + 1)]);
+  };
   double worst = 0.0;
   for (int b = 0; b <= cells; ++b) {
     const int gz = gz0 + b * s;
@@ -163,10 +183,10 @@ double Terrain::deltaOverRegion(int level, int gx0, int gz0, int cells) const {
       if (gx > cellsX_) break;
       const bool oddX = (gx / s) % 2 != 0;
       if (!oddX && !oddZ) continue;
-      const int dx = oddX ? s : 0, dz = oddZ ? s : 0;
+      const int da = oddX ? 1 : 0, db = oddZ ? 1 : 0;
       // Odd in both: the point sits on the level-L quad's (0,0)-(1,1) diagonal.
-      const double coarse = 0.5 * (double(sample(gx - dx, gz - dz)) + sample(gx + dx, gz + dz));
-      worst = std::max(worst, std::abs(double(sample(gx, gz)) - coarse));
+      const double coarse = 0.5 * (at(a - da, b - db) + at(a + da, b + db));
+      worst = std::max(worst, std::abs(at(a, b) - coarse));
     }
   }
   return worst;
