@@ -279,7 +279,6 @@ std::unique_ptr<Bvh::Piece> Bvh::buildTop(std::span<BuildPrim> prims, int depth,
 }
 
 void Bvh::append(Piece& piece) {
-  depth_ = std::max(depth_, piece.depth + 1);
   if (!piece.left) {
     // A subtree's own numbers moved to where it lands: interior nodes name their
     // second child, leaves their first block.
@@ -289,10 +288,11 @@ void Bvh::append(Piece& piece) {
       binary_.push_back(node);
     }
     order_.insert(order_.end(), piece.subtree.order.begin(), piece.subtree.order.end());
-    depth_ = std::max(depth_, piece.subtree.depth);
+    depth_ = std::max(depth_, piece.subtree.depth);  // buildRecursive counted its own root
     piece.subtree = {};
     return;
   }
+  depth_ = std::max(depth_, piece.depth + 1);
   const std::uint32_t index = std::uint32_t(binary_.size());
   binary_.push_back(BinaryNode{});
   append(*piece.left);

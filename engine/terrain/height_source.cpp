@@ -24,6 +24,8 @@ std::uint64_t splitMix64(std::uint64_t x) {
 // is a convex combination of the lattice values.
 double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
+std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
 // A sample's lattice cell along one axis and its faded fraction in it. Integer
 // division keeps both exact.
 struct CellAt {
@@ -31,7 +33,7 @@ struct CellAt {
   double fade;
 };
 CellAt cellAt(int i, int period) {
-  const std::int64_t c = i >= 0 ? i / period : -((-i + period - 1) / period);
+  const std::int64_t c = floorDiv(i, period);
   return {c, fade(double(i - c * period) / period)};
 }
 
@@ -72,8 +74,6 @@ struct GridAxis {
     }
   }
 };
-
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 // Float storage rounds the double result; one ulp outward keeps the bound honest.
 HeightRange widen(double lo, double hi) {
