@@ -289,6 +289,112 @@ TEST(Bvh, BuildsTheSameTreeInParallelAsOnOneThread) {
   expectMatchesBruteForce<float>(soup, meshes[0], rng, 200);
 }
 
+// Meshes made from mt19937's integers alone (no distribution, no libm), so that every
+// compiler and library makes the same floats: a soup on a coarse lattice, with many
+// coordinates exactly 0 and -0 and many repeated; a grid of integer heights with flat
+// stretches (the flat-leaf split); a floor of quads with boxes standing on it; and
+// triangles that share one centroid (the object median).
+std::vector<std::vector<rt::TriangleVerts>> latticeMeshes() {
+  std::mt19937 rng(2026);
+  const auto coordinate = [&] {
+    const int v = int(rng() % 41) - 20;  // -20..20 tenths
+    if (v == 0) return (rng() & 1) ? -0.0f : 0.0f;
+    return float(v) * 0.1f;
+  };
+  // x, then y, then z: a function's arguments are evaluated in no fixed order (g++
+  // and clang differ), the statements here in theirs.
+  const auto draw = [](const auto& next) {
+    const float x = next();
+    const float y = next();
+    return glm::vec3(x, y, next());
+  };
+  std::vector<std::vector<rt::TriangleVerts>> meshes(4);
+  for (int i = 0; i < 30000; ++i) {
+    const glm::vec3 c = draw(coordinate) * 5.0f;
+    const glm::vec3 a = c + draw(coordinate);
+    const glm::vec3 b = c + draw(coordinate);
+    meshes[0].push_back({a, b, c + draw(coordinate)});
+  }
+  std::vector<int> height(101 * 101);
+  for (int& h : height) h = int(rng() % 7) < 4 ? 0 : int(rng() % 5);
+  const auto at = [&](int x, int z) { return glm::vec3(float(x), float(height[std::size_t(z * 101 + x)]), float(z)); };
+  for (int z = 0; z < 100; ++z) {
+    for (int x = 0; x < 100; ++x) {
+      meshes[1].push_back({at(x, z), at(x, z + 1), at(x + 1, z)});
+      meshes[1].push_back({at(x + 1, z), at(x, z + 1), at(x + 1, z + 1)});
+    }
+  }
+  for (int z = -20; z < 20; ++z) {
+    for (int x = -20; x < 20; ++x) {
+      const glm::vec3 p(float(x), 0.0f, float(z));
+      meshes[2].push_back({p, p + glm::vec3(0, 0, 1), p + glm::vec3(1, 0, 0)});
+      meshes[2].push_back({p + glm::vec3(1, 0, 0), p + glm::vec3(0, 0, 1), p + glm::vec3(1, 0, 1)});
+    }
+  }
+  for (int b = 0; b < 300; ++b) {
+    const float x = float(int(rng() % 40) - 20);
+    const glm::vec3 lo(x, 0.0f, float(int(rng() % 40) - 20));
+    const glm::vec3 hi = lo + draw([&] { return float(1 + rng() % 3); });
+    for (int axis = 0; axis < 3; ++axis) {  // two faces per axis, two triangles each
+      for (const float side : {lo[axis], hi[axis]}) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        glm::vec3 q[4];
+        for (int k = 0; k < 4; ++k) {
+          q[k][axis] = side;
+          q[k][u] = (k & 1) ? hi[u] : lo[u];
+          q[k][v] = (k & 2) ? hi[v] : lo[v];
+        }
+        meshes[2].push_back({q[0], q[1], q[2]});
+        meshes[2].push_back({q[1], q[3], q[2]});
+      }
+    }
+  }
+  for (int i = 0; i < 5000; ++i) {
+    const glm::vec3 d = draw([&] { return float(1 + rng() % 100) * 0.01f; });
+    meshes[3].push_back({-d, d, glm::vec3(d.x, -d.y, d.z) * 0.5f});
+  }
+  return meshes;
+}
+
+// FNV-1a over a tree's every field: the nodes' boxes and children, the leaves, the
+// slots, the root and the depth.
+std::uint64_t treeHash(const rt::Bvh& bvh) {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto mix = [&](const void* data, std::size_t size) {
+    for (std::size_t i = 0; i < size; ++i) {
+      h ^= static_cast<const unsigned char*>(data)[i];
+      h *= 1099511628211ull;
+    }
+  };
+  const rt::Bvh::View v = bvh.view();
+  for (std::size_t n = 0; n < bvh.nodeCount(); ++n) {
+    mix(v.nodes[n].box, sizeof v.nodes[n].box);
+    mix(v.nodes[n].child, sizeof v.nodes[n].child);
+  }
+  mix(v.leaves, bvh.leafCount() * sizeof(rt::Bvh::Triangle4));
+  mix(v.order, bvh.leafCount() * 4 * sizeof(std::uint32_t));
+  mix(&v.root, sizeof v.root);
+  const int depth = bvh.depth();
+  mix(&depth, sizeof depth);
+  return h;
+}
+
+// The builder's output, pinned. A change meant to keep every tree (a faster binning, a
+// parallel build) must leave these hashes as they are, which a test of the trees'
+// answers alone would not show; a change meant to build other trees updates them and
+// says why. These are the trees of the scalar builder of 77b5d2f, which the SSE
+// binning (bvh.cpp: binPrims, SimdBox) keeps bit for bit.
+TEST(Bvh, TreesArePinned) {
+  const auto meshes = latticeMeshes();
+  const std::uint64_t pinned[] = {0x9543c1d52e5bb1d6ull, 0x8b81f7c08c24250dull, 0x22a4490da87a0794ull, 0x71c94c2e3789b884ull};
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    rt::Bvh bvh;
+    bvh.build(meshes[m]);
+    EXPECT_EQ(treeHash(bvh), pinned[m]) << "mesh " << m << " (" << meshes[m].size() << " triangles): 0x" << std::hex
+                                        << treeHash(bvh);
+  }
+}
+
 // A 10k-triangle grid (a wavy terrain patch): build and refit times for the report.
 TEST(Bvh, BuildAndRefitTimesOfA10kTriangleMesh) {
   constexpr int kSide = 71;  // 70 x 70 quads = 9800 triangles
