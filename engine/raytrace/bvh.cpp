@@ -133,7 +133,8 @@ __m128 primCentroid(const Prim& p) {
 }
 
 // The SAH's bins on each axis: the boxes and counts of the primitives binned there.
-// Only the first `used` of each axis are set (a small node has few), and read.
+// Only the first `used` of each axis are set (a small node has few), and read; a sum
+// of two (TBB's identity has all 32) reads the bins both have.
 struct Bins {
   int used = kBins;
   std::array<std::array<SimdBox, kBins>, 3> box;
@@ -148,7 +149,7 @@ struct Bins {
   }
   void add(const Bins& b) {
     for (std::size_t axis = 0; axis < 3; ++axis) {
-      for (std::size_t i = 0; i < std::size_t(used); ++i) {
+      for (std::size_t i = 0; i < std::size_t(std::min(used, b.used)); ++i) {
         count[axis][i] += b.count[axis][i];
         box[axis][i].extend(b.box[axis][i]);
       }

@@ -395,6 +395,17 @@ TEST(Bvh, TreesArePinned) {
   }
 }
 
+// At a grain of 1 every node past four triangles is built and binned in parts, small
+// nodes too, whose fewer bins are then summed with TBB's identity of all 32.
+TEST(Bvh, BuildsTheSameTreeInPartsOfOne) {
+  for (const auto& mesh : latticeMeshes()) {
+    rt::Bvh serial, parts;
+    serial.build(mesh, rt::Bvh::kSerial);
+    tbb::task_arena(4).execute([&] { parts.build(mesh, 1); });
+    expectSameTree(serial, parts, std::to_string(mesh.size()) + " triangles in parts of 1");
+  }
+}
+
 // A 10k-triangle grid (a wavy terrain patch): build and refit times for the report.
 TEST(Bvh, BuildAndRefitTimesOfA10kTriangleMesh) {
   constexpr int kSide = 71;  // 70 x 70 quads = 9800 triangles
