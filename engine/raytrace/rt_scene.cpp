@@ -769,8 +769,14 @@ void RtScene::intersectCoherent(std::span<const Ray<float>, Bvh::kPacketSize> ra
     const Ray<float>& r = rays[std::size_t(i)];
     packet[i] = Ray<float>{r.o, r.d, r.tMax};
     testRoots(packet[i], roots[i]);
-    index[i] = 0;
-    kind[i] = nearestShape(packet[i], index[i], roots[i].spheres());
+  }
+  if (cpuHasAvx2()) {
+    nearestShapesOfEight(packet, kind, index);
+  } else {
+    for (int i = 0; i < kLanes; ++i) {
+      index[i] = 0;
+      kind[i] = nearestShape(packet[i], index[i], roots[i].spheres());
+    }
   }
   const Group* hitGroup[kLanes] = {};
   BvhHit<float> meshHit[kLanes];
@@ -822,21 +828,55 @@ void RtScene::shapeUv(int kind, std::size_t index, SurfaceInteraction<T>& si) co
 }
 
 ENGINE_AVX2_BEGIN
+namespace {
+
+// Eight rays into lanes; lanes past count repeat the first ray. Each lane read as a
+// float of its own: vector loads over the rays' (or a staging array's) scalar stores
+// would wait for those stores to retire.
+lanes8::Rays raysInLanes(const Ray<float>* const* rays, int count) {
+  using namespace lanes8;
+  const Ray<float>* r[kLanes];
+  for (int i = 0; i < kLanes; ++i) r[i] = rays[i < count ? i : 0];
+  const auto lanes = [&](auto field) {
+    return _mm256_setr_ps(field(*r[0]), field(*r[1]), field(*r[2]), field(*r[3]), field(*r[4]), field(*r[5]),
+                          field(*r[6]), field(*r[7]));
+  };
+  Rays out;
+  out.o = {lanes([](const Ray<float>& x) { return x.o.x; }), lanes([](const Ray<float>& x) { return x.o.y; }),
+           lanes([](const Ray<float>& x) { return x.o.z; })};
+  out.d = {lanes([](const Ray<float>& x) { return x.d.x; }), lanes([](const Ray<float>& x) { return x.d.y; }),
+           lanes([](const Ray<float>& x) { return x.d.z; })};
+  out.dd = dot(out.d, out.d);
+  out.tMax = lanes([](const Ray<float>& x) { return x.tMax; });
+  return out;
+}
+
+}  // namespace
+
+void RtScene::nearestShapesOfEight(Ray<float>* rays, int* kind, std::size_t* index) const {
+  using namespace lanes8;
+  const Ray<float>* lanes[kLanes];
+  for (int i = 0; i < kLanes; ++i) lanes[i] = &rays[i];
+  Rays r = raysInLanes(lanes, kLanes);
+  F t;
+  I shape;
+  Shapes{lanes_}.nearest(r, t, shape);
+  alignas(32) float tMax[kLanes];
+  alignas(32) int shapes[kLanes];
+  _mm256_store_ps(tMax, t);
+  _mm256_store_si256(reinterpret_cast<I*>(shapes), shape);
+  for (int i = 0; i < kLanes; ++i) {
+    rays[i].tMax = tMax[i];
+    const bool sphere = shapes[i] < int(lanes_.spheres);
+    kind[i] = shapes[i] < 0 ? 0 : sphere ? 1 : 2;
+    index[i] = shapes[i] < 0 ? 0 : std::size_t(shapes[i]) - (sphere ? 0 : lanes_.spheres);
+  }
+}
+
 void RtScene::intersectEight(const Ray<float>* const* rays, int count,
                              std::optional<SurfaceInteraction<float>>* out) const {
   using namespace lanes8;
-  // Lanes past count repeat the first ray; their answers are dropped.
-  alignas(32) float in[7][kLanes];
-  for (int i = 0; i < kLanes; ++i) {
-    const Ray<float>& r = *rays[i < count ? i : 0];
-    in[0][i] = r.o.x, in[1][i] = r.o.y, in[2][i] = r.o.z, in[3][i] = r.d.x, in[4][i] = r.d.y, in[5][i] = r.d.z;
-    in[6][i] = r.tMax;
-  }
-  Rays r;
-  r.o = {_mm256_load_ps(in[0]), _mm256_load_ps(in[1]), _mm256_load_ps(in[2])};
-  r.d = {_mm256_load_ps(in[3]), _mm256_load_ps(in[4]), _mm256_load_ps(in[5])};
-  r.dd = dot(r.d, r.d);
-  r.tMax = _mm256_load_ps(in[6]);
+  Rays r = raysInLanes(rays, count);
   const Shapes shapes{lanes_};
   F t;
   I shape;

@@ -347,6 +347,10 @@ class RtScene {
   int nearestShape(Ray<T>& ray, std::size_t& index, bool testSpheres = true) const;
   template <typename T>
   bool anyShape(const Ray<T>& ray, bool testSpheres = true) const;
+  // nearestShape of eight float rays at once, a ray to a lane (lanes8::Shapes::nearest,
+  // the same bits; every sphere tested, since the spheres' root box only ever skips
+  // spheres a ray misses). AVX2 only.
+  void nearestShapesOfEight(Ray<float>* rays, int* kind, std::size_t* index) const;
   // The groups' root boxes and the spheres' box side by side as one 8-wide BVH node,
   // tested once per float ray (Bvh::testBoxes, all at once) in place of a scalar box
   // test per group, and so that rays that miss every sphere test none: lane g is

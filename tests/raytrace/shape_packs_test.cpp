@@ -162,6 +162,14 @@ class RandomShapes {
     ray.o = glm::vec3(glm::dvec3(ray.o) - d * scale_ * std::pow(10.0, uniform(0.0, 6.0)));
     ray.tMax = std::numeric_limits<float>::infinity();
   }
+  // scene() with `triangles` that are never hit (addUnhittableTriangle), built: its
+  // float rays go through the root boxes.
+  rt::RtScene sceneWithRootBoxes(int triangles) {
+    rt::RtScene scene = this->scene();
+    for (; triangles > 0; --triangles) addUnhittableTriangle(scene);
+    scene.build();
+    return scene;
+  }
   // A triangle of zero area (never hit) in a group of its own or the static one, near
   // the shapes or far out: the scene then has a BVH, and float rays go through the
   // root boxes (RtScene::RootHits), which also box the spheres.
@@ -231,14 +239,48 @@ TEST(ShapePacks, PastTheRootBoxesTheScalarLoopBitForBit) {
   std::uint64_t rays = 0, hits = 0;
   for (std::uint32_t seed = 1; seed <= 200; ++seed) {
     RandomShapes random(seed);
-    rt::RtScene scene = random.scene();
-    for (int triangles = 1 + int(seed % 3); triangles > 0; --triangles) random.addUnhittableTriangle(scene);
-    scene.build();
+    const rt::RtScene scene = random.sceneWithRootBoxes(1 + int(seed % 3));
     for (int i = 0; i < 10000; ++i, ++rays) {
       rt::Ray<float> ray = random.ray(scene);
       if (i % 3 == 0) random.fromAfar(ray);
       expectTheScalarAnswer(scene, ray, seed, i, hits);
       if (HasFatalFailure()) return;
+    }
+  }
+  EXPECT_GT(hits, rays / 4);
+  EXPECT_LT(hits, rays - rays / 8);
+}
+
+// RtScene::intersectCoherent (the Whitted tracer's camera rows, eight rays at a time)
+// tests each lane's spheres and planes eight lanes at once (nearestShapesOfEight, every
+// sphere whatever the root boxes say): each lane the scalar loop's answer, bit for
+// bit, over the sweep above, grazing rays, rays from afar and rays at a square's edge
+// side by side in one packet.
+TEST(ShapePacks, EightRaysOfARowAreTheScalarLoopBitForBit) {
+  constexpr int kLanes = rt::Bvh::kPacketSize;
+  std::uint64_t rays = 0, hits = 0;
+  for (std::uint32_t seed = 1; seed <= 200; ++seed) {
+    RandomShapes random(seed);
+    const rt::RtScene scene = random.sceneWithRootBoxes(1 + int(seed % 3));
+    for (int packet = 0; packet < 1250; ++packet) {
+      rt::Ray<float> lanes[kLanes];
+      for (int i = 0; i < kLanes; ++i) {
+        lanes[i] = random.ray(scene);
+        if ((packet + i) % 3 == 0) random.fromAfar(lanes[i]);
+        if ((packet + i) % 3 == 1) random.towardSquareEdge(scene, lanes[i]);
+      }
+      std::optional<rt::SurfaceInteraction<float>> together[kLanes];
+      scene.intersectCoherent(lanes, together);
+      for (int i = 0; i < kLanes; ++i, ++rays) {
+        const ScalarAnswer expected = scalarNearest(scene, lanes[i]);
+        ASSERT_EQ(together[i].has_value(), expected.material >= 0) << "seed " << seed << " packet " << packet << " lane " << i;
+        if (!together[i]) continue;
+        ++hits;
+        ASSERT_EQ(together[i]->material, expected.material) << "seed " << seed << " packet " << packet << " lane " << i;
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(together[i]->t), std::bit_cast<std::uint32_t>(expected.t))
+            << "seed " << seed << " packet " << packet << " lane " << i << ": " << together[i]->t << " against "
+            << expected.t;
+      }
     }
   }
   EXPECT_GT(hits, rays / 4);
