@@ -25,9 +25,13 @@ TerrainLayerSample RtTerrainMaterial::sample(glm::vec2 uv, float footprint, doub
   // terrain.frag's main: two scales of each layer break up visible repetition.
   const glm::vec2 uvFar = uv * terrain::kLayerFarScale;
   const float footprintFar = footprint * terrain::kLayerFarScale;
-  const glm::vec3 grass = layers_[0].sample(uv, footprint) * layers_[0].sample(uvFar, footprintFar) * 2.0f;
-  const glm::vec3 rock = layers_[1].sample(uv, footprint) * layers_[1].sample(uvFar, footprintFar) * 2.0f;
-  const glm::vec3 snow = layers_[2].sample(uv, footprint);
+  // The three images are made alike (tapsLike), so each scale's taps are found once
+  // and read in each layer: what sample() gives per layer, bit for bit.
+  const RtTexture::Taps near = layers_[0].taps(uv, footprint), far = layers_[0].taps(uvFar, footprintFar);
+  const auto at = [&](int layer, const RtTexture::Taps& taps) { return glm::vec3(layers_[std::size_t(layer)].read(taps)); };
+  const glm::vec3 grass = at(0, near) * at(0, far) * 2.0f;
+  const glm::vec3 rock = at(1, near) * at(1, far) * 2.0f;
+  const glm::vec3 snow = at(2, near);
   const glm::vec3 w = terrain::layerWeights(float(y - originY_) / heightScale_, 1.0f - normalY, rock.r * 2.0f - 0.5f);
   TerrainLayerSample s;
   s.albedo = grass * w.x + rock * w.y + snow * w.z;

@@ -39,9 +39,7 @@ int wrapIndex(int i, int n, TextureWrap mode) {
 // repeat): i is then in [-1, n - 1] (r * n - 0.5 is exact at the ends for any side
 // an image may have, at most 16384), so repeat and clamp need no division, only a
 // check at each edge: the same indices as wrapIndex gives, tested bit for bit.
-struct TexelPair {
-  int i0, i1;
-};
+using TexelPair = RtTexture::TexelPair;
 inline TexelPair wrapPair(int i, int n, TextureWrap mode) {
   switch (mode) {
     case TextureWrap::Repeat: return {i < 0 ? n - 1 : i, i + 1 < n ? i + 1 : 0};
@@ -112,19 +110,32 @@ RtTexture::RtTexture(const Image& image, TextureOrigin origin, TextureEncoding e
   while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(halve(levels_.back()));
 }
 
-// `reduced`: uv through reduce() (the same at every level).
-glm::vec4 RtTexture::bilinear(const Level& level, glm::vec2 reduced) const {
+RtTexture::LevelTaps RtTexture::levelTaps(int index, glm::vec2 reduced) const {
+  const Level& level = levels_[std::size_t(index)];
+  LevelTaps taps;
+  taps.level = index;
   // Texel centres sit at (i + 0.5) / n.
   const float u = reduced.x * float(level.width) - 0.5f;
   const float v = reduced.y * float(level.height) - 0.5f;
-  if (!std::isfinite(u) || !std::isfinite(v)) return level.texels[0];
+  if (!std::isfinite(u) || !std::isfinite(v)) {
+    taps.finite = false;
+    return taps;
+  }
   const float fu = std::floor(u), fv = std::floor(v);
-  const float tu = u - fu, tv = v - fv;
-  const TexelPair x = wrapPair(int(fu), level.width, wrapS_);
-  const TexelPair y = wrapPair(int(fv), level.height, wrapT_);
-  const glm::vec4* row0 = level.texels.data() + std::size_t(y.i0) * std::size_t(level.width);
-  const glm::vec4* row1 = level.texels.data() + std::size_t(y.i1) * std::size_t(level.width);
-  return glm::mix(glm::mix(row0[x.i0], row0[x.i1], tu), glm::mix(row1[x.i0], row1[x.i1], tu), tv);
+  taps.tu = u - fu;
+  taps.tv = v - fv;
+  taps.x = wrapPair(int(fu), level.width, wrapS_);
+  taps.y = wrapPair(int(fv), level.height, wrapT_);
+  return taps;
+}
+
+glm::vec4 RtTexture::bilinear(const LevelTaps& taps) const {
+  const Level& level = levels_[std::size_t(taps.level)];
+  if (!taps.finite) return level.texels[0];
+  const glm::vec4* row0 = level.texels.data() + std::size_t(taps.y.i0) * std::size_t(level.width);
+  const glm::vec4* row1 = level.texels.data() + std::size_t(taps.y.i1) * std::size_t(level.width);
+  return glm::mix(glm::mix(row0[taps.x.i0], row0[taps.x.i1], taps.tu),
+                  glm::mix(row1[taps.x.i0], row1[taps.x.i1], taps.tu), taps.tv);
 }
 
 RtTexture& RtTexture::setMapping(int texCoord, const glm::mat3& uvTransform) {
@@ -138,7 +149,9 @@ RtTexture& RtTexture::setMapping(int texCoord, const glm::mat3& uvTransform) {
 
 glm::vec3 RtTexture::sample(const HitUv& uv, float footprint) const { return glm::vec3(sampleRgba(uv, footprint)); }
 
-glm::vec4 RtTexture::sampleRgba(const HitUv& hitUv, float footprint) const {
+glm::vec4 RtTexture::sampleRgba(const HitUv& hitUv, float footprint) const { return read(taps(hitUv, footprint)); }
+
+RtTexture::Taps RtTexture::taps(const HitUv& hitUv, float footprint) const {
   glm::vec2 uv = texCoord_ == 1 ? hitUv.uv1 : hitUv.uv0;
   if (transformed_) {
     uv = transformUv(uvTransform_, uv);
@@ -147,11 +160,27 @@ glm::vec4 RtTexture::sampleRgba(const HitUv& hitUv, float footprint) const {
   const float texels = footprint * float(std::max(width(), height()));
   const float lod = texels > 1.0f ? std::min(std::log2(texels), float(levels() - 1)) : 0.0f;
   uv = {reduce(uv.x, wrapS_), reduce(uv.y, wrapT_)};
-  if (!(lod > 0.0f)) return bilinear(levels_[0], uv);
+  Taps taps;
+  if (!(lod > 0.0f)) {
+    taps.a = levelTaps(0, uv);
+    return taps;
+  }
   const int below = int(lod);
-  const float t = lod - float(below);
-  const glm::vec4 a = bilinear(levels_[std::size_t(below)], uv);
-  return t > 0.0f ? glm::mix(a, bilinear(levels_[std::size_t(below + 1)], uv), t) : a;
+  taps.t = lod - float(below);
+  taps.a = levelTaps(below, uv);
+  if (taps.t > 0.0f) taps.b = levelTaps(below + 1, uv);
+  return taps;
+}
+
+glm::vec4 RtTexture::read(const Taps& taps) const {
+  const glm::vec4 a = bilinear(taps.a);
+  return taps.t > 0.0f ? glm::mix(a, bilinear(taps.b), taps.t) : a;
+}
+
+bool RtTexture::tapsLike(const RtTexture& other) const {
+  return width() == other.width() && height() == other.height() && levels() == other.levels() &&
+         wrapS_ == other.wrapS_ && wrapT_ == other.wrapT_ && texCoord_ == other.texCoord_ &&
+         uvTransform_ == other.uvTransform_;
 }
 
 }  // namespace engine::rt

@@ -61,6 +61,28 @@ class RtTexture {
   glm::vec3 sample(glm::vec2 uv, float footprint = 0.0f) const { return sample(HitUv(uv), footprint); }
   glm::vec4 sampleRgba(glm::vec2 uv, float footprint = 0.0f) const { return sampleRgba(HitUv(uv), footprint); }
 
+  // Where a sample at (uv, footprint) reads: its mipmap levels, and on each the two
+  // texel columns and rows a bilinear tap takes and their weights. The same for every
+  // texture of one size, wrap and mapping (tapsLike), so that one sample's taps serve
+  // several such textures: the terrain's layers. read(taps(uv, f)) is sampleRgba(uv, f).
+  struct TexelPair {
+    int i0, i1;
+  };
+  struct LevelTaps {
+    int level = 0;
+    bool finite = true;  // false: a coordinate was not finite; the level's first texel
+    TexelPair x{0, 0}, y{0, 0};
+    float tu = 0.0f, tv = 0.0f;
+  };
+  struct Taps {
+    LevelTaps a, b;  // b is read only where t > 0
+    float t = 0.0f;  // the trilinear weight of b
+  };
+  Taps taps(const HitUv& uv, float footprint = 0.0f) const;
+  glm::vec4 read(const Taps& taps) const;
+  // Whether this texture's taps are `other`'s for every uv and footprint.
+  bool tapsLike(const RtTexture& other) const;
+
   int width() const { return levels_[0].width; }
   int height() const { return levels_[0].height; }
   int levels() const { return int(levels_.size()); }
@@ -81,7 +103,9 @@ class RtTexture {
     std::vector<glm::vec4> texels;  // linear RGB and alpha, rows with v = 0 first
   };
   static Level halve(const Level& above);
-  glm::vec4 bilinear(const Level& level, glm::vec2 reduced) const;
+  // `reduced`: uv through reduce() (the same at every level).
+  LevelTaps levelTaps(int level, glm::vec2 reduced) const;
+  glm::vec4 bilinear(const LevelTaps& taps) const;
 
   std::vector<Level> levels_;
   TextureWrap wrapS_ = TextureWrap::Repeat, wrapT_ = TextureWrap::Repeat;

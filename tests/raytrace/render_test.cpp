@@ -6,11 +6,14 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include "raytrace/camera.h"
 #include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
+#include "raytrace/terrain_material.h"
 #include "raytrace/tone_map.h"
+#include "terrain/materials.h"
 #include "test_scenes.h"
 
 namespace {
@@ -367,4 +370,40 @@ TEST(TerrainMaterial, LayersFollowHeightAndSlope) {
   // A plain material is untouched.
   const rt::HitMaterial plain = scene.materialAt(0, uv, 0.0f, 50.0, up);
   EXPECT_EQ(plain.roughness, scene.materials()[0].roughness);
+}
+
+// The terrain's material finds each scale's texel taps once and reads them in all its
+// layers (RtTexture::taps, read): the layers must be alike, and the blend must be the
+// one made of each layer's own sample(), bit for bit, from texel centres and edges
+// to coordinates far from zero, at every level of detail and between levels.
+TEST(TerrainMaterial, SharedTapsAreEachLayersOwnSamples) {
+  const rt::RtTerrainMaterial terrain(-57.0, 140.0f);
+  const auto& layers = terrain.layers();
+  ASSERT_TRUE(layers[1].tapsLike(layers[0]));
+  ASSERT_TRUE(layers[2].tapsLike(layers[0]));
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const auto coordinate = [&] {
+    switch (rng() % 3) {
+      case 0: return (unit(rng) - 0.5f) * 64.0f;
+      case 1: return float(int(rng() % 4096) - 2048) / 512.0f;  // texel edges and centres of the 256 level
+      default: return (unit(rng) - 0.5f) * 2e5f;                 // far from zero
+    }
+  };
+  for (int i = 0; i < 200000; ++i) {
+    const glm::vec2 uv(coordinate(), coordinate());
+    const float footprint = i % 5 == 0 ? 0.0f : std::ldexp(unit(rng), -int(rng() % 12));
+    const double y = -57.0 + 160.0 * double(unit(rng));
+    const float normalY = unit(rng);
+    const glm::vec2 uvFar = uv * engine::terrain::kLayerFarScale;
+    const float footprintFar = footprint * engine::terrain::kLayerFarScale;
+    const glm::vec3 grass = layers[0].sample(uv, footprint) * layers[0].sample(uvFar, footprintFar) * 2.0f;
+    const glm::vec3 rock = layers[1].sample(uv, footprint) * layers[1].sample(uvFar, footprintFar) * 2.0f;
+    const glm::vec3 snow = layers[2].sample(uv, footprint);
+    const glm::vec3 w = engine::terrain::layerWeights(float(y + 57.0) / 140.0f, 1.0f - normalY, rock.r * 2.0f - 0.5f);
+    const glm::vec3 want = grass * w.x + rock * w.y + snow * w.z;
+    const glm::vec3 got = terrain.sample(uv, footprint, y, normalY).albedo;
+    ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0)
+        << "uv (" << uv.x << ", " << uv.y << ") footprint " << footprint << " y " << y;
+  }
 }
