@@ -1,6 +1,7 @@
 #include "raytrace/terrain_material.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "terrain/materials.h"
 
@@ -19,7 +20,13 @@ RtTerrainMaterial::RtTerrainMaterial(double originY, float heightScale)
     : layers_{layerTexture(terrain::TerrainLayer::Grass), layerTexture(terrain::TerrainLayer::Rock),
               layerTexture(terrain::TerrainLayer::Snow)},
       originY_(originY),
-      heightScale_(std::max(heightScale, 1e-3f)) {}
+      heightScale_(std::max(heightScale, 1e-3f)) {
+  // sample() reads every layer at the first one's taps: a layer made otherwise would
+  // be read at texels it may not have.
+  if (!layers_[1].tapsLike(layers_[0]) || !layers_[2].tapsLike(layers_[0])) {
+    throw std::logic_error("RtTerrainMaterial: the layer images differ in size, wrap or mapping");
+  }
+}
 
 TerrainLayerSample RtTerrainMaterial::sample(glm::vec2 uv, float footprint, double y, float normalY) const {
   // terrain.frag's main: two scales of each layer break up visible repetition.

@@ -178,9 +178,9 @@ glm::vec4 RtTexture::read(const Taps& taps) const {
 }
 
 bool RtTexture::tapsLike(const RtTexture& other) const {
-  return width() == other.width() && height() == other.height() && levels() == other.levels() &&
-         wrapS_ == other.wrapS_ && wrapT_ == other.wrapT_ && texCoord_ == other.texCoord_ &&
-         uvTransform_ == other.uvTransform_;
+  // The levels follow from the size, the transform's scale from the transform.
+  return width() == other.width() && height() == other.height() && wrapS_ == other.wrapS_ &&
+         wrapT_ == other.wrapT_ && texCoord_ == other.texCoord_ && uvTransform_ == other.uvTransform_;
 }
 
 }  // namespace engine::rt
