@@ -399,6 +399,7 @@ std::string SceneRenderer::describe() const {
     out << ", ambient " << ambientName(s.ambient);
     if (s.environmentLighting) out << " (built once in " << std::fixed << std::setprecision(1) << s.iblMilliseconds << " ms)";
   }
+  out << "; lights compiled in: " << (s.sunLight >= 0 ? "sun + " : "") << s.pointLights.size() << " point";
   out << "\nvariants:";
   for (const auto& v : s.variants->built()) out << " " << v.describe();
   if (s.skinPrograms) {

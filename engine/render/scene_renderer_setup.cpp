@@ -81,7 +81,9 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   sunShadows = sunLight >= 0 && scene.lights[size_t(sunLight)].shadows;
   pointShadows = !pointLights.empty() && scene.lights[size_t(pointLights[0])].shadows;
 
-  std::vector<std::string> defines;
+  // The lights' counts are compile-time (common/direct_light.glsl says why).
+  std::vector<std::string> defines = {"SUN_LIGHT " + std::to_string(sunLight >= 0 ? 1 : 0),
+                                      "POINT_LIGHTS " + std::to_string(pointLights.size())};
   if (render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
   sunFarShadows = sunShadows && scene.terrain.enabled;

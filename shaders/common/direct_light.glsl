@@ -5,8 +5,23 @@
 // exactly like the meshes standing on it. `shadowNormal` is the geometric normal:
 // the shadow lookups' offset against acne is about the geometry, not the bumps a
 // normal map paints on it.
+//
+// The scene's lights are compile-time constants (SceneRenderer's init in
+// scene_renderer_setup.cpp): SUN_LIGHT 0 or 1, POINT_LIGHTS the number of point
+// lights, so that a scene pays only for the lights it has. llvmpipe runs an if's
+// body whatever its condition (masked), and a loop's body once even when it makes
+// no iteration: with the count a uniform, a scene without point lights shaded one,
+// BRDF and all, for every fragment. A program built without these (a test's) takes
+// the counts from the frame block.
+#ifndef POINT_LIGHTS
+#define POINT_LIGHTS u_counts.x
+#endif
 vec3 shadeDirectLight(Surface s, vec3 shadowNormal) {
   vec3 color = vec3(0.0);
+#ifndef SUN_LIGHT
+#define SUN_LIGHT 1
+#endif
+#if SUN_LIGHT
   if (u_sunDirection.w > 0.0) {
     float visibility = 1.0;
 #ifdef SUN_SHADOWS
@@ -14,7 +29,8 @@ vec3 shadeDirectLight(Surface s, vec3 shadowNormal) {
 #endif
     color += shadeLight(s, u_sunDirection.xyz, u_sunColor.rgb, visibility);
   }
-  for (int i = 0; i < u_counts.x; ++i) {
+#endif
+  for (int i = 0; i < POINT_LIGHTS; ++i) {
     vec3 toLight = u_pointPosition[i].xyz - s.position;
     float d2 = dot(toLight, toLight);
     float visibility = 1.0;

@@ -1,0 +1,114 @@
+// The scene's light counts are compiled into the scene and terrain shaders
+// (common/direct_light.glsl: SUN_LIGHT, POINT_LIGHTS), so that llvmpipe does not
+// shade a light the scene lacks. The image must be the one the frame block's
+// counts give: the same scenes through a copy of the shaders that drops the
+// compiled counts (and loops over u_counts.x, checks u_sunDirection.w) must be the
+// same bytes, for no sun and a sun, none to four point lights, classic and PBR.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "../support/gl_test.h"
+#include "asset/scene_file.h"
+#include "render/render_target.h"
+#include "render/scene_renderer.h"
+
+using namespace engine;
+using engine::test::GlTest;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 96;
+
+// Four point lights, the first casting shadows, two with the 1/d^2 fall-off; the
+// first `points` of them go into the scene, with a sun or without.
+std::string lightsJson(bool sun, int points) {
+  const char* all[] = {
+      R"({"type": "point", "position": [1.5, 2, 1.5], "intensity": 0.5, "shadows": true})",
+      R"({"type": "point", "position": [-2, 1.5, 1], "color": [1, 0.4, 0.2], "intensity": 2, "falloff": true})",
+      R"({"type": "point", "position": [0, 3, -2], "color": [0.3, 0.5, 1], "intensity": 0.4})",
+      R"({"type": "point", "position": [2.5, 0.6, -0.5], "intensity": 1, "falloff": true})"};
+  std::string list = sun ? R"({"type": "sun", "direction": [-0.4, 1, 0.3], "intensity": 0.7, "shadows": true})" : "";
+  for (int i = 0; i < points; ++i) list += std::string(list.empty() ? "" : ", ") + all[i];
+  return "[" + list + "]";
+}
+
+std::string sceneJson(bool sun, int points, const char* shading) {
+  return std::string(R"({
+  "camera": {"position": [0, 2.2, 5], "target": [0, 0.6, 0], "fovy": 50},
+  "lights": )") + lightsJson(sun, points) + R"(,
+  "materials": {"ground": {"color": [0.6, 0.6, 0.55], "specular": 0.3, "shininess": 20},
+                "red": {"color": [0.9, 0.1, 0.1], "roughness": 0.35}},
+  "primitives": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "ground"},
+                 {"type": "sphere", "center": [0.8, 0.5, 0], "radius": 0.5, "material": "red"},
+                 {"type": "box", "min": [-1.6, 0, -0.6], "max": [-0.6, 0.8, 0.4], "material": "ground"}],
+  "sky": {"enabled": false, "background": [0.05, 0.05, 0.1]},
+  "ambient": 0.1,
+  "render": {"shading": ")" + shading + R"("}
+})";
+}
+
+// A copy of the shaders whose direct_light.glsl forgets the compiled counts.
+std::string shadersWithoutCompiledCounts() {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("light_count_test_shaders_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::copy(test::shaderDir(), dir, std::filesystem::copy_options::recursive);
+  const std::filesystem::path file = dir / "common" / "direct_light.glsl";
+  std::stringstream text;
+  text << std::ifstream(file).rdbuf();
+  std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n" << text.str();
+  return dir.string();
+}
+
+struct Frame {
+  Image image;
+  std::string described;
+};
+
+Frame render(const SceneDesc& scene, const std::string& shaderDir) {
+  SceneRenderOptions options;
+  options.shaderDir = shaderDir;
+  auto renderer = SceneRenderer::create(scene, options);
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  if (!renderer) return {};
+  auto target = RenderTarget::create(kWidth, kHeight, 1);
+  EXPECT_TRUE(target.ok());
+  target->bind();
+  const Status status = (*renderer)->render((*renderer)->initialCamera(), kWidth, kHeight);
+  EXPECT_TRUE(status.ok()) << status.error().message;
+  return {target->readPixels(), (*renderer)->describe()};
+}
+
+}  // namespace
+
+class LightCount : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(LightCount);
+
+TEST_P(LightCount, CompiledCountsDrawWhatTheFrameBlocksCountsDraw) {
+  const std::string uncompiled = shadersWithoutCompiledCounts();
+  struct Case {
+    bool sun;
+    int points;
+    const char* shading;
+  };
+  for (const Case c : {Case{true, 0, "classic"}, Case{true, 0, "pbr"}, Case{false, 1, "classic"},
+                       Case{false, 2, "pbr"}, Case{true, 4, "classic"}, Case{true, 4, "pbr"}}) {
+    const std::string what = std::string(c.sun ? "sun + " : "") + std::to_string(c.points) + " point";
+    SCOPED_TRACE(what + ", " + c.shading);
+    auto scene = parseScene(sceneJson(c.sun, c.points, c.shading),
+                            std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/light_count.json");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Frame compiled = render(*scene, test::shaderDir()), looped = render(*scene, uncompiled);
+    EXPECT_NE(compiled.described.find("lights compiled in: " + what), std::string::npos) << compiled.described;
+    ASSERT_EQ(compiled.image.pixels.size(), size_t(kWidth) * kHeight * 4);
+    EXPECT_TRUE(compiled.image.pixels == looped.image.pixels);
+  }
+  std::filesystem::remove_all(uncompiled);
+}
