@@ -33,12 +33,15 @@ std::string ShaderVariant::describe() const {
   if (sheen) name += "+sheen";
   if (anisotropy) name += "+anisotropy";
   if (iridescence) name += "+iridescence";
+  if (matte) name += "+matte";
   if (depthOnly) name += "+depth";
   return name;
 }
 
-Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& variant,
+Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& asked,
                                               const std::vector<std::string>& feedback) {
+  ShaderVariant variant = asked;
+  variant.matte = asked.matte && classic_ && !asked.depthOnly;
   // Programs with transform feedback (one-off captures) live in their own cache:
   // a pointer handed out for the plain variant stays valid and keeps its program.
   if (feedback.empty()) {
@@ -73,6 +76,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.sheen) defines.push_back("SHEEN 1");
   if (variant.anisotropy) defines.push_back("ANISOTROPY 1");
   if (variant.iridescence) defines.push_back("IRIDESCENCE 1");
+  if (variant.matte) defines.push_back("CLASSIC_MATTE 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -91,6 +95,12 @@ std::vector<ShaderVariant> ShaderVariants::built() const {
 
 namespace {
 
+// The classic model's highlight weight for a glTF material: its roughness turned into
+// a Blinn-Phong highlight, none at roughness 1.
+float classicSpecular(const MaterialData* material) {
+  return 0.5f * (1.0f - (material ? material->roughnessFactor : 1.0f));
+}
+
 // glTF's material for both shading models: PBR reads metallic and roughness; the
 // classic model turns roughness into a Blinn-Phong highlight.
 void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
@@ -101,7 +111,7 @@ void setMaterialUniforms(const gl::Program& pr, const MaterialData* material) {
   pr.set("u_emissive", material ? material->emissiveFactor : glm::vec3(0.0f));
   pr.set("u_ambient", 0.1f);
   pr.set("u_diffuse", 0.9f);
-  pr.set("u_specular", 0.5f * (1.0f - roughness));
+  pr.set("u_specular", classicSpecular(material));
   pr.set("u_shininess", 32.0f);
   pr.set("u_reflection", 0.0f);
   if (!material) return;
@@ -508,6 +518,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
   const MaterialData* m = materialOf(model, prim.material);
   const bool colored = !prim.colors.empty();  // COLOR_0 multiplies the base colour
   v.vertexColor = colored && !depthOnly;
+  v.matte = classicSpecular(m) <= 0.0f;
   if (!m) return v;
   v.alphaMask = m->alphaMode == AlphaMode::Mask;
   // A shadow pass needs the material only to cut out MASK holes.

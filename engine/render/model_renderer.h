@@ -4,6 +4,7 @@
 // code; a skinned one with 4 or 8 influences, linear blend or dual quaternions;
 // a mesh with morph targets with the morph code, before any skinning; each
 // variant built only when first drawn.
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <memory>
@@ -65,6 +66,9 @@ struct ShaderVariant {
   bool anisotropy = false;
   // KHR_materials_iridescence (IRIDESCENCE): the thin film's Fresnel.
   bool iridescence = false;
+  // Classic shading of a material without a highlight (specular 0: CLASSIC_MATTE,
+  // common/shading.glsl). ShaderVariants drops it where its shaders are not classic.
+  bool matte = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -79,7 +83,8 @@ class ShaderVariants {
       : shaderDir_(std::move(shaderDir)),
         vertexShader_(std::move(vertexShader)),
         fragmentShader_(std::move(fragmentShader)),
-        defines_(std::move(defines)) {}
+        defines_(std::move(defines)),
+        classic_(std::find(defines_.begin(), defines_.end(), "CLASSIC 1") != defines_.end()) {}
   // `feedback` names varyings to capture with transform feedback (tests).
   Result<const gl::Program*> get(const ShaderVariant& variant,
                                  const std::vector<std::string>& feedback = {});
@@ -92,6 +97,7 @@ class ShaderVariants {
   std::string vertexShader_;
   std::string fragmentShader_;
   std::vector<std::string> defines_;  // for every variant (shading model, shadows, fog)
+  bool classic_;                      // defines_ has CLASSIC: ShaderVariant::matte applies
   std::map<ShaderVariant, gl::Program> programs_;
   std::map<std::pair<ShaderVariant, std::vector<std::string>>, gl::Program> feedbackPrograms_;
 };

@@ -59,6 +59,14 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
   glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
 }
 
+// A shape's program: textured where its material has a texture, matte where it has
+// no highlight.
+ShaderVariant SceneRenderer::Impl::shapeVariant(const ShapeDraw& shape, bool depthOnly) const {
+  ShaderVariant v{0, SkinMode::Linear, !depthOnly && materialTextures[size_t(shape.material)].id() != 0, depthOnly};
+  v.matte = scene.materials[size_t(shape.material)].specular <= 0.0f;
+  return v;
+}
+
 // The scene's shapes for one view: culled, each with its program (shadow passes
 // draw the depth-only one), keyed by program, material and distance.
 Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists) {
@@ -71,8 +79,7 @@ Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOn
       continue;
     }
     ++stats->objectsDrawn;
-    const bool textured = !depthOnly && materialTextures[size_t(s.material)].id() != 0;
-    auto program = variants->get({0, SkinMode::Linear, textured, depthOnly});
+    auto program = variants->get(shapeVariant(s, depthOnly));
     if (!program) return program.error();
     const GLuint id = (*program)->id();
     const double distance = s.radius < 0.0 ? 0.0 : glm::length(center);
@@ -224,8 +231,7 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
     ++stats->drawCalls;
     if (item.source == DrawItem::Source::Shape) {
       const ShapeDraw& shape = shapes[size_t(item.object)];
-      const bool textured = !pass.depthOnly && materialTextures[size_t(shape.material)].id() != 0;
-      auto program = variants->get({0, SkinMode::Linear, textured, pass.depthOnly});
+      auto program = variants->get(shapeVariant(shape, pass.depthOnly));
       if (!program) return program.error();
       (*program)->use();
       set(**program);

@@ -293,6 +293,7 @@ struct SceneRenderer::Impl {
   void setUniforms(const gl::Program& program) const;
   Result<DrawLists> collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape = -1);
   Status collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists);
+  ShaderVariant shapeVariant(const ShapeDraw& shape, bool depthOnly) const;
   Status collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists);
   Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands = nullptr);
   Status submitItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands);

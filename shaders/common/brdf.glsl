@@ -25,13 +25,19 @@
 
 const float BRDF_PI = 3.14159265358979f;
 
+// The course's diffuse term for one light of unit radiance, N.L included: all that
+// classicReflected gives for a material without a highlight (specular 0), to the bit.
+BRDF_INLINE vec3 classicDiffuse(vec3 n, vec3 l, vec3 albedo, float diffuse) {
+  return albedo * (diffuse * max(dot(n, l), 0.0f));
+}
+
 // The course's highlight and diffuse for one light of unit radiance, N.L included.
 BRDF_INLINE vec3 classicReflected(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float diffuse, float specular, float shininess) {
   float nDotL = max(dot(n, l), 0.0f);
   vec3 h = normalize(l + toEye);
   // Most course materials have no highlight: pow() is the costliest call here.
   float highlight = nDotL > 0.0f && specular > 0.0f ? specular * pow(max(dot(n, h), 0.0f), shininess) : 0.0f;
-  return albedo * (diffuse * nDotL) + vec3(highlight);
+  return classicDiffuse(n, l, albedo, diffuse) + vec3(highlight);
 }
 
 // Trowbridge-Reitz (GGX) normal distribution, alpha = roughness^2, in the form

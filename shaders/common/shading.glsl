@@ -90,8 +90,14 @@ const vec3 g_iridescenceF = vec3(0.0);
 vec3 shadeAmbient(Surface s) { return s.albedo * s.ambient; }
 
 vec3 shadeLight(Surface s, vec3 l, vec3 radiance, float visibility) {
+#ifdef CLASSIC_MATTE
+  // A material without a highlight (ShaderVariant::matte): the same value, without
+  // the highlight's code, which llvmpipe would run for every fragment anyway.
+  return radiance * visibility * classicDiffuse(s.n, l, s.albedo, s.diffuse);
+#else
   return radiance * visibility *
          classicReflected(s.n, s.toEye, l, s.albedo, s.diffuse, s.specular, s.shininess);
+#endif
 }
 #elif defined(AMBIENT_SH) || defined(AMBIENT_IBL)
 // The environment's light, as the path tracer integrates it, by the split sum (Karis

@@ -1,9 +1,12 @@
-// The scene's light counts are compiled into the scene and terrain shaders
-// (common/direct_light.glsl: SUN_LIGHT, POINT_LIGHTS), so that llvmpipe does not
-// shade a light the scene lacks. The image must be the one the frame block's
-// counts give: the same scenes through a copy of the shaders that drops the
-// compiled counts (and loops over u_counts.x, checks u_sunDirection.w) must be the
-// same bytes, for no sun and a sun, none to four point lights, classic and PBR.
+// What a scene or a material leaves out is compiled out of its shaders, since
+// llvmpipe runs code behind a uniform condition whatever the condition says: the
+// scene's light counts (common/direct_light.glsl: SUN_LIGHT, POINT_LIGHTS) and, in
+// classic shading, the highlight of a material that has none (CLASSIC_MATTE,
+// ShaderVariant::matte). The image must be the one the uniforms give: the same
+// scenes through a copy of the shaders that drops these defines (and loops over
+// u_counts.x, checks u_sunDirection.w, evaluates every highlight) must be the same
+// bytes, for no sun and a sun, none to four point lights, classic and PBR, shapes
+// and glTF models with a highlight and without.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -45,6 +48,8 @@ std::string sceneJson(bool sun, int points, const char* shading) {
   "lights": )") + lightsJson(sun, points) + R"(,
   "materials": {"ground": {"color": [0.6, 0.6, 0.55], "specular": 0.3, "shininess": 20},
                 "red": {"color": [0.9, 0.1, 0.1], "roughness": 0.35}},
+  "models": [{"path": "../models/character.gltf", "position": [-2.2, 0, 0.8], "clip": "Walk"},
+             {"path": "../models/materials.gltf", "position": [0, 0, -1.5], "scale": 0.5}],
   "primitives": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "ground"},
                  {"type": "sphere", "center": [0.8, 0.5, 0], "radius": 0.5, "material": "red"},
                  {"type": "box", "min": [-1.6, 0, -0.6], "max": [-0.6, 0.8, 0.4], "material": "ground"}],
@@ -54,16 +59,16 @@ std::string sceneJson(bool sun, int points, const char* shading) {
 })";
 }
 
-// A copy of the shaders whose direct_light.glsl forgets the compiled counts.
-std::string shadersWithoutCompiledCounts() {
+// A copy of the shaders that forgets the compiled-in constants.
+std::string shadersWithoutThem() {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("light_count_test_shaders_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::copy(test::shaderDir(), dir, std::filesystem::copy_options::recursive);
-  const std::filesystem::path file = dir / "common" / "direct_light.glsl";
+  const std::filesystem::path file = dir / "common" / "frame.glsl";
   std::stringstream text;
   text << std::ifstream(file).rdbuf();
-  std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n" << text.str();
+  std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n#undef CLASSIC_MATTE\n" << text.str();
   return dir.string();
 }
 
@@ -88,11 +93,11 @@ Frame render(const SceneDesc& scene, const std::string& shaderDir) {
 
 }  // namespace
 
-class LightCount : public GlTest {};
-ENGINE_INSTANTIATE_OFFSCREEN(LightCount);
+class SpecialisedShaders : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(SpecialisedShaders);
 
-TEST_P(LightCount, CompiledCountsDrawWhatTheFrameBlocksCountsDraw) {
-  const std::string uncompiled = shadersWithoutCompiledCounts();
+TEST_P(SpecialisedShaders, DrawWhatTheirUniformsDraw) {
+  const std::string uncompiled = shadersWithoutThem();
   struct Case {
     bool sun;
     int points;
@@ -107,6 +112,11 @@ TEST_P(LightCount, CompiledCountsDrawWhatTheFrameBlocksCountsDraw) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Frame compiled = render(*scene, test::shaderDir()), looped = render(*scene, uncompiled);
     EXPECT_NE(compiled.described.find("lights compiled in: " + what), std::string::npos) << compiled.described;
+    // Classic: the red sphere and the bricks and tiles (roughness 1) are matte, the
+    // ground and the robot (roughness 0.6) are not. PBR has no matte variant.
+    const bool classic = std::string(c.shading) == "classic";
+    EXPECT_EQ(compiled.described.find("static+matte") != std::string::npos, classic) << compiled.described;
+    EXPECT_EQ(compiled.described.find("lbs4+textured+matte") != std::string::npos, false) << compiled.described;
     ASSERT_EQ(compiled.image.pixels.size(), size_t(kWidth) * kHeight * 4);
     EXPECT_TRUE(compiled.image.pixels == looped.image.pixels);
   }
