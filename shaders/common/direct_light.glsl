@@ -13,14 +13,14 @@
 // no iteration: with the count a uniform, a scene without point lights shaded one,
 // BRDF and all, for every fragment. A program built without these (a test's) takes
 // the counts from the frame block.
+#ifndef SUN_LIGHT
+#define SUN_LIGHT 1
+#endif
 #ifndef POINT_LIGHTS
 #define POINT_LIGHTS u_counts.x
 #endif
 vec3 shadeDirectLight(Surface s, vec3 shadowNormal) {
   vec3 color = vec3(0.0);
-#ifndef SUN_LIGHT
-#define SUN_LIGHT 1
-#endif
 #if SUN_LIGHT
   if (u_sunDirection.w > 0.0) {
     float visibility = 1.0;
