@@ -59,18 +59,27 @@ std::string sceneJson(bool sun, int points, const char* shading) {
 })";
 }
 
-// A copy of the shaders that forgets the compiled-in constants.
-std::string shadersWithoutThem() {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("light_count_test_shaders_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::copy(test::shaderDir(), dir, std::filesystem::copy_options::recursive);
-  const std::filesystem::path file = dir / "common" / "frame.glsl";
-  std::stringstream text;
-  text << std::ifstream(file).rdbuf();
-  std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n#undef CLASSIC_MATTE\n" << text.str();
-  return dir.string();
-}
+// A copy of the shaders that forgets the compiled-in constants, removed with it
+// (also when an assertion ends the test early).
+class ShadersWithoutThem {
+ public:
+  ShadersWithoutThem()
+      : dir_(std::filesystem::temp_directory_path() / ("engine_specialised_shaders_" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(dir_);
+    std::filesystem::copy(test::shaderDir(), dir_, std::filesystem::copy_options::recursive);
+    const std::filesystem::path file = dir_ / "common" / "frame.glsl";
+    std::stringstream text;
+    text << std::ifstream(file).rdbuf();
+    std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n#undef CLASSIC_MATTE\n" << text.str();
+  }
+  ~ShadersWithoutThem() { std::filesystem::remove_all(dir_); }
+  ShadersWithoutThem(const ShadersWithoutThem&) = delete;
+  ShadersWithoutThem& operator=(const ShadersWithoutThem&) = delete;
+  std::string dir() const { return dir_.string(); }
+
+ private:
+  std::filesystem::path dir_;
+};
 
 struct Frame {
   Image image;
@@ -97,7 +106,7 @@ class SpecialisedShaders : public GlTest {};
 ENGINE_INSTANTIATE_OFFSCREEN(SpecialisedShaders);
 
 TEST_P(SpecialisedShaders, DrawWhatTheirUniformsDraw) {
-  const std::string uncompiled = shadersWithoutThem();
+  const ShadersWithoutThem uncompiled;
   struct Case {
     bool sun;
     int points;
@@ -108,9 +117,9 @@ TEST_P(SpecialisedShaders, DrawWhatTheirUniformsDraw) {
     const std::string what = std::string(c.sun ? "sun + " : "") + std::to_string(c.points) + " point";
     SCOPED_TRACE(what + ", " + c.shading);
     auto scene = parseScene(sceneJson(c.sun, c.points, c.shading),
-                            std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/light_count.json");
+                            std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/specialised_shaders.json");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    const Frame compiled = render(*scene, test::shaderDir()), looped = render(*scene, uncompiled);
+    const Frame compiled = render(*scene, test::shaderDir()), looped = render(*scene, uncompiled.dir());
     EXPECT_NE(compiled.described.find("lights compiled in: " + what), std::string::npos) << compiled.described;
     // Classic: the red sphere and the bricks and tiles (roughness 1) are matte, the
     // ground and the robot (roughness 0.6) are not. PBR has no matte variant.
@@ -120,5 +129,4 @@ TEST_P(SpecialisedShaders, DrawWhatTheirUniformsDraw) {
     ASSERT_EQ(compiled.image.pixels.size(), size_t(kWidth) * kHeight * 4);
     EXPECT_TRUE(compiled.image.pixels == looped.image.pixels);
   }
-  std::filesystem::remove_all(uncompiled);
 }
