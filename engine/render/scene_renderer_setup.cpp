@@ -89,6 +89,8 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   sunFarShadows = sunShadows && scene.terrain.enabled;
   if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
+  // The PCF kernel too, so that its loops unroll (common/shadows.glsl).
+  if (sunShadows || pointShadows) defines.push_back("PCF_RADIUS " + std::to_string(pcfRadius));
   if (scene.fog.enabled) defines.push_back("FOG 1");
   if (render.shading == Shading::Pbr) {
     ambient = options.ambientOverride.value_or(ambientOf(scene));

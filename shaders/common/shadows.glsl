@@ -1,9 +1,17 @@
 // Shadow-map lookups. The sun uses one 2D map fitted to the view; the first point
 // light uses a depth cube map. Both compare in hardware (sampler*Shadow) and filter
-// with an N x N PCF kernel (radius u_shadowParams.y texels; 0 = one hard sample).
+// with an N x N PCF kernel (radius PCF_RADIUS texels; 0 = one hard sample).
 // Acne is kept away by slope-scaled depth offset in the shadow pass and by moving
 // the lookup point along the normal by about one shadow texel, which grows with the
 // texel's world size instead of a fixed epsilon.
+
+// The kernel's radius is compile-time (SceneRenderer's init), so that its loops
+// unroll: llvmpipe keeps a loop of a uniform's count as a loop, with its bookkeeping
+// at every tap. A program built without it (a test's) reads it from the frame block.
+#ifndef PCF_RADIUS
+#define PCF_RADIUS int(u_shadowParams.y)
+#endif
+
 #ifdef SUN_SHADOWS
 layout(binding = UNIT_SUN_SHADOW) uniform sampler2DShadow u_sunShadowMap;
 uniform float u_sunTexelWorld;  // world size of one shadow texel
@@ -35,7 +43,7 @@ float sunShadow(vec3 position, vec3 n) {
   if (nDotL <= 0.0) return 0.0;
   float inside;
   float near = sunMapVisibility(u_sunShadowMap, u_sunShadowMatrix, position, n, u_sunTexelWorld,
-                                u_shadowParams.x, int(u_shadowParams.y), inside);
+                                u_shadowParams.x, PCF_RADIUS, inside);
   float far = 1.0;
 #ifdef SUN_FAR_SHADOWS
   if (inside < 1.0) {
@@ -69,7 +77,7 @@ float pointShadow(vec3 position, vec3 n) {
   vec3 v = (position + n * texelWorld * 1.5) - u_pointPosition[0].xyz;
   float z = max(abs(v.x), max(abs(v.y), abs(v.z)));
   float reference = cubeDepth(z);
-  int r = int(u_shadowParams.y);
+  int r = PCF_RADIUS;
   if (r == 0) return texture(u_pointShadowMap, vec4(v, reference));
   // PCF on the cube: sample points spread in the surface's own tangent plane, so
   // that none of them dips behind the surface and shadows it.

@@ -1,12 +1,15 @@
 // What a scene or a material leaves out is compiled out of its shaders, since
 // llvmpipe runs code behind a uniform condition whatever the condition says: the
-// scene's light counts (common/direct_light.glsl: SUN_LIGHT, POINT_LIGHTS) and, in
-// classic shading, the highlight of a material that has none (CLASSIC_MATTE,
-// ShaderVariant::matte). The image must be the one the uniforms give: the same
-// scenes through a copy of the shaders that drops these defines (and loops over
-// u_counts.x, checks u_sunDirection.w, evaluates every highlight) must be the same
+// scene's light counts (common/direct_light.glsl: SUN_LIGHT, POINT_LIGHTS), the PCF
+// kernel (common/shadows.glsl: PCF_RADIUS) and, in classic shading, the highlight of
+// a material that has none (CLASSIC_MATTE, ShaderVariant::matte). The image must be
+// the one the uniforms give: the same scenes through a copy of the shaders that
+// drops these defines (and loops over u_counts.x, checks u_sunDirection.w, reads the
+// kernel's radius from the frame block, evaluates every highlight) must be the same
 // bytes, for no sun and a sun, none to four point lights, classic and PBR, shapes
-// and glTF models with a highlight and without.
+// and glTF models with a highlight and without. A terrain seen from above, the sun's near map and its far one both in view (the
+// far one's kernel is always 3 x 3), must be the same bytes too, with a hard sun and
+// kernels of 3 and 5.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -30,32 +33,45 @@ namespace {
 constexpr int kWidth = 160, kHeight = 96;
 
 // Four point lights, the first casting shadows, two with the 1/d^2 fall-off; the
-// first `points` of them go into the scene, with a sun or without.
-std::string lightsJson(bool sun, int points) {
+// first `points` of them go into the scene, with a sun (from `sunDirection`) or
+// without.
+std::string lightsJson(bool sun, int points, const std::string& sunDirection) {
   const char* all[] = {
       R"({"type": "point", "position": [1.5, 2, 1.5], "intensity": 0.5, "shadows": true})",
       R"({"type": "point", "position": [-2, 1.5, 1], "color": [1, 0.4, 0.2], "intensity": 2, "falloff": true})",
       R"({"type": "point", "position": [0, 3, -2], "color": [0.3, 0.5, 1], "intensity": 0.4})",
       R"({"type": "point", "position": [2.5, 0.6, -0.5], "intensity": 1, "falloff": true})"};
-  std::string list = sun ? R"({"type": "sun", "direction": [-0.4, 1, 0.3], "intensity": 0.7, "shadows": true})" : "";
+  std::string list =
+      sun ? R"({"type": "sun", "direction": )" + sunDirection + R"(, "intensity": 0.7, "shadows": true})" : "";
   for (int i = 0; i < points; ++i) list += std::string(list.empty() ? "" : ", ") + all[i];
   return "[" + list + "]";
 }
 
-std::string sceneJson(bool sun, int points, const char* shading) {
-  return std::string(R"({
-  "camera": {"position": [0, 2.2, 5], "target": [0, 0.6, 0], "fovy": 50},
-  "lights": )") + lightsJson(sun, points) + R"(,
+// Hills under a low sun, seen from above: the near map's first metres, the band where
+// it fades into the far map, and the far map's alone out to the horizon, each with
+// shadows of hills in it. No ground plane.
+constexpr const char* kTerrain = R"(
+  "camera": {"position": [0, 40, 120], "target": [0, 10, 50], "fovy": 60, "far": 3000},
+  "terrain": {"seed": 5, "size": 256, "spacing": 2, "height_scale": 40, "origin": [-128, 0, -128]},
+  "fog": {"density": 0.001, "color": [0.6, 0.7, 0.85]},)";
+constexpr const char* kShapes = R"(
+  "camera": {"position": [0, 2.2, 5], "target": [0, 0.6, 0], "fovy": 50},)";
+constexpr const char* kGround = R"({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "ground"},
+                 )";
+
+std::string sceneJson(bool sun, int points, const char* shading, bool terrain, int pcf) {
+  return std::string("{") + (terrain ? kTerrain : kShapes) + R"(
+  "lights": )" + lightsJson(sun, points, terrain ? "[-1, 0.45, 0.4]" : "[-0.4, 1, 0.3]") + R"(,
   "materials": {"ground": {"color": [0.6, 0.6, 0.55], "specular": 0.3, "shininess": 20},
                 "red": {"color": [0.9, 0.1, 0.1], "roughness": 0.35}},
   "models": [{"path": "../models/character.gltf", "position": [-2.2, 0, 0.8], "clip": "Walk"},
              {"path": "../models/materials.gltf", "position": [0, 0, -1.5], "scale": 0.5}],
-  "primitives": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "ground"},
-                 {"type": "sphere", "center": [0.8, 0.5, 0], "radius": 0.5, "material": "red"},
+  "primitives": [)" + (terrain ? "" : kGround) + R"({"type": "sphere", "center": [0.8, 0.5, 0], "radius": 0.5, "material": "red"},
                  {"type": "box", "min": [-1.6, 0, -0.6], "max": [-0.6, 0.8, 0.4], "material": "ground"}],
   "sky": {"enabled": false, "background": [0.05, 0.05, 0.1]},
   "ambient": 0.1,
-  "render": {"shading": ")" + shading + R"("}
+  "render": {"shading": ")" + shading + R"(", "shadow_filter": ")" + (pcf > 1 ? "pcf" : "hard") +
+         R"(", "pcf_kernel": )" + std::to_string(pcf) + R"(}
 })";
 }
 
@@ -70,7 +86,7 @@ class ShadersWithoutThem {
     const std::filesystem::path file = dir_ / "common" / "frame.glsl";
     std::stringstream text;
     text << std::ifstream(file).rdbuf();
-    std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n#undef CLASSIC_MATTE\n" << text.str();
+    std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n#undef CLASSIC_MATTE\n#undef PCF_RADIUS\n" << text.str();
   }
   ~ShadersWithoutThem() { std::filesystem::remove_all(dir_); }
   ShadersWithoutThem(const ShadersWithoutThem&) = delete;
@@ -111,12 +127,15 @@ TEST_P(SpecialisedShaders, DrawWhatTheirUniformsDraw) {
     bool sun;
     int points;
     const char* shading;
+    bool terrain = false;
+    int pcf = 3;
   };
   for (const Case c : {Case{true, 0, "classic"}, Case{true, 0, "pbr"}, Case{false, 1, "classic"},
-                       Case{false, 2, "pbr"}, Case{true, 4, "classic"}, Case{true, 4, "pbr"}}) {
+                       Case{false, 2, "pbr"}, Case{true, 4, "classic"}, Case{true, 4, "pbr"},
+                       Case{true, 0, "pbr", true, 3}, Case{true, 1, "classic", true, 1}, Case{true, 0, "pbr", true, 5}}) {
     const std::string what = std::string(c.sun ? "sun + " : "") + std::to_string(c.points) + " point";
-    SCOPED_TRACE(what + ", " + c.shading);
-    auto scene = parseScene(sceneJson(c.sun, c.points, c.shading),
+    SCOPED_TRACE(what + ", " + c.shading + (c.terrain ? ", terrain, pcf " + std::to_string(c.pcf) : ""));
+    auto scene = parseScene(sceneJson(c.sun, c.points, c.shading, c.terrain, c.pcf),
                             std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/specialised_shaders.json");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Frame compiled = render(*scene, test::shaderDir()), looped = render(*scene, uncompiled.dir());
