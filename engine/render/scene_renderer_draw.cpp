@@ -297,6 +297,10 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
   // order, so the image is the same. drawCulled does the same with its patches
   // culled against the depth of what went before.
   if (terrain) {
+    // What is drawn so far goes to the rasterizer now: on llvmpipe its threads then
+    // shade the shapes (most of a plaza's pixels) while this thread selects the
+    // terrain's patches and bins its triangles, rather than both after it.
+    glFlush();
     applyPassState(opaquePassFor(view.mirrored));
     drawTerrain(view, skipShape);
   }
