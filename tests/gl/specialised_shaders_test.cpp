@@ -7,9 +7,9 @@
 // drops these defines (and loops over u_counts.x, checks u_sunDirection.w, reads the
 // kernel's radius from the frame block, evaluates every highlight) must be the same
 // bytes, for no sun and a sun, none to four point lights, classic and PBR, shapes
-// and glTF models with a highlight and without. A terrain seen from above, the sun's near map and its far one both in view (the
-// far one's kernel is always 3 x 3), must be the same bytes too, with a hard sun and
-// kernels of 3 and 5.
+// and glTF models with a highlight and without; and for a terrain seen from above,
+// the sun's near map and its far one both in view (the far one's kernel is always
+// 3 x 3), with a hard sun and kernels of 3 and 5.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -66,7 +66,8 @@ std::string sceneJson(bool sun, int points, const char* shading, bool terrain, i
                 "red": {"color": [0.9, 0.1, 0.1], "roughness": 0.35}},
   "models": [{"path": "../models/character.gltf", "position": [-2.2, 0, 0.8], "clip": "Walk"},
              {"path": "../models/materials.gltf", "position": [0, 0, -1.5], "scale": 0.5}],
-  "primitives": [)" + (terrain ? "" : kGround) + R"({"type": "sphere", "center": [0.8, 0.5, 0], "radius": 0.5, "material": "red"},
+  "primitives": [)" + (terrain ? "" : kGround) +
+         R"({"type": "sphere", "center": [0.8, 0.5, 0], "radius": 0.5, "material": "red"},
                  {"type": "box", "min": [-1.6, 0, -0.6], "max": [-0.6, 0.8, 0.4], "material": "ground"}],
   "sky": {"enabled": false, "background": [0.05, 0.05, 0.1]},
   "ambient": 0.1,
@@ -86,7 +87,8 @@ class ShadersWithoutThem {
     const std::filesystem::path file = dir_ / "common" / "frame.glsl";
     std::stringstream text;
     text << std::ifstream(file).rdbuf();
-    std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n#undef CLASSIC_MATTE\n#undef PCF_RADIUS\n" << text.str();
+    std::ofstream(file) << "#undef SUN_LIGHT\n#undef POINT_LIGHTS\n#undef CLASSIC_MATTE\n#undef PCF_RADIUS\n"
+                        << text.str();
   }
   ~ShadersWithoutThem() { std::filesystem::remove_all(dir_); }
   ShadersWithoutThem(const ShadersWithoutThem&) = delete;
@@ -132,7 +134,8 @@ TEST_P(SpecialisedShaders, DrawWhatTheirUniformsDraw) {
   };
   for (const Case c : {Case{true, 0, "classic"}, Case{true, 0, "pbr"}, Case{false, 1, "classic"},
                        Case{false, 2, "pbr"}, Case{true, 4, "classic"}, Case{true, 4, "pbr"},
-                       Case{true, 0, "pbr", true, 3}, Case{true, 1, "classic", true, 1}, Case{true, 0, "pbr", true, 5}}) {
+                       Case{true, 0, "pbr", true, 3}, Case{true, 1, "classic", true, 1},
+                       Case{true, 0, "pbr", true, 5}}) {
     const std::string what = std::string(c.sun ? "sun + " : "") + std::to_string(c.points) + " point";
     SCOPED_TRACE(what + ", " + c.shading + (c.terrain ? ", terrain, pcf " + std::to_string(c.pcf) : ""));
     auto scene = parseScene(sceneJson(c.sun, c.points, c.shading, c.terrain, c.pcf),
