@@ -51,6 +51,9 @@ inline constexpr unsigned kPrefiltered = 11;
 // The terrain's programs: height pages, then its material layers from 1.
 inline constexpr unsigned kTerrainHeights = 0;
 inline constexpr unsigned kTerrainLayers = 1;
+// The deferred terrain pass's surface (terrain_deferred.frag), where the heights'
+// unit would be: that pass reads no heights.
+inline constexpr unsigned kTerrainSurface = 0;
 // Post's HDR image and the IBL prefilter's source cube.
 inline constexpr unsigned kHdr = 0;
 inline constexpr unsigned kIblSource = 0;
@@ -106,7 +109,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 65> kDefines{{
+inline constexpr std::array<Define, 66> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -137,6 +140,7 @@ inline constexpr std::array<Define, 65> kDefines{{
     {"UNIT_PREFILTERED", kPrefiltered},
     {"UNIT_TERRAIN_HEIGHTS", kTerrainHeights},
     {"UNIT_TERRAIN_LAYERS", kTerrainLayers},
+    {"UNIT_TERRAIN_SURFACE", kTerrainSurface},
     {"UNIT_HDR", kHdr},
     {"UNIT_IBL_SOURCE", kIblSource},
     {"IMAGE_IBL_LEVEL", kIblLevelImage},

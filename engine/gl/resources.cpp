@@ -222,6 +222,23 @@ glm::ivec2 attachmentSize(GLuint framebuffer, GLenum attachment) {
   return size;
 }
 
+// Colour attachment 0's object, when it is one another framebuffer can attach as
+// it is: a renderbuffer or a 2D texture's level (not a cube face or a layer).
+void shareableColor(GLuint framebuffer, FramebufferLayout& l) {
+  const auto type = GLenum(attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE));
+  const auto object = GLuint(attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME));
+  if (type == GL_TEXTURE) {
+    GLint target = 0;
+    glGetTextureParameteriv(object, GL_TEXTURE_TARGET, &target);
+    if (target != GL_TEXTURE_2D) return;
+    l.colorLevel = attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL);
+  } else if (type != GL_RENDERBUFFER) {
+    return;
+  }
+  l.colorObjectType = type;
+  l.colorObject = object;
+}
+
 }  // namespace
 
 FramebufferLayout framebufferLayout(GLuint framebuffer) {
@@ -236,6 +253,7 @@ FramebufferLayout framebufferLayout(GLuint framebuffer) {
                             GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE};
     for (int c = 0; c < 4; ++c) l.colorBits[c] = attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, bits[c]);
     l.colorType = GLenum(attachmentParameter(framebuffer, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE));
+    shareableColor(framebuffer, l);
   }
   if (attachmentParameter(framebuffer, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_NONE) {
     l.depthBits = attachmentParameter(framebuffer, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE);

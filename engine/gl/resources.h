@@ -143,6 +143,11 @@ struct FramebufferLayout {
   GLenum colorType = GL_NONE;  // GL_UNSIGNED_NORMALIZED, GL_FLOAT...
   int depthBits = 0;
   GLenum depthType = GL_NONE;
+  // Colour attachment 0's image, where another framebuffer can attach it too: a
+  // renderbuffer, or level `colorLevel` of a 2D texture (GL_NONE otherwise).
+  GLenum colorObjectType = GL_NONE;
+  GLuint colorObject = 0;
+  int colorLevel = 0;
 };
 FramebufferLayout framebufferLayout(GLuint framebuffer);
 

@@ -19,11 +19,12 @@ void reserve(gl::Buffer& buffer, std::size_t bytes) {
 
 }  // namespace
 
-Result<HiZPyramid> HiZPyramid::create(const std::string& shaderDir) {
+Result<HiZPyramid> HiZPyramid::create(const std::string& shaderDir, GLenum depthFormat) {
   auto program = gl::Program::build(shaderDir, {{GL_COMPUTE_SHADER, "cull/hiz.comp"}});
   if (!program) return program.error();
   HiZPyramid hiz;
   hiz.program_ = std::move(program).value();
+  hiz.depthFormat_ = depthFormat;
   hiz.depthFbo_ = gl::Framebuffer::create();
   // Depth only: an occluder prepass draws into it with no colour.
   glNamedFramebufferDrawBuffer(hiz.depthFbo_.id(), GL_NONE);
@@ -36,7 +37,7 @@ void HiZPyramid::resize(int width, int height) {
   width_ = width;
   height_ = height;
   levels_ = cull::hizLevelCount(width, height);
-  depth_ = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height, 1);
+  depth_ = gl::Texture::create2D(depthFormat_, width, height, 1);
   depth_.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   depth_.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   depthFbo_.attach(GL_DEPTH_ATTACHMENT, depth_);

@@ -20,7 +20,9 @@ namespace engine {
 // The pyramid of one framebuffer's depth (cull/hiz.comp; cull::HiZ is its twin).
 class HiZPyramid {
  public:
-  static Result<HiZPyramid> create(const std::string& shaderDir);
+  // `depthFormat`: the format of the depth it copies (a blit copies between equal
+  // formats only), GL_DEPTH_COMPONENT32F or GL_DEPTH32F_STENCIL8.
+  static Result<HiZPyramid> create(const std::string& shaderDir, GLenum depthFormat = GL_DEPTH_COMPONENT32F);
   // From the depth of `framebuffer` (32-bit float, single-sample) of width x
   // height pixels: copied by a blit (the depth may be a renderbuffer), then reduced.
   void build(GLuint framebuffer, int width, int height) {
@@ -42,6 +44,7 @@ class HiZPyramid {
  private:
   void resize(int width, int height);
   gl::Program program_;
+  GLenum depthFormat_ = GL_DEPTH_COMPONENT32F;
   gl::Texture depth_, pyramid_;
   gl::Framebuffer depthFbo_;
   int width_ = 0, height_ = 0, levels_ = 0;

@@ -44,6 +44,8 @@ inline constexpr PassState kSkyPass{.depthTest = false, .depthWrite = false, .cu
 // (depth 0 in reverse-Z, the value the depth is cleared to), so it is shaded only
 // where nothing was drawn.
 inline constexpr PassState kSkyBehindPass{.depthFunc = GL_GEQUAL, .depthWrite = false, .cull = false};
+// The deferred terrain's full-screen shading, where the stencil marks terrain.
+inline constexpr PassState kTerrainDeferredPass{.depthTest = false, .depthWrite = false, .cull = false};
 // BLEND materials after the opaque ones: tested against their depth, writing none.
 constexpr PassState blendPassFor(bool leftHanded) {
   return PassState{.depthWrite = false, .frontFace = GLenum(leftHanded ? GL_CW : GL_CCW), .blend = true};

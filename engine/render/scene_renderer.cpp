@@ -178,17 +178,38 @@ Status SceneRenderer::Impl::deformCharacters() {
   return Ok{};
 }
 
+// The direct path's colour image in drawFbo: the caller's (`caller`, when it can be
+// attached elsewhere), else drawFbo's own. True when the caller's is attached.
+bool SceneRenderer::Impl::useColourOf(const gl::FramebufferLayout* caller) {
+  const GLuint wanted = caller && caller->colorObjectType != GL_NONE ? caller->colorObject : 0;
+  if (wanted != borrowedColour) {
+    if (wanted == 0) {
+      drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
+    } else if (caller->colorObjectType == GL_RENDERBUFFER) {
+      glNamedFramebufferRenderbuffer(drawFbo.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, wanted);
+    } else {
+      glNamedFramebufferTexture(drawFbo.id(), GL_COLOR_ATTACHMENT0, wanted, caller->colorLevel);
+    }
+    borrowedColour = wanted;
+  }
+  return wanted != 0;
+}
+
 Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int height) {
   GLint callerFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
-  const bool intoCaller =
-      directOutput && takesDirectFrame(gl::framebufferLayout(GLuint(callerFramebuffer)), width, height);
+  const gl::FramebufferLayout callerLayout = gl::framebufferLayout(GLuint(callerFramebuffer));
+  const bool direct = directOutput && takesDirectFrame(callerLayout, width, height);
+  // The deferred terrain needs its surface and stencil beside the frame's depth:
+  // drawFbo then borrows the caller's colour image where it can, so nothing is copied.
+  const bool intoCaller = direct && !deferredTerrain;
   if (intoCaller) {
     targetWidth = width;
     targetHeight = height;
   } else if (auto status = makeTarget(width, height); !status) {
     return status;
   }
+  const bool borrowed = directOutput && !intoCaller && useColourOf(direct ? &callerLayout : nullptr);
   const glm::dvec3 cameraPosition = camera.position;
   const double aspect = double(width) / double(height);
   const double fovy = glm::radians(camera.fovyDegrees);
@@ -247,7 +268,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   const glm::vec3 background = directOutput ? displayValue(scene.sky.background, render) : scene.sky.background;
   glClearColor(background.r, background.g, background.b, 1.0f);
   glClearDepth(0.0);  // reverse-Z: far is 0
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   View mainView;
   mainView.mirrored = scene.camera.leftHanded;
   mainView.main = true;
@@ -266,7 +287,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
     glClearDepth(1.0);
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
     glViewport(0, 0, width, height);
-    if (!intoCaller) {
+    if (!intoCaller && !borrowed) {
       stats->frameCopies = 1;
       glBlitNamedFramebuffer(drawFbo.id(), GLuint(callerFramebuffer), 0, 0, targetWidth, targetHeight, 0, 0, width,
                              height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -377,7 +398,10 @@ std::string SceneRenderer::describe() const {
   if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
   if (s.skinPrograms) out << " " << s.describeSkinCache();
   if (s.render.lodPixels > 0.0) out << " " << s.describeLevelsOfDetail();
-  if (s.terrain) out << " terrain(cdlod, " << s.terrainError << " px)";
+  if (s.terrain) {
+    out << " terrain(cdlod, " << s.terrainError << " px, "
+        << (s.deferredTerrain ? "deferred: RGBA32F surface + stencil, shaded once a pixel" : "forward") << ")";
+  }
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
   if (s.culler) {
@@ -389,7 +413,8 @@ std::string SceneRenderer::describe() const {
   if (s.blendPass) out << " blend(sorted)";
   if (s.directOutput) {
     out << " direct(display values from the fragment shaders: exposure, tone map and curve applied there; RGBA8, no"
-           " post pass; into the caller's framebuffer when it is single-sample RGBA8 with float depth, else copied)";
+           " post pass; into the caller's framebuffer when it is single-sample RGBA8 with float depth (its colour image"
+           " with the deferred terrain's depth-stencil and surface), else copied)";
   } else {
     out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   }

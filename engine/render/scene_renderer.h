@@ -70,6 +70,10 @@ struct SceneRenderOptions {
   // Keeps the HDR target and the post pass where the scene could do without them
   // (directOutput in scene_renderer.cpp): the reference that path is tested against.
   bool hdrTarget = false;
+  // Shades the terrain where its patches are drawn, rather than once a pixel from
+  // the surface they leave (SceneRenderer's deferred terrain, the default without
+  // MSAA): the reference that pass is tested against, and its cost's.
+  bool forwardTerrain = false;
 };
 
 struct SceneStats {

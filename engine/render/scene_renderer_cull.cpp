@@ -16,7 +16,7 @@ Status SceneRenderer::Impl::makeCuller() {
     if (!forTerrain) return makeError(scene.path + ": /render/gpu_culling: " + forTerrain.error().message);
     terrainCuller = std::make_unique<GpuCuller>(std::move(forTerrain).value());
   }
-  auto pyramid = HiZPyramid::create(shaderDir);
+  auto pyramid = HiZPyramid::create(shaderDir, depthFormat());
   if (!pyramid) return makeError(scene.path + ": /render/gpu_culling: " + pyramid.error().message);
   hiz = std::make_unique<HiZPyramid>(std::move(pyramid).value());
   for (const GpuMesh* mesh : {sphere.get(), cube.get(), quad.get()})
@@ -230,12 +230,14 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   const std::size_t far = terrainCuller->addJob(job);
   terrainCuller->upload();
   const auto uniforms = [this](const gl::Program& p) { setUniforms(p); };
+  const terrain::TerrainOutput output = beginTerrainSurface(view);
   for (const std::size_t j : {near, far}) {
     cullPhase(*terrainCuller, j, j + 1, view, j == far && render.msaa <= 1);
     const IndirectDraw commands = terrainCuller->commandsOf(j);
-    terrainRenderer->drawIndirect(selection, eye, uniforms, commands.offset, commands.count);
+    terrainRenderer->drawIndirect(selection, eye, uniforms, commands.offset, commands.count, output);
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  shadeTerrainSurface(view, selection);
 }
 
 }  // namespace engine

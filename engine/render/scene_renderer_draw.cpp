@@ -347,9 +347,48 @@ void SceneRenderer::Impl::measureTerrain(double fovy, int viewportHeight) {
 void SceneRenderer::Impl::drawTerrain(const View& view, int skipShape) {
   auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
   hidePatchesBehindPlanes(selection, view, skipShape);
-  const auto drawn = terrainRenderer->draw(selection, eye, [this](const gl::Program& p) { setUniforms(p); });
+  const terrain::TerrainOutput output = beginTerrainSurface(view);
+  const auto drawn =
+      terrainRenderer->draw(selection, eye, [this](const gl::Program& p) { setUniforms(p); }, output);
   stats->drawCalls += 1;
   stats->terrainTriangles = int(drawn.trianglesDrawn);
+  shadeTerrainSurface(view, selection);
+}
+
+// The main view's terrain, without MSAA, is shaded once a pixel: llvmpipe shades
+// eight lanes at a time, and the far patches' triangles cover a pixel or two each,
+// so shading where they are drawn pays several times a pixel (about 12 ms of
+// demo.json's frame). Their surface goes into drawFbo's second attachment instead,
+// where the terrain is nearest so far, marked in the stencil; shadeTerrainSurface
+// then shades those pixels with the same lighting. Texture levels of detail come
+// from the surface pass, where each triangle's own derivatives are known. Returns
+// what the terrain's draws write: the surface, or (elsewhere) the colour.
+terrain::TerrainOutput SceneRenderer::Impl::beginTerrainSurface(const View& view) {
+  if (!deferredTerrain || !view.main) return terrain::TerrainOutput::Colour;
+  const GLenum surfaceOnly[] = {GL_COLOR_ATTACHMENT1};  // terrain.frag's output 0
+  glNamedFramebufferDrawBuffers(drawFbo.id(), 1, surfaceOnly);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 1, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  return terrain::TerrainOutput::Surface;
+}
+
+// After beginTerrainSurface's draws: a full-screen pass where the stencil marks
+// terrain. A no-op where the terrain was shaded where drawn.
+void SceneRenderer::Impl::shadeTerrainSurface(const View& view, const terrain::LodSelection& selection) {
+  if (!deferredTerrain || !view.main) return;
+  const GLenum colourOnly[] = {GL_COLOR_ATTACHMENT0};
+  glNamedFramebufferDrawBuffers(drawFbo.id(), 1, colourOnly);
+  applyPassState(kTerrainDeferredPass);
+  glStencilFunc(GL_EQUAL, 1, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  terrainRenderer->shadeDeferred(selection, eye, glm::mat4(glm::inverse(view.viewProjection)),
+                                 [this](const gl::Program& p) {
+                                   setUniforms(p);
+                                   terrainSurface.bind(gl::binding::kTerrainSurface);
+                                 });
+  stats->drawCalls += 1;
+  glDisable(GL_STENCIL_TEST);
 }
 
 // The selection's patches that one of the view's opaque planes hides wholly

@@ -177,6 +177,15 @@ struct SceneRenderer::Impl {
   gl::Texture hdr;
   gl::Renderbuffer msaaColor, depth;
   gl::Framebuffer drawFbo, resolveFbo;
+  // The terrain shaded once a pixel (beginTerrainSurface): its surface at colour
+  // attachment 1 of drawFbo, whose depth then has a stencil that marks where the
+  // terrain is nearest. Without MSAA, in the main view (probes draw it forward).
+  bool deferredTerrain = false;
+  gl::Texture terrainSurface;
+  // The caller's colour image attached to drawFbo in hdr's place (useColourOf), or 0.
+  GLuint borrowedColour = 0;
+  bool useColourOf(const gl::FramebufferLayout* caller);
+  GLenum depthFormat() const { return deferredTerrain ? GL_DEPTH32F_STENCIL8 : GL_DEPTH_COMPONENT32F; }
   // Shadows.
   bool sunShadows = false, pointShadows = false;
   int sunLight = -1;
@@ -270,6 +279,8 @@ struct SceneRenderer::Impl {
   terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void measureTerrain(double fovy, int viewportHeight);
   void drawTerrain(const View& view, int skipShape);
+  terrain::TerrainOutput beginTerrainSurface(const View& view);
+  void shadeTerrainSurface(const View& view, const terrain::LodSelection& selection);
   struct SunBox {
     glm::dmat4 view{1.0}, projection{1.0};  // camera-relative world -> the light's clip space
     glm::mat4 shadowMatrix{1.0f};           // camera-relative world -> map [0,1]^3

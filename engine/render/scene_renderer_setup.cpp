@@ -121,6 +121,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   frameUbo = gl::Buffer::create(sizeof(FrameBlock));
   if (auto s = makeEnvironmentLighting(); !s) return s;
 
+  deferredTerrain = render.msaa <= 1 && !options.forwardTerrain;
   if (auto s = loadTerrain(defines); !s) return s;
   if (auto s = loadMaterials(); !s) return s;
   if (auto s = loadModels(); !s) return s;
@@ -263,12 +264,13 @@ Status SceneRenderer::Impl::makeProbes() {
 
 Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
   terrain = source->terrain();
+  deferredTerrain = deferredTerrain && terrain;
   if (!terrain) return Ok{};
   // The scene programs' variant: the terrain is lit and shadowed as they are.
   auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, defines);
   if (!renderer) return renderer.error();
   terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
-  return Ok{};
+  return deferredTerrain ? terrainRenderer->enableDeferred(shaderDir, defines) : Status(Ok{});
 }
 
 Status SceneRenderer::Impl::loadMaterials() {
@@ -422,8 +424,9 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
   hdr.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   hdr.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   const int samples = render.msaa > 1 ? render.msaa : 0;
-  depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, w, h, samples);
+  depth = gl::Renderbuffer::create(depthFormat(), w, h, samples);
   drawFbo = gl::Framebuffer::create();
+  borrowedColour = 0;
   if (samples > 0) {
     msaaColor = gl::Renderbuffer::create(GL_RGBA16F, w, h, samples);
     drawFbo.attach(GL_COLOR_ATTACHMENT0, msaaColor);
@@ -432,7 +435,11 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
   } else {
     drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
   }
-  drawFbo.attach(GL_DEPTH_ATTACHMENT, depth);
+  drawFbo.attach(deferredTerrain ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth);
+  if (deferredTerrain) {
+    terrainSurface = gl::Texture::create2D(GL_RGBA32F, w, h, 1);
+    drawFbo.attach(GL_COLOR_ATTACHMENT1, terrainSurface);
+  }
   if (auto s = drawFbo.check(directOutput ? "scene-display" : "scene-hdr"); !s) return s;
   if (transmissionPass) {
     const int levels = 1 + int(std::floor(std::log2(double(std::max(w, h)))));

@@ -183,9 +183,8 @@ void TerrainRenderer::drawInstances(std::size_t count) const {
 
 int TerrainRenderer::indexCount() { return kIndexCount; }
 
-void TerrainRenderer::useColourProgram(const LodSelection& selection, const glm::dvec3& cameraPosition,
-                                       const UniformSetter& setUniforms) const {
-  const gl::Program& p = program_;
+void TerrainRenderer::useShadingProgram(const gl::Program& p, const LodSelection& selection,
+                                        const glm::dvec3& cameraPosition, const UniformSetter& setUniforms) const {
   setGridUniforms(p, selection);
   p.set("u_heightScale", std::max(terrain_->heightRange().max, 1e-3f));
   // Texture coordinates are camera-relative too.
@@ -198,21 +197,46 @@ void TerrainRenderer::useColourProgram(const LodSelection& selection, const glm:
 }
 
 TerrainDrawStats TerrainRenderer::draw(const LodSelection& selection, const glm::dvec3& cameraPosition,
-                                       const UniformSetter& setUniforms) {
+                                       const UniformSetter& setUniforms, TerrainOutput output) {
   const TerrainDrawStats stats = upload(selection);
   if (stats.patchesDrawn == 0) return stats;
-  useColourProgram(selection, cameraPosition, setUniforms);
+  useColourProgram(selection, cameraPosition, setUniforms, output);
   drawInstances(stats.patchesDrawn);
   return stats;
 }
 
 void TerrainRenderer::drawIndirect(const LodSelection& selection, const glm::dvec3& cameraPosition,
-                                   const UniformSetter& setUniforms, std::intptr_t offset, int count) const {
+                                   const UniformSetter& setUniforms, std::intptr_t offset, int count,
+                                   TerrainOutput output) const {
   if (count <= 0) return;
-  useColourProgram(selection, cameraPosition, setUniforms);
+  useColourProgram(selection, cameraPosition, setUniforms, output);
   glBindTextureUnit(gl::binding::kTerrainHeights, heightPages_.id());
   vertexArray_.bind();
   glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_SHORT, reinterpret_cast<const void*>(offset), count, 0);
+  glBindVertexArray(0);
+}
+
+Status TerrainRenderer::enableDeferred(const std::string& shaderDir, const std::vector<std::string>& defines) {
+  std::vector<std::string> surfaceDefines = defines;
+  surfaceDefines.push_back("TERRAIN_SURFACE 1");
+  auto surface = gl::Program::build(
+      shaderDir, {{GL_VERTEX_SHADER, "terrain.vert"}, {GL_FRAGMENT_SHADER, "terrain.frag"}}, surfaceDefines);
+  if (!surface) return surface.error();
+  auto deferred = gl::Program::build(
+      shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "terrain_deferred.frag"}}, defines);
+  if (!deferred) return deferred.error();
+  surfaceProgram_ = std::move(surface).value();
+  deferredProgram_ = std::move(deferred).value();
+  emptyVertexArray_ = gl::VertexArray::create();
+  return Ok{};
+}
+
+void TerrainRenderer::shadeDeferred(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                                    const glm::mat4& inverseViewProjection, const UniformSetter& setUniforms) const {
+  useShadingProgram(deferredProgram_, selection, cameraPosition, setUniforms);
+  deferredProgram_.set("u_inverseViewProjection", inverseViewProjection);
+  emptyVertexArray_.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
 }
 

@@ -34,6 +34,10 @@ inline constexpr std::size_t kDefaultGpuPageBudgetBytes = 128ull * 1024 * 1024;
 // Below this many slots even the coarsest selection may not fit.
 inline constexpr int kMinGpuPageSlots = 512;
 
+// What the colour draws write: the shaded colour, or (after enableDeferred) the
+// surface terrain_deferred.frag shades later, once a pixel.
+enum class TerrainOutput { Colour, Surface };
+
 struct TerrainDrawStats {
   std::size_t patchesDrawn = 0;
   std::size_t trianglesDrawn = 0;
@@ -61,7 +65,20 @@ class TerrainRenderer {
   // Draws into the bound framebuffer with depth test on. The frame block must be
   // bound, its view-projection the camera-relative one the selection was made with.
   TerrainDrawStats draw(const LodSelection& selection, const glm::dvec3& cameraPosition,
-                        const UniformSetter& setUniforms);
+                        const UniformSetter& setUniforms, TerrainOutput output = TerrainOutput::Colour);
+  // Shading once a pixel (llvmpipe shades eight lanes at a time, and far patches'
+  // triangles cover a pixel or two each): enableDeferred builds the two programs
+  // (`defines` as create's); draws with TerrainOutput::Surface then write into the
+  // bound framebuffer's one colour output the surface terrain_deferred.frag reads
+  // (RGBA32F: distance, normal, texture level); shadeDeferred shades every pixel
+  // the caller's stencil test lets through from that surface, bound by the setter
+  // at gl::binding::kTerrainSurface, `inverseViewProjection` the view's
+  // (camera-relative world).
+  Status enableDeferred(const std::string& shaderDir, const std::vector<std::string>& defines);
+  void shadeDeferred(const LodSelection& selection, const glm::dvec3& cameraPosition,
+                     const glm::mat4& inverseViewProjection, const UniformSetter& setUniforms) const;
+  bool deferred() const { return bool(deferredProgram_); }
+
   // Depth only, through `lightViewProjection` (camera-relative world -> clip), for
   // a shadow map.
   TerrainDrawStats drawDepth(const LodSelection& selection, const glm::mat4& lightViewProjection);
@@ -74,7 +91,7 @@ class TerrainRenderer {
   TerrainDrawStats prepare(const LodSelection& selection) { return upload(selection); }
   const std::vector<LodPatch>& patches() const { return drawnPatches_; }
   void drawIndirect(const LodSelection& selection, const glm::dvec3& cameraPosition, const UniformSetter& setUniforms,
-                    std::intptr_t offset, int count) const;
+                    std::intptr_t offset, int count, TerrainOutput output = TerrainOutput::Colour) const;
   // The grid's indices a patch draws (GL_UNSIGNED_SHORT).
   static int indexCount();
 
@@ -91,10 +108,17 @@ class TerrainRenderer {
   void setGridUniforms(const gl::Program& p, const LodSelection& selection) const;
   void drawInstances(std::size_t count) const;
   void useColourProgram(const LodSelection& selection, const glm::dvec3& cameraPosition,
-                        const UniformSetter& setUniforms) const;
+                        const UniformSetter& setUniforms, TerrainOutput output) const {
+    if (output == TerrainOutput::Surface) return useShadingProgram(surfaceProgram_, selection, cameraPosition, nullptr);
+    useShadingProgram(program_, selection, cameraPosition, setUniforms);
+  }
+  void useShadingProgram(const gl::Program& p, const LodSelection& selection, const glm::dvec3& cameraPosition,
+                         const UniformSetter& setUniforms) const;
 
   const Terrain* terrain_ = nullptr;
   gl::Program program_, depthProgram_;
+  gl::Program surfaceProgram_, deferredProgram_;  // only after enableDeferred
+  gl::VertexArray emptyVertexArray_;
   gl::Buffer vertices_, indices_, instances_;
   gl::VertexArray vertexArray_;
   gl::Object<gl::TextureDeleter> heightPages_;  // GL_TEXTURE_2D_ARRAY, R32F atlas

@@ -142,6 +142,9 @@ int main(int argc, char** argv) {
   app.add_flag("--hdr-target", render.hdrTarget,
                "Keep the HDR target and the post pass where the scene needs neither (no tone map, exposure 1, "
                "no MSAA, supersampling, sky, probes, blending or transmission): the reference for the direct path");
+  app.add_flag("--forward-terrain", render.forwardTerrain,
+               "Shade the terrain where its patches are drawn, not once a pixel from the surface they leave (the "
+               "default without MSAA): the reference for the deferred terrain");
   app.add_option("--terrain-error", render.terrainErrorOverride,
                  "The terrain's LOD target: screen-space error in pixels (default: the scene's terrain.error_pixels)")
       ->check(CLI::Range(0.05, 64.0));

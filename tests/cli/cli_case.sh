@@ -381,7 +381,10 @@ PY
     # The other animation knobs: every robot blended by DQS builds no LBS variant.
     expect 0 "dqs4" -- "$BIN/demo" --describe --skin-blend dqs
     if grep "^variants:" "$OUT" | grep -q "lbs"; then echo "FAIL: --skin-blend dqs built an LBS variant"; cat "$OUT"; exit 1; fi
-    expect 0 "terrain\(cdlod, 4 px\)" -- "$BIN/demo" "$SRC/assets/scenes/terrain.json" --describe --terrain-error 4 --size 320x180
+    expect 0 "terrain\(cdlod, 4 px, deferred" -- "$BIN/demo" "$SRC/assets/scenes/terrain.json" --describe --terrain-error 4 --size 320x180
+    # The terrain shaded where drawn: asked for, and under MSAA (no per-sample surface).
+    expect 0 "terrain\(cdlod, 2 px, forward\)" -- "$BIN/demo" "$SRC/assets/scenes/terrain.json" --describe --forward-terrain --size 320x180
+    expect 0 "terrain\(cdlod, 2 px, forward\)" -- "$BIN/demo" "$SRC/assets/scenes/terrain.json" --describe --msaa 4 --size 320x180
     expect 2 "rotations" -- "$BIN/demo" --describe --rotations squad ;;
   describe_materials)
     # The material test model: one variant per combination it uses, a masked
