@@ -213,6 +213,10 @@ struct SceneRenderer::Impl {
   gl::Texture sunStaticMap;
   bool sunStaticValid = false;   // sunStaticMap holds the static casters for sunMapsKey
   bool sunMapHasMovers = false;  // sunShadowMap holds characters too
+  // The near map's texels the characters may have written in it last, x0 y0 x1 y1
+  // (end exclusive): all a kept map's static depth needs back.
+  glm::ivec4 sunMoversRect{0};
+  glm::ivec4 moversFootprint(const std::vector<DrawItem>& movers, const glm::mat4& lightViewProjection) const;
   double pointNear = 0.05, pointFar = 50.0;
   int pcfRadius = 0;
   // Without characters nothing moves: the point light's cube map (which does not
