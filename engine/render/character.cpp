@@ -161,10 +161,12 @@ Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewPr
 
 Status CharacterInstance::drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                                         const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly,
-                                        int node, int primitive, std::span<const IndirectDraw> indirect) {
+                                        int node, int primitive, std::span<const IndirectDraw> indirect,
+                                        bool nearSunOnly) {
   auto f = frame(viewProjection, mode, setUniforms);
   if (!f) return f.error();
   f->depthOnly = depthOnly;
+  f->nearSunOnly = nearSunOnly;
   f->indirect = indirect;
   return drawModelPrimitive(variants, asset_->model, asset_->gpu, *f, node, primitive);
 }

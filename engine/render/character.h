@@ -79,10 +79,11 @@ class CharacterInstance {
                    const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive,
                    std::span<const IndirectDraw> indirect = {});
   // One primitive, in whatever pass state the caller set (a scene's draw items);
-  // with `indirect`, from GPU culling's commands (ModelFrame::indirect).
+  // with `indirect`, from GPU culling's commands (ModelFrame::indirect);
+  // `nearSunOnly`: ShaderVariant::nearSunOnly.
   Status drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                        const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly, int node,
-                       int primitive, std::span<const IndirectDraw> indirect = {});
+                       int primitive, std::span<const IndirectDraw> indirect = {}, bool nearSunOnly = false);
   // The u_model of each instance of node `node`'s primitives with `influences`
   // joints, placed for the last place() view (primitiveInstanceModels).
   std::vector<glm::mat4> instanceModels(SkinMode mode, int node, int influences) const;

@@ -34,6 +34,7 @@ std::string ShaderVariant::describe() const {
   if (anisotropy) name += "+anisotropy";
   if (iridescence) name += "+iridescence";
   if (matte) name += "+matte";
+  if (nearSunOnly) name += "+nearsun";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -42,6 +43,7 @@ Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& asked,
                                               const std::vector<std::string>& feedback) {
   ShaderVariant variant = asked;
   variant.matte = asked.matte && classic_ && !asked.depthOnly;
+  variant.nearSunOnly = asked.nearSunOnly && farSun_ && !asked.depthOnly;
   // Programs with transform feedback (one-off captures) live in their own cache:
   // a pointer handed out for the plain variant stays valid and keeps its program.
   if (feedback.empty()) {
@@ -58,6 +60,7 @@ Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& asked,
 
 Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const std::vector<std::string>& feedback) const {
   std::vector<std::string> defines = defines_;
+  if (variant.nearSunOnly) std::erase(defines, std::string(kFarSunDefine));
   if (variant.textured) defines.push_back("TEXTURED 1");
   if (variant.depthOnly) defines.push_back("DEPTH_ONLY 1");
   if (variant.normalMap) defines.push_back("NORMAL_MAP 1");
@@ -369,7 +372,8 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   const GpuPrimitive& prim = gpu.meshes()[size_t(node.mesh)][p];
   const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[p];
   const gl::VertexArray* cached = frame.skinCache ? frame.skinCache->vertexArray(int(n), int(p)) : nullptr;
-  const ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly, cached != nullptr);
+  ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly, cached != nullptr);
+  variant.nearSunOnly = frame.nearSunOnly;
   const MaterialData* material = materialOf(model, prim.material);
   auto program = variants.get(variant);
   if (!program) return program.error();

@@ -69,6 +69,11 @@ struct ShaderVariant {
   // Classic shading of a material without a highlight (specular 0: CLASSIC_MATTE,
   // common/shading.glsl). ShaderVariants drops it where its shaders are not classic.
   bool matte = false;
+  // A draw lying wholly where the sun's near map covers fully (render/lighting.h's
+  // withinNearSunMap): the far map's lookups left out (SUN_FAR_SHADOWS), which
+  // shadows.glsl weighs by zero there: the same bytes. ShaderVariants drops it where
+  // its programs have no far map.
+  bool nearSunOnly = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -84,7 +89,8 @@ class ShaderVariants {
         vertexShader_(std::move(vertexShader)),
         fragmentShader_(std::move(fragmentShader)),
         defines_(std::move(defines)),
-        classic_(std::find(defines_.begin(), defines_.end(), "CLASSIC 1") != defines_.end()) {}
+        classic_(std::find(defines_.begin(), defines_.end(), "CLASSIC 1") != defines_.end()),
+        farSun_(std::find(defines_.begin(), defines_.end(), kFarSunDefine) != defines_.end()) {}
   // `feedback` names varyings to capture with transform feedback (tests).
   Result<const gl::Program*> get(const ShaderVariant& variant,
                                  const std::vector<std::string>& feedback = {});
@@ -97,7 +103,9 @@ class ShaderVariants {
   std::string vertexShader_;
   std::string fragmentShader_;
   std::vector<std::string> defines_;  // for every variant (shading model, shadows, fog)
+  static constexpr const char* kFarSunDefine = "SUN_FAR_SHADOWS 1";
   bool classic_;                      // defines_ has CLASSIC: ShaderVariant::matte applies
+  bool farSun_;                       // defines_ has SUN_FAR_SHADOWS: ShaderVariant::nearSunOnly applies
   std::map<ShaderVariant, gl::Program> programs_;
   std::map<std::pair<ShaderVariant, std::vector<std::string>>, gl::Program> feedbackPrograms_;
 };
@@ -233,6 +241,7 @@ struct ModelFrame {
   // Sets what the program needs besides the mesh and material (lights, shadows).
   std::function<void(const gl::Program&)> setUniforms;
   bool depthOnly = false;  // shadow passes: no material, depth-only variant
+  bool nearSunOnly = false;  // ShaderVariant::nearSunOnly for every primitive drawn
   // The largest error a level of detail may have, as MeshLod::error states it (the
   // coarsest level within it is drawn); 0: every mesh in full.
   float lodBudget = 0.0f;

@@ -1,7 +1,10 @@
 // SceneRenderer's draws: each view's culled, sorted draw items and their
 // submission; the world of one view (its opaque draws, the terrain, the sky behind
 // them, then transmissive and blended draws) and the reflection probes.
+#include <algorithm>
+
 #include "render/scene_renderer_impl.h"
+#include "render/sun_coverage.h"
 
 namespace engine {
 namespace {
@@ -64,7 +67,24 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
 ShaderVariant SceneRenderer::Impl::shapeVariant(const ShapeDraw& shape, bool depthOnly) const {
   ShaderVariant v{0, SkinMode::Linear, !depthOnly && materialTextures[size_t(shape.material)].id() != 0, depthOnly};
   v.matte = scene.materials[size_t(shape.material)].specular <= 0.0f;
+  v.nearSunOnly = !depthOnly && nearSunCovers(shape.lo - eye, shape.hi - eye);
   return v;
+}
+
+// The far sun map's nine taps run for every fragment of a program that has them
+// (llvmpipe runs both sides of an `if`): about 15 CPU ms of demo.json's frame,
+// whose shapes and robots all lie where the near map covers.
+bool SceneRenderer::Impl::nearSunCovers(const glm::dvec3& lo, const glm::dvec3& hi) const {
+  return sunFarShadows && withinNearSunMap(glm::dmat4(frame.sunShadowMatrix), lo, hi, sunTexelWorld);
+}
+
+// The near sun map covers the character's bounding sphere (every pose's).
+bool SceneRenderer::Impl::characterNearSunOnly(const CharacterDraw& c) const {
+  const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
+  const glm::dmat3 linear(c.world);
+  const double r =
+      c.localRadius * std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
+  return nearSunCovers(center - r, center + r);
 }
 
 // The scene's shapes for one view: culled, each with its program (shadow passes
@@ -105,6 +125,7 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
     const ModelData& model = c.instance->asset().model;
     const SkinMode mode = skinModeOf(c.desc);
     const bool cached = c.instance->skinCache() != nullptr;
+    const bool nearSunOnly = !depthOnly && characterNearSunOnly(c);
     const double distance = glm::length(center);
     for (int n = 0; n < int(model.nodes.size()); ++n) {
       const NodeData& node = model.nodes[size_t(n)];
@@ -114,7 +135,9 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
         const PrimitiveData& prim = prims[size_t(p)];
         const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
         if (blend && depthOnly) continue;
-        auto program = variants->get(primitiveVariant(model, node, prim, mode, depthOnly, cached));
+        ShaderVariant variant = primitiveVariant(model, node, prim, mode, depthOnly, cached);
+        variant.nearSunOnly = nearSunOnly && !blend;
+        auto program = variants->get(variant);
         if (!program) return program.error();
         const GLuint id = (*program)->id();
         const bool transmissive =
@@ -239,8 +262,9 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
       continue;
     }
     CharacterDraw& c = characters[size_t(item.object)];
+    const bool nearSunOnly = !pass.depthOnly && characterNearSunOnly(c);
     if (auto s = c.instance->drawPrimitive(*variants, pass.viewProjection, skinModeOf(c.desc), set, pass.depthOnly,
-                                           item.node, item.primitive, indirect);
+                                           item.node, item.primitive, indirect, nearSunOnly);
         !s) {
       return s;
     }

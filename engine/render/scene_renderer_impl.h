@@ -56,6 +56,7 @@ struct ShapeDraw {
   int material = 0;
   glm::dvec3 center{0.0};
   double radius = -1.0;
+  glm::dvec3 lo{0.0}, hi{0.0};  // world bounds: its mesh's, placed
   bool twoSided = false;
   int probe = -1;  // reflection probe of a mirror shape
 };
@@ -216,6 +217,10 @@ struct SceneRenderer::Impl {
   // The near map's texels the characters may have written in it last, x0 y0 x1 y1
   // (end exclusive): all a kept map's static depth needs back.
   glm::ivec4 sunMoversRect{0};
+  // Whether a colour pass's draw may leave the far sun map out (ShaderVariant::
+  // nearSunOnly): the frame block's near map covers its world bounds fully.
+  bool nearSunCovers(const glm::dvec3& lo, const glm::dvec3& hi) const;
+  bool characterNearSunOnly(const CharacterDraw& c) const;
   glm::ivec4 moversFootprint(const std::vector<DrawItem>& movers, const glm::mat4& lightViewProjection) const;
   double pointNear = 0.05, pointFar = 50.0;
   int pcfRadius = 0;

@@ -3,6 +3,7 @@
 #include "render/scene_renderer_impl.h"
 
 #include <cstdio>
+#include <limits>
 
 namespace engine {
 namespace {
@@ -369,6 +370,16 @@ void SceneRenderer::Impl::addShapes() {
         p.type == PrimitiveType::Sphere ? sphere : p.type == PrimitiveType::Box ? cube : quad;
     if (!mesh) mesh = std::make_unique<GpuMesh>(shapeForPrimitive(p));
     draw.mesh = mesh.get();
+    const cull::Cluster& whole = mesh->clusters()[mesh->clusterRange().first + mesh->clusterRange().count];
+    draw.lo = glm::dvec3(std::numeric_limits<double>::max());
+    draw.hi = glm::dvec3(std::numeric_limits<double>::lowest());
+    for (int i = 0; i < 8; ++i) {
+      const glm::dvec3 corner(i & 1 ? whole.hi.x : whole.lo.x, i & 2 ? whole.hi.y : whole.lo.y,
+                              i & 4 ? whole.hi.z : whole.lo.z);
+      const glm::dvec3 placed(draw.world * glm::dvec4(corner, 1.0));
+      draw.lo = glm::min(draw.lo, placed);
+      draw.hi = glm::max(draw.hi, placed);
+    }
     if (p.type == PrimitiveType::Sphere) {
       draw.center = p.center;
       draw.radius = p.radius;
@@ -408,6 +419,14 @@ Status SceneRenderer::Impl::buildVariants() {
     }
   }
   if ((sunShadows || pointShadows) && !shapes.empty()) needed.push_back({0, SkinMode::Linear, false, true});
+  // Each colour program also without the far sun map, for draws the near map
+  // covers (ShaderVariant::nearSunOnly; which ones depends on the camera).
+  for (std::size_t i = 0, n = needed.size(); i < n && sunFarShadows; ++i) {
+    if (needed[i].depthOnly) continue;
+    ShaderVariant nearOnly = needed[i];
+    nearOnly.nearSunOnly = true;
+    needed.push_back(nearOnly);
+  }
   for (const ShaderVariant& v : needed) {
     auto program = variants->get(v);
     if (!program) return program.error();
