@@ -14,6 +14,7 @@
 #include "app/runner.h"
 #include "core/image.h"
 #include "gl/debug.h"
+#include "golden_views.h"
 #include "asset/gltf_loader.h"
 #include "asset/scene_file.h"
 #include "scene_game.h"
@@ -113,18 +114,8 @@ std::unique_ptr<Game> makeScene(const GoldenCase& c) {
                                                          : "/scenes/terrain.json";
     auto scene = loadSceneFile(kAssets + file);
     if (!scene) return nullptr;
-    if (c.scene == SceneKind::TerrainOverview) {
-      // The terrain's second viewpoint: high above, looking over the valley to the
-      // mountains, where coarse LOD levels and the morph between them show.
-      scene->camera.position = glm::dvec3(800.0, 650.0, 1500.0);
-      scene->camera.forward = glm::normalize(glm::dvec3(0.0, -450.0, -1500.0));
-    }
-    if (c.scene == SceneKind::TerrainLowSun) {
-      // The valley at a low sun from the left: the mountains on that side shade the
-      // valley and the robots in it (near and far sun maps, the terrain casting)
-      // while the far slopes facing the sun stay lit.
-      scene->lights[0].direction = glm::normalize(glm::dvec3(-0.95, 0.2, 0.2));
-    }
+    if (c.scene == SceneKind::TerrainOverview) test::useTerrainOverview(*scene);
+    if (c.scene == SceneKind::TerrainLowSun) test::useTerrainLowSun(*scene);
     SceneRenderOptions options;
     options.shaderDir = kShaders;
     options.msaaOverride = c.msaa;

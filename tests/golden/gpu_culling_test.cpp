@@ -15,6 +15,7 @@
 #include "asset/gltf_loader.h"
 #include "asset/scene_file.h"
 #include "core/image.h"
+#include "golden_views.h"
 #include "scene_game.h"
 #include "viewer_scene.h"
 
@@ -77,11 +78,8 @@ std::unique_ptr<Game> makeCullingGame(const CullingCase& c, bool culling) {
   auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + c.file);
   EXPECT_TRUE(scene.ok()) << scene.error().message;
   if (!scene) return nullptr;
-  if (c.view == 1) {
-    scene->camera.position = glm::dvec3(800.0, 650.0, 1500.0);
-    scene->camera.forward = glm::normalize(glm::dvec3(0.0, -450.0, -1500.0));
-  }
-  if (c.view == 2) scene->lights[0].direction = glm::normalize(glm::dvec3(-0.95, 0.2, 0.2));
+  if (c.view == 1) test::useTerrainOverview(*scene);
+  if (c.view == 2) test::useTerrainLowSun(*scene);
   SceneRenderOptions options;
   options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
   options.msaaOverride = c.msaa;
@@ -94,16 +92,7 @@ std::unique_ptr<Game> makeCullingGame(const CullingCase& c, bool culling) {
 Image renderCullingCase(Backend backend, const CullingCase& c, bool culling) {
   auto game = makeCullingGame(c, culling);
   if (!game) return {};
-  RunOptions run;
-  run.width = 640;
-  run.height = 360;
-  run.time = c.time;
-  run.frames = 3;
-  run.debugGl = true;
-  Image image;
-  auto status = runHeadless(backend, *game, run, &image);
-  EXPECT_TRUE(status.ok()) << status.error().message;
-  return image;
+  return test::goldenFrame(backend, *game, c.time);
 }
 
 using CullingParam = std::tuple<Backend, int>;
@@ -124,11 +113,8 @@ TEST_P(GpuCullingGolden, CulledImageIsTheUnculledOneBitForBit) {
   EXPECT_EQ(differing, 0u) << c.name << ": culling changed " << differing
                            << " bytes; both images written to build/golden-failures/";
   if (differing > 0) {
-    const std::filesystem::path out = std::filesystem::path(ENGINE_BINARY_DIR) / "golden-failures";
-    std::filesystem::create_directories(out);
-    const std::string stem = std::string("culling_") + c.name + "_" + std::string(backendName(backend));
-    (void)writePng((out / (stem + "_off.png")).string(), off);
-    (void)writePng((out / (stem + "_on.png")).string(), on);
+    test::writeFailurePair(std::string("culling_") + c.name + "_" + std::string(backendName(backend)), "off", off,
+                           "on", on);
   }
 }
 

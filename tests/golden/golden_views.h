@@ -1,0 +1,57 @@
+#pragma once
+// What the golden tests share: terrain.json's two other viewpoints (golden_test.cpp's
+// terrain_overview and terrain_low_sun cases, which the culling and deferred-terrain
+// tests draw again) and where a failed comparison leaves its two images.
+#include <filesystem>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include <gtest/gtest.h>
+
+#include "app/runner.h"
+#include "asset/scene_desc.h"
+#include "core/image.h"
+
+namespace engine::test {
+
+// The terrain's second viewpoint: high above, looking over the valley to the
+// mountains, where coarse LOD levels and the morph between them show.
+inline void useTerrainOverview(SceneDesc& scene) {
+  scene.camera.position = glm::dvec3(800.0, 650.0, 1500.0);
+  scene.camera.forward = glm::normalize(glm::dvec3(0.0, -450.0, -1500.0));
+}
+
+// The valley at a low sun from the left: the mountains on that side shade the
+// valley and the robots in it (near and far sun maps, the terrain casting) while
+// the far slopes facing the sun stay lit.
+inline void useTerrainLowSun(SceneDesc& scene) {
+  scene.lights[0].direction = glm::normalize(glm::dvec3(-0.95, 0.2, 0.2));
+}
+
+// `game`'s frame at `time` as golden_test.cpp draws it: 640x360, the third frame of
+// a still camera (the sun maps' kept path), GL debug output on; empty on failure.
+inline Image goldenFrame(Backend backend, Game& game, double time) {
+  RunOptions run;
+  run.width = 640;
+  run.height = 360;
+  run.time = time;
+  run.frames = 3;
+  run.debugGl = true;
+  Image image;
+  auto status = runHeadless(backend, game, run, &image);
+  EXPECT_TRUE(status.ok()) << status.error().message;
+  return image;
+}
+
+// Two images that should have agreed, as build/golden-failures/STEM_A.png and
+// STEM_B.png, to be looked at.
+inline void writeFailurePair(const std::string& stem, const std::string& nameA, const Image& a,
+                             const std::string& nameB, const Image& b) {
+  const std::filesystem::path out = std::filesystem::path(ENGINE_BINARY_DIR) / "golden-failures";
+  std::filesystem::create_directories(out);
+  (void)writePng((out / (stem + "_" + nameA + ".png")).string(), a);
+  (void)writePng((out / (stem + "_" + nameB + ".png")).string(), b);
+}
+
+}  // namespace engine::test
