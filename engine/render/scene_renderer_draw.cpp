@@ -10,6 +10,11 @@ namespace engine {
 namespace {
 
 constexpr double kProbeNear = 0.01;
+// A colour pass hands its draws to llvmpipe's threads (glFlush) each time this
+// many triangles have been submitted (at full detail). Fifty CesiumMan of 4,672
+// triangles, medians of six alternated runs in a busy hour: unflushed 25.4 ms a
+// frame; flushed after every draw 24.8, every second 23.1, every third 22.0.
+constexpr std::size_t kFlushTriangles = 12288;
 
 bool sphereVisible(const glm::dvec4 planes[6], const glm::dvec3& center, double radius) {
   if (radius < 0.0) return true;
@@ -247,8 +252,17 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
     setUniforms(p);
     if (pass.depthOnly) p.set("u_lightViewProjection", pass.lightViewProjection);
   };
+  std::size_t pending = 0;  // triangles submitted since the last flush
   for (std::size_t k = 0; k < items.size(); ++k) {
     const DrawItem& item = items[k];
+    // llvmpipe's threads shade what a flush hands them while this thread goes on
+    // with the next draws' vertices; unflushed, a pass's fragments wait for the
+    // frame's end. Depth passes are cheap to shade, and keep one batch.
+    if (!pass.depthOnly && pending >= kFlushTriangles) {
+      glFlush();
+      pending = 0;
+    }
+    pending += itemTriangles(item);
     const std::span<const IndirectDraw> indirect =
         commands ? std::span<const IndirectDraw>((*commands)[k]) : std::span<const IndirectDraw>();
     ++stats->drawCalls;
@@ -270,6 +284,15 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
     }
   }
   return Ok{};
+}
+
+// A draw item's triangles at full detail (an upper bound: a level of detail draws fewer).
+std::size_t SceneRenderer::Impl::itemTriangles(const DrawItem& item) const {
+  if (item.source == DrawItem::Source::Shape) return std::size_t(shapes[size_t(item.object)].mesh->indexCount()) / 3;
+  const CharacterAsset& asset = characters[size_t(item.object)].instance->asset();
+  const int mesh = asset.model.nodes[size_t(item.node)].mesh;
+  const GpuPrimitive& prim = asset.gpu.meshes()[size_t(mesh)][size_t(item.primitive)];
+  return std::size_t(prim.indexCount > 0 ? prim.indexCount : prim.vertexCount) / 3;
 }
 
 void SceneRenderer::Impl::drawSky(const gl::Program& program, const glm::dmat4& viewProjection, bool sunDisk) {

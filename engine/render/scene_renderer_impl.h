@@ -316,6 +316,7 @@ struct SceneRenderer::Impl {
   ShaderVariant shapeVariant(const ShapeDraw& shape, bool depthOnly) const;
   Status collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists);
   Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands = nullptr);
+  std::size_t itemTriangles(const DrawItem& item) const;
   Status submitItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands);
   double animationMs = 0.0;  // the last update's
   void drawShape(const ShapeDraw& shape, const gl::Program& program, const PassInputs& pass,
