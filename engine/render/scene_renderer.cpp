@@ -180,18 +180,18 @@ Status SceneRenderer::Impl::deformCharacters() {
 
 // The direct path's colour image in drawFbo: the caller's (`caller`, when it can be
 // attached elsewhere), else drawFbo's own. True when the caller's is attached.
+// Attached anew every frame: a caller's resized target may be a new image under
+// the name of the one it deleted.
 bool SceneRenderer::Impl::useColourOf(const gl::FramebufferLayout* caller) {
   const GLuint wanted = caller && caller->colorObjectType != GL_NONE ? caller->colorObject : 0;
-  if (wanted != borrowedColour) {
-    if (wanted == 0) {
-      drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
-    } else if (caller->colorObjectType == GL_RENDERBUFFER) {
-      glNamedFramebufferRenderbuffer(drawFbo.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, wanted);
-    } else {
-      glNamedFramebufferTexture(drawFbo.id(), GL_COLOR_ATTACHMENT0, wanted, caller->colorLevel);
-    }
-    borrowedColour = wanted;
+  if (wanted == 0) {
+    if (borrowedColour != 0) drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
+  } else if (caller->colorObjectType == GL_RENDERBUFFER) {
+    glNamedFramebufferRenderbuffer(drawFbo.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, wanted);
+  } else {
+    glNamedFramebufferTexture(drawFbo.id(), GL_COLOR_ATTACHMENT0, wanted, caller->colorLevel);
   }
+  borrowedColour = wanted;
   return wanted != 0;
 }
 

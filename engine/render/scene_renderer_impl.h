@@ -183,7 +183,7 @@ struct SceneRenderer::Impl {
   // terrain is nearest. Without MSAA, in the main view (probes draw it forward).
   bool deferredTerrain = false;
   gl::Texture terrainSurface;
-  // The caller's colour image attached to drawFbo in hdr's place (useColourOf), or 0.
+  // The caller's colour image attached to drawFbo in hdr's place last frame (useColourOf), or 0.
   GLuint borrowedColour = 0;
   bool useColourOf(const gl::FramebufferLayout* caller);
   GLenum depthFormat() const { return deferredTerrain ? GL_DEPTH32F_STENCIL8 : GL_DEPTH_COMPONENT32F; }

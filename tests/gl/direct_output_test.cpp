@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdint>
+#include <set>
 #include <vector>
 
 #include "../support/gl_test.h"
@@ -200,4 +202,44 @@ TEST_P(DirectOutput, DrawsIntoTheCallersFramebufferOrCopiesTheSameBytes) {
   const std::vector<unsigned char> copied = readColour(fixedDepth.framebuffer.id(), kW, kH);
   EXPECT_TRUE(fromTarget.pixels == copied) << "RenderTarget against the copy";
   EXPECT_TRUE(readColour(floatDepth.framebuffer.id(), kW, kH) == copied) << "RGBA8 caller against the copy";
+}
+
+// With the deferred terrain the direct path draws into its own framebuffer with the
+// caller's colour image attached (no copy): demo.json (a terrain, no HDR effect).
+// A caller that replaces its target between frames (a resized window's) has a new
+// image; the frame must land in it, the same bytes as in the first. (Mesa names the
+// new image anew; the renderer attaches the caller's image every frame, so a
+// driver that reused the deleted one's name would be served too.)
+TEST_P(DirectOutput, TheDeferredTerrainDrawsIntoTheCallersNewTarget) {
+  auto scene = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/demo.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  SceneRenderOptions options;
+  options.shaderDir = test::shaderDir();
+  auto renderer = SceneRenderer::create(*scene, options);
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  ASSERT_TRUE((*renderer)->update(1.0).ok());
+  constexpr int kW = 192, kH = 108;
+  auto frameIn = [&](const RenderTarget& target) {
+    target.bind();
+    const Status status = (*renderer)->render((*renderer)->initialCamera(), kW, kH);
+    EXPECT_TRUE(status.ok()) << status.error().message;
+    EXPECT_EQ((*renderer)->stats().frameCopies, 0) << "the caller's image is drawn into, not copied to";
+    return target.readPixels();
+  };
+  Image first;
+  {
+    auto target = RenderTarget::create(kW, kH, 1);
+    ASSERT_TRUE(target.ok());
+    first = frameIn(*target);
+  }
+  auto replaced = RenderTarget::create(kW, kH, 1);
+  ASSERT_TRUE(replaced.ok());
+  const Image second = frameIn(*replaced);
+  EXPECT_NE((*renderer)->describe().find("deferred"), std::string::npos);
+  EXPECT_TRUE(first.pixels == second.pixels) << "the replaced target's frame";
+  // Not a blank frame: the sky's and the ground's colours both show.
+  std::set<std::uint32_t> colours;
+  for (size_t i = 0; i + 3 < second.pixels.size(); i += 4)
+    colours.insert(std::uint32_t(second.pixels[i]) << 16 | std::uint32_t(second.pixels[i + 1]) << 8 | second.pixels[i + 2]);
+  EXPECT_GT(colours.size(), 100u);
 }
