@@ -83,12 +83,17 @@ bool SceneRenderer::Impl::nearSunCovers(const glm::dvec3& lo, const glm::dvec3& 
   return sunFarShadows && withinNearSunMap(glm::dmat4(frame.sunShadowMatrix), lo, hi, sunTexelWorld);
 }
 
-// The near sun map covers the character's bounding sphere (every pose's).
-bool SceneRenderer::Impl::characterNearSunOnly(const CharacterDraw& c) const {
+// The character's bounding sphere (of every pose), placed: camera-relative, its
+// radius grown by the placement's largest scale.
+std::pair<glm::dvec3, double> SceneRenderer::Impl::placedSphere(const CharacterDraw& c) const {
   const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
   const glm::dmat3 linear(c.world);
-  const double r =
-      c.localRadius * std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
+  return {center, c.localRadius * std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])})};
+}
+
+// The near sun map covers the character's placed bounding sphere.
+bool SceneRenderer::Impl::characterNearSunOnly(const CharacterDraw& c) const {
+  const auto [center, r] = placedSphere(c);
   return nearSunCovers(center - r, center + r);
 }
 

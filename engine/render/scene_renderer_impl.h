@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -220,6 +221,7 @@ struct SceneRenderer::Impl {
   // Whether a colour pass's draw may leave the far sun map out (ShaderVariant::
   // nearSunOnly): the frame block's near map covers its world bounds fully.
   bool nearSunCovers(const glm::dvec3& lo, const glm::dvec3& hi) const;
+  std::pair<glm::dvec3, double> placedSphere(const CharacterDraw& c) const;
   bool characterNearSunOnly(const CharacterDraw& c) const;
   glm::ivec4 moversFootprint(const std::vector<DrawItem>& movers, const glm::mat4& lightViewProjection) const;
   double pointNear = 0.05, pointFar = 50.0;

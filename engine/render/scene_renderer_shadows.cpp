@@ -70,10 +70,6 @@ void SceneRenderer::Impl::drawTerrainShadow(const SunBox& box, double fovy, int 
 
 namespace {
 
-void copySunMap(const gl::Texture& from, const gl::Texture& to, int size) {
-  glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, size, size, 1);
-}
-
 // `rect`'s texels (x0 y0 x1 y1, end exclusive) of one map into the other.
 void copySunMapRect(const gl::Texture& from, const gl::Texture& to, const glm::ivec4& rect) {
   if (rect.z <= rect.x || rect.w <= rect.y) return;
@@ -91,11 +87,7 @@ glm::ivec4 SceneRenderer::Impl::moversFootprint(const std::vector<DrawItem>& mov
                                                 const glm::mat4& lightViewProjection) const {
   glm::dvec2 low(std::numeric_limits<double>::max()), high(std::numeric_limits<double>::lowest());
   for (const DrawItem& item : movers) {
-    const CharacterDraw& c = characters[size_t(item.object)];
-    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
-    const glm::dmat3 linear(c.world);
-    const double scale = std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
-    const double r = c.localRadius * scale;
+    const auto [center, r] = placedSphere(characters[size_t(item.object)]);
     for (int corner = 0; corner < 8; ++corner) {
       const glm::dvec3 offset((corner & 1) ? r : -r, (corner & 2) ? r : -r, (corner & 4) ? r : -r);
       const glm::dvec4 clip = glm::dmat4(lightViewProjection) * glm::dvec4(center + offset, 1.0);
@@ -143,7 +135,7 @@ Status SceneRenderer::Impl::drawSunNear(const SunBox& box, bool still, double fo
     if (terrain) drawTerrainShadow(box, fovy, viewportHeight);
     if (still && anyStatic && !movers.empty()) {
       if (sunStaticMap.id() == 0) sunStaticMap = makeSunShadowMap(sunShadowSize);
-      copySunMap(sunShadowMap, sunStaticMap, sunShadowSize);
+      copySunMapRect(sunShadowMap, sunStaticMap, glm::ivec4(0, 0, sunShadowSize, sunShadowSize));
       sunStaticValid = true;
     }
   }

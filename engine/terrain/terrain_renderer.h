@@ -77,7 +77,6 @@ class TerrainRenderer {
   Status enableDeferred(const std::string& shaderDir, const std::vector<std::string>& defines);
   void shadeDeferred(const LodSelection& selection, const glm::dvec3& cameraPosition,
                      const glm::mat4& inverseViewProjection, const UniformSetter& setUniforms) const;
-  bool deferred() const { return bool(deferredProgram_); }
 
   // Depth only, through `lightViewProjection` (camera-relative world -> clip), for
   // a shadow map.
