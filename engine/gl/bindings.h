@@ -78,6 +78,9 @@ inline constexpr unsigned kHiZSource = 28;
 inline constexpr unsigned kHiZLevelImage = 1;
 inline constexpr unsigned kHiZ = 29;
 inline constexpr unsigned kCullClusters = 12;
+// The sRGB curve's table (core/srgb_curve.h, common/output.glsl): bound once a frame
+// for every program that writes display values, on a unit no other program samples.
+inline constexpr unsigned kSrgbTable = 30;
 inline constexpr unsigned kCullJobs = 13;
 inline constexpr unsigned kCullCommands = 14;
 inline constexpr unsigned kCullCounters = 15;
@@ -109,7 +112,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 66> kDefines{{
+inline constexpr std::array<Define, 67> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -155,6 +158,7 @@ inline constexpr std::array<Define, 66> kDefines{{
     {"UNIT_HIZ_SOURCE", kHiZSource},
     {"IMAGE_HIZ_LEVEL", kHiZLevelImage},
     {"UNIT_HIZ", kHiZ},
+    {"UNIT_SRGB_TABLE", kSrgbTable},
     {"BUFFER_CULL_CLUSTERS", kCullClusters},
     {"BUFFER_CULL_JOBS", kCullJobs},
     {"BUFFER_CULL_COMMANDS", kCullCommands},

@@ -3,16 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/srgb_curve.h"
+
 namespace engine::rt {
 namespace {
 
 // Narkowicz's fit of the ACES filmic curve (2015), the rasterizer's choice too.
 float aces(float x) {
   return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
-}
-
-float srgbEncode(float v) {
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 
 }  // namespace
@@ -36,8 +34,9 @@ std::uint8_t encodeChannel(float v, OutputCurve curve) {
   // NaN fails every comparison; treat it as black rather than as undefined.
   if (!(v > 0.0f)) v = 0.0f;
   v = std::min(v, 1.0f);
-  v = curve == OutputCurve::Gamma22 ? std::pow(v, 1.0f / 2.2f) : srgbEncode(v);
-  return std::uint8_t(int(v * 255.0f + 0.5f));
+  // The rasterizer's sRGB bytes (core/srgb_curve.h).
+  if (curve != OutputCurve::Gamma22) return srgbByte(v);
+  return std::uint8_t(int(std::pow(v, 1.0f / 2.2f) * 255.0f + 0.5f));
 }
 
 Image toImage(const Framebuffer& framebuffer, const RenderDesc& render) {

@@ -36,8 +36,8 @@ CharacterInstance::CharacterInstance(std::shared_ptr<const CharacterAsset> asset
   pose_.joints.resize(joints);
   nodeWorlds_.resize(asset_->model.nodes.size());
   for (const Skin& skin : asset_->animated.skins) {
-    // Room for either layout: one mat4 (LBS) or two vec4 (DQS) per joint.
-    skinBuffers_.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * sizeof(glm::mat4)));
+    // Room for either layout: three vec4 (LBS) or two (DQS) per joint.
+    skinBuffers_.push_back(gl::Buffer::create(std::max<size_t>(1, skin.joints.size()) * 3 * sizeof(glm::vec4)));
     skinPalettes_.push_back(gl::Texture::ofBuffer(skinBuffers_.back(), GL_RGBA32F));
   }
   if (!pose_.morphWeights.empty()) morphBuffer_ = gl::Buffer::create(pose_.morphWeights.size() * sizeof(float));
@@ -99,7 +99,8 @@ Status CharacterInstance::uploadPalettes(SkinMode mode) {
       if (auto status = runJob(DualQuatPaletteJob{palette_, dualQuats_}, where); !status) return status;
       skinBuffers_[s].upload(0, dualQuats_.size() * sizeof(DualQuat), dualQuats_.data());
     } else {
-      skinBuffers_[s].upload(0, palette_.size() * sizeof(glm::mat4), palette_.data());
+      lbsPaletteRows(palette_, paletteRows_);
+      skinBuffers_[s].upload(0, paletteRows_.size() * sizeof(glm::vec4), paletteRows_.data());
     }
   }
   return Ok{};

@@ -113,6 +113,7 @@ class CharacterInstance {
   glm::dmat4 root_{1.0};               // the model's root, camera-relative (place)
   std::vector<glm::mat4> nodeWorlds_;  // per glTF node, camera-relative (place)
   std::vector<glm::mat4> palette_;     // scratch, reused every frame
+  std::vector<glm::vec4> paletteRows_;  // scratch: palette_ as the shaders read it
   std::vector<DualQuat> dualQuats_;    // scratch
   std::vector<gl::Buffer> skinBuffers_;
   std::vector<gl::Texture> skinPalettes_;  // each of skinBuffers_ as shaders read it

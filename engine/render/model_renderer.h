@@ -201,6 +201,17 @@ inline bool skinnedBy(const NodeData& node, int influences, SkinMode mode) {
   return node.skin >= 0 && influences > 0 && mode != SkinMode::None;
 }
 
+// An LBS palette as common/skinning.glsl reads it: three texels a joint, the rows
+// of its affine matrix (the fourth row of a skinning matrix is 0 0 0 1). A fourth
+// texel a joint cost 16 fetches a vertex where 12 do.
+inline void lbsPaletteRows(std::span<const glm::mat4> palette, std::vector<glm::vec4>& rows) {
+  rows.resize(3 * palette.size());
+  for (size_t j = 0; j < palette.size(); ++j) {
+    const glm::mat4& m = palette[j];
+    for (int r = 0; r < 3; ++r) rows[3 * j + size_t(r)] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+  }
+}
+
 // The variant a primitive of `node` is drawn with (skinning mode, material
 // textures, alpha mask), for a colour pass or, with `depthOnly`, a shadow pass.
 // With `cached`, the primitive is drawn from a skin cache (render/skin_cache.h),

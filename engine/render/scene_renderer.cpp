@@ -1,5 +1,7 @@
 #include "render/scene_renderer_impl.h"
 
+#include "core/srgb_curve.h"
+
 namespace engine {
 namespace {
 
@@ -10,10 +12,8 @@ glm::vec3 displayValue(glm::vec3 c, const RenderDesc& render) {
   if (render.toneMap == ToneMap::Reinhard) c = c / (1.0f + c);
   if (render.toneMap == ToneMap::Aces) c = (c * (2.51f * c + 0.03f)) / (c * (2.43f * c + 0.59f) + 0.14f);
   c = glm::clamp(c, 0.0f, 1.0f);
-  const OutputCurve curve = render.output;
-  if (curve == OutputCurve::Gamma22) return glm::pow(c, glm::vec3(1.0f / 2.2f));
-  const glm::vec3 high = 1.055f * glm::pow(c, glm::vec3(1.0f / 2.4f)) - 0.055f;
-  return glm::mix(c * 12.92f, high, glm::step(glm::vec3(0.0031308f), c));
+  if (render.output == OutputCurve::Gamma22) return glm::pow(c, glm::vec3(1.0f / 2.2f));
+  return glm::vec3(srgbByte(c.r), srgbByte(c.g), srgbByte(c.b)) / 255.0f;
 }
 
 // The direct path draws into the caller's framebuffer itself, with no target of its
@@ -210,6 +210,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
     return status;
   }
   const bool borrowed = directOutput && !intoCaller && useColourOf(direct ? &callerLayout : nullptr);
+  if (srgbTable) srgbTable.bind(gl::binding::kSrgbTable);
   const glm::dvec3 cameraPosition = camera.position;
   const double aspect = double(width) / double(height);
   const double fovy = glm::radians(camera.fovyDegrees);

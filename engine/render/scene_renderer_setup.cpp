@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/srgb_curve.h"
+
 namespace engine {
 namespace {
 
@@ -116,6 +118,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   }
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
+  if (render.output != OutputCurve::Gamma22) makeSrgbTable();
   if (auto s = makeSky(); !s) return s;
   if (auto s = makePost(); !s) return s;
   emptyVao = gl::VertexArray::create();
@@ -300,6 +303,12 @@ bool SceneRenderer::Impl::needsNoHdrTarget() const {
       if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
   }
   return true;
+}
+
+void SceneRenderer::Impl::makeSrgbTable() {
+  static const std::vector<float> table = srgbEncodeTable();
+  srgbTableTexels = gl::Buffer::create(table.size() * sizeof(float), table.data(), 0);
+  srgbTable = gl::Texture::ofBuffer(srgbTableTexels, GL_RG32F);
 }
 
 std::vector<std::string> SceneRenderer::Impl::displayDefines() const {

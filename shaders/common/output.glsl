@@ -20,9 +20,21 @@ vec3 toneMapped(vec3 c) {
 #endif
 }
 
-vec3 srgbEncoded(vec3 c) {
-  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+#ifndef OUTPUT_GAMMA22
+// The sRGB curve by core/srgb_curve.h's table (the renderer binds it): a bin's byte,
+// plus one from its threshold on. The exact curve's bytes, where pow() cost two
+// polynomials a channel on llvmpipe and was not exact.
+layout(binding = UNIT_SRGB_TABLE) uniform samplerBuffer u_srgbTable;
+
+// c in [0, 1]: its display value, a byte over 255.
+float srgbEncoded(float c) {
+  int bins = textureSize(u_srgbTable);
+  vec2 bin = texelFetch(u_srgbTable, min(int(c * float(bins)), bins - 1)).xy;
+  return (bin.x + (c >= bin.y ? 1.0 : 0.0)) / 255.0;
 }
+
+vec3 srgbEncoded(vec3 c) { return vec3(srgbEncoded(c.r), srgbEncoded(c.g), srgbEncoded(c.b)); }
+#endif
 
 // c: tone mapped and clamped to [0, 1].
 vec3 displayValue(vec3 c) {

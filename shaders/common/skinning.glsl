@@ -3,8 +3,9 @@
 // chosen per mesh by the renderer:
 //   INFLUENCES 4 or 8      joints per vertex (8 when the file has JOINTS_1)
 //   DUAL_QUAT              dual-quaternion skinning instead of linear blend
-// LBS: a joint's matrix is four texels (its columns); DQS: two, the real part
-// (rotation) and the dual part (translation).
+// LBS: a joint's matrix is three texels (the rows of its affine part,
+// render/model_renderer.h's lbsPaletteRows); DQS: two, the real part (rotation) and
+// the dual part (translation).
 layout(binding = UNIT_SKIN_PALETTE) uniform samplerBuffer u_palette;
 
 // The vertex's joints and weights: attributes here; skin.comp (SKIN_COMPUTE)
@@ -62,19 +63,19 @@ SkinTransform skinTransform() {
 vec3 skinPoint(SkinTransform s, vec3 p) { return rotateByQuat(s.rotation, p) + s.translation; }
 vec3 skinDirection(SkinTransform s, vec3 v) { return rotateByQuat(s.rotation, v); }
 #else
-// Linear blend skinning: the weighted sum of the joints' palette matrices.
+// Linear blend skinning: the weighted sum of the joints' palette matrices, kept as
+// rows (m[r] is row r of the affine matrix).
 struct SkinTransform {
-  mat4 m;
+  mat3x4 m;
 };
 
-mat4 paletteMatrix(uint joint) {
-  int i = int(4u * joint);
-  return mat4(texelFetch(u_palette, i), texelFetch(u_palette, i + 1), texelFetch(u_palette, i + 2),
-              texelFetch(u_palette, i + 3));
+mat3x4 paletteMatrix(uint joint) {
+  int i = int(3u * joint);
+  return mat3x4(texelFetch(u_palette, i), texelFetch(u_palette, i + 1), texelFetch(u_palette, i + 2));
 }
 
 SkinTransform skinTransform() {
-  mat4 m = a_weights0.x * paletteMatrix(a_joints0.x) + a_weights0.y * paletteMatrix(a_joints0.y) +
+  mat3x4 m = a_weights0.x * paletteMatrix(a_joints0.x) + a_weights0.y * paletteMatrix(a_joints0.y) +
            a_weights0.z * paletteMatrix(a_joints0.z) + a_weights0.w * paletteMatrix(a_joints0.w);
 #if INFLUENCES == 8
   m += a_weights1.x * paletteMatrix(a_joints1.x) + a_weights1.y * paletteMatrix(a_joints1.y) +
@@ -83,11 +84,11 @@ SkinTransform skinTransform() {
   return SkinTransform(m);
 }
 
-vec3 skinPoint(SkinTransform s, vec3 p) { return (s.m * vec4(p, 1.0)).xyz; }
+vec3 skinPoint(SkinTransform s, vec3 p) { return vec4(p, 1.0) * s.m; }
 // Inverse transpose would be exact for normals under non-uniform scale; skins
 // rarely scale non-uniformly and the cost is per vertex. Tangents lie in the
 // surface and take the matrix itself.
-vec3 skinDirection(SkinTransform s, vec3 v) { return mat3(s.m) * v; }
+vec3 skinDirection(SkinTransform s, vec3 v) { return vec4(v, 0.0) * s.m; }
 #endif
 
 void skin(inout vec3 position, inout vec3 normal) {

@@ -80,7 +80,10 @@ std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim
   gl::Buffer skin;
   gl::Texture palette;
   if (variant.influences > 0) {
-    skin = variant.mode == SkinMode::DualQuat ? gl::Buffer::fromSpan(inputs.dualQuats) : gl::Buffer::fromSpan(inputs.palette);
+    std::vector<glm::vec4> rows;
+    lbsPaletteRows(inputs.palette, rows);
+    skin = variant.mode == SkinMode::DualQuat ? gl::Buffer::fromSpan(inputs.dualQuats)
+                                              : gl::Buffer::fromSpan(std::span<const glm::vec4>(rows));
     palette = gl::Texture::ofBuffer(skin, GL_RGBA32F);
     palette.bind(gl::binding::kSkinPalette);
   }
