@@ -83,7 +83,11 @@ void main() {
 #endif
   // Planes and double-sided meshes: a back face is lit as the other side (normal,
   // tangent and bitangent all flipped, which flips the perturbed normal).
+#ifdef ONE_SIDED
+  const float side = 1.0;  // back faces are culled (ShaderVariant::oneSided)
+#else
   float side = gl_FrontFacing ? 1.0 : -1.0;
+#endif
   vec3 geometric = normalize(v_normal);
   vec3 n = geometric;
 #ifdef NORMAL_MAP

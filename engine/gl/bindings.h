@@ -78,9 +78,10 @@ inline constexpr unsigned kHiZSource = 28;
 inline constexpr unsigned kHiZLevelImage = 1;
 inline constexpr unsigned kHiZ = 29;
 inline constexpr unsigned kCullClusters = 12;
-// The sRGB curve's table (core/srgb_curve.h, common/output.glsl): bound once a frame
-// for every program that writes display values, on a unit no other program samples.
-inline constexpr unsigned kSrgbTable = 30;
+// The display curve's table (core/srgb_curve.h, common/output.glsl): bound once a
+// frame for every program that writes display values, on a unit no other program
+// samples.
+inline constexpr unsigned kDisplayTable = 30;
 inline constexpr unsigned kCullJobs = 13;
 inline constexpr unsigned kCullCommands = 14;
 inline constexpr unsigned kCullCounters = 15;
@@ -158,7 +159,7 @@ inline constexpr std::array<Define, 67> kDefines{{
     {"UNIT_HIZ_SOURCE", kHiZSource},
     {"IMAGE_HIZ_LEVEL", kHiZLevelImage},
     {"UNIT_HIZ", kHiZ},
-    {"UNIT_SRGB_TABLE", kSrgbTable},
+    {"UNIT_DISPLAY_TABLE", kDisplayTable},
     {"BUFFER_CULL_CLUSTERS", kCullClusters},
     {"BUFFER_CULL_JOBS", kCullJobs},
     {"BUFFER_CULL_COMMANDS", kCullCommands},

@@ -35,6 +35,7 @@ std::string ShaderVariant::describe() const {
   if (iridescence) name += "+iridescence";
   if (matte) name += "+matte";
   if (nearSunOnly) name += "+nearsun";
+  if (oneSided) name += "+onesided";
   if (depthOnly) name += "+depth";
   return name;
 }
@@ -44,6 +45,7 @@ Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& asked,
   ShaderVariant variant = asked;
   variant.matte = asked.matte && classic_ && !asked.depthOnly;
   variant.nearSunOnly = asked.nearSunOnly && farSun_ && !asked.depthOnly;
+  variant.oneSided = asked.oneSided && facesCulled_ && !asked.depthOnly;
   // Programs with transform feedback (one-off captures) live in their own cache:
   // a pointer handed out for the plain variant stays valid and keeps its program.
   if (feedback.empty()) {
@@ -80,6 +82,7 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.anisotropy) defines.push_back("ANISOTROPY 1");
   if (variant.iridescence) defines.push_back("IRIDESCENCE 1");
   if (variant.matte) defines.push_back("CLASSIC_MATTE 1");
+  if (variant.oneSided) defines.push_back("ONE_SIDED 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
@@ -523,6 +526,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
   const bool colored = !prim.colors.empty();  // COLOR_0 multiplies the base colour
   v.vertexColor = colored && !depthOnly;
   v.matte = classicSpecular(m) <= 0.0f;
+  v.oneSided = !m || !m->doubleSided;  // glTF's default material is one-sided
   if (!m) return v;
   v.alphaMask = m->alphaMode == AlphaMode::Mask;
   // A shadow pass needs the material only to cut out MASK holes.

@@ -74,6 +74,12 @@ struct ShaderVariant {
   // shadows.glsl weighs by zero there: the same bytes. ShaderVariants drops it where
   // its programs have no far map.
   bool nearSunOnly = false;
+  // Back faces culled (every colour pass culls them; the material is not
+  // double-sided): gl_FrontFacing is always true, so scene.frag's flip of a back
+  // face's normal is left out (ONE_SIDED): the same bytes, and no work a fragment
+  // for a flip that never happens. ShaderVariants drops it from depth-only programs
+  // and where its fragment shader is not scene.frag.
+  bool oneSided = false;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
 };
@@ -90,7 +96,8 @@ class ShaderVariants {
         fragmentShader_(std::move(fragmentShader)),
         defines_(std::move(defines)),
         classic_(std::find(defines_.begin(), defines_.end(), "CLASSIC 1") != defines_.end()),
-        farSun_(std::find(defines_.begin(), defines_.end(), kFarSunDefine) != defines_.end()) {}
+        farSun_(std::find(defines_.begin(), defines_.end(), kFarSunDefine) != defines_.end()),
+        facesCulled_(fragmentShader_ == "scene.frag") {}
   // `feedback` names varyings to capture with transform feedback (tests).
   Result<const gl::Program*> get(const ShaderVariant& variant,
                                  const std::vector<std::string>& feedback = {});
@@ -106,6 +113,9 @@ class ShaderVariants {
   static constexpr const char* kFarSunDefine = "SUN_FAR_SHADOWS 1";
   bool classic_;                      // defines_ has CLASSIC: ShaderVariant::matte applies
   bool farSun_;                       // defines_ has SUN_FAR_SHADOWS: ShaderVariant::nearSunOnly applies
+  // The scene renderer's colour passes cull back faces (render/pass_state.h), so
+  // ShaderVariant::oneSided applies; lit.frag's callers (tests, lit draws) may not.
+  bool facesCulled_;
   std::map<ShaderVariant, gl::Program> programs_;
   std::map<std::pair<ShaderVariant, std::vector<std::string>>, gl::Program> feedbackPrograms_;
 };

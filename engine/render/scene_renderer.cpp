@@ -9,6 +9,8 @@ namespace {
 // clear colour): exposure, the tone map, then the curve.
 glm::vec3 displayValue(glm::vec3 c, const RenderDesc& render) {
   c *= render.exposure;
+  if (render.toneMap == ToneMap::Aces && render.output != OutputCurve::Gamma22)
+    return glm::vec3(acesSrgbByte(c.r), acesSrgbByte(c.g), acesSrgbByte(c.b)) / 255.0f;
   if (render.toneMap == ToneMap::Reinhard) c = c / (1.0f + c);
   if (render.toneMap == ToneMap::Aces) c = (c * (2.51f * c + 0.03f)) / (c * (2.43f * c + 0.59f) + 0.14f);
   c = glm::clamp(c, 0.0f, 1.0f);
@@ -210,7 +212,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
     return status;
   }
   const bool borrowed = directOutput && !intoCaller && useColourOf(direct ? &callerLayout : nullptr);
-  if (srgbTable) srgbTable.bind(gl::binding::kSrgbTable);
+  if (displayTable) displayTable.bind(gl::binding::kDisplayTable);
   const glm::dvec3 cameraPosition = camera.position;
   const double aspect = double(width) / double(height);
   const double fovy = glm::radians(camera.fovyDegrees);

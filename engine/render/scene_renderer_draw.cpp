@@ -72,6 +72,7 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
 ShaderVariant SceneRenderer::Impl::shapeVariant(const ShapeDraw& shape, bool depthOnly) const {
   ShaderVariant v{0, SkinMode::Linear, !depthOnly && materialTextures[size_t(shape.material)].id() != 0, depthOnly};
   v.matte = scene.materials[size_t(shape.material)].specular <= 0.0f;
+  v.oneSided = !shape.twoSided;
   v.nearSunOnly = !depthOnly && nearSunCovers(shape.lo - eye, shape.hi - eye);
   return v;
 }

@@ -158,10 +158,10 @@ struct SceneRenderer::Impl {
   // sky: linear radiance (the HDR target, the environment cube); skyDisplay: with
   // directOutput, the view's display values.
   gl::Program sky, skyDisplay, post;
-  // The sRGB curve's table (core/srgb_curve.h) for every program that writes display
-  // values; none under the gamma 2.2 curve.
-  gl::Buffer srgbTableTexels;
-  gl::Texture srgbTable;
+  // The display curve's table (core/srgb_curve.h) for every program that writes
+  // display values; none under the gamma 2.2 curve.
+  gl::Buffer displayTableTexels;
+  gl::Texture displayTable;
   gl::Texture skyImage;  // the sky's lat-long image, when the scene has one
   // The PBR ambient (render/ibl.h); built at load for Ambient::Sh and ::Ibl only.
   Ambient ambient = Ambient::Hemisphere;
@@ -344,7 +344,7 @@ struct SceneRenderer::Impl {
   bool needsNoHdrTarget() const;
   // What the fragment shaders of a directOutput scene are built with (common/output.glsl).
   std::vector<std::string> displayDefines() const;
-  void makeSrgbTable();
+  void makeDisplayTable();
   Status makePost();
   bool usesSkinCache(const ModelData& model, const ModelDesc& desc) const;
   std::string describeSkinCache() const;

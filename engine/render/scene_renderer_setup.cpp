@@ -118,7 +118,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   }
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
-  if (render.output != OutputCurve::Gamma22) makeSrgbTable();
+  if (render.output != OutputCurve::Gamma22) makeDisplayTable();
   if (auto s = makeSky(); !s) return s;
   if (auto s = makePost(); !s) return s;
   emptyVao = gl::VertexArray::create();
@@ -305,10 +305,12 @@ bool SceneRenderer::Impl::needsNoHdrTarget() const {
   return true;
 }
 
-void SceneRenderer::Impl::makeSrgbTable() {
-  static const std::vector<float> table = srgbEncodeTable();
-  srgbTableTexels = gl::Buffer::create(table.size() * sizeof(float), table.data(), 0);
-  srgbTable = gl::Texture::ofBuffer(srgbTableTexels, GL_RG32F);
+// The table common/output.glsl reads: ACES and the curve in one where the fragment
+// shaders write display values after ACES (its targetColor), else the curve's.
+void SceneRenderer::Impl::makeDisplayTable() {
+  const DisplayTable& table = directOutput && render.toneMap == ToneMap::Aces ? acesSrgbTable() : srgbTable();
+  displayTableTexels = gl::Buffer::create(table.texels.size() * sizeof(float), table.texels.data(), 0);
+  displayTable = gl::Texture::ofBuffer(displayTableTexels, GL_RG32F);
 }
 
 std::vector<std::string> SceneRenderer::Impl::displayDefines() const {

@@ -21,19 +21,21 @@ vec3 toneMapped(vec3 c) {
 }
 
 #ifndef OUTPUT_GAMMA22
-// The sRGB curve by core/srgb_curve.h's table (the renderer binds it): a bin's byte,
-// plus one from its threshold on. The exact curve's bytes, where pow() cost two
-// polynomials a channel on llvmpipe and was not exact.
-layout(binding = UNIT_SRGB_TABLE) uniform samplerBuffer u_srgbTable;
+// The curves by core/srgb_curve.h's tables (the renderer binds the one its programs
+// read): a bin's byte, plus one from its threshold on. The exact curves' bytes,
+// where pow() cost two polynomials a channel on llvmpipe and was not exact.
+layout(binding = UNIT_DISPLAY_TABLE) uniform samplerBuffer u_displayTable;
 
-// c in [0, 1]: its display value, a byte over 255.
-float srgbEncoded(float c) {
-  int bins = textureSize(u_srgbTable);
-  vec2 bin = texelFetch(u_srgbTable, min(int(c * float(bins)), bins - 1)).xy;
-  return (bin.x + (c >= bin.y ? 1.0 : 0.0)) / 255.0;
+// v >= 0 by a table over [0, domain): its display value, a byte over 255.
+float tableByte(float v, float domain) {
+  int bins = textureSize(u_displayTable);
+  float x = min(v, domain);
+  vec2 bin = texelFetch(u_displayTable, clamp(int(x * (float(bins) / domain)), 0, bins - 1)).xy;
+  return (bin.x + (x >= bin.y ? 1.0 : 0.0)) / 255.0;
 }
 
-vec3 srgbEncoded(vec3 c) { return vec3(srgbEncoded(c.r), srgbEncoded(c.g), srgbEncoded(c.b)); }
+// c in [0, 1], by srgbTable().
+vec3 srgbEncoded(vec3 c) { return vec3(tableByte(c.r, 1.0), tableByte(c.g, 1.0), tableByte(c.b, 1.0)); }
 #endif
 
 // c: tone mapped and clamped to [0, 1].
@@ -47,9 +49,14 @@ vec3 displayValue(vec3 c) {
 
 // What a shaded fragment writes: linear radiance into the HDR target, or with
 // DIRECT_OUTPUT its display value, opaque (as the post pass writes it: the same
-// curve on the radiance before the HDR target's rounding to half floats).
+// curve on the radiance before the HDR target's rounding to half floats). ACES and
+// the sRGB curve together are one table, acesSrgbTable() (the tone map's division
+// was a seventh of the shading of a frame of characters).
 vec4 targetColor(vec3 linear, float alpha) {
-#ifdef DIRECT_OUTPUT
+#if defined(DIRECT_OUTPUT) && TONE_MAP == 2 && !defined(OUTPUT_GAMMA22)
+  vec3 x = max(linear * float(EXPOSURE), vec3(0.0));
+  return vec4(tableByte(x.r, 8.0), tableByte(x.g, 8.0), tableByte(x.b, 8.0), 1.0);
+#elif defined(DIRECT_OUTPUT)
   return vec4(displayValue(clamp(toneMapped(linear * float(EXPOSURE)), 0.0, 1.0)), 1.0);
 #else
   return vec4(linear, alpha);
