@@ -78,13 +78,13 @@ inline constexpr unsigned kHiZSource = 28;
 inline constexpr unsigned kHiZLevelImage = 1;
 inline constexpr unsigned kHiZ = 29;
 inline constexpr unsigned kCullClusters = 12;
+inline constexpr unsigned kCullJobs = 13;
+inline constexpr unsigned kCullCommands = 14;
+inline constexpr unsigned kCullCounters = 15;
 // The display curve's table (core/srgb_curve.h, common/output.glsl): bound once a
 // frame for every program that writes display values, on a unit no other program
 // samples.
 inline constexpr unsigned kDisplayTable = 30;
-inline constexpr unsigned kCullJobs = 13;
-inline constexpr unsigned kCullCommands = 14;
-inline constexpr unsigned kCullCounters = 15;
 // The GPU ray tracer (shaders/rt/): the flattened scene (raytrace/gpu_layout.h),
 // its materials and lights, and what a kernel reads and writes.
 inline constexpr unsigned kRtNodes = 0;

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <iterator>
-#include <utility>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +16,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "gl/bindings.h"
 #include "asset/material_texture.h"

@@ -49,9 +49,9 @@ vec3 displayValue(vec3 c) {
 
 // What a shaded fragment writes: linear radiance into the HDR target, or with
 // DIRECT_OUTPUT its display value, opaque (as the post pass writes it: the same
-// curve on the radiance before the HDR target's rounding to half floats). ACES and
-// the sRGB curve together are one table, acesSrgbTable() (the tone map's division
-// was a seventh of the shading of a frame of characters).
+// curve on the radiance before the HDR target's rounding to half floats). After
+// ACES, the tone map and the sRGB curve are one table, acesSrgbTable(): one fetch a
+// channel, and the exact bytes of both.
 vec4 targetColor(vec3 linear, float alpha) {
 #if defined(DIRECT_OUTPUT) && TONE_MAP == 2 && !defined(OUTPUT_GAMMA22)
   vec3 x = max(linear * float(EXPOSURE), vec3(0.0));
