@@ -251,6 +251,16 @@ TEST(RasterVsRaytrace, DemoTerrainAgreesAtLowResolution) {
 
 namespace {
 
+// Where a test writes scene file `stem`: named after the running test, since ctest
+// runs this file's tests as parallel processes (one fixed name was written by one
+// while another read it: "not valid JSON").
+std::string sceneFilePath(const std::string& stem) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "engine_raster_vs_raytrace";
+  std::filesystem::create_directories(dir);
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  return (dir / (test + "_" + stem + ".json")).string();
+}
+
 // A scene of one Khronos sample model seen straight on, classic shading, no sky or
 // shadows: what is left to differ between the renderers is how they sample the
 // model's textures. The sun lies half way between +y and +z: TextureTransformTest
@@ -258,9 +268,7 @@ namespace {
 // and both then see the same N.L.
 Result<SceneDesc> sampleBoard(const std::string& model, glm::dvec3 camera, double fovy,
                               const std::string& shading = "classic", double ambient = 0.1) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "engine_raster_vs_raytrace_textures";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / "board.json").string();
+  const std::string path = sceneFilePath("board");
   std::ofstream(path) << R"({"camera": {"position": [)" << camera.x << ", " << camera.y << ", " << camera.z
                       << R"(], "target": [0, )" << camera.y << R"(, 0], "fovy": )" << fovy
                       << R"(, "near": 0.1, "far": 100},
@@ -423,9 +431,7 @@ namespace {
 // the ambient alone, stand clear of it); `withModel` false: the same scene empty, whose image is
 // the background each silhouette is taken against.
 Result<SceneDesc> instancingScene(const std::string& model, bool withModel) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "engine_raster_vs_raytrace_instancing";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / (withModel ? "instancing.json" : "empty.json")).string();
+  const std::string path = sceneFilePath(withModel ? "instancing" : "empty");
   std::ofstream(path) << R"({"camera": {"position": [30, 22, 36], "target": [5.5, 5.5, 5.5], "fovy": 40,
       "near": 0.1, "far": 200},
     "lights": [{"type": "sun", "direction": [0.4, 1, 0.7], "color": [1, 1, 1], "intensity": 0.9, "shadows": false}],
