@@ -7,7 +7,10 @@
 // EMISSIVE_TEXTURE, OCCLUSION, ALPHA_MASK) and glTF's dielectric layers
 // (MATERIAL_LAYERS), with transmission (TRANSMISSION), sheen (SHEEN), anisotropy
 // (ANISOTROPY) and iridescence (IRIDESCENCE). Alpha goes out with the colour: BLEND
-// materials are drawn with blending on, in linear HDR.
+// materials are drawn with blending on, in linear HDR. The deferred characters'
+// surface pass (SURFACE_OUT) writes what the shading reads instead of shading, and
+// their shading pass (SURFACE_IN) reads it back a pixel at a time
+// (common/surface.glsl).
 #include "common/frame.glsl"
 #include "common/shading.glsl"
 #include "common/shadows.glsl"
@@ -18,9 +21,12 @@
 #include "common/transmission.glsl"
 #endif
 
+#include "common/surface.glsl"
+#ifndef SURFACE_IN
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;
+#endif
 #if defined(NORMAL_MAP) || defined(CLEARCOAT_NORMAL) || defined(ANISOTROPY)
 in vec4 v_tangent;
 #endif
@@ -34,7 +40,11 @@ uniform float u_shininess;
 uniform float u_reflection;
 uniform vec3 u_emissive;
 
+#ifdef SURFACE_OUT
+vec4 o_color;  // the surface pass writes common/surface.glsl's outputs instead
+#else
 layout(location = 0) out vec4 o_color;
+#endif
 #include "common/output.glsl"
 
 #ifdef DEBUG_VIEW
@@ -69,6 +79,9 @@ vec3 debugValue(Surface s, vec4 base, vec2 mr) {
 #endif
 
 void main() {
+#ifdef SURFACE_IN
+  readSurface();
+#endif
   vec4 base = materialBaseColor(v_uv);
   materialAlphaTest(base.a);
 #ifdef UNLIT
@@ -83,8 +96,10 @@ void main() {
 #endif
   // Planes and double-sided meshes: a back face is lit as the other side (normal,
   // tangent and bitangent all flipped, which flips the perturbed normal).
-#ifdef ONE_SIDED
-  const float side = 1.0;  // back faces are culled (ShaderVariant::oneSided)
+#if defined(ONE_SIDED) || defined(SURFACE_IN)
+  // Back faces are culled (ShaderVariant::oneSided), or the surface holds the lit
+  // side's normal already.
+  const float side = 1.0;
 #else
   float side = gl_FrontFacing ? 1.0 : -1.0;
 #endif
@@ -95,6 +110,10 @@ void main() {
 #endif
   n *= side;
   geometric *= side;  // for the shadow lookups (common/direct_light.glsl)
+#ifdef SURFACE_OUT
+  writeSurface(v_position, n, v_uv);  // no normal map there: n is the geometric normal
+  return;
+#endif
 #ifdef MATERIAL_LAYERS
   materialLayers(v_uv);
   g_clearcoatNormal = geometric;  // the surface's, before its own normal map

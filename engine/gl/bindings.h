@@ -54,6 +54,11 @@ inline constexpr unsigned kTerrainLayers = 1;
 // The deferred terrain pass's surface (terrain_deferred.frag), where the heights'
 // unit would be: that pass reads no heights.
 inline constexpr unsigned kTerrainSurface = 0;
+// The deferred characters' surface (scene.frag's SURFACE_IN): the units of the
+// morph deltas and the skin palette, which that full-screen pass has no vertex to
+// deform with.
+inline constexpr unsigned kCharacterSurface = 26;
+inline constexpr unsigned kCharacterDistance = 27;
 // Post's HDR image and the IBL prefilter's source cube.
 inline constexpr unsigned kHdr = 0;
 inline constexpr unsigned kIblSource = 0;
@@ -113,7 +118,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 67> kDefines{{
+inline constexpr std::array<Define, 69> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -145,6 +150,8 @@ inline constexpr std::array<Define, 67> kDefines{{
     {"UNIT_TERRAIN_HEIGHTS", kTerrainHeights},
     {"UNIT_TERRAIN_LAYERS", kTerrainLayers},
     {"UNIT_TERRAIN_SURFACE", kTerrainSurface},
+    {"UNIT_CHARACTER_SURFACE", kCharacterSurface},
+    {"UNIT_CHARACTER_DISTANCE", kCharacterDistance},
     {"UNIT_HDR", kHdr},
     {"UNIT_IBL_SOURCE", kIblSource},
     {"IMAGE_IBL_LEVEL", kIblLevelImage},

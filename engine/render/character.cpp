@@ -161,14 +161,14 @@ Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewPr
 }
 
 Status CharacterInstance::drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-                                        const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly,
-                                        int node, int primitive, std::span<const IndirectDraw> indirect,
-                                        bool nearSunOnly) {
+                                        const std::function<void(const gl::Program&)>& setUniforms, int node,
+                                        int primitive, const PrimitivePass& pass) {
   auto f = frame(viewProjection, mode, setUniforms);
   if (!f) return f.error();
-  f->depthOnly = depthOnly;
-  f->nearSunOnly = nearSunOnly;
-  f->indirect = indirect;
+  f->depthOnly = pass.depthOnly;
+  f->nearSunOnly = pass.nearSunOnly;
+  f->surface = pass.surface;
+  f->indirect = pass.indirect;
   return drawModelPrimitive(variants, asset_->model, asset_->gpu, *f, node, primitive);
 }
 

@@ -78,12 +78,18 @@ class CharacterInstance {
   Status drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
                    const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive,
                    std::span<const IndirectDraw> indirect = {});
-  // One primitive, in whatever pass state the caller set (a scene's draw items);
-  // with `indirect`, from GPU culling's commands (ModelFrame::indirect);
-  // `nearSunOnly`: ShaderVariant::nearSunOnly.
+  // How drawPrimitive draws: ModelFrame's members of the same names (indirect:
+  // GPU culling's commands).
+  struct PrimitivePass {
+    bool depthOnly = false;
+    bool nearSunOnly = false;
+    ShaderVariant::Surface surface = ShaderVariant::Surface::None;
+    std::span<const IndirectDraw> indirect;
+  };
+  // One primitive, in whatever pass state the caller set (a scene's draw items).
   Status drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-                       const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly, int node,
-                       int primitive, std::span<const IndirectDraw> indirect = {}, bool nearSunOnly = false);
+                       const std::function<void(const gl::Program&)>& setUniforms, int node, int primitive,
+                       const PrimitivePass& pass);
   // The u_model of each instance of node `node`'s primitives with `influences`
   // joints, placed for the last place() view (primitiveInstanceModels).
   std::vector<glm::mat4> instanceModels(SkinMode mode, int node, int influences) const;

@@ -18,6 +18,7 @@ struct DrawItem {
   int primitive = -1;
   std::uint32_t program = 0;  // the GL program, for counting changes
   std::uint64_t key = 0;
+  int surfaceGroup = -1;  // a deferred character primitive's group of one material (its stencil)
 };
 
 // Non-negative floats order as their bits do; a distance is clamped to >= 0.

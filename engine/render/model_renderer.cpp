@@ -37,14 +37,35 @@ std::string ShaderVariant::describe() const {
   if (nearSunOnly) name += "+nearsun";
   if (oneSided) name += "+onesided";
   if (depthOnly) name += "+depth";
+  if (surface == Surface::Out) name += "+surface";
+  if (surface == Surface::In) name += "+fromsurface";
   return name;
+}
+
+bool ShaderVariant::deferrable() const {
+  return !depthOnly && !normalMap && !metallicRoughnessTexture && !emissiveTexture && !occlusion && !alphaMask &&
+         !uvTransform && !unlit && !vertexColor && !layers && !layerTextures && !transmission && !clearcoatNormal &&
+         !sheen && !anisotropy && !iridescence && surface == Surface::None;
+}
+
+ShaderVariant ShaderVariant::shadingFromSurface() const {
+  ShaderVariant v = *this;
+  v.influences = 0;
+  v.mode = SkinMode::Linear;
+  v.morph = false;
+  v.oneSided = false;
+  v.nearSunOnly = false;
+  v.surface = Surface::In;
+  return v;
 }
 
 Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& asked,
                                               const std::vector<std::string>& feedback) {
   ShaderVariant variant = asked;
-  variant.matte = asked.matte && classic_ && !asked.depthOnly;
-  variant.nearSunOnly = asked.nearSunOnly && farSun_ && !asked.depthOnly;
+  // A surface pass lights nothing: neither flag changes what it writes.
+  const bool lights = !asked.depthOnly && asked.surface != ShaderVariant::Surface::Out;
+  variant.matte = asked.matte && classic_ && lights;
+  variant.nearSunOnly = asked.nearSunOnly && farSun_ && lights;
   variant.oneSided = asked.oneSided && facesCulled_ && !asked.depthOnly;
   // Programs with transform feedback (one-off captures) live in their own cache:
   // a pointer handed out for the plain variant stays valid and keeps its program.
@@ -83,13 +104,16 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
   if (variant.iridescence) defines.push_back("IRIDESCENCE 1");
   if (variant.matte) defines.push_back("CLASSIC_MATTE 1");
   if (variant.oneSided) defines.push_back("ONE_SIDED 1");
+  if (variant.surface == ShaderVariant::Surface::Out) defines.push_back("SURFACE_OUT 1");
+  if (variant.surface == ShaderVariant::Surface::In) defines.push_back("SURFACE_IN 1");
   if (variant.influences > 0) {
     defines.push_back("SKINNED 1");
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
     if (variant.mode == SkinMode::DualQuat) defines.push_back("DUAL_QUAT 1");
   }
   const std::string fragment = variant.depthOnly ? "depth.frag" : fragmentShader_;
-  return gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, vertexShader_}, {GL_FRAGMENT_SHADER, fragment}}, defines,
+  const std::string vertex = variant.surface == ShaderVariant::Surface::In ? "sky.vert" : vertexShader_;
+  return gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines,
                             feedback);
 }
 
@@ -377,6 +401,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   const gl::VertexArray* cached = frame.skinCache ? frame.skinCache->vertexArray(int(n), int(p)) : nullptr;
   ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly, cached != nullptr);
   variant.nearSunOnly = frame.nearSunOnly;
+  variant.surface = frame.surface;
   const MaterialData* material = materialOf(model, prim.material);
   auto program = variants.get(variant);
   if (!program) return program.error();
@@ -648,6 +673,27 @@ Status drawBlendPrimitive(ShaderVariants& variants, const ModelData& model, cons
 Status drawModelPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
                           const ModelFrame& frame, int node, int primitive) {
   return drawPrimitive(variants, model, gpu, frame, size_t(node), size_t(primitive));
+}
+
+Status shadeModelSurface(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu, int material,
+                         const ShaderVariant& shading, const std::function<void(const gl::Program&)>& setUniforms,
+                         const glm::mat4& inverseViewProjection) {
+  const MaterialData* m = materialOf(model, material);
+  auto program = variants.get(shading);
+  if (!program) return program.error();
+  const gl::Program& pr = **program;
+  pr.use();
+  if (setUniforms) setUniforms(pr);
+  setMaterialUniforms(pr, m);
+  pr.set("u_inverseViewProjection", inverseViewProjection);
+  if (m) {
+    bindMaterialTextures(gpu, *m, shading);
+  } else {
+    gpu.image(-1, true).bind(gl::binding::kBaseColor);
+  }
+  glDrawArrays(GL_TRIANGLES, 0, 3);  // sky.vert's full-screen triangle
+  if (m) unbindMaterialSamplers(shading, *m);
+  return Ok{};
 }
 
 Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,

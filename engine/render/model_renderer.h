@@ -5,6 +5,7 @@
 // a mesh with morph targets with the morph code, before any skinning; each
 // variant built only when first drawn.
 #include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -80,8 +81,22 @@ struct ShaderVariant {
   // for a flip that never happens. ShaderVariants drops it from depth-only programs
   // and where its fragment shader is not scene.frag.
   bool oneSided = false;
+  // The deferred characters (render/scene_renderer_impl.h's deferredCharacters):
+  // the surface pass writes common/surface.glsl's targets instead of a colour
+  // (SURFACE_OUT); the shading pass reads them back, a full-screen triangle
+  // (SURFACE_IN, sky.vert's vertices), and lights each pixel once.
+  enum class Surface : std::uint8_t { None, Out, In };
+  Surface surface = Surface::None;
   auto operator<=>(const ShaderVariant&) const = default;
   std::string describe() const;
+  // Whether a surface holds all this variant's fragments read: the base colour is
+  // the only texture (its level of detail is the surface's one), no fragment is
+  // discarded, blended or refracting, and nothing is interpolated but the
+  // position, the normal and TEXCOORD_0.
+  bool deferrable() const;
+  // The full-screen variant that shades what this one's surface pass left: the
+  // vertex stage's flags dropped, so meshes of one material share it.
+  ShaderVariant shadingFromSurface() const;
 };
 
 // Builds and caches the programs of one vertex + fragment shader pair by variant
@@ -263,6 +278,9 @@ struct ModelFrame {
   std::function<void(const gl::Program&)> setUniforms;
   bool depthOnly = false;  // shadow passes: no material, depth-only variant
   bool nearSunOnly = false;  // ShaderVariant::nearSunOnly for every primitive drawn
+  // ShaderVariant::surface for every primitive drawn (the deferred characters'
+  // surface pass: Out).
+  ShaderVariant::Surface surface = ShaderVariant::Surface::None;
   // The largest error a level of detail may have, as MeshLod::error states it (the
   // coarsest level within it is drawn); 0: every mesh in full.
   float lodBudget = 0.0f;
@@ -303,6 +321,13 @@ Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuMode
 // changed, and put back.
 Status drawModelPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,
                           const ModelFrame& frame, int node, int primitive);
+// The deferred characters' shading of material `material` of `model` (-1: glTF's
+// default): one full-screen triangle with the program of `shading`
+// (ShaderVariant::shadingFromSurface of its surface pass), over the pixels that the
+// caller's stencil test lets through. `setUniforms` as ModelFrame's.
+Status shadeModelSurface(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu, int material,
+                         const ShaderVariant& shading, const std::function<void(const gl::Program&)>& setUniforms,
+                         const glm::mat4& inverseViewProjection);
 // Draws one BLEND primitive, with the blend state set around it (blending in
 // the target's linear colour, depth test on, depth writes off).
 Status drawBlendPrimitive(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu,

@@ -44,8 +44,12 @@ inline constexpr PassState kSkyPass{.depthTest = false, .depthWrite = false, .cu
 // (depth 0 in reverse-Z, the value the depth is cleared to), so it is shaded only
 // where nothing was drawn.
 inline constexpr PassState kSkyBehindPass{.depthFunc = GL_GEQUAL, .depthWrite = false, .cull = false};
-// The deferred terrain's full-screen shading, where the stencil marks terrain.
-inline constexpr PassState kTerrainDeferredPass{.depthTest = false, .depthWrite = false, .cull = false};
+// The full-screen shading of a surface (the deferred terrain's, the deferred
+// characters'), where the stencil marks it.
+inline constexpr PassState kSurfaceShadingPass{.depthTest = false, .depthWrite = false, .cull = false};
+// The same where no stencil marks it: over whatever depth was drawn (the far
+// plane's full-screen triangle passes in front of nothing else).
+inline constexpr PassState kSurfaceDepthShadingPass{.depthFunc = GL_LESS, .depthWrite = false, .cull = false};
 // BLEND materials after the opaque ones: tested against their depth, writing none.
 constexpr PassState blendPassFor(bool leftHanded) {
   return PassState{.depthWrite = false, .frontFace = GLenum(leftHanded ? GL_CW : GL_CCW), .blend = true};

@@ -202,9 +202,9 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
   const gl::FramebufferLayout callerLayout = gl::framebufferLayout(GLuint(callerFramebuffer));
   const bool direct = directOutput && takesDirectFrame(callerLayout, width, height);
-  // The deferred terrain needs its surface and stencil beside the frame's depth:
+  // Deferred surfaces need their targets (and stencil) beside the frame's depth:
   // drawFbo then borrows the caller's colour image where it can, so nothing is copied.
-  const bool intoCaller = direct && !deferredTerrain;
+  const bool intoCaller = direct && !deferredTerrain && !deferredCharacters;
   if (intoCaller) {
     targetWidth = width;
     targetHeight = height;
@@ -407,6 +407,11 @@ std::string SceneRenderer::describe() const {
   }
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
+  if (s.deferredCharacters) {
+    out << " characters(deferred: RGBA32UI surface" << (s.surfacePosition ? " + R32F distance" : "")
+        << (s.surfaceStencil() ? " + stencil" : "") << ", shaded once a pixel by " << s.surfaceGroups.size()
+        << " full-screen pass" << (s.surfaceGroups.size() == 1 ? "" : "es") << ")";
+  }
   if (s.culler) {
     out << " gpu-culling(" << s.culler->clusters().size() << " clusters of <= " << cull::kClusterTriangles
         << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, occluder prepass")
@@ -417,7 +422,7 @@ std::string SceneRenderer::describe() const {
   if (s.directOutput) {
     out << " direct(display values from the fragment shaders: exposure, tone map and curve applied there; RGBA8, no"
            " post pass; into the caller's framebuffer when it is single-sample RGBA8 with float depth (its colour image"
-           " with the deferred terrain's depth-stencil and surface), else copied)";
+           " with the deferred surfaces' depth-stencil and targets), else copied)";
   } else {
     out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
   }

@@ -74,6 +74,10 @@ struct SceneRenderOptions {
   // the surface they leave (SceneRenderer's deferred terrain, the default without
   // MSAA): the reference that pass is tested against, and its cost's.
   bool forwardTerrain = false;
+  // Shades characters where their triangles are drawn, rather than once a pixel
+  // from the surface they leave (SceneRenderer's deferred characters, the default
+  // without MSAA): likewise.
+  bool forwardCharacters = false;
 };
 
 struct SceneStats {

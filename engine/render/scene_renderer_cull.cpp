@@ -146,6 +146,7 @@ void SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::vect
 Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists, bool useProbes) {
   culler->clearJobs();
   const ItemCommands opaqueCommands = queueJobs(lists.opaque);
+  const ItemCommands surfaceCommands = queueJobs(lists.surface);
   const ItemCommands transmissiveCommands = queueJobs(lists.transmissive);
   const ItemCommands blendCommands = queueJobs(lists.blend);
   culler->upload();
@@ -164,7 +165,8 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   ++stats->cullDispatches;
   stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
-  Status status = drawItems(lists.opaque, pass, &opaqueCommands);
+  Status status = drawCharacterSurfaces(view, lists.surface, pass, &surfaceCommands);
+  if (status) status = drawItems(lists.opaque, pass, &opaqueCommands);
   // The terrain after the opaque items, as drawWorld draws it: its patches then
   // meet their depth (a plaza over a valley) in the pyramid of its second half.
   if (status && terrain && terrainCuller) {

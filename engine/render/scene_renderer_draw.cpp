@@ -124,7 +124,8 @@ Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOn
 // of their bounds (whole primitives, so intersecting panes can still be out of
 // order). Shadow passes take no BLEND primitive: a tinted pane in a depth map
 // would be an opaque sheet.
-Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists) {
+Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool depthOnly, bool surfaces,
+                                              DrawLists& lists) {
   for (int index = 0; index < int(characters.size()); ++index) {
     const CharacterDraw& c = characters[size_t(index)];
     const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
@@ -148,6 +149,11 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
         if (blend && depthOnly) continue;
         ShaderVariant variant = primitiveVariant(model, node, prim, mode, depthOnly, cached);
         variant.nearSunOnly = nearSunOnly && !blend;
+        const int group = surfaces && !blend && variant.deferrable()
+                              ? surfaceGroupOf(c.instance->asset(), prim.material, variant)
+                              : -1;
+        const bool surface = group >= 0;
+        if (surface) variant.surface = ShaderVariant::Surface::Out;
         auto program = variants->get(variant);
         if (!program) return program.error();
         const GLuint id = (*program)->id();
@@ -156,8 +162,8 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
         lists.refracts = lists.refracts || transmissive;
         if (!blend) {
           const std::uint32_t material = std::uint32_t(scene.materials.size()) + std::uint32_t(std::max(prim.material, 0));
-          (transmissive ? lists.transmissive : lists.opaque)
-              .push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance)});
+          (surface ? lists.surface : transmissive ? lists.transmissive : lists.opaque)
+              .push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance), group});
         }
       }
     }
@@ -173,12 +179,14 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
   return Ok{};
 }
 
-Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape) {
+Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape,
+                                                   bool surfaces) {
   const auto start = std::chrono::steady_clock::now();
   DrawLists lists;
   if (auto s = collectShapes(planes, depthOnly, skipShape, lists); !s) return s.error();
-  if (auto s = collectCharacters(planes, depthOnly, lists); !s) return s.error();
+  if (auto s = collectCharacters(planes, depthOnly, surfaces, lists); !s) return s.error();
   sortDrawItems(lists.opaque);
+  sortDrawItems(lists.surface);
   sortDrawItems(lists.transmissive);
   sortDrawItems(lists.blend);
   stats->cullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -282,9 +290,16 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
       continue;
     }
     CharacterDraw& c = characters[size_t(item.object)];
-    const bool nearSunOnly = !pass.depthOnly && characterNearSunOnly(c);
-    if (auto s = c.instance->drawPrimitive(*variants, pass.viewProjection, skinModeOf(c.desc), set, pass.depthOnly,
-                                           item.node, item.primitive, indirect, nearSunOnly);
+    CharacterInstance::PrimitivePass how;
+    how.depthOnly = pass.depthOnly;
+    how.nearSunOnly = !pass.depthOnly && !pass.surface && characterNearSunOnly(c);
+    how.indirect = indirect;
+    if (pass.surface) {
+      how.surface = ShaderVariant::Surface::Out;
+      if (surfaceStencil()) glStencilFunc(GL_ALWAYS, kFirstSurfaceStencil + item.surfaceGroup, 0xff);
+    }
+    if (auto s = c.instance->drawPrimitive(*variants, pass.viewProjection, skinModeOf(c.desc), set, item.node,
+                                           item.primitive, how);
         !s) {
       return s;
     }
@@ -338,10 +353,11 @@ void SceneRenderer::Impl::drawSkyBehind(const View& view) {
 // draws over a copy of those, then the blended ones.
 Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useProbes) {
   applyPassState(opaquePassFor(view.mirrored));
-  auto lists = collectDraws(view.planes, false, skipShape);
+  auto lists = collectDraws(view.planes, false, skipShape, deferredCharacters && view.main);
   if (!lists) return lists.error();
   if (culler && view.main) return drawCulled(view, *lists, useProbes);
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
+  if (auto s = drawCharacterSurfaces(view, lists->surface, pass, nullptr); !s) return s;
   if (auto s = drawItems(lists->opaque, pass); !s) return s;
   // The terrain after the shapes and characters: its fragment shader (five layers,
   // two sun maps, the ambient) is the frame's dearest, and a plaza or a floor over
@@ -421,7 +437,7 @@ terrain::TerrainOutput SceneRenderer::Impl::beginTerrainSurface(const View& view
   const GLenum surfaceOnly[] = {GL_COLOR_ATTACHMENT1};  // terrain.frag's output 0
   glNamedFramebufferDrawBuffers(drawFbo.id(), 1, surfaceOnly);
   glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_ALWAYS, 1, 0xff);
+  glStencilFunc(GL_ALWAYS, kTerrainStencil, 0xff);
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
   return terrain::TerrainOutput::Surface;
 }
@@ -432,8 +448,8 @@ void SceneRenderer::Impl::shadeTerrainSurface(const View& view, const terrain::L
   if (!deferredTerrain || !view.main) return;
   const GLenum colourOnly[] = {GL_COLOR_ATTACHMENT0};
   glNamedFramebufferDrawBuffers(drawFbo.id(), 1, colourOnly);
-  applyPassState(kTerrainDeferredPass);
-  glStencilFunc(GL_EQUAL, 1, 0xff);
+  applyPassState(kSurfaceShadingPass);
+  glStencilFunc(GL_EQUAL, kTerrainStencil, 0xff);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   terrainRenderer->shadeDeferred(selection, eye, glm::mat4(glm::inverse(view.viewProjection)),
                                  [this](const gl::Program& p) {

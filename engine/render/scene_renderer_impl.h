@@ -80,6 +80,7 @@ struct PassInputs {
   glm::mat4 lightViewProjection{1.0f};  // shadow passes
   glm::mat4 viewProjection{1.0f};
   bool useProbes = false;  // mirrors show their reflection probe
+  bool surface = false;    // the deferred characters' surface pass (drawCharacterSurfaces)
 };
 
 // GPU culling's commands for each item of a draw list, aligned with it: one per
@@ -95,8 +96,17 @@ gl::Texture makeSunShadowMap(int size);
 // materials (KHR_materials_transmission) apart, as they refract the others.
 struct DrawLists {
   std::vector<DrawItem> opaque, transmissive, blend;
+  // Opaque character primitives shaded once a pixel (deferredCharacters), apart.
+  std::vector<DrawItem> surface;
   bool refracts = false;  // some item, opaque or blended, is transmissive
 };
+
+// The stencil of a frame with deferred surfaces: 1 marks the deferred terrain's
+// pixels (beginTerrainSurface), each surface group of the characters its own value
+// from 2 up (drawCharacterSurfaces).
+inline constexpr int kTerrainStencil = 1;
+inline constexpr int kFirstSurfaceStencil = 2;
+inline constexpr std::size_t kMaxSurfaceGroups = 256 - kFirstSurfaceStencil;
 
 // A cube map of the scene seen from a mirror shape's centre.
 struct Probe {
@@ -191,7 +201,30 @@ struct SceneRenderer::Impl {
   // The caller's colour image attached to drawFbo in hdr's place last frame (useColourOf), or 0.
   GLuint borrowedColour = 0;
   bool useColourOf(const gl::FramebufferLayout* caller);
-  GLenum depthFormat() const { return deferredTerrain ? GL_DEPTH32F_STENCIL8 : GL_DEPTH_COMPONENT32F; }
+  // The characters shaded once a pixel (drawCharacterSurfaces): their surface at
+  // colour attachment 2 of drawFbo (3: the distance, with surfacePosition), and
+  // where each group of primitives that share a material is nearest. Without MSAA,
+  // in the main view.
+  bool deferredCharacters = false;
+  bool surfacePosition = false;  // the lighting reads positions (SURFACE_POSITION)
+  gl::Texture characterSurface, characterDistance;
+  struct SurfaceGroup {
+    const CharacterAsset* asset = nullptr;
+    int material = -1;
+    ShaderVariant shading;  // ShaderVariant::shadingFromSurface of its primitives
+  };
+  std::vector<SurfaceGroup> surfaceGroups;  // each with its stencil value, in order
+  void addSurfaceGroup(const CharacterAsset& asset, int material, const ShaderVariant& forward);
+  int surfaceGroupOf(const CharacterAsset& asset, int material, const ShaderVariant& forward) const;  // -1: none
+  Status drawCharacterSurfaces(const View& view, const std::vector<DrawItem>& items, const PassInputs& pass,
+                               const ItemCommands* commands);
+  Status shadeCharacterSurfaces(const View& view, const std::vector<DrawItem>& items);
+  // Which pixels a surface group holds: its stencil value where groups share the
+  // frame with each other or the terrain's surface; else any depth drawn before
+  // the other opaque draws (the surfaces come first).
+  bool surfaceStencil() const { return deferredCharacters && (deferredTerrain || surfaceGroups.size() > 1); }
+  bool stencilled() const { return deferredTerrain || surfaceStencil(); }
+  GLenum depthFormat() const { return stencilled() ? GL_DEPTH32F_STENCIL8 : GL_DEPTH_COMPONENT32F; }
   // Shadows.
   bool sunShadows = false, pointShadows = false;
   int sunLight = -1;
@@ -315,12 +348,14 @@ struct SceneRenderer::Impl {
   Status loadModels();
   void addShapes();
   Status buildVariants();
+  void addSurfaceVariants(std::vector<ShaderVariant>& needed);
   Status makeTarget(int width, int height);
   void setUniforms(const gl::Program& program) const;
-  Result<DrawLists> collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape = -1);
+  // `surfaces`: deferrable character primitives go to DrawLists::surface.
+  Result<DrawLists> collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape = -1, bool surfaces = false);
   Status collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists);
   ShaderVariant shapeVariant(const ShapeDraw& shape, bool depthOnly) const;
-  Status collectCharacters(const glm::dvec4* planes, bool depthOnly, DrawLists& lists);
+  Status collectCharacters(const glm::dvec4* planes, bool depthOnly, bool surfaces, DrawLists& lists);
   Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands = nullptr);
   std::size_t itemTriangles(const DrawItem& item) const;
   Status submitItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands);

@@ -95,6 +95,10 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   // The PCF kernel too, so that its loops unroll (common/shadows.glsl).
   if (sunShadows || pointShadows) defines.push_back("PCF_RADIUS " + std::to_string(pcfRadius));
   if (scene.fog.enabled) defines.push_back("FOG 1");
+  // What of a fragment's position the lighting reads beyond its direction: the
+  // deferred characters' surface then keeps its distance (common/surface.glsl).
+  surfacePosition = sunShadows || pointShadows || !pointLights.empty() || scene.fog.enabled;
+  if (surfacePosition) defines.push_back("SURFACE_POSITION 1");
   if (render.shading == Shading::Pbr) {
     ambient = options.ambientOverride.value_or(ambientOf(scene));
     iblSize = options.iblSizeOverride > 0 ? options.iblSizeOverride : render.iblSize;
@@ -126,6 +130,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (auto s = makeEnvironmentLighting(); !s) return s;
 
   deferredTerrain = render.msaa <= 1 && !options.forwardTerrain;
+  deferredCharacters = render.msaa <= 1 && !options.forwardCharacters;
   if (auto s = loadTerrain(defines); !s) return s;
   if (auto s = loadMaterials(); !s) return s;
   if (auto s = loadModels(); !s) return s;
@@ -407,6 +412,22 @@ void SceneRenderer::Impl::addShapes() {
   }
 }
 
+// The deferred characters' programs: each deferrable primitive's surface pass (its
+// forward variant writing the surface) and each group's shading. Deferred only
+// where some primitive is deferrable and the stencil has a value for each group.
+void SceneRenderer::Impl::addSurfaceVariants(std::vector<ShaderVariant>& needed) {
+  if (surfaceGroups.size() > kMaxSurfaceGroups) surfaceGroups.clear();
+  deferredCharacters = deferredCharacters && !surfaceGroups.empty();
+  if (!deferredCharacters) return;
+  for (std::size_t i = 0, n = needed.size(); i < n; ++i) {
+    if (!needed[i].deferrable()) continue;
+    ShaderVariant out = needed[i];
+    out.surface = ShaderVariant::Surface::Out;
+    needed.push_back(out);
+  }
+  for (const SurfaceGroup& g : surfaceGroups) needed.push_back(g.shading);
+}
+
 Status SceneRenderer::Impl::buildVariants() {
   // Everything the scene will draw, built now, so the first frame costs no
   // compile and --describe can list exactly what exists.
@@ -421,8 +442,10 @@ Status SceneRenderer::Impl::buildVariants() {
     for (const NodeData& node : model.nodes) {
       if (node.mesh < 0) continue;
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        needed.push_back(primitiveVariant(model, node, prim, mode, false, cached));
+        const ShaderVariant forward = primitiveVariant(model, node, prim, mode, false, cached);
+        needed.push_back(forward);
         const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
+        if (deferredCharacters && !blend && forward.deferrable()) addSurfaceGroup(c.instance->asset(), prim.material, forward);
         if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
         blendPass = blendPass || blend;
         transmissionPass = transmissionPass || (prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive());
@@ -430,10 +453,11 @@ Status SceneRenderer::Impl::buildVariants() {
     }
   }
   if ((sunShadows || pointShadows) && !shapes.empty()) needed.push_back({0, SkinMode::Linear, false, true});
+  addSurfaceVariants(needed);
   // Each colour program also without the far sun map, for draws the near map
   // covers (ShaderVariant::nearSunOnly; which ones depends on the camera).
   for (std::size_t i = 0, n = needed.size(); i < n && sunFarShadows; ++i) {
-    if (needed[i].depthOnly) continue;
+    if (needed[i].depthOnly || needed[i].surface != ShaderVariant::Surface::None) continue;
     ShaderVariant nearOnly = needed[i];
     nearOnly.nearSunOnly = true;
     needed.push_back(nearOnly);
@@ -465,7 +489,17 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
   } else {
     drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
   }
-  drawFbo.attach(deferredTerrain ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth);
+  drawFbo.attach(stencilled() ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth);
+  if (deferredCharacters) {
+    characterSurface = gl::Texture::create2D(GL_RGBA32UI, w, h, 1);
+    characterSurface.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // an integer texture filters nothing
+    characterSurface.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    drawFbo.attach(GL_COLOR_ATTACHMENT2, characterSurface);
+  }
+  if (deferredCharacters && surfacePosition) {
+    characterDistance = gl::Texture::create2D(GL_R32F, w, h, 1);
+    drawFbo.attach(GL_COLOR_ATTACHMENT3, characterDistance);
+  }
   if (deferredTerrain) {
     terrainSurface = gl::Texture::create2D(GL_RGBA32F, w, h, 1);
     drawFbo.attach(GL_COLOR_ATTACHMENT1, terrainSurface);

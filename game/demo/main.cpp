@@ -145,6 +145,9 @@ int main(int argc, char** argv) {
   app.add_flag("--forward-terrain", render.forwardTerrain,
                "Shade the terrain where its patches are drawn, not once a pixel from the surface they leave (the "
                "default without MSAA): the reference for the deferred terrain");
+  app.add_flag("--forward-characters", render.forwardCharacters,
+               "Shade characters where their triangles are drawn, not once a pixel from the surface they leave "
+               "(the default without MSAA): the reference for the deferred characters");
   app.add_option("--terrain-error", render.terrainErrorOverride,
                  "The terrain's LOD target: screen-space error in pixels (default: the scene's terrain.error_pixels)")
       ->check(CLI::Range(0.05, 64.0));

@@ -68,6 +68,16 @@ vec2 materialUv(int slot, vec2 uv) {
 layout(binding = UNIT_BASE_COLOR) uniform sampler2D u_baseColorTexture;
 #endif
 uniform vec4 u_baseColorFactor = vec4(1.0);
+#ifdef SURFACE_IN
+// Shaded from a surface (scene.frag's SURFACE_IN): the pixel's neighbours may be
+// other triangles, so the base colour's level of detail is the one the surface pass
+// found where the triangle's own derivatives were known. Only the base colour may
+// be textured there (ShaderVariant::deferrable).
+float g_baseColorLod;
+#define BASE_COLOR_TEXEL(t, uv) textureLod(t, uv, g_baseColorLod)
+#else
+#define BASE_COLOR_TEXEL(t, uv) texture(t, uv)
+#endif
 
 #ifdef VERTEX_COLOR
 in vec4 v_color;  // COLOR_0, linear RGBA
@@ -77,7 +87,7 @@ in vec4 v_color;  // COLOR_0, linear RGBA
 vec4 materialBaseColor(vec2 uv) {
   vec4 color = u_baseColorFactor;
 #ifdef TEXTURED
-  color *= texture(u_baseColorTexture, materialUv(SLOT_BASE_COLOR, uv));
+  color *= BASE_COLOR_TEXEL(u_baseColorTexture, materialUv(SLOT_BASE_COLOR, uv));
 #endif
 #ifdef VERTEX_COLOR
   color *= v_color;

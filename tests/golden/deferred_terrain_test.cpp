@@ -73,13 +73,7 @@ TEST_P(DeferredTerrain, WithinALevelOfTheTerrainShadedWhereDrawn) {
   const Image deferred = renderTerrainCase(backend, c, false);
   ASSERT_FALSE(forward.pixels.empty());
   ASSERT_EQ(deferred.pixels.size(), forward.pixels.size());
-  int largest = 0;
-  size_t differing = 0;
-  for (size_t i = 0; i < forward.pixels.size(); ++i) {
-    const int d = std::abs(int(deferred.pixels[i]) - int(forward.pixels[i]));
-    largest = std::max(largest, d);
-    differing += d != 0;
-  }
+  const auto [largest, differing] = test::channelDifference(forward, deferred);
   std::printf("%s: %zu of %zu channels differ, by at most %d\n", c.name, differing, forward.pixels.size(), largest);
   EXPECT_LE(largest, 1) << c.name;
   EXPECT_LT(differing, forward.pixels.size() / 100) << c.name;

@@ -2,6 +2,9 @@
 // What the golden tests share: terrain.json's two other viewpoints (golden_test.cpp's
 // terrain_overview and terrain_low_sun cases, which the culling and deferred-terrain
 // tests draw again) and where a failed comparison leaves its two images.
+#include <algorithm>
+#include <cstddef>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -42,6 +45,22 @@ inline Image goldenFrame(Backend backend, Game& game, double time) {
   auto status = runHeadless(backend, game, run, &image);
   EXPECT_TRUE(status.ok()) << status.error().message;
   return image;
+}
+
+// How far two images of one size are apart: the largest difference of a channel,
+// in levels, and how many channels differ at all.
+struct ChannelDifference {
+  int largest = 0;
+  std::size_t differing = 0;
+};
+inline ChannelDifference channelDifference(const Image& a, const Image& b) {
+  ChannelDifference d;
+  for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+    const int level = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+    d.largest = std::max(d.largest, level);
+    d.differing += level != 0;
+  }
+  return d;
 }
 
 // Two images that should have agreed, as build/golden-failures/STEM_A.png and
