@@ -348,7 +348,7 @@ struct SceneRenderer::Impl {
   Status loadModels();
   void addShapes();
   Status buildVariants();
-  void addSurfaceVariants(std::vector<ShaderVariant>& needed);
+  void addSurfaceVariants(const std::vector<ShaderVariant>& surfacePasses, std::vector<ShaderVariant>& needed);
   Status makeTarget(int width, int height);
   void setUniforms(const gl::Program& program) const;
   // `surfaces`: deferrable character primitives go to DrawLists::surface.

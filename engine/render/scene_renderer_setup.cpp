@@ -415,23 +415,19 @@ void SceneRenderer::Impl::addShapes() {
 // The deferred characters' programs: each deferrable primitive's surface pass (its
 // forward variant writing the surface) and each group's shading. Deferred only
 // where some primitive is deferrable and the stencil has a value for each group.
-void SceneRenderer::Impl::addSurfaceVariants(std::vector<ShaderVariant>& needed) {
+void SceneRenderer::Impl::addSurfaceVariants(const std::vector<ShaderVariant>& surfacePasses,
+                                             std::vector<ShaderVariant>& needed) {
   if (surfaceGroups.size() > kMaxSurfaceGroups) surfaceGroups.clear();
   deferredCharacters = deferredCharacters && !surfaceGroups.empty();
   if (!deferredCharacters) return;
-  for (std::size_t i = 0, n = needed.size(); i < n; ++i) {
-    if (!needed[i].deferrable()) continue;
-    ShaderVariant out = needed[i];
-    out.surface = ShaderVariant::Surface::Out;
-    needed.push_back(out);
-  }
+  needed.insert(needed.end(), surfacePasses.begin(), surfacePasses.end());
   for (const SurfaceGroup& g : surfaceGroups) needed.push_back(g.shading);
 }
 
 Status SceneRenderer::Impl::buildVariants() {
   // Everything the scene will draw, built now, so the first frame costs no
   // compile and --describe can list exactly what exists.
-  std::vector<ShaderVariant> needed;
+  std::vector<ShaderVariant> needed, surfacePasses;
   for (const ShapeDraw& s : shapes) needed.push_back({0, SkinMode::Linear, materialTextures[size_t(s.material)].id() != 0, false});
   for (const CharacterDraw& c : characters) {
     const ModelData& model = c.instance->asset().model;
@@ -445,7 +441,11 @@ Status SceneRenderer::Impl::buildVariants() {
         const ShaderVariant forward = primitiveVariant(model, node, prim, mode, false, cached);
         needed.push_back(forward);
         const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
-        if (deferredCharacters && !blend && forward.deferrable()) addSurfaceGroup(c.instance->asset(), prim.material, forward);
+        if (deferredCharacters && !blend && forward.deferrable()) {
+          addSurfaceGroup(c.instance->asset(), prim.material, forward);
+          surfacePasses.push_back(forward);
+          surfacePasses.back().surface = ShaderVariant::Surface::Out;
+        }
         if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
         blendPass = blendPass || blend;
         transmissionPass = transmissionPass || (prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive());
@@ -453,7 +453,7 @@ Status SceneRenderer::Impl::buildVariants() {
     }
   }
   if ((sunShadows || pointShadows) && !shapes.empty()) needed.push_back({0, SkinMode::Linear, false, true});
-  addSurfaceVariants(needed);
+  addSurfaceVariants(surfacePasses, needed);
   // Each colour program also without the far sun map, for draws the near map
   // covers (ShaderVariant::nearSunOnly; which ones depends on the camera).
   for (std::size_t i = 0, n = needed.size(); i < n && sunFarShadows; ++i) {
