@@ -5,7 +5,7 @@
 // only the surface pass has drawn depth yet (the crowd, classic or PBR with sun
 // shadows), several materials by the stencil beside a forward draw (the mixed
 // crowd), and the stencil shared with the deferred terrain (demo.json, culled on
-// the GPU too).
+// the GPU and supersampled too).
 //
 // Why a level and not the same bytes: the surface keeps uv and the texture's level
 // of detail as the forward draw had them, but the normal in two 16-bit snorms
@@ -35,7 +35,7 @@ namespace {
 const std::string kAnchorScenes = std::string(ENGINE_SOURCE_DIR) + "/../shared/anchors/perf/scenes/";
 const std::string kSampleModels = std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/";
 
-enum class Crowd { Classic, PbrShadows, Mixed, Demo, DemoCulled };
+enum class Crowd { Classic, PbrShadows, Mixed, Demo, DemoCulled, DemoSupersampled };
 
 struct CharacterCase {
   const char* name;
@@ -47,9 +47,10 @@ const CharacterCase kCharacterCases[] = {{"crowd_classic", Crowd::Classic, false
                                          {"crowd_pbr_shadows", Crowd::PbrShadows, false},
                                          {"crowd_mixed", Crowd::Mixed, true},
                                          {"demo_t0_5", Crowd::Demo, true},
-                                         {"demo_t0_5_culled", Crowd::DemoCulled, true}};
+                                         {"demo_t0_5_culled", Crowd::DemoCulled, true},
+                                         {"demo_t0_5_ss2", Crowd::DemoSupersampled, true}};
 
-bool usesDemo(Crowd crowd) { return crowd == Crowd::Demo || crowd == Crowd::DemoCulled; }
+bool usesDemo(Crowd crowd) { return crowd >= Crowd::Demo; }
 
 // The crowd of ten CesiumMan (raylib's layout); Mixed replaces two of them by a
 // Duck (another material: a second group) and a DamagedHelmet (normal-mapped: drawn
@@ -86,6 +87,7 @@ Frame renderCharacterCase(Backend backend, const CharacterCase& c, bool forward)
   SceneRenderOptions options;
   options.shaderDir = std::string(ENGINE_SOURCE_DIR) + "/shaders";
   options.gpuCullingOverride = c.crowd == Crowd::DemoCulled;
+  options.supersampleOverride = c.crowd == Crowd::DemoSupersampled ? 2 : 0;
   options.forwardCharacters = forward;
   demo::SceneGame game(std::move(scene).value(), options);
   RunOptions run;
