@@ -6,31 +6,9 @@
 // material shades those pixels, with the same program text (scene.frag) and so
 // the same bytes, to rounding.
 #include "render/scene_renderer_impl.h"
+#include "render/screen_rect.h"
 
 namespace engine {
-namespace {
-
-// The pixels of a width x height view that a camera-relative sphere can cover:
-// its bounding box's corners projected (all of them when a corner lies behind the
-// eye), as x0, y0, x1, y1, x1 and y1 exclusive.
-glm::ivec4 sphereRect(const glm::dmat4& viewProjection, const glm::dvec3& center, double radius, int width,
-                      int height) {
-  glm::dvec2 lo(1e300), hi(-1e300);
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::dvec3 sign((corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0, (corner & 4) ? 1.0 : -1.0);
-    const glm::dvec4 clip = viewProjection * glm::dvec4(center + sign * radius, 1.0);
-    if (clip.w <= 1e-9) return {0, 0, width, height};
-    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-    lo = glm::min(lo, ndc);
-    hi = glm::max(hi, ndc);
-  }
-  const glm::dvec2 size(width, height);
-  const glm::dvec2 p0 = glm::clamp(glm::floor((lo * 0.5 + 0.5) * size) - 1.0, glm::dvec2(0.0), size);
-  const glm::dvec2 p1 = glm::clamp(glm::ceil((hi * 0.5 + 0.5) * size) + 1.0, glm::dvec2(0.0), size);
-  return {int(p0.x), int(p0.y), int(p1.x), int(p1.y)};
-}
-
-}  // namespace
 
 // Setup: the primitives of `asset` with `material`, whose forward variant is
 // `forward`, are shaded from the surface by one pass.
@@ -82,7 +60,7 @@ Status SceneRenderer::Impl::shadeCharacterSurfaces(const View& view, const std::
   for (const DrawItem& item : items) {
     drawn[size_t(item.surfaceGroup)] = 1;
     const auto [center, radius] = placedSphere(characters[size_t(item.object)]);
-    const glm::ivec4 r = sphereRect(view.viewProjection, center, radius, targetWidth, targetHeight);
+    const glm::ivec4 r = sphereScreenRect(view.viewProjection, center, radius, targetWidth, targetHeight);
     rect = glm::ivec4(glm::min(glm::ivec2(rect), glm::ivec2(r)), glm::max(glm::ivec2(rect.z, rect.w), glm::ivec2(r.z, r.w)));
   }
   glEnable(GL_SCISSOR_TEST);
