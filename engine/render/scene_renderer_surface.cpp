@@ -72,19 +72,17 @@ Status SceneRenderer::Impl::shadeCharacterSurfaces(const View& view, const std::
   if (surfacePosition) characterDistance.bind(gl::binding::kCharacterDistance);
   emptyVao.bind();
   const glm::mat4 inverseViewProjection(glm::inverse(view.viewProjection));
-  for (std::size_t g = 0; g < surfaceGroups.size(); ++g) {
+  Status status = Ok{};
+  for (std::size_t g = 0; g < surfaceGroups.size() && status; ++g) {
     if (!drawn[g]) continue;
     const SurfaceGroup& group = surfaceGroups[g];
     if (stencil) glStencilFunc(GL_EQUAL, kFirstSurfaceStencil + int(g), 0xff);
-    if (auto s = shadeModelSurface(*variants, group.asset->model, group.asset->gpu, group.material, group.shading,
-                                   [this](const gl::Program& p) { setUniforms(p); }, inverseViewProjection);
-        !s) {
-      return s;
-    }
+    status = shadeModelSurface(*variants, group.asset->model, group.asset->gpu, group.material, group.shading,
+                               [this](const gl::Program& p) { setUniforms(p); }, inverseViewProjection);
     ++stats->drawCalls;
   }
   glDisable(GL_SCISSOR_TEST);
-  return Ok{};
+  return status;
 }
 
 }  // namespace engine
