@@ -226,6 +226,16 @@ void bindMaterialTextures(const GpuModel& gpu, const MaterialData& m, const Shad
   }
 }
 
+// The material's textures, or for glTF's default material (none) the white base
+// colour where the variant shades.
+void bindMaterialOrWhite(const GpuModel& gpu, const MaterialData* m, const ShaderVariant& v) {
+  if (m) {
+    bindMaterialTextures(gpu, *m, v);
+  } else if (!v.depthOnly) {
+    gpu.image(-1, true).bind(gl::binding::kBaseColor);
+  }
+}
+
 // The units' own texture parameters again, for whatever draws next (the scene's
 // shapes and terrain bind textures on the same units without samplers).
 void unbindMaterialSamplers(const ShaderVariant& v, const MaterialData& m) {
@@ -425,11 +435,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   if (variant.morph) {
     if (auto s = bindNodeMorphTargets(pr, prim, frame, n); !s) return makeError(model.path + ": " + s.error().message);
   }
-  if (material) {
-    bindMaterialTextures(gpu, *material, variant);
-  } else if (!frame.depthOnly) {
-    gpu.image(-1, true).bind(gl::binding::kBaseColor);
-  }
+  bindMaterialOrWhite(gpu, material, variant);
   // Double-sided: no culling for this draw; the caller's setting is restored (the
   // point-light shadow pass draws everything without culling).
   const bool twoSided = material && material->doubleSided && glIsEnabled(GL_CULL_FACE);
@@ -686,11 +692,7 @@ Status shadeModelSurface(ShaderVariants& variants, const ModelData& model, const
   if (setUniforms) setUniforms(pr);
   setMaterialUniforms(pr, m);
   pr.set("u_inverseViewProjection", inverseViewProjection);
-  if (m) {
-    bindMaterialTextures(gpu, *m, shading);
-  } else {
-    gpu.image(-1, true).bind(gl::binding::kBaseColor);
-  }
+  bindMaterialOrWhite(gpu, m, shading);
   glDrawArrays(GL_TRIANGLES, 0, 3);  // sky.vert's full-screen triangle
   if (m) unbindMaterialSamplers(shading, *m);
   return Ok{};

@@ -90,15 +90,9 @@ Frame renderCharacterCase(Backend backend, const CharacterCase& c, bool forward)
   options.supersampleOverride = c.crowd == Crowd::DemoSupersampled ? 2 : 0;
   options.forwardCharacters = forward;
   demo::SceneGame game(std::move(scene).value(), options);
-  RunOptions run;
-  run.width = 640;
-  run.height = 360;
-  run.time = usesDemo(c.crowd) ? 0.5 : 1.0;
-  run.frames = 3;
-  run.debugGl = true;
   Frame frame;
-  auto status = runHeadless(backend, game, run, &frame.image, [&] { frame.described = game.renderer()->describe(); });
-  EXPECT_TRUE(status.ok()) << status.error().message;
+  frame.image = test::goldenFrame(backend, game, usesDemo(c.crowd) ? 0.5 : 1.0,
+                                  [&] { frame.described = game.renderer()->describe(); });
   return frame;
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -34,7 +35,8 @@ inline void useTerrainLowSun(SceneDesc& scene) {
 
 // `game`'s frame at `time` as golden_test.cpp draws it: 640x360, the third frame of
 // a still camera (the sun maps' kept path), GL debug output on; empty on failure.
-inline Image goldenFrame(Backend backend, Game& game, double time) {
+// `afterFrames` runs while the game's GL objects still exist (runHeadless's).
+inline Image goldenFrame(Backend backend, Game& game, double time, const std::function<void()>& afterFrames = {}) {
   RunOptions run;
   run.width = 640;
   run.height = 360;
@@ -42,7 +44,7 @@ inline Image goldenFrame(Backend backend, Game& game, double time) {
   run.frames = 3;
   run.debugGl = true;
   Image image;
-  auto status = runHeadless(backend, game, run, &image);
+  auto status = runHeadless(backend, game, run, &image, afterFrames);
   EXPECT_TRUE(status.ok()) << status.error().message;
   return image;
 }
