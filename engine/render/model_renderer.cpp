@@ -277,18 +277,60 @@ void uploadMorphTargets(const PrimitiveData& data, GpuPrimitive& prim) {
   prim.morphDeltaTexture = gl::Texture::ofBuffer(prim.morphDeltas, GL_RGBA32F);
 }
 
-// The full mesh's indices, then each level's; each in vertex cache order when
-// `reorder` (asset/vertex_cache.h).
-std::vector<std::uint32_t> indicesWithLevels(const PrimitiveData& data, const std::vector<MeshLod>* levels, bool reorder,
-                                             GpuPrimitive& prim) {
-  const auto ordered = [&](const std::vector<std::uint32_t>& indices) {
-    return reorder ? orderForVertexCache(indices, data.positions.size()) : indices;
-  };
-  std::vector<std::uint32_t> indices = ordered(data.indices);
-  for (const MeshLod& level : levels ? *levels : std::vector<MeshLod>{}) {
-    prim.levels.push_back({GLsizei(indices.size()), GLsizei(level.indices.size()), level.error, {}});
-    const std::vector<std::uint32_t> levelIndices = ordered(level.indices);
-    indices.insert(indices.end(), levelIndices.begin(), levelIndices.end());
+// The triangles of `indices` in vertex cache order when `reorder` (asset/vertex_cache.h).
+std::vector<std::uint32_t> orderedIndices(const std::vector<std::uint32_t>& indices, std::size_t vertices, bool reorder) {
+  return reorder ? orderForVertexCache(indices, vertices) : indices;
+}
+
+// Whether a primitive is drawn in runs (asset/vertex_runs.h): an indexed triangle list.
+bool drawsInRuns(const PrimitiveData& data) {
+  return data.mode == GL_TRIANGLES && !data.indices.empty() && data.indices.size() % 3 == 0;
+}
+
+// Target-major displacements (PrimitiveData's morph arrays) in `split`'s vertex order.
+std::vector<glm::vec3> targetsInSplitOrder(const std::vector<glm::vec3>& deltas, const RunSplit& split,
+                                           std::size_t vertices, std::size_t targets) {
+  std::vector<glm::vec3> out;
+  if (deltas.empty()) return out;
+  out.reserve(split.sourceVertex.size() * targets);
+  for (std::size_t t = 0; t < targets; ++t)
+    for (const std::uint32_t v : split.sourceVertex) out.push_back(deltas[t * vertices + v]);
+  return out;
+}
+
+// `data`'s vertices (every attribute and morph displacement) as `split` copies them;
+// its indices are left for the caller to set.
+PrimitiveData verticesInSplitOrder(const PrimitiveData& data, const RunSplit& split) {
+  PrimitiveData out = data;
+  const std::size_t vertices = data.positions.size(), targets = std::size_t(data.morphTargets);
+  const std::size_t influences = std::size_t(std::max(data.influences, 1));
+  out.positions = inSplitOrder(data.positions, split);
+  out.normals = inSplitOrder(data.normals, split);
+  out.uvs = inSplitOrder(data.uvs, split);
+  out.uvs1 = inSplitOrder(data.uvs1, split);
+  out.colors = inSplitOrder(data.colors, split);
+  out.tangents = inSplitOrder(data.tangents, split);
+  out.joints = inSplitOrder(data.joints, split, influences);
+  out.weights = inSplitOrder(data.weights, split, influences);
+  out.morphPositions = targetsInSplitOrder(data.morphPositions, split, vertices, targets);
+  out.morphNormals = targetsInSplitOrder(data.morphNormals, split, vertices, targets);
+  out.morphTangents = targetsInSplitOrder(data.morphTangents, split, vertices, targets);
+  return out;
+}
+
+// The full mesh's indices, then each level's, as the 32-bit index buffer holds them:
+// into the split's vertices, the full mesh's through its runs, a level's through
+// the first copy of each vertex (levels are drawn whole, not in runs).
+std::vector<std::uint32_t> splitIndicesWithLevels(const RunSplit& split, const std::vector<std::vector<std::uint32_t>>& levels,
+                                                  GpuPrimitive& prim) {
+  std::vector<std::uint32_t> indices;
+  indices.reserve(split.localIndices.size());
+  for (const VertexRun& run : split.runs)
+    for (std::uint32_t i = run.firstIndex; i < run.firstIndex + run.indexCount; ++i)
+      indices.push_back(run.firstVertex + split.localIndices[i]);
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    prim.levels[l].firstIndex = GLsizei(indices.size());
+    for (const std::uint32_t v : levels[l]) indices.push_back(split.firstCopy[v]);
   }
   return indices;
 }
@@ -304,11 +346,8 @@ void addClusters(const PrimitiveData& data, const std::vector<std::uint32_t>& in
   }
 }
 
-GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLod>* levels, bool reorder) {
-  GpuPrimitive prim;
-  prim.vertexCount = static_cast<GLsizei>(data.positions.size());
-  prim.influences = data.influences;
-  prim.material = data.material;
+// `prim`'s buffers of `data`'s vertex attributes, where the vertex array reads them.
+void addVertexBuffers(const PrimitiveData& data, GpuPrimitive& prim) {
   // One buffer per attribute: glTF keeps them apart and the shaders need only
   // some of them.
   GpuPrimitive::Sources& in = prim.sources;
@@ -323,15 +362,55 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLo
   }
   if (!data.tangents.empty()) in.tangents = addBuffer(prim, data.tangents);
   prim.hasTangents = in.tangents >= 0;
-  if (!data.indices.empty()) {
-    const std::vector<std::uint32_t> indices = indicesWithLevels(data, levels, reorder, prim);
-    in.indices = addBuffer(prim, indices);
-    prim.indexCount = static_cast<GLsizei>(data.indices.size());
-    if (data.mode == GL_TRIANGLES) addClusters(data, indices, prim);
+}
+
+// An indexed triangle list: its full mesh (in vertex cache order when `reorder`)
+// cut into runs, each with copies of its vertices; the 32-bit indices of it and of
+// its levels into them, and the runs' own 16-bit ones.
+void uploadInRuns(const PrimitiveData& source, const std::vector<MeshLod>* levels, bool reorder, GpuPrimitive& prim) {
+  const std::size_t vertices = source.positions.size();
+  RunSplit split = splitIntoRuns(orderedIndices(source.indices, vertices, reorder), vertices);
+  std::vector<std::vector<std::uint32_t>> levelIndices;
+  for (const MeshLod& level : levels ? *levels : std::vector<MeshLod>{}) {
+    prim.levels.push_back({0, GLsizei(level.indices.size()), level.error, {}});
+    levelIndices.push_back(orderedIndices(level.indices, vertices, reorder));
+  }
+  const PrimitiveData data = verticesInSplitOrder(source, split);
+  const std::vector<std::uint32_t> indices = splitIndicesWithLevels(split, levelIndices, prim);
+  addVertexBuffers(data, prim);
+  prim.sources.indices = addBuffer(prim, indices);
+  // Mesa's draw module shades a run as one range only where the draw ends before
+  // the index buffer does (draw_pt_vsplit_tmp.h: end >= eltMax falls back).
+  split.localIndices.resize(split.localIndices.size() + 2, 0);
+  prim.sources.runIndices = addBuffer(prim, split.localIndices);
+  prim.vertexCount = GLsizei(data.positions.size());
+  prim.indexCount = GLsizei(source.indices.size());
+  prim.runs = std::move(split.runs);
+  prim.sourceVertex = std::move(split.sourceVertex);
+  addClusters(data, indices, prim);
+  uploadMorphTargets(data, prim);
+}
+
+// Any other primitive: its vertices as they are, and its indices.
+void uploadWhole(const PrimitiveData& data, GpuPrimitive& prim) {
+  addVertexBuffers(data, prim);
+  if (!data.indices.empty()) prim.sources.indices = addBuffer(prim, data.indices);
+  prim.vertexCount = GLsizei(data.positions.size());
+  prim.indexCount = GLsizei(data.indices.size());
+  uploadMorphTargets(data, prim);
+}
+
+GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLod>* levels, bool reorder) {
+  GpuPrimitive prim;
+  prim.influences = data.influences;
+  prim.material = data.material;
+  if (drawsInRuns(data)) {
+    uploadInRuns(data, levels, reorder, prim);
+  } else {
+    uploadWhole(data, prim);
   }
   prim.vao = gl::VertexArray::create();
   attachAttributes(prim, prim.vao, nullptr);
-  uploadMorphTargets(data, prim);
   if (!data.positions.empty()) {
     glm::vec3 lo(data.positions[0]), hi(data.positions[0]);
     for (const glm::vec3& p : data.positions) {
@@ -385,20 +464,23 @@ std::pair<GLsizei, GLsizei> levelWithin(const GpuPrimitive& prim, float budget) 
   return {prim.levels[size_t(level)].firstIndex, prim.levels[size_t(level)].indexCount};
 }
 
-// One draw of the bound vertex array: indexed or not, at the level of detail the
-// budget allows; or GPU culling's commands for it (the level was chosen with the
-// same budget when they were made).
-void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget, const IndirectDraw* indirect) {
-  if (indirect) {
-    glMultiDrawElementsIndirect(mode, GL_UNSIGNED_INT, reinterpret_cast<const void*>(indirect->offset),
-                                indirect->count, 0);
-  } else if (prim.indexCount > 0) {
-    const auto [first, count] = levelWithin(prim, lodBudget);
-    glDrawElements(mode, count, GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(std::uintptr_t(first) * sizeof(std::uint32_t)));
-  } else {
-    glDrawArrays(mode, 0, prim.vertexCount);
+// Draws `prim`'s full mesh run by run from its 16-bit indices (the vertex array's).
+void drawRuns(const GpuPrimitive& prim, GLenum mode) {
+  for (const VertexRun& run : prim.runs) {
+    glDrawRangeElementsBaseVertex(mode, 0, run.vertexCount - 1, GLsizei(run.indexCount), GL_UNSIGNED_SHORT,
+                                  reinterpret_cast<const void*>(std::uintptr_t(run.firstIndex) * sizeof(std::uint16_t)),
+                                  GLint(run.firstVertex));
   }
+}
+
+// Runs `draw` with `prim`'s 32-bit indices bound to the bound vertex array, which
+// otherwise reads the runs' 16-bit ones.
+template <typename Draw>
+void withWholeIndices(const GpuPrimitive& prim, Draw draw) {
+  const bool runs = prim.sources.runIndices >= 0;
+  if (runs) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, prim.buffers[size_t(prim.sources.indices)].id());
+  draw();
+  if (runs) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, prim.buffers[size_t(prim.sources.runIndices)].id());
 }
 
 // Draws primitive `p` of node `n` (each of its instances), with whatever blend
@@ -468,6 +550,24 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
 
 }  // namespace
 
+void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget, const IndirectDraw* indirect) {
+  if (indirect) {
+    withWholeIndices(prim, [&] {
+      glMultiDrawElementsIndirect(mode, GL_UNSIGNED_INT, reinterpret_cast<const void*>(indirect->offset),
+                                  indirect->count, 0);
+    });
+  } else if (prim.indexCount > 0) {
+    if (!prim.runs.empty() && levelIndexWithin(prim, lodBudget) < 0) return drawRuns(prim, mode);
+    const auto [first, count] = levelWithin(prim, lodBudget);
+    withWholeIndices(prim, [&] {
+      glDrawElements(mode, count, GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(std::uintptr_t(first) * sizeof(std::uint32_t)));
+    });
+  } else {
+    glDrawArrays(mode, 0, prim.vertexCount);
+  }
+}
+
 int levelIndexWithin(const GpuPrimitive& prim, float budget) { return coarsestWithin(prim.levels, budget); }
 
 std::vector<glm::mat4> primitiveInstanceModels(const ModelData& model, const ModelFrame& frame, int node,
@@ -531,7 +631,11 @@ void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, cons
     vao.vertexBuffer(7, buffer(in.colors), sizeof(glm::vec4));
     vao.attribute(9, 7, 4, 0);
   }
-  if (in.indices >= 0) vao.indexBuffer(buffer(in.indices));
+  if (in.runIndices >= 0) {
+    vao.indexBuffer(buffer(in.runIndices));
+  } else if (in.indices >= 0) {
+    vao.indexBuffer(buffer(in.indices));
+  }
 }
 
 void bindMorphTargets(const gl::Program& program, const GpuPrimitive& prim, const gl::Buffer& weights, int first) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "asset/mesh_lod.h"
+#include "asset/vertex_runs.h"
 #include "render/cull_math.h"
 #include "asset/model_data.h"
 #include "core/result.h"
@@ -138,17 +139,26 @@ class ShaderVariants {
 struct GpuPrimitive {
   gl::VertexArray vao;
   std::vector<gl::Buffer> buffers;
-  GLsizei vertexCount = 0;
+  GLsizei vertexCount = 0;  // in the buffers: an indexed triangle list's are its runs' copies
   GLsizei indexCount = 0;  // 0: not indexed
   int influences = 0;
   int material = -1;
   bool hasTangents = false;
   // Where each source attribute is in `buffers` (-1: absent): the vertex array
   // reads them, and so does the skin cache (render/skin_cache.h).
+  // `indices` are 32-bit, into the buffers' vertices: the full mesh's, then each
+  // level's; `runIndices` the full mesh's again, 16-bit, each relative to its run's
+  // first vertex, and what the vertex arrays bind.
   struct Sources {
     int positions = -1, normals = -1, uvs = -1, uvs1 = -1, colors = -1, joints = -1, weights = -1, tangents = -1,
-        indices = -1;
+        indices = -1, runIndices = -1;
   } sources;
+  // An indexed triangle list's full mesh as runs (asset/vertex_runs.h): each
+  // vertex of a run shaded once, where one draw of the whole list shades some
+  // several times on llvmpipe. `sourceVertex` gives each buffer vertex's vertex in
+  // PrimitiveData (empty: the same numbering).
+  std::vector<VertexRun> runs;
+  std::vector<std::uint32_t> sourceVertex;
   glm::vec3 center{0.0f};  // of the bind-pose bounds, mesh space: sorting BLEND draws
   // Morph targets: every displacement in one storage buffer, vertex-major, one
   // block per attribute that a target moves; each block's start (in vec4s, -1 for
@@ -184,6 +194,10 @@ struct IndirectDraw {
 
 // The level of detail drawn within `budget` (-1: the full mesh), as drawMesh picks it.
 int levelIndexWithin(const GpuPrimitive& prim, float budget);
+// One draw of `prim` from the bound vertex array (its own or a skin cache's): the
+// level of detail `lodBudget` allows, the full mesh in its runs; or, with
+// `indirect`, GPU culling's commands for it.
+void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget, const IndirectDraw* indirect);
 // Whether GPU culling can draw `prim` from its clusters: indexed triangles.
 inline bool hasClusters(const GpuPrimitive& prim, int mode) { return mode == GL_TRIANGLES && !prim.clusters.empty(); }
 

@@ -37,16 +37,17 @@ struct Deformed {
   std::vector<glm::vec3> normals;
 };
 
-// skin.comp's output: three vec4 per vertex (position, normal, tangent).
-Deformed readBack(const gl::Buffer& buffer, size_t vertices) {
-  std::vector<glm::vec4> raw(3 * vertices);
+// skin.comp's output: three vec4 per vertex of `prim`'s buffers (position, normal,
+// tangent), as one per vertex of its PrimitiveData.
+Deformed readBack(const gl::Buffer& buffer, const GpuPrimitive& prim) {
+  std::vector<glm::vec4> raw(3 * size_t(prim.vertexCount));
   glGetNamedBufferSubData(buffer.id(), 0, GLsizeiptr(raw.size() * sizeof(glm::vec4)), raw.data());
-  Deformed out;
-  for (size_t v = 0; v < vertices; ++v) {
-    out.positions.emplace_back(raw[3 * v]);
-    out.normals.emplace_back(raw[3 * v + 1]);
+  std::vector<glm::vec3> positions, normals;
+  for (size_t v = 0; v < size_t(prim.vertexCount); ++v) {
+    positions.emplace_back(raw[3 * v]);
+    normals.emplace_back(raw[3 * v + 1]);
   }
-  return out;
+  return {test::perSourceVertex(prim, positions), test::perSourceVertex(prim, normals)};
 }
 
 double largestAngleError(const std::vector<glm::vec3>& gpu, const std::vector<glm::vec3>& cpu) {
@@ -112,7 +113,7 @@ int compareInstance(ShaderVariants& variants, const CharacterInstance& instance,
                                                                            : SkinningMethod::Linear};
       std::vector<glm::vec3> positions(prim.positions.size()), normals(prim.normals.size());
       EXPECT_TRUE(posePrimitive(prim, pose, positions, normals));
-      const Deformed gpu = readBack(*output, prim.positions.size());
+      const Deformed gpu = readBack(*output, instance.asset().gpu.meshes()[size_t(node.mesh)][p]);
       const double error = largestRelativeError(gpu.positions, positions);
       std::printf("%s node %zu primitive %zu %s: skin cache vs CPU %.3g of the size\n", model.path.c_str(), n, p,
                   mode == SkinMode::DualQuat ? "DQS" : "LBS", error);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
@@ -64,8 +65,29 @@ struct CaptureInputs {
   glm::mat4 model{1.0f};                // u_model (its inverse transpose is u_normalMatrix)
 };
 
+// Values read back one per vertex of `prim`'s buffers as one per vertex of its
+// PrimitiveData (a vertex the indices never use keeps T{}): a triangle list's
+// buffers hold its runs' copies of the vertices (render/model_renderer.h), and
+// every copy of a vertex must have come out the same, bit for bit.
+template <typename T>
+std::vector<T> perSourceVertex(const GpuPrimitive& prim, const std::vector<T>& values) {
+  if (prim.sourceVertex.empty()) return values;
+  std::vector<T> out(*std::max_element(prim.sourceVertex.begin(), prim.sourceVertex.end()) + 1u);
+  std::vector<char> seen(out.size(), 0);
+  for (std::size_t i = 0; i < values.size() && i < prim.sourceVertex.size(); ++i) {
+    const std::uint32_t v = prim.sourceVertex[i];
+    if (seen[v]) {
+      EXPECT_EQ(std::memcmp(&out[v], &values[i], sizeof(T)), 0) << "copy " << i << " of vertex " << v;
+      continue;
+    }
+    out[v] = values[i];
+    seen[v] = 1;
+  }
+  return out;
+}
+
 // Runs `variant` over every vertex of `prim` and returns the captured `varying`
-// (one T per vertex, in order).
+// (one T per PrimitiveData vertex, in order: perSourceVertex).
 template <typename T>
 std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim, const CaptureInputs& inputs,
                               const ShaderVariant& variant, const std::string& varying) {
@@ -110,7 +132,7 @@ std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim
   glDisable(GL_RASTERIZER_DISCARD);
   std::vector<T> out(size_t(prim.vertexCount));
   glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(out.size() * sizeof(T)), out.data());
-  return out;
+  return perSourceVertex(prim, out);
 }
 
 // The diagonal of the points' bounding box.
