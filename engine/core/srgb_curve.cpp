@@ -12,7 +12,6 @@ namespace {
 
 double srgbExact(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
 
-double acesExact(double x) { return (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14); }
 
 using ByteOf = std::function<std::uint8_t(float)>;
 
@@ -57,7 +56,7 @@ std::uint8_t srgbByte(float v) {
 std::uint8_t acesSrgbByte(float x) {
   if (!(x > 0.0f)) return 0;
   if (std::isinf(x)) return 255;
-  return std::uint8_t(std::lround(255.0 * srgbExact(std::min(acesExact(x), 1.0))));
+  return std::uint8_t(std::lround(255.0 * srgbExact(std::min(acesFit<double>(x), 1.0))));
 }
 
 std::uint8_t DisplayTable::lookup(float v) const {

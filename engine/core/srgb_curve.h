@@ -26,6 +26,14 @@ struct DisplayTable {
   std::uint8_t lookup(float v) const;
 };
 
+// Narkowicz's fit of the ACES filmic curve (2015), render.toneMap "aces": one text for
+// every renderer's C++ (float, glm::vec3, and double for the exact tables);
+// common/output.glsl's toneMapped is its GLSL twin.
+template <typename T>
+T acesFit(T x) {
+  return (x * (T(2.51) * x + T(0.03))) / (x * (T(2.43) * x + T(0.59)) + T(0.14));
+}
+
 // round(255 * srgb(clamp(v, 0, 1))), exactly; NaN gives 0.
 std::uint8_t srgbByte(float v);
 // The same after Narkowicz's ACES fit (render.toneMap "aces"), clamped to 1: what a

@@ -6,15 +6,6 @@
 #include "core/srgb_curve.h"
 
 namespace engine::rt {
-namespace {
-
-// Narkowicz's fit of the ACES filmic curve (2015), the rasterizer's choice too.
-float aces(float x) {
-  return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
-}
-
-}  // namespace
-
 glm::vec3 toneMap(glm::vec3 c, const RenderDesc& render) {
   c *= render.exposure;
   switch (render.toneMap) {
@@ -24,7 +15,7 @@ glm::vec3 toneMap(glm::vec3 c, const RenderDesc& render) {
       c = c / (glm::vec3(1.0f) + c);
       break;
     case ToneMap::Aces:
-      c = glm::vec3(aces(c.x), aces(c.y), aces(c.z));
+      c = acesFit(c);
       break;
   }
   return c;

@@ -558,10 +558,10 @@ void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget, const Indi
     });
   } else if (prim.indexCount > 0) {
     if (!prim.runs.empty() && levelIndexWithin(prim, lodBudget) < 0) return drawRuns(prim, mode);
-    const auto [first, count] = levelWithin(prim, lodBudget);
+    const std::pair<GLsizei, GLsizei> level = levelWithin(prim, lodBudget);  // first index, count
     withWholeIndices(prim, [&] {
-      glDrawElements(mode, count, GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(std::uintptr_t(first) * sizeof(std::uint32_t)));
+      glDrawElements(mode, level.second, GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(std::uintptr_t(level.first) * sizeof(std::uint32_t)));
     });
   } else {
     glDrawArrays(mode, 0, prim.vertexCount);

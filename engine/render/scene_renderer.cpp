@@ -12,7 +12,7 @@ glm::vec3 displayValue(glm::vec3 c, const RenderDesc& render) {
   if (render.toneMap == ToneMap::Aces && render.output != OutputCurve::Gamma22)
     return glm::vec3(acesSrgbByte(c.r), acesSrgbByte(c.g), acesSrgbByte(c.b)) / 255.0f;
   if (render.toneMap == ToneMap::Reinhard) c = c / (1.0f + c);
-  if (render.toneMap == ToneMap::Aces) c = (c * (2.51f * c + 0.03f)) / (c * (2.43f * c + 0.59f) + 0.14f);
+  if (render.toneMap == ToneMap::Aces) c = acesFit(c);
   c = glm::clamp(c, 0.0f, 1.0f);
   if (render.output == OutputCurve::Gamma22) return glm::pow(c, glm::vec3(1.0f / 2.2f));
   return glm::vec3(srgbByte(c.r), srgbByte(c.g), srgbByte(c.b)) / 255.0f;

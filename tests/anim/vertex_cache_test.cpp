@@ -10,6 +10,7 @@
 
 #include <meshoptimizer.h>
 
+#include "../support/real_models.h"
 #include "asset/gltf_loader.h"
 #include "asset/vertex_cache.h"
 
@@ -35,31 +36,16 @@ float shadedPerTriangle(const std::vector<std::uint32_t>& indices, std::size_t v
   return meshopt_analyzeVertexCache(indices.data(), indices.size(), vertices, 16, 0, 0).acmr;
 }
 
-const std::string kSharedDir = std::string(ENGINE_SOURCE_DIR) + "/../shared/";
-
 TEST(VertexCache, SameTrianglesFewerVertexRunsOnRealModels) {
-  int models = 0;
-  for (const std::string& path :
-       {std::string(ENGINE_SOURCE_DIR) + "/assets/models/character.gltf",
-        kSharedDir + "conformance/assets/CesiumMan/glTF-Binary/CesiumMan.glb", kSharedDir + "gltf-samples/Duck/glTF-Binary/Duck.glb",
-        kSharedDir + "gltf-samples/DamagedHelmet/glTF-Binary/DamagedHelmet.glb"}) {
-    if (!std::filesystem::exists(path)) continue;
-    ++models;
-    auto model = loadGltf(path);
-    ASSERT_TRUE(model) << model.error().message;
-    for (const MeshData& mesh : model->meshes) {
-      for (const PrimitiveData& p : mesh.primitives) {
-        if (!mayReorderTriangles(*model, p)) continue;
-        const std::vector<std::uint32_t> ordered = orderForVertexCache(p.indices, p.positions.size());
-        EXPECT_EQ(trianglesOf(ordered), trianglesOf(p.indices)) << path;
-        const float before = shadedPerTriangle(p.indices, p.positions.size());
-        const float after = shadedPerTriangle(ordered, p.positions.size());
-        EXPECT_LE(after, before + 1e-6f) << path;
-        std::printf("%s: %zu triangles, %.3f -> %.3f vertex runs a triangle\n",
-                    std::filesystem::path(path).filename().c_str(), p.indices.size() / 3, before, after);
-      }
-    }
-  }
+  const int models = test::forEachReorderableList([](const std::string& path, const PrimitiveData& p) {
+    const std::vector<std::uint32_t> ordered = orderForVertexCache(p.indices, p.positions.size());
+    EXPECT_EQ(trianglesOf(ordered), trianglesOf(p.indices)) << path;
+    const float before = shadedPerTriangle(p.indices, p.positions.size());
+    const float after = shadedPerTriangle(ordered, p.positions.size());
+    EXPECT_LE(after, before + 1e-6f) << path;
+    std::printf("%s: %zu triangles, %.3f -> %.3f vertex runs a triangle\n",
+                std::filesystem::path(path).filename().c_str(), p.indices.size() / 3, before, after);
+  });
   EXPECT_GE(models, 2);
 }
 

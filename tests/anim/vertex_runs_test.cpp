@@ -7,8 +7,7 @@
 #include <filesystem>
 #include <random>
 
-#include "asset/gltf_loader.h"
-#include "asset/vertex_cache.h"
+#include "../support/real_models.h"
 #include "asset/vertex_runs.h"
 
 namespace engine {
@@ -90,30 +89,16 @@ TEST(VertexRuns, AttributesFollowTheirVertices) {
 // The shipped and sample models in vertex cache order, as the renderer cuts them:
 // few copies (what the runs cost in memory and in shading at their edges).
 TEST(VertexRuns, RealModelsCopyFewVertices) {
-  const std::string shared = std::string(ENGINE_SOURCE_DIR) + "/../shared/";
-  int models = 0;
-  for (const std::string& path :
-       {std::string(ENGINE_SOURCE_DIR) + "/assets/models/character.gltf",
-        shared + "conformance/assets/CesiumMan/glTF-Binary/CesiumMan.glb", shared + "gltf-samples/Duck/glTF-Binary/Duck.glb",
-        shared + "gltf-samples/DamagedHelmet/glTF-Binary/DamagedHelmet.glb"}) {
-    if (!std::filesystem::exists(path)) continue;
-    ++models;
-    auto model = loadGltf(path);
-    ASSERT_TRUE(model) << model.error().message;
-    for (const MeshData& mesh : model->meshes) {
-      for (const PrimitiveData& p : mesh.primitives) {
-        if (!mayReorderTriangles(*model, p)) continue;
-        const std::vector<std::uint32_t> ordered = orderForVertexCache(p.indices, p.positions.size());
-        const RunSplit split = splitIntoRuns(ordered, p.positions.size());
-        expectValidSplit(ordered, p.positions.size(), split);
-        const double copies = double(split.sourceVertex.size()) / double(p.positions.size());
-        std::printf("%s: %zu vertices, %zu in %zu runs (%.3fx)\n", std::filesystem::path(path).filename().c_str(),
-                    p.positions.size(), split.sourceVertex.size(), split.runs.size(), copies);
-        // CesiumMan: 1.04x. A run of 1,365 triangles shares its edge with the next.
-        EXPECT_LE(copies, 1.15) << path;
-      }
-    }
-  }
+  const int models = test::forEachReorderableList([](const std::string& path, const PrimitiveData& p) {
+    const std::vector<std::uint32_t> ordered = orderForVertexCache(p.indices, p.positions.size());
+    const RunSplit split = splitIntoRuns(ordered, p.positions.size());
+    expectValidSplit(ordered, p.positions.size(), split);
+    const double copies = double(split.sourceVertex.size()) / double(p.positions.size());
+    std::printf("%s: %zu vertices, %zu in %zu runs (%.3fx)\n", std::filesystem::path(path).filename().c_str(),
+                p.positions.size(), split.sourceVertex.size(), split.runs.size(), copies);
+    // CesiumMan: 1.04x. A run of 1,365 triangles shares its edge with the next.
+    EXPECT_LE(copies, 1.15) << path;
+  });
   EXPECT_GE(models, 1);
 }
 
