@@ -39,4 +39,19 @@ RunSplit splitIntoRuns(std::span<const std::uint32_t> indices, std::size_t sourc
   return split;
 }
 
+std::vector<std::uint32_t> indicesIntoCopies(const RunSplit& split) {
+  std::vector<std::uint32_t> out;
+  out.reserve(split.localIndices.size());
+  for (const VertexRun& run : split.runs)
+    for (std::uint32_t i = run.firstIndex; i < run.firstIndex + run.indexCount; ++i)
+      out.push_back(run.firstVertex + split.localIndices[i]);
+  return out;
+}
+
+std::vector<std::uint16_t> runIndexBuffer(const RunSplit& split) {
+  std::vector<std::uint16_t> out = split.localIndices;
+  out.resize(out.size() + 2, 0);
+  return out;
+}
+
 }  // namespace engine

@@ -47,6 +47,15 @@ struct RunSplit {
 // most kRunIndices indices, in order.
 RunSplit splitIntoRuns(std::span<const std::uint32_t> indices, std::size_t sourceVertices);
 
+// The list as 32-bit indices into the split's copies (each run's first vertex plus
+// its local index): what draws that are not in runs use (levels, indirect commands).
+std::vector<std::uint32_t> indicesIntoCopies(const RunSplit& split);
+
+// The runs' 16-bit indices as an index buffer holds them: padded by two, since Mesa's
+// draw module shades a run as one range only where its draw ends before the buffer
+// does (draw_pt_vsplit_tmp.h: end >= eltMax falls back to the cache).
+std::vector<std::uint16_t> runIndexBuffer(const RunSplit& split);
+
 // `values` (per source vertex, `perVertex` entries each) in the split's vertex order.
 template <typename T>
 std::vector<T> inSplitOrder(const std::vector<T>& values, const RunSplit& split, std::size_t perVertex = 1) {

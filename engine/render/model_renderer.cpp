@@ -8,6 +8,7 @@
 #include "asset/vertex_cache.h"
 #include "core/sheen_table.h"
 #include "gl/bindings.h"
+#include "render/run_draws.h"
 #include "render/skin_cache.h"
 
 namespace engine {
@@ -323,11 +324,7 @@ PrimitiveData verticesInSplitOrder(const PrimitiveData& data, const RunSplit& sp
 // the first copy of each vertex (levels are drawn whole, not in runs).
 std::vector<std::uint32_t> splitIndicesWithLevels(const RunSplit& split, const std::vector<std::vector<std::uint32_t>>& levels,
                                                   GpuPrimitive& prim) {
-  std::vector<std::uint32_t> indices;
-  indices.reserve(split.localIndices.size());
-  for (const VertexRun& run : split.runs)
-    for (std::uint32_t i = run.firstIndex; i < run.firstIndex + run.indexCount; ++i)
-      indices.push_back(run.firstVertex + split.localIndices[i]);
+  std::vector<std::uint32_t> indices = indicesIntoCopies(split);
   for (std::size_t l = 0; l < levels.size(); ++l) {
     prim.levels[l].firstIndex = GLsizei(indices.size());
     for (const std::uint32_t v : levels[l]) indices.push_back(split.firstCopy[v]);
@@ -379,10 +376,7 @@ void uploadInRuns(const PrimitiveData& source, const std::vector<MeshLod>* level
   const std::vector<std::uint32_t> indices = splitIndicesWithLevels(split, levelIndices, prim);
   addVertexBuffers(data, prim);
   prim.sources.indices = addBuffer(prim, indices);
-  // Mesa's draw module shades a run as one range only where the draw ends before
-  // the index buffer does (draw_pt_vsplit_tmp.h: end >= eltMax falls back).
-  split.localIndices.resize(split.localIndices.size() + 2, 0);
-  prim.sources.runIndices = addBuffer(prim, split.localIndices);
+  prim.sources.runIndices = addBuffer(prim, runIndexBuffer(split));
   prim.vertexCount = GLsizei(data.positions.size());
   prim.indexCount = GLsizei(source.indices.size());
   prim.runs = std::move(split.runs);
@@ -464,23 +458,12 @@ std::pair<GLsizei, GLsizei> levelWithin(const GpuPrimitive& prim, float budget) 
   return {prim.levels[size_t(level)].firstIndex, prim.levels[size_t(level)].indexCount};
 }
 
-// Draws `prim`'s full mesh run by run from its 16-bit indices (the vertex array's).
-void drawRuns(const GpuPrimitive& prim, GLenum mode) {
-  for (const VertexRun& run : prim.runs) {
-    glDrawRangeElementsBaseVertex(mode, 0, run.vertexCount - 1, GLsizei(run.indexCount), GL_UNSIGNED_SHORT,
-                                  reinterpret_cast<const void*>(std::uintptr_t(run.firstIndex) * sizeof(std::uint16_t)),
-                                  GLint(run.firstVertex));
-  }
-}
-
 // Runs `draw` with `prim`'s 32-bit indices bound to the bound vertex array, which
-// otherwise reads the runs' 16-bit ones.
+// otherwise reads its runs' 16-bit ones (when it has runs).
 template <typename Draw>
-void withWholeIndices(const GpuPrimitive& prim, Draw draw) {
-  const bool runs = prim.sources.runIndices >= 0;
-  if (runs) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, prim.buffers[size_t(prim.sources.indices)].id());
-  draw();
-  if (runs) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, prim.buffers[size_t(prim.sources.runIndices)].id());
+void withPrimitiveIndices(const GpuPrimitive& prim, Draw draw) {
+  if (prim.sources.runIndices < 0) return draw();
+  withWholeIndices(prim.buffers[size_t(prim.sources.indices)], prim.buffers[size_t(prim.sources.runIndices)], draw);
 }
 
 // Draws primitive `p` of node `n` (each of its instances), with whatever blend
@@ -552,14 +535,14 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
 
 void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget, const IndirectDraw* indirect) {
   if (indirect) {
-    withWholeIndices(prim, [&] {
+    withPrimitiveIndices(prim, [&] {
       glMultiDrawElementsIndirect(mode, GL_UNSIGNED_INT, reinterpret_cast<const void*>(indirect->offset),
                                   indirect->count, 0);
     });
   } else if (prim.indexCount > 0) {
-    if (!prim.runs.empty() && levelIndexWithin(prim, lodBudget) < 0) return drawRuns(prim, mode);
+    if (!prim.runs.empty() && levelIndexWithin(prim, lodBudget) < 0) return drawRuns(prim.runs, mode);
     const std::pair<GLsizei, GLsizei> level = levelWithin(prim, lodBudget);  // first index, count
-    withWholeIndices(prim, [&] {
+    withPrimitiveIndices(prim, [&] {
       glDrawElements(mode, level.second, GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(std::uintptr_t(level.first) * sizeof(std::uint32_t)));
     });

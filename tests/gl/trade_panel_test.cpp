@@ -233,7 +233,13 @@ TEST_P(TradePanel, TheReferencesNoiseEstimateIsItsError) {
   request.settings.seed = 5;
   demo::ReferenceView view;
   ASSERT_TRUE(view.update(*scene, request).ok());
-  EXPECT_FALSE(view.trace()->noisePsnr()) << "an estimate before two passes";
+  // The trace runs on its own threads: two passes may be done already (under load
+  // they were, once in ctest -j2). An estimate only from two passes on; read in
+  // this order, as passes only grow.
+  const bool estimated = view.trace()->noisePsnr().has_value();
+  if (estimated) {
+    EXPECT_GE(view.trace()->passesDone(), 2) << "an estimate before two passes";
+  }
   ASSERT_TRUE(finish(view));
   const auto estimate = view.trace()->noisePsnr();
   ASSERT_TRUE(estimate);

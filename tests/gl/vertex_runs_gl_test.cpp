@@ -12,6 +12,7 @@
 #include "../support/gl_test.h"
 #include "asset/gltf_loader.h"
 #include "gl/shader.h"
+#include "render/mesh.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
 
@@ -123,6 +124,27 @@ TEST_P(VertexRunsGl, EachVertexShadedOnceAndTheSamePixels) {
     }
   }
   EXPECT_GE(primitives, 1);
+}
+
+// The analytic shapes (render/mesh.h) too: the sphere every scene's spheres draw
+// (9,216 triangles) and a plane of 16 x 16 cells.
+TEST_P(VertexRunsGl, ShapesShadeEachVertexOnce) {
+  if (!hasExtension("GL_ARB_pipeline_statistics_query")) GTEST_SKIP() << "no pipeline statistics query";
+  auto program = gl::Program::build(test::shaderDir(), {{GL_VERTEX_SHADER, "test/vertex_runs.vert"},
+                                                        {GL_FRAGMENT_SHADER, "test/vertex_runs.frag"}});
+  ASSERT_TRUE(program.ok()) << program.error().message;
+  for (const ShapeData& shape : {shapeForPrimitive(PrimitiveDesc{}), makePlane(2.0f, 16, 1.0f)}) {
+    const GpuMesh mesh(shape);
+    GLuint64 copies = 0;
+    for (const VertexRun& run : mesh.runs()) copies += run.vertexCount;
+    const Drawn drawn = render(*program, glm::mat4(0.4f), [&] { mesh.draw(); });
+    std::printf("%zu vertices, %llu copies in %zu runs, shaded %llu times\n", shape.vertices.size(),
+                (unsigned long long)copies, mesh.runs().size(), (unsigned long long)drawn.invocations);
+    EXPECT_EQ(drawn.invocations, copies);
+    // A grid's runs share a row of vertices at each edge: the sphere's rows of 97
+    // at six edges, 1.12x.
+    EXPECT_LE(copies, shape.vertices.size() * 115 / 100);
+  }
 }
 
 }  // namespace
