@@ -84,6 +84,11 @@ struct PrimitiveData {
   std::vector<glm::vec3> morphTangents;
 };
 
+// Whether `p` is a triangle list drawn by index (glTF mode 4 with whole triangles).
+inline bool isIndexedTriangleList(const PrimitiveData& p) {
+  return p.mode == 4 && !p.indices.empty() && p.indices.size() % 3 == 0;
+}
+
 struct MeshData {
   std::string name;
   std::vector<PrimitiveData> primitives;

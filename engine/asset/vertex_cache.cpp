@@ -11,7 +11,7 @@ std::vector<std::uint32_t> orderForVertexCache(std::span<const std::uint32_t> in
 }
 
 bool mayReorderTriangles(const ModelData& model, const PrimitiveData& primitive) {
-  if (primitive.mode != 4 || primitive.indices.empty() || primitive.indices.size() % 3 != 0) return false;
+  if (!isIndexedTriangleList(primitive)) return false;
   const int material = primitive.material;
   return material < 0 || material >= int(model.materials.size()) ||
          model.materials[std::size_t(material)].alphaMode != AlphaMode::Blend;

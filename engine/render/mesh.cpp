@@ -20,11 +20,12 @@ GpuMesh::GpuMesh(const ShapeData& data) : GpuMesh(data, runsOf(data)) {}
 
 GpuMesh::GpuMesh(const ShapeData& data, const RunSplit& split)
     : vertices_(gl::Buffer::fromSpan(std::span<const Vertex>(inSplitOrder(data.vertices, split)))),
-      indices_(gl::Buffer::fromSpan(std::span<const std::uint32_t>(indicesIntoCopies(split)))),
       runIndices_(gl::Buffer::fromSpan(std::span<const std::uint16_t>(runIndexBuffer(split)))),
       vao_(gl::VertexArray::create()),
       indexCount_(static_cast<GLsizei>(data.indices.size())),
       runs_(split.runs) {
+  const std::vector<std::uint32_t> whole = indicesIntoCopies(split);
+  indices_ = gl::Buffer::fromSpan(std::span<const std::uint32_t>(whole));
   vao_.vertexBuffer(0, vertices_, sizeof(Vertex));
   vao_.indexBuffer(runIndices_);
   vao_.attribute(kPositionLocation, 0, 3, offsetof(Vertex, position));
@@ -32,7 +33,7 @@ GpuMesh::GpuMesh(const ShapeData& data, const RunSplit& split)
   vao_.attribute(kUvLocation, 0, 2, offsetof(Vertex, uv));
   std::vector<glm::vec3> positions;
   for (const std::uint32_t v : split.sourceVertex) positions.push_back(data.vertices[v].position);
-  clusterRange_ = cull::appendClusters(positions, indicesIntoCopies(split), 0, std::uint32_t(indexCount_), clusters_);
+  clusterRange_ = cull::appendClusters(positions, whole, 0, std::uint32_t(indexCount_), clusters_);
 }
 
 void GpuMesh::draw() const {

@@ -283,11 +283,6 @@ std::vector<std::uint32_t> orderedIndices(const std::vector<std::uint32_t>& indi
   return reorder ? orderForVertexCache(indices, vertices) : indices;
 }
 
-// Whether a primitive is drawn in runs (asset/vertex_runs.h): an indexed triangle list.
-bool drawsInRuns(const PrimitiveData& data) {
-  return data.mode == GL_TRIANGLES && !data.indices.empty() && data.indices.size() % 3 == 0;
-}
-
 // Target-major displacements (PrimitiveData's morph arrays) in `split`'s vertex order.
 std::vector<glm::vec3> targetsInSplitOrder(const std::vector<glm::vec3>& deltas, const RunSplit& split,
                                            std::size_t vertices, std::size_t targets) {
@@ -398,7 +393,7 @@ GpuPrimitive uploadPrimitive(const PrimitiveData& data, const std::vector<MeshLo
   GpuPrimitive prim;
   prim.influences = data.influences;
   prim.material = data.material;
-  if (drawsInRuns(data)) {
+  if (isIndexedTriangleList(data)) {  // drawn in runs (asset/vertex_runs.h)
     uploadInRuns(data, levels, reorder, prim);
   } else {
     uploadWhole(data, prim);
@@ -450,10 +445,8 @@ void flipFrontFace() {
   glFrontFace(face == GL_CCW ? GL_CW : GL_CCW);
 }
 
-// The coarsest level of detail within `budget`: its first index and count (the
-// full mesh's where none is).
-std::pair<GLsizei, GLsizei> levelWithin(const GpuPrimitive& prim, float budget) {
-  const int level = levelIndexWithin(prim, budget);
+// Level `level`'s first index and count in the 32-bit indices (-1: the full mesh's).
+std::pair<GLsizei, GLsizei> levelRange(const GpuPrimitive& prim, int level) {
   if (level < 0) return {0, prim.indexCount};
   return {prim.levels[size_t(level)].firstIndex, prim.levels[size_t(level)].indexCount};
 }
@@ -540,11 +533,12 @@ void drawMesh(const GpuPrimitive& prim, GLenum mode, float lodBudget, const Indi
                                   indirect->count, 0);
     });
   } else if (prim.indexCount > 0) {
-    if (!prim.runs.empty() && levelIndexWithin(prim, lodBudget) < 0) return drawRuns(prim.runs, mode);
-    const std::pair<GLsizei, GLsizei> level = levelWithin(prim, lodBudget);  // first index, count
+    const int level = levelIndexWithin(prim, lodBudget);
+    if (level < 0 && !prim.runs.empty()) return drawRuns(prim.runs, mode);
+    const std::pair<GLsizei, GLsizei> range = levelRange(prim, level);  // first index, count
     withPrimitiveIndices(prim, [&] {
-      glDrawElements(mode, level.second, GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(std::uintptr_t(level.first) * sizeof(std::uint32_t)));
+      glDrawElements(mode, range.second, GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(std::uintptr_t(range.first) * sizeof(std::uint32_t)));
     });
   } else {
     glDrawArrays(mode, 0, prim.vertexCount);

@@ -123,13 +123,6 @@ TEST_P(DeferredCharacters, WithinLevelsOfTheCharactersShadedWhereDrawn) {
   }
 }
 
-std::string characterCaseName(const ::testing::TestParamInfo<CharacterParam>& info) {
-  return std::string(backendName(std::get<0>(info.param))) + "_" + kCharacterCases[std::get<1>(info.param)].name;
-}
-
-INSTANTIATE_TEST_SUITE_P(GoldenScenes, DeferredCharacters,
-                         ::testing::Combine(::testing::Values(Backend::Egl, Backend::OsMesa),
-                                            ::testing::Range(0, int(std::size(kCharacterCases)))),
-                         characterCaseName);
+ENGINE_INSTANTIATE_GOLDEN_CASES(DeferredCharacters, kCharacterCases);
 
 }  // namespace

@@ -83,13 +83,6 @@ TEST_P(DeferredTerrain, WithinALevelOfTheTerrainShadedWhereDrawn) {
   }
 }
 
-std::string terrainCaseName(const ::testing::TestParamInfo<TerrainParam>& info) {
-  return std::string(backendName(std::get<0>(info.param))) + "_" + kTerrainCases[std::get<1>(info.param)].name;
-}
-
-INSTANTIATE_TEST_SUITE_P(GoldenScenes, DeferredTerrain,
-                         ::testing::Combine(::testing::Values(Backend::Egl, Backend::OsMesa),
-                                            ::testing::Range(0, int(std::size(kTerrainCases)))),
-                         terrainCaseName);
+ENGINE_INSTANTIATE_GOLDEN_CASES(DeferredTerrain, kTerrainCases);
 
 }  // namespace

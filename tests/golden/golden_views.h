@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <iterator>
 #include <string>
+#include <tuple>
 
 #include <glm/glm.hpp>
 
@@ -74,5 +76,17 @@ inline void writeFailurePair(const std::string& stem, const std::string& nameA, 
   (void)writePng((out / (stem + "_" + nameA + ".png")).string(), a);
   (void)writePng((out / (stem + "_" + nameB + ".png")).string(), b);
 }
+
+// A golden comparison over both backends and each case of a table (a param of
+// (backend, index into `cases`), each case with a `name`): GoldenScenes/Suite/egl_NAME.
+#define ENGINE_INSTANTIATE_GOLDEN_CASES(Suite, cases)                                           \
+  INSTANTIATE_TEST_SUITE_P(                                                                     \
+      GoldenScenes, Suite,                                                                      \
+      ::testing::Combine(::testing::Values(::engine::Backend::Egl, ::engine::Backend::OsMesa),  \
+                         ::testing::Range(0, int(std::size(cases)))),                           \
+      [](const ::testing::TestParamInfo<std::tuple<::engine::Backend, int>>& p) {               \
+        return std::string(::engine::backendName(std::get<0>(p.param))) + "_" +                 \
+               cases[std::get<1>(p.param)].name;                                                \
+      })
 
 }  // namespace engine::test

@@ -118,13 +118,6 @@ TEST_P(GpuCullingGolden, CulledImageIsTheUnculledOneBitForBit) {
   }
 }
 
-std::string cullingCaseName(const ::testing::TestParamInfo<CullingParam>& info) {
-  return std::string(backendName(std::get<0>(info.param))) + "_" + kCullingCases[std::get<1>(info.param)].name;
-}
-
-INSTANTIATE_TEST_SUITE_P(GoldenScenes, GpuCullingGolden,
-                         ::testing::Combine(::testing::Values(Backend::Egl, Backend::OsMesa),
-                                            ::testing::Range(0, int(std::size(kCullingCases)))),
-                         cullingCaseName);
+ENGINE_INSTANTIATE_GOLDEN_CASES(GpuCullingGolden, kCullingCases);
 
 }  // namespace
