@@ -19,6 +19,9 @@ struct DrawItem {
   std::uint32_t program = 0;  // the GL program, for counting changes
   std::uint64_t key = 0;
   int surfaceGroup = -1;  // a deferred character primitive's group of one material (its stencil)
+  // Its variant leaves the far sun map out (ShaderVariant::nearSunOnly): worked out
+  // once when collected, for the program counted there and the one drawn.
+  bool nearSunOnly = false;
 };
 
 // Non-negative floats order as their bits do; a distance is clamped to >= 0.

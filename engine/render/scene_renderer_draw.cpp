@@ -69,11 +69,11 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
 
 // A shape's program: textured where its material has a texture, matte where it has
 // no highlight.
-ShaderVariant SceneRenderer::Impl::shapeVariant(const ShapeDraw& shape, bool depthOnly) const {
+ShaderVariant SceneRenderer::Impl::shapeVariant(const ShapeDraw& shape, bool depthOnly, bool nearSunOnly) const {
   ShaderVariant v{0, SkinMode::Linear, !depthOnly && materialTextures[size_t(shape.material)].id() != 0, depthOnly};
   v.matte = scene.materials[size_t(shape.material)].specular <= 0.0f;
   v.oneSided = !shape.twoSided;
-  v.nearSunOnly = !depthOnly && nearSunCovers(shape.lo - eye, shape.hi - eye);
+  v.nearSunOnly = nearSunOnly;
   return v;
 }
 
@@ -110,11 +110,13 @@ Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOn
       continue;
     }
     ++stats->objectsDrawn;
-    auto program = variants->get(shapeVariant(s, depthOnly));
+    const bool nearSunOnly = !depthOnly && nearSunCovers(s.lo - eye, s.hi - eye);
+    auto program = variants->get(shapeVariant(s, depthOnly, nearSunOnly));
     if (!program) return program.error();
     const GLuint id = (*program)->id();
     const double distance = s.radius < 0.0 ? 0.0 : glm::length(center);
-    lists.opaque.push_back({DrawItem::Source::Shape, index, -1, -1, id, opaqueKey(id, std::uint32_t(s.material), distance)});
+    lists.opaque.push_back(
+        {DrawItem::Source::Shape, index, -1, -1, id, opaqueKey(id, std::uint32_t(s.material), distance), -1, nearSunOnly});
   }
   return Ok{};
 }
@@ -148,7 +150,7 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
         const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
         if (blend && depthOnly) continue;
         ShaderVariant variant = primitiveVariant(model, node, prim, mode, depthOnly, cached);
-        variant.nearSunOnly = nearSunOnly && !blend;
+        variant.nearSunOnly = nearSunOnly;
         const int group = surfaces && !blend && variant.deferrable()
                               ? surfaceGroupOf(c.instance->asset(), prim.material, variant)
                               : -1;
@@ -163,17 +165,21 @@ Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool dep
         if (!blend) {
           const std::uint32_t material = std::uint32_t(scene.materials.size()) + std::uint32_t(std::max(prim.material, 0));
           (surface ? lists.surface : transmissive ? lists.transmissive : lists.opaque)
-              .push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance), group});
+              .push_back({DrawItem::Source::Character, index, n, p, id, opaqueKey(id, material, distance), group,
+                          variant.nearSunOnly});
         }
       }
     }
     if (depthOnly) continue;
     for (const BlendPrimitive& b : c.instance->blendPrimitives()) {
-      auto program = variants->get(primitiveVariant(model, model.nodes[size_t(b.node)],
-                                                    model.meshes[size_t(model.nodes[size_t(b.node)].mesh)].primitives[size_t(b.primitive)],
-                                                    mode, false, cached));
+      const NodeData& node = model.nodes[size_t(b.node)];
+      ShaderVariant variant = primitiveVariant(model, node, model.meshes[size_t(node.mesh)].primitives[size_t(b.primitive)],
+                                               mode, false, cached);
+      variant.nearSunOnly = nearSunOnly;
+      auto program = variants->get(variant);
       if (!program) return program.error();
-      lists.blend.push_back({DrawItem::Source::Character, index, b.node, b.primitive, (*program)->id(), blendKey(b.distance)});
+      lists.blend.push_back(
+          {DrawItem::Source::Character, index, b.node, b.primitive, (*program)->id(), blendKey(b.distance), -1, nearSunOnly});
     }
   }
   return Ok{};
@@ -282,7 +288,7 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
     ++stats->drawCalls;
     if (item.source == DrawItem::Source::Shape) {
       const ShapeDraw& shape = shapes[size_t(item.object)];
-      auto program = variants->get(shapeVariant(shape, pass.depthOnly));
+      auto program = variants->get(shapeVariant(shape, pass.depthOnly, item.nearSunOnly));
       if (!program) return program.error();
       (*program)->use();
       set(**program);
@@ -292,7 +298,7 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
     CharacterDraw& c = characters[size_t(item.object)];
     CharacterInstance::PrimitivePass how;
     how.depthOnly = pass.depthOnly;
-    how.nearSunOnly = !pass.depthOnly && !pass.surface && characterNearSunOnly(c);
+    how.nearSunOnly = item.nearSunOnly;
     how.indirect = indirect;
     if (pass.surface) {
       how.surface = ShaderVariant::Surface::Out;

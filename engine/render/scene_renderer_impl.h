@@ -354,7 +354,7 @@ struct SceneRenderer::Impl {
   // `surfaces`: deferrable character primitives go to DrawLists::surface.
   Result<DrawLists> collectDraws(const glm::dvec4* planes, bool depthOnly, int skipShape = -1, bool surfaces = false);
   Status collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists);
-  ShaderVariant shapeVariant(const ShapeDraw& shape, bool depthOnly) const;
+  ShaderVariant shapeVariant(const ShapeDraw& shape, bool depthOnly, bool nearSunOnly) const;
   Status collectCharacters(const glm::dvec4* planes, bool depthOnly, bool surfaces, DrawLists& lists);
   Status drawItems(const std::vector<DrawItem>& items, const PassInputs& pass, const ItemCommands* commands = nullptr);
   std::size_t itemTriangles(const DrawItem& item) const;
