@@ -165,7 +165,13 @@ int main(int argc, char** argv) {
                  "Window: the trade panel turns knob KNOB=VALUE on its first frame, as its combo would (msaa=4, "
                  "ambient=sh, skinning=compute, ...); repeatable");
   bool noTimings = false;
-  app.add_flag("--panel-no-timings", noTimings, "Window: the trade panel shows no timing figures (reproducible screenshots)");
+  auto* noTimingsFlag =
+      app.add_flag("--panel-no-timings", noTimings, "Window: the trade panel shows no timing figures (reproducible screenshots)");
+  bool noPanel = false;
+  app.add_flag("--no-panel", noPanel,
+               "Window: no trade panel, only the frame (what a game shows; a window's frame time without the UI)")
+      ->excludes(noTimingsFlag)
+      ->excludes("--panel-set");
   app.add_flag("--describe", describe,
                "Print the passes and shader variants built for the scene (--mode raytrace|pathtrace: the scene as "
                "traced and, with --device gpu, the kernel's variant and the buffers it uploads)");
@@ -276,7 +282,7 @@ int main(int argc, char** argv) {
   }
   if (soakSeconds > 0.0) return runSoak(scenePath, render, soakSeconds, soakReload, backend, options.run);
   // The trade panel only in a window: offscreen frames never show it.
-  demo::SceneGame game(std::move(scene).value(), render, backend == engine::Backend::Window);
+  demo::SceneGame game(std::move(scene).value(), render, backend == engine::Backend::Window && !noPanel);
   if (bookmark >= 0) game.startAtBookmark(bookmark);
   game.showTimings(!noTimings);
   if (!panelSet.empty()) {

@@ -75,6 +75,13 @@ case "$CASE" in
     start_xvfb
     expect 0 "win\.png" -- "$BIN/demo" --frames 3 --time 1 --size 640x360 --screenshot win.png
     cmp egl_w.png win.png || { echo "FAIL: window and EGL frames differ"; exit 1; }
+    # Without the trade panel the whole window (what it shows, read back from its
+    # default framebuffer after the blit) is the frame itself, byte for byte.
+    rm -f bare_win.png
+    expect 0 "bare_win\.png" -- "$BIN/demo" --frames 3 --time 1 --size 640x360 --no-panel --screenshot-window \
+      --screenshot bare_win.png
+    cmp egl_w.png bare_win.png || { echo "FAIL: the window without its panel differs from the EGL frame"; exit 1; }
+    expect 2 "--panel-set excludes --no-panel" -- "$BIN/demo" --frames 1 --size 64x64 --no-panel --panel-set msaa=4
     echo "ok: identical bytes" ;;
   gpu_culling_identical)
     # GPU culling changes no pixel: offscreen on and off, and a window run of 3
