@@ -12,7 +12,6 @@ namespace {
 
 double srgbExact(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
 
-
 using ByteOf = std::function<std::uint8_t(float)>;
 
 // The least float in [lo, hi] whose byte exceeds `byte`, by bisection over the
