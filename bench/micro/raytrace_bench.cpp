@@ -23,7 +23,7 @@ namespace rt = engine::rt;
 engine::Result<rt::RtScene> loadCornell(bool soft) {
   auto desc = engine::loadSceneFile(soft ? "assets/scenes/cornell_soft.json" : "assets/scenes/cornell.json");
   if (!desc) return desc.error();
-  return rt::RtScene::fromSceneDesc(*desc);
+  return rt::analyticRtScene(*desc);
 }
 
 // args: threads, soft (0/1)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -142,7 +143,15 @@ Result<Image> decodePng(std::span<const std::uint8_t> bytes, const std::string& 
   return image;
 }
 
+namespace {
+std::atomic<std::uint64_t> gImageFilesRead{0};
+}  // namespace
+
+std::uint64_t imageFilesRead() { return gImageFilesRead.load(); }
+void countImageFileRead() { gImageFilesRead.fetch_add(1); }
+
 Result<Image> readPng(const std::string& path) {
+  countImageFileRead();
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) return makeError(path + ": cannot read image: " + ec.message());

@@ -48,6 +48,10 @@ inline constexpr std::uint64_t kMaxImagePixels = 1ull << 26;
 // something else is refused rather than handed to those decoders). Errors name the
 // file; a 0x0 or over-limit image is an error.
 Result<Image> readPng(const std::string& path);
+// Image files read so far by this process (readPng and readLinearImage): the scene
+// layer decodes a scene's images once, and tests count that nothing reads them again.
+std::uint64_t imageFilesRead();
+void countImageFileRead();
 // The same decoder on bytes in memory; `name` stands for the file in messages.
 Result<Image> decodePng(std::span<const std::uint8_t> bytes, const std::string& name);
 // Reads only the PNG header: refuses a 0x0 or over-limit size, and a size whose

@@ -168,7 +168,9 @@ Result<ImageInfo> readHdrOrPngInfo(const std::string& path) {
 Result<FloatImage> readLinearImage(const std::string& path) {
   auto info = readHdrOrPngInfo(path);
   if (!info) return info.error();
-  return info->format == ImageFormat::Hdr ? decodeHdr(path, *info) : decodePngToLinear(path);
+  if (info->format != ImageFormat::Hdr) return decodePngToLinear(path);  // readPng counts the read
+  countImageFileRead();
+  return decodeHdr(path, *info);
 }
 
 }  // namespace engine

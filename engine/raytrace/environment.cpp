@@ -5,7 +5,6 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "core/image.h"
 
 namespace engine::rt {
 namespace latlong {
@@ -28,7 +27,8 @@ constexpr glm::ivec2 kAnalyticResolution{512, 256};
 
 }  // namespace
 
-Result<Environment> Environment::create(const SkyDesc& sky, std::optional<glm::vec3> sunDirection) {
+Result<Environment> Environment::create(const SkyDesc& sky, std::optional<glm::vec3> sunDirection,
+                                        std::shared_ptr<const FloatImage> image) {
   Environment env;
   env.sky_ = sky;
   if (!sky.enabled) return env;  // Constant: the background
@@ -37,10 +37,9 @@ Result<Environment> Environment::create(const SkyDesc& sky, std::optional<glm::v
     env.sun_ = sunDirection;
     return env;
   }
-  auto image = readLinearImage(sky.image);
-  if (!image) return image.error();
+  if (!image) return makeError(sky.image + ": the sky's image was not decoded (scene/scene_images.h)");
   env.kind_ = Kind::Image;
-  env.image_ = std::make_shared<const FloatImage>(std::move(image).value());
+  env.image_ = std::move(image);
   env.intensity_ = sky.intensity;
   const double radians = glm::radians(double(sky.rotationDegrees));
   env.cosRotation_ = float(std::cos(radians));

@@ -19,9 +19,11 @@ class Environment {
  public:
   Environment() = default;  // black everywhere
   // The sky of a scene; sunDirection (unit, toward the sun) draws the gradient sky's
-  // sun disk when sky.sunDisk. Loads sky.image when set (errors name the file). An
-  // image has no sun disk of its own making: its sun is in its pixels.
-  static Result<Environment> create(const SkyDesc& sky, std::optional<glm::vec3> sunDirection);
+  // sun disk when sky.sunDisk. An image sky (sky.image set) samples `image`, decoded
+  // by the scene layer (scene/scene_images.h): without it, an error. An image has no
+  // sun disk of its own making: its sun is in its pixels.
+  static Result<Environment> create(const SkyDesc& sky, std::optional<glm::vec3> sunDirection,
+                                    std::shared_ptr<const FloatImage> image = nullptr);
 
   // Radiance arriving from unit direction `dir` (pointing away from the scene).
   // sunDisk = false leaves the gradient sky's sun disk out (a path tracer that samples

@@ -1,6 +1,5 @@
 #include "raytrace/rt_scene.h"
 
-#include "asset/material_texture.h"
 #include "core/brdf.h"
 #include "scene/shapes.h"
 
@@ -104,21 +103,20 @@ void RtScene::setEnvironment(Environment environment) {
   environmentFromSky_ = false;
 }
 
-Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc) {
+Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc, const SceneImages& images) {
   RtScene scene;
   if (!desc.materials.empty()) scene.materials_ = desc.materials;
   scene.extras_.assign(scene.materials_.size(), MaterialExtras{});
   for (size_t i = 0; i < desc.materials.size(); ++i) {
-    auto image = loadMaterialTexture(desc, desc.materials[i]);
-    if (!image) return image.error();
+    const Image* image = images.materialTexture(i);
     // The rasterizer uploads the scene's textures flipped: uv (0, 0) is the bottom-left.
-    if (image->empty()) continue;
+    if (!image) continue;
     if (auto s = scene.setMaterialTexture(int(i), RtTexture(*image, TextureOrigin::BottomLeft)); !s) return s.error();
   }
   scene.camera_ = desc.camera;
   scene.lights_ = desc.lights;
   scene.sky_ = desc.sky;
-  auto environment = Environment::create(desc.sky, scene.sunDirection());
+  auto environment = Environment::create(desc.sky, scene.sunDirection(), images.sky);
   if (!environment) return makeError(desc.path + ": /sky/image: " + environment.error().message);
   scene.environment_ = std::move(environment).value();
   scene.ambientSky_ = ambientSkyColor(desc);

@@ -30,6 +30,7 @@
 #include "raytrace/environment.h"
 #include "raytrace/ray.h"
 #include "raytrace/shape_lanes.h"
+#include "scene/scene_images.h"
 #include "raytrace/shape_packs.h"
 #include "raytrace/shapes.h"
 #include "raytrace/terrain_material.h"
@@ -138,7 +139,8 @@ class RtScene {
   RtScene();  // one default material, no shapes, no lights, the default camera
   // Spheres, planes, boxes (as 12 triangles each), lights, materials, camera, sky and
   // render settings. Models and terrain are the caller's to add as meshes.
-  static Result<RtScene> fromSceneDesc(const SceneDesc& desc);
+  // The scene file's textures and sky image come decoded (scene/scene_images.h).
+  static Result<RtScene> fromSceneDesc(const SceneDesc& desc, const SceneImages& images);
 
   int addMaterial(const MaterialDesc& material);
   // A base colour texture that multiplies `material`'s colour (the rasterizer's

@@ -9,8 +9,9 @@
 #include "raytrace/ground_split.h"
 #include "raytrace/tone_map.h"
 #include "scene/scene.h"
-#include "terrain/lod.h"
+#include "scene/terrain_mesh.h"
 #include "terrain/materials.h"
+#include "terrain/page_pool.h"
 #include "terrain/terrain.h"
 
 namespace engine::rt {
@@ -147,24 +148,16 @@ Status addSplitAtGround(RtMesh mesh, const std::optional<GroundPlane>& ground, i
   return Ok{};
 }
 
-// The terrain as the rasterizer draws it from the scene's camera: the CDLOD patches
-// selected for this view, each a grid of morphed vertices, in world space. What lies
-// behind the scene's ground goes to group `behindGroup`.
-Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int viewportHeight, RtScene& scene,
+// The terrain as the rasterizer draws it from the scene's camera: the scene layer's
+// selection for this view (scene/terrain_mesh.h), unculled, with the rasterizer's
+// target and page budget, each patch a grid of morphed vertices in world space.
+// What lies behind the scene's ground goes to group `behindGroup`.
+Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, const TerrainView& view, RtScene& scene,
                   SceneBuildStats& stats, int& behindGroup) {
-  const CameraDesc& c = desc.camera;
-  terrain::LodCamera camera;
-  camera.position = c.position;
-  camera.fovY = glm::radians(c.fovyDegrees);
-  camera.viewportHeight = viewportHeight;
-  camera.viewProjection = glm::mat4(glm::perspective(camera.fovY, 16.0 / 9.0, c.nearPlane, c.farPlane) *
-                                    glm::lookAt(glm::dvec3(0.0), c.forward, c.up));
-  // No culling: terrain outside the view still casts shadows into it.
-  camera.cull = false;
   // Every block the view's ranges need, as the rasterizer measures them, so that a
   // still of one matches a still of the other.
-  terrain::measureBlocks(field, camera, desc.terrain.errorPixels);
-  const auto selection = terrain::selectLod(field, camera, desc.terrain.errorPixels);
+  measureTerrain(field, view);
+  const auto selection = selectTerrain(field, view);
   // terrain.frag's material: the layers per hit (RtTerrainMaterial), full diffuse,
   // the scene's ambient and a shininess of 24 in the classic model.
   MaterialDesc layered;
@@ -176,21 +169,14 @@ Status addTerrain(const SceneDesc& desc, const terrain::Terrain& field, int view
   const int material = scene.addMaterial(layered);
   const auto heightScale = std::max(field.heightRange().max, 1e-3f);
   if (auto s = scene.setTerrainMaterial(material, RtTerrainMaterial(field.origin().y, heightScale)); !s) return s;
-  // Layer uvs as terrain.vert makes them: camera-relative metres over the tile size
-  // plus the rasterizer's offset (the far scale multiplies the whole uv, so the
-  // offset must be the same).
-  const glm::vec2 uvOffset = terrain::layerUvOffset(c.position - field.origin());
-  const std::vector<std::uint32_t> indices = terrain::patchIndices();
   const std::optional<GroundPlane> ground = groundPlane(desc);
-  for (const auto& patch : selection.patches) {
+  for (TerrainPatchMesh& patch : terrainPatchMeshes(field, selection, view.eye)) {
     RtMesh mesh;
     mesh.material = material;
-    for (const glm::vec3& v : terrain::patchVertices(field, selection, patch)) {
-      mesh.positions.push_back(glm::vec3(glm::dvec3(v) + c.position));
-      mesh.uvs.push_back(glm::vec2(v.x, v.z) / terrain::kLayerTileMetres + uvOffset);
-    }
-    mesh.normals = terrain::patchNormals(field, selection, patch);
-    mesh.indices = indices;
+    mesh.positions = std::move(patch.positions);
+    mesh.uvs = std::move(patch.uvs);
+    mesh.normals = std::move(patch.normals);
+    mesh.indices = terrainPatchIndices();
     stats.triangles += int(mesh.indices.size() / 3);
     ++stats.meshes;
     if (auto added = addSplitAtGround(std::move(mesh), ground, behindGroup, scene); !added) return added;
@@ -205,10 +191,11 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, int viewportHeight,
-                                                SceneBuildStats* statsOut, const CameraDesc* camera) {
+                                                SceneBuildStats* statsOut, const CameraDesc* camera,
+                                                double terrainErrorOverride) {
   SceneDesc desc = source->desc();
   if (camera) desc.camera = *camera;
-  auto scene = RtScene::fromSceneDesc(desc);
+  auto scene = RtScene::fromSceneDesc(desc, source->images());
   if (!scene) return scene.error();
   AnimatedRtScene out;
   out.scene_ = std::move(scene).value();
@@ -240,7 +227,14 @@ Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, i
   }
   int behindGroup = -1;  // the static triangles behind the scene's ground
   if (const terrain::Terrain* field = out.source_->terrain()) {
-    if (auto s = addTerrain(desc, *field, viewportHeight, rt, stats, behindGroup); !s) return s.error();
+    TerrainView view;
+    view.eye = desc.camera.position;
+    view.fovY = glm::radians(desc.camera.fovyDegrees);
+    view.viewportHeight = viewportHeight;
+    view.errorPixels = terrainErrorTarget(desc, terrainErrorOverride);
+    // The rasterizer's default pool: a selection it would coarsen is coarsened here too.
+    view.maxPages = std::size_t(terrain::defaultPageSlots());
+    if (auto s = addTerrain(desc, *field, view, rt, stats, behindGroup); !s) return s.error();
   }
   stats.skinSeconds = secondsSince(start);
   stats.bvhSeconds = rt.buildGroup(0);
@@ -302,6 +296,12 @@ AnimatedRtScene::AnimatedRtScene() = default;
 AnimatedRtScene::~AnimatedRtScene() = default;
 AnimatedRtScene::AnimatedRtScene(AnimatedRtScene&&) noexcept = default;
 AnimatedRtScene& AnimatedRtScene::operator=(AnimatedRtScene&&) noexcept = default;
+
+Result<RtScene> analyticRtScene(const SceneDesc& desc) {
+  auto images = SceneImages::load(desc);
+  if (!images) return images.error();
+  return RtScene::fromSceneDesc(desc, *images);
+}
 
 Result<RtScene> buildRtScene(const SceneDesc& desc, double time, int viewportHeight, SceneBuildStats* stats) {
   auto animated = AnimatedRtScene::create(desc, time, viewportHeight, stats);

@@ -47,8 +47,11 @@ class AnimatedRtScene {
   // it and skins its poses.
   // `camera`, when given, replaces the file's: the view traced and the one the
   // terrain is triangulated for (the trade panel's reference of the window's view).
+  // `terrainErrorOverride` > 0 replaces the file's LOD target, as the rasterizer's
+  // option of that name does (the trade panel's knob, demo --terrain-error).
   static Result<AnimatedRtScene> create(std::shared_ptr<Scene> scene, int viewportHeight = 720,
-                                        SceneBuildStats* stats = nullptr, const CameraDesc* camera = nullptr);
+                                        SceneBuildStats* stats = nullptr, const CameraDesc* camera = nullptr,
+                                        double terrainErrorOverride = 0.0);
   // Scene::load and update(time), then the above.
   static Result<AnimatedRtScene> create(const SceneDesc& scene, double time, int viewportHeight = 720,
                                         SceneBuildStats* stats = nullptr);
@@ -85,6 +88,10 @@ class AnimatedRtScene {
   std::vector<std::vector<int>> materials_;  // per scene asset: glTF material -> RtScene material
   std::vector<Instance> instances_;
 };
+
+// A scene file's analytic part (shapes, lights, materials, camera, sky; no models or
+// terrain), its images decoded by the scene layer: for tests, tools and benchmarks.
+Result<RtScene> analyticRtScene(const SceneDesc& scene);
 
 // The scene at one time, as AnimatedRtScene::create builds it.
 Result<RtScene> buildRtScene(const SceneDesc& scene, double time, int viewportHeight = 720,

@@ -385,6 +385,10 @@ std::string debugViewList() {
   return list;
 }
 
+const terrain::LodSelection* SceneRenderer::mainTerrainSelection() const {
+  return impl_->terrain ? &impl_->mainTerrain : nullptr;
+}
+
 std::string SceneRenderer::describe() const {
   const Impl& s = *impl_;
   std::ostringstream out;

@@ -19,6 +19,10 @@
 
 namespace engine {
 
+namespace terrain {
+struct LodSelection;
+}
+
 class CharacterInstance;
 class EnvironmentLighting;
 class Scene;
@@ -95,6 +99,9 @@ struct SceneStats {
   // Terrain blocks whose errors are still to be measured for this view (a few a
   // frame): until none are, the terrain's level of detail may still coarsen.
   int terrainBlocksPending = 0;
+  // The image height the main view's terrain was selected for (the target's, which
+  // supersampling enlarges): a tracer's reference of that view selects with it.
+  int terrainViewportHeight = 0;
   long long verticesDeformed = 0;  // by the skin cache's compute (render.skinning compute)
   // Full-frame copies into the caller's framebuffer: the post pass, or the direct
   // path's copy when the caller's framebuffer could not be drawn into (0 or 1).
@@ -172,6 +179,9 @@ class SceneRenderer {
   // ambient and classic shading. For tests and tools.
   const EnvironmentLighting* environmentLighting() const;
   std::vector<CharacterInstance*> characters();
+  // The terrain patches the last frame's main view drew (after culling), or null
+  // without terrain: for tests comparing it with the tracers' terrain.
+  const terrain::LodSelection* mainTerrainSelection() const;
 
  private:
   struct Impl;

@@ -125,17 +125,19 @@ bool SceneRenderer::Impl::isOccluder(const DrawItem& item) const {
 // pass's final depth is at least the prepass's (up to float rounding between two
 // programs' vertex shaders, far inside cull::kDepthMargin). Without occluders
 // there is nothing to cull by depth: the frustum only.
-void SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders) {
+Status SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders) {
   GLint framebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
   hiz->copyDepth(GLuint(framebuffer), targetWidth, targetHeight);
+  Status drawn = Ok{};
   if (!occluders.empty()) {
     glBindFramebuffer(GL_FRAMEBUFFER, hiz->depthFramebuffer());
     const glm::mat4 viewProjection(view.viewProjection);
-    (void)drawItems(occluders, {true, viewProjection, viewProjection, false});
+    drawn = drawItems(occluders, {true, viewProjection, viewProjection, false});
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
   }
   hiz->reduce();
+  return drawn;
 }
 
 // The main view's draws with GPU culling, in the order drawWorld draws them, every
@@ -158,7 +160,7 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   if (occlusion) glFinish();
   const auto start = std::chrono::steady_clock::now();
   if (occlusion) {
-    buildOccluderPyramid(view, occluders);
+    if (auto s = buildOccluderPyramid(view, occluders); !s) return s;
     applyPassState(opaquePassFor(view.mirrored));
   }
   culler->cull(0, culler->jobCount(), glm::mat4(view.viewProjection), occlusion ? hiz.get() : nullptr, cullDepthMargin);
@@ -216,6 +218,7 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   if (patches == 0) {
     terrainCuller->upload();  // this frame's counters: zero
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    mainTerrain = std::move(selection);
     return;
   }
   const std::uint32_t first = terrainCuller->addClusters(terrainPatchBoxes(selection));
@@ -240,6 +243,7 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   shadeTerrainSurface(view, selection);
+  mainTerrain = std::move(selection);
 }
 
 }  // namespace engine

@@ -396,14 +396,10 @@ Status SceneRenderer::Impl::drawWorld(const View& view, int skipShape, bool useP
 // would need more height pages than the GPU pool holds.
 terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullViewProjection, double fovy,
                                                          int viewportHeight) const {
-  terrain::LodCamera camera;
-  camera.position = eye;
-  camera.viewProjection = cullViewProjection;
-  camera.zeroToOneDepth = true;  // reverse-Z and the sun's box both clip depth to 0..w
-  camera.fovY = fovy;
-  camera.viewportHeight = viewportHeight;
-  return terrain::selectLodWithin(*terrain, camera, terrainError,
-                                  std::size_t(terrainRenderer->pageSlots()));
+  TerrainView view = terrainView(fovy, viewportHeight);
+  view.cullViewProjection = cullViewProjection;
+  view.zeroToOneDepth = true;  // reverse-Z and the sun's box both clip depth to 0..w
+  return engine::selectTerrain(*terrain, view);
 }
 
 // Every terrain block error the view from `eye` needs, before any of the frame's
@@ -412,11 +408,20 @@ terrain::LodSelection SceneRenderer::Impl::selectTerrain(const glm::mat4& cullVi
 // before (a window and an offscreen run of another length give the same bytes). A
 // new view pays about 2 ms a block, once.
 void SceneRenderer::Impl::measureTerrain(double fovy, int viewportHeight) {
-  terrain::LodCamera camera;
-  camera.position = eye;
-  camera.fovY = fovy;
-  camera.viewportHeight = viewportHeight;
-  stats->terrainBlocksPending = int(terrain::measureBlocks(*terrain, camera, terrainError));
+  stats->terrainBlocksPending = int(engine::measureTerrain(*terrain, terrainView(fovy, viewportHeight)));
+  stats->terrainViewportHeight = viewportHeight;
+}
+
+// The scene layer's terrain view (scene/terrain_mesh.h) from `eye`: the tracers
+// select theirs through the same function with the same target and page budget.
+TerrainView SceneRenderer::Impl::terrainView(double fovy, int viewportHeight) const {
+  TerrainView view;
+  view.eye = eye;
+  view.fovY = fovy;
+  view.viewportHeight = viewportHeight;
+  view.errorPixels = terrainError;
+  view.maxPages = std::size_t(terrainRenderer->pageSlots());
+  return view;
 }
 
 void SceneRenderer::Impl::drawTerrain(const View& view, int skipShape) {
@@ -428,6 +433,7 @@ void SceneRenderer::Impl::drawTerrain(const View& view, int skipShape) {
   stats->drawCalls += 1;
   stats->terrainTriangles = int(drawn.trianglesDrawn);
   shadeTerrainSurface(view, selection);
+  if (view.main) mainTerrain = std::move(selection);
 }
 
 // The main view's terrain, without MSAA, is shaded once a pixel: llvmpipe shades

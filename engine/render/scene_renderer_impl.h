@@ -19,13 +19,13 @@
 #include <utility>
 
 #include "gl/bindings.h"
-#include "asset/material_texture.h"
 #include "asset/scene_file.h"
 #include "core/linear_image.h"
 #include "render/character.h"
 #include "render/frame_block.h"
 #include "render/gpu_cull.h"
 #include "render/terrain_cull.h"
+#include "scene/terrain_mesh.h"
 #include "render/ibl.h"
 #include "render/mesh.h"
 #include "render/model_renderer.h"
@@ -162,6 +162,7 @@ struct SceneRenderer::Impl {
   // cache (usesSkinCache; declared before the characters, which point at it).
   std::unique_ptr<SkinPrograms> skinPrograms;
   double terrainError = 2.0;                 // the LOD target in pixels (terrain.error_pixels or the override)
+  terrain::LodSelection mainTerrain;        // what the last main view drew (mainTerrainSelection)
   std::optional<SkinMode> skinModeOverride;  // every model's, when set
   QuatInterpolation rotations = QuatInterpolation::Slerp;
   DebugView debugView = DebugView::None;
@@ -300,7 +301,7 @@ struct SceneRenderer::Impl {
   void hidePatchesBehindPlanes(terrain::LodSelection& selection, const View& view, int skipShape) const;
   Status drawCulled(const View& view, const DrawLists& lists, bool useProbes);
   bool isOccluder(const DrawItem& item) const;
-  void buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders);
+  Status buildOccluderPyramid(const View& view, const std::vector<DrawItem>& occluders);
   terrain::Terrain* terrain = nullptr;  // the scene's, when it has one
   std::unique_ptr<terrain::TerrainRenderer> terrainRenderer;
   glm::dvec3 eye{0.0};  // camera position of the frame being drawn
@@ -326,6 +327,7 @@ struct SceneRenderer::Impl {
   Status loadTerrain(const std::vector<std::string>& defines);
   terrain::LodSelection selectTerrain(const glm::mat4& cullViewProjection, double fovy, int viewportHeight) const;
   void measureTerrain(double fovy, int viewportHeight);
+  TerrainView terrainView(double fovy, int viewportHeight) const;
   void drawTerrain(const View& view, int skipShape);
   terrain::TerrainOutput beginTerrainSurface(const View& view);
   void shadeTerrainSurface(const View& view, const terrain::LodSelection& selection);

@@ -57,7 +57,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
   render.toneMap = options.toneMapOverride.value_or(render.toneMap);
   render.output = options.outputOverride.value_or(render.output);
-  terrainError = options.terrainErrorOverride > 0.0 ? options.terrainErrorOverride : scene.terrain.errorPixels;
+  terrainError = terrainErrorTarget(scene, options.terrainErrorOverride);
   skinModeOverride = options.skinModeOverride;
   rotations = options.rotations;
   if (options.supersampleOverride > 0) render.supersample = options.supersampleOverride;
@@ -177,9 +177,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
 Status SceneRenderer::Impl::makeSky() {
   if (!scene.sky.enabled) return Ok{};
   std::vector<std::string> variant;
-  if (!scene.sky.image.empty()) {
-    auto image = readLinearImage(scene.sky.image);
-    if (!image) return makeError(scene.path + ": /sky/image: " + image.error().message);
+  if (const FloatImage* image = source->images().sky.get()) {
     skyImage = uploadSkyImage(*image);
     variant.push_back("SKY_IMAGE 1");
   }
@@ -283,10 +281,10 @@ Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines)
 }
 
 Status SceneRenderer::Impl::loadMaterials() {
-  for (const MaterialDesc& m : scene.materials) {
-    auto image = loadMaterialTexture(scene, m);
-    if (!image) return image.error();
-    materialTextures.push_back(image->empty() ? gl::Texture{} : uploadTexture(*image, true));
+  // Decoded once by the scene layer (scene/scene_images.h), uploaded per renderer.
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const Image* image = source->images().materialTexture(i);
+    materialTextures.push_back(image ? uploadTexture(*image, true) : gl::Texture{});
   }
   return Ok{};
 }

@@ -24,6 +24,9 @@ Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc,
     scene->terrain_ = std::make_unique<terrain::Terrain>(std::move(created).value());
   }
   if (auto s = scene->loadModels(preloaded); !s) return s.error();
+  auto images = SceneImages::load(desc);
+  if (!images) return images.error();
+  scene->images_ = std::move(images).value();
   if (auto s = scene->update(0.0); !s) return s.error();
   return scene;
 }

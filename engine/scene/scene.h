@@ -1,7 +1,7 @@
 #pragma once
 // The scene at time t, as both renderers consume it, GL-free: every glTF the scene
 // file names loaded once, every model instance placed in double precision and posed
-// once per update, and the terrain's height field. Neither the rasterizer
+// once per update, the terrain's height field, and the scene file's images. Neither the rasterizer
 // (render/scene_renderer.h) nor the tracers (raytrace/scene_builder.h) load a model,
 // sample a clip or build the field themselves, so what they draw cannot drift.
 #include <memory>
@@ -11,6 +11,7 @@
 #include "asset/scene_desc.h"
 #include "core/result.h"
 #include "scene/model_asset.h"
+#include "scene/scene_images.h"
 
 namespace engine {
 
@@ -57,6 +58,8 @@ class Scene {
   std::span<const ModelInstance> instances() const { return instances_; }
   // The height field, or null without terrain. Not const: it pages heights in.
   terrain::Terrain* terrain() const { return terrain_.get(); }
+  // The scene file's material textures and sky image, decoded once at load.
+  const SceneImages& images() const { return images_; }
   // Whether anything in the scene moves with time (today: whether it has models).
   bool animated() const { return !instances_.empty(); }
 
@@ -68,6 +71,7 @@ class Scene {
   std::vector<std::shared_ptr<const ModelAsset>> assets_;
   std::vector<ModelInstance> instances_;
   std::unique_ptr<terrain::Terrain> terrain_;
+  SceneImages images_;
   std::vector<Srt> locals_;  // scratch of update
   double time_ = 0.0;
   QuatInterpolation rotations_ = QuatInterpolation::Slerp;

@@ -64,9 +64,7 @@ Result<TerrainRenderer> TerrainRenderer::create(const std::string& shaderDir, co
   // Slots from the budget, rounded down to whole atlas layers.
   GLint maxLayers = 0;
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  const std::size_t budgetLayers = gpuBudgetBytes / (kGpuPageBytes * kPagesPerLayer);
-  r.atlasLayers_ = int(std::clamp<std::size_t>(budgetLayers, kMinGpuPageSlots / kPagesPerLayer,
-                                                std::size_t(std::max(maxLayers, 1))));
+  r.atlasLayers_ = pageLayersWithin(gpuBudgetBytes, maxLayers);
   r.slots_ = r.atlasLayers_ * kPagesPerLayer;
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);

@@ -18,21 +18,11 @@
 #include "gl/resources.h"
 #include "gl/shader.h"
 #include "terrain/lod.h"
+#include "terrain/page_pool.h"
 #include "terrain/terrain.h"
 
 namespace engine::terrain {
 
-// Pages are packed kPageAtlas x kPageAtlas per array layer (the layer count is
-// capped at 2048 on many drivers; the atlas lifts the cap to 32768 pages).
-inline constexpr int kPageAtlas = 4;
-inline constexpr int kPagesPerLayer = kPageAtlas * kPageAtlas;
-// GPU bytes per page slot: kPageSide^2 floats, 17.5 KiB.
-inline constexpr std::size_t kGpuPageBytes = kPageSamples * sizeof(float);
-// Default GPU budget for height pages: 128 MiB, 7,472 slots. A 16 km field at 1 m
-// spacing seen from 40 m up at 1280x720 with a 0.5 px target reads about 4,300.
-inline constexpr std::size_t kDefaultGpuPageBudgetBytes = 128ull * 1024 * 1024;
-// Below this many slots even the coarsest selection may not fit.
-inline constexpr int kMinGpuPageSlots = 512;
 
 // What the colour draws write: the shaded colour, or (after enableDeferred) the
 // surface terrain_deferred.frag shades later, once a pixel.

@@ -244,6 +244,9 @@ int main(int argc, char** argv) {
     return fail(engine::kExitBadInput, "--animate: only with --mode raytrace or pathtrace (the rasterizer always animates)");
   }
   if (mode == "raytrace" || mode == "pathtrace") {
+    // The tracers select the terrain as the rasterizer does (scene/terrain_mesh.h),
+    // from the scene's LOD target: the override becomes it.
+    if (render.terrainErrorOverride > 0.0) scene->terrain.errorPixels = render.terrainErrorOverride;
     if (mode == "pathtrace") {
       rt.settings.method = engine::rt::Method::Path;
       // Blender's Cycles default too; Russian roulette makes the deep bounces cheap.

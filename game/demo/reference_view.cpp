@@ -11,7 +11,8 @@ bool ReferenceRequest::sameAs(const ReferenceRequest& o) const {
   return a.position == b.position && a.forward == b.forward && a.fovyDegrees == b.fovyDegrees && time == o.time &&
          width == o.width && height == o.height && settings.method == o.settings.method &&
          settings.samplesPerPixel == o.settings.samplesPerPixel && settings.maxDepth == o.settings.maxDepth &&
-         settings.seed == o.settings.seed;
+         settings.seed == o.settings.seed && terrainViewportHeight == o.terrainViewportHeight &&
+         terrainErrorOverride == o.terrainErrorOverride;
 }
 
 // The tracer's scene is built here, on the caller's thread, while nothing poses
@@ -20,7 +21,9 @@ engine::Status ReferenceView::update(std::shared_ptr<engine::Scene> scene, const
   if (trace_ && request.sameAs(request_)) return engine::Ok{};
   trace_.reset();
   if (auto s = scene->update(request.time); !s) return s;
-  auto built = engine::rt::AnimatedRtScene::create(std::move(scene), request.height, nullptr, &request.camera);
+  const int lodHeight = request.terrainViewportHeight > 0 ? request.terrainViewportHeight : request.height;
+  auto built = engine::rt::AnimatedRtScene::create(std::move(scene), lodHeight, nullptr, &request.camera,
+                                                   request.terrainErrorOverride);
   if (!built) return built.error();
   engine::rt::RenderSettings settings = request.settings;
   settings.width = request.width;

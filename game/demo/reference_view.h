@@ -25,6 +25,10 @@ struct ReferenceRequest {
   double time = 0.0;
   int width = 0, height = 0;
   engine::rt::RenderSettings settings;  // method, spp, depth, seed (width and height are the request's)
+  // The terrain the window draws: its LOD's image height (0: the request's height)
+  // and the renderer's override of the LOD target (0: the file's).
+  int terrainViewportHeight = 0;
+  double terrainErrorOverride = 0.0;
   bool sameAs(const ReferenceRequest& o) const;
 };
 

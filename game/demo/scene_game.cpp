@@ -129,6 +129,8 @@ engine::Status SceneGame::referenceFrame(const engine::FrameInfo& frame) {
   request.settings.method = r.pathTraced ? engine::rt::Method::Path : engine::rt::Method::Whitted;
   request.settings.samplesPerPixel = r.pathTraced ? 4096 : 1;
   request.settings.maxDepth = r.pathTraced ? 16 : 5;
+  request.terrainViewportHeight = renderer_->stats().terrainViewportHeight;
+  request.terrainErrorOverride = options_.terrainErrorOverride;
   if (!frozen || !still) {
     r.view.stop();
     r.error.reset();

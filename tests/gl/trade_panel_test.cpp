@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "../support/gl_test.h"
+#include "../support/radiance_file.h"
 #include "asset/scene_file.h"
 #include "raytrace/scene_builder.h"
 #include "reference_view.h"
@@ -358,4 +359,48 @@ TEST_P(TradePanel, TheFrameTimesItsCpuWork) {
   EXPECT_GT(s.animationMs, 0.0);
   EXPECT_GT(s.cullMs, 0.0);
   EXPECT_GT(s.submitMs, 0.0);
+}
+
+// The scene layer decodes a scene file's images once (scene/scene_images.h): a
+// material's PNG texture and the sky's HDR image are read when the scene loads, and
+// neither a knob's rebuild of the renderer nor the reference traced beside it reads
+// them again (both once read every image themselves).
+TEST_P(TradePanel, AScenesImagesAreDecodedOnceAcrossARebuildAndAReference) {
+  test::ScratchFolder folder;
+  Image tiles;
+  tiles.width = tiles.height = 4;
+  tiles.pixels.assign(4 * 4 * 4, 200);
+  ASSERT_TRUE(writePng((folder / "tiles.png").string(), tiles).ok());
+  test::writeHdr(folder / "sky.hdr", 8, 4, std::vector<glm::vec3>(32, glm::vec3(0.4f, 0.5f, 0.7f)));
+  const std::string path = (folder / "images.json").string();
+  std::ofstream(path) << R"({"camera": {"position": [0, 1, 4], "target": [0, 0.5, 0]},
+    "materials": {"tiled": {"color": [1, 1, 1], "texture": "tiles.png"}},
+    "lights": [{"type": "sun", "direction": [0.3, 1, 0.2]}],
+    "sky": {"image": "sky.hdr"},
+    "primitives": [{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "tiled"}]})";
+  auto desc = loadSceneFile(path);
+  ASSERT_TRUE(desc.ok()) << desc.error().message;
+  SceneRenderOptions options;
+  options.shaderDir = test::shaderDir();
+  options.iblSizeOverride = 16;
+  const std::uint64_t before = imageFilesRead();
+  demo::SceneGame game(*desc, options, true);
+  ASSERT_TRUE(game.init().ok());
+  EXPECT_EQ(imageFilesRead() - before, 2u) << "the texture and the sky, once each";
+  const std::uint64_t loaded = imageFilesRead();
+  auto target = RenderTarget::create(96, 54, 1);
+  ASSERT_TRUE(target.ok());
+  ASSERT_TRUE(frame(game, *target, 0.0).ok());
+  options.msaaOverride = 2;
+  ASSERT_TRUE(game.applyOptions(options).ok()) << game.lastError();
+  ASSERT_TRUE(frame(game, *target, 0.0).ok());
+  // The reference starts once the camera has held still for ten frames (a scene
+  // without models is frozen in time).
+  game.reference().mode = demo::ReferenceMode::Split;
+  game.reference().pathTraced = false;
+  for (int i = 0; i < 12 && !game.reference().view.running(); ++i) ASSERT_TRUE(frame(game, *target, 0.0).ok());
+  ASSERT_TRUE(game.reference().view.running()) << game.reference().status;
+  EXPECT_TRUE(game.reference().view.trace()->snapshot().width > 0);
+  EXPECT_EQ(imageFilesRead(), loaded) << "an image was read again";
+  game.shutdown();
 }

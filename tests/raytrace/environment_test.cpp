@@ -9,8 +9,10 @@
 #include "../support/radiance_file.h"
 #include "asset/scene_file.h"
 #include "core/image.h"
+#include "core/linear_image.h"
 #include "raytrace/environment.h"
 #include "raytrace/rt_scene.h"
+#include "scene/scene_images.h"
 
 namespace rt = engine::rt;
 using engine::SkyDesc;
@@ -64,7 +66,10 @@ Environment imageSky(const std::filesystem::path& path, float intensity = 1.0f, 
   sky.image = path.string();
   sky.intensity = intensity;
   sky.rotationDegrees = rotation;
-  auto env = Environment::create(sky, std::nullopt);
+  auto image = engine::readLinearImage(sky.image);
+  EXPECT_TRUE(image.ok()) << image.error().message;
+  if (!image) return Environment();
+  auto env = Environment::create(sky, std::nullopt, std::make_shared<const engine::FloatImage>(std::move(image).value()));
   EXPECT_TRUE(env.ok()) << env.error().message;
   return env.ok() ? std::move(env).value() : Environment();
 }
@@ -234,12 +239,14 @@ TEST(Environment, DisabledSkyIsTheBackgroundEverywhere) {
   for (const glm::vec3& d : testDirections(100)) EXPECT_EQ(env->radiance(d), sky.background);
 }
 
+// The scene layer decodes the image (scene/scene_images.h); an image sky handed
+// over without it is an error naming the file, not a black sky.
 TEST(Environment, MissingImageIsAnErrorNamingIt) {
   SkyDesc sky;
   sky.image = "/nonexistent/sky.hdr";
   auto env = Environment::create(sky, std::nullopt);
   ASSERT_FALSE(env.ok());
-  EXPECT_EQ(env.error().message, "/nonexistent/sky.hdr: no such file");
+  EXPECT_EQ(env.error().message, "/nonexistent/sky.hdr: the sky's image was not decoded (scene/scene_images.h)");
 }
 
 // The scene's environment: the image from the scene file, or the gradient with the
@@ -250,15 +257,17 @@ TEST(Environment, RtSceneBuildsItFromTheSky) {
   const std::string path = (folder / "s.json").string();
   auto desc = engine::parseScene(R"({"sky": {"image": "halves.hdr", "intensity": 2}})", path);
   ASSERT_TRUE(desc.ok()) << desc.error().message;
-  auto scene = rt::RtScene::fromSceneDesc(*desc);
+  auto images = engine::SceneImages::load(*desc);
+  ASSERT_TRUE(images.ok()) << images.error().message;
+  auto scene = rt::RtScene::fromSceneDesc(*desc, *images);
   ASSERT_TRUE(scene.ok()) << scene.error().message;
   EXPECT_TRUE(scene->environment().hasImage());
   EXPECT_LT(glm::length(scene->environment().radiance({1, 0, 0}) - kRed * 2.0f), 1e-6f);
 
-  // The file went away after the scene file was read: the ray tracer's error names
+  // The file went away after the scene file was read: the scene layer's error names
   // the scene, the key and the image.
   std::filesystem::remove(folder / "halves.hdr");
-  auto gone = rt::RtScene::fromSceneDesc(*desc);
+  auto gone = engine::SceneImages::load(*desc);
   ASSERT_FALSE(gone.ok());
   EXPECT_EQ(gone.error().message, path + ": /sky/image: " + (folder / "halves.hdr").string() + ": no such file");
 

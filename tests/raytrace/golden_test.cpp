@@ -94,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(Cornell, RaytraceGolden,
 TEST(RaytraceCornell, FloorPixelIsTheCourseFormula) {
   auto desc = engine::loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell.json");
   ASSERT_TRUE(desc) << desc.error().message;
-  auto scene = rt::RtScene::fromSceneDesc(*desc);
+  auto scene = rt::analyticRtScene(*desc);
   ASSERT_TRUE(scene);
   rt::RenderSettings settings;
   settings.width = 320;

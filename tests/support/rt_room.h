@@ -12,13 +12,14 @@
 
 #include "asset/scene_file.h"
 #include "raytrace/rt_scene.h"
+#include "raytrace/scene_builder.h"
 
 namespace engine::test {
 
 inline rt::RtScene cornellScene(const std::string& file = "cornell.json") {
   auto desc = loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/" + file);
   EXPECT_TRUE(desc) << desc.error().message;
-  auto scene = rt::RtScene::fromSceneDesc(*desc);
+  auto scene = rt::analyticRtScene(*desc);
   EXPECT_TRUE(scene) << scene.error().message;
   return std::move(scene).value();
 }
@@ -40,7 +41,7 @@ inline rt::RtScene roomWithMeshes(const std::function<void(SceneDesc&)>& edit = 
   box.material = 5;
   desc->primitives.push_back(box);
   if (edit) edit(*desc);
-  auto built = rt::RtScene::fromSceneDesc(*desc);
+  auto built = rt::analyticRtScene(*desc);
   EXPECT_TRUE(built) << built.error().message;
   rt::RtScene scene = std::move(built).value();
   const rt::RtScene pointLit = cornellScene("cornell.json");

@@ -100,7 +100,9 @@ inline rt::Environment hashedSky(const std::filesystem::path& path) {
   sky.image = path.string();
   sky.intensity = 1.3f;
   sky.rotationDegrees = 30.0f;
-  auto environment = rt::Environment::create(sky, std::nullopt);
+  auto image = readLinearImage(sky.image);
+  EXPECT_TRUE(image) << image.error().message;
+  auto environment = rt::Environment::create(sky, std::nullopt, std::make_shared<const FloatImage>(std::move(image).value()));
   EXPECT_TRUE(environment) << environment.error().message;
   return std::move(environment).value();
 }
