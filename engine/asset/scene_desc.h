@@ -158,8 +158,8 @@ struct RenderDesc {
   double lodPixels = 0.0;
   // render.gpu_culling: the main view's meshes culled per instance and per cluster
   // of 128 triangles in a compute shader, against the frustum and the depth drawn
-  // so far (render/gpu_cull.h). Changes no pixel; off by default (README: GPU
-  // culling, what it costs and saves on llvmpipe).
+  // so far (render/gpu_cull.h). Changes no pixel; off by default (docs/rasterizer.md,
+  // "GPU culling"; what it costs and saves on llvmpipe: docs/bench-log/gpu-culling.md).
   bool gpuCulling = false;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Reads a scene file (JSON, see the README's "Scene files") into a SceneDesc.
+// Reads a scene file (JSON, see docs/scene-format.md) into a SceneDesc.
 // Every error names the file, the JSON path and what was expected:
 //   "demo.json: /models/2/speed: expected a number".
 // Unknown keys are errors too, so a typo does not silently fall back to a default.

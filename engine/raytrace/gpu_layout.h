@@ -13,7 +13,7 @@
 // four children becomes a 4-wide node whose first slots hold pairs of adjacent
 // children (siblings in the builder's binary tree, as the collapse keeps its
 // left-to-right order) under their joint box; half the loads per node, up to twice
-// the levels. Measured on llvmpipe (bench/gpu_trace, README.md "GPU ray tracing"),
+// the levels. Measured on llvmpipe (bench/gpu_trace, docs/bench-log/gpu-tracer.md),
 // the 4-wide tree traces twice as fast: the GPU tracer's default. Not profiled; the
 // likely cost of 8 wide there is the sort of up to eight hits per node into a stack
 // of seven entries a level, private arrays that llvmpipe keeps in memory.

@@ -200,7 +200,7 @@ SH
     # loosely: over these 4 reloads it rose 0.4-5.9 MiB in 7 runs of 8 here, but
     # 42 MiB in one run on a loaded machine (llvmpipe's threads and shader JIT
     # memory come and go in steps of 16-25 MiB). 64 MiB catches a leak of more
-    # than 16 MiB a reload; the 10-minute soak (README) is the fine measure:
+    # than 16 MiB a reload; the 10-minute soak (docs/hardening.md) is the fine measure:
     # 439.3 MiB flat from its second minute on.
     start_xvfb
     expect 0 "soak summary" -- "$BIN/demo" --soak 12 --soak-reload 2 --size 320x180

@@ -40,7 +40,7 @@ namespace {
 //   RMSE(GPU, CPU) is then RMSE(CPU seed 1, CPU seed 2) in expectation, and 1.2
 //   allows for the spread of that RMSE over 14400 pixels with fireflies.
 // A missing light or a wrong MIS weight moves the mean by tens of standard errors
-// (GpuPath.TheComparisonCatchesAMissingLight; README.md for the weights).
+// (GpuPath.TheComparisonCatchesAMissingLight; docs/gpu.md, "The path tracer's images", for the weights).
 struct PathAgreement {
   bool samePrimaries = false;
   double rmse = 0.0;   // GPU against the CPU, the same seed
@@ -160,7 +160,7 @@ ENGINE_INSTANTIATE_OFFSCREEN(GpuPath);
 // pbrRoom(). Measured on
 // llvmpipe: the same ray counts (shadow and bounce rays too), RMSE 1e-5, 2e-5 and
 // 3e-6 of the seed-to-seed noise, 83 %, 78 % and 11 % of the pixels the same bits, the
-// rest off in the last bits (README.md, "GPU ray tracing (compute)").
+// rest off in the last bits (docs/gpu.md, "The path tracer's images").
 TEST_P(GpuPath, RendersTheCpusImageOfTheRoom) {
   for (const int variant : {0, 1, 2}) {
     const char* names[] = {"classic room", "classic room open to the front", "pbr room"};
@@ -175,7 +175,7 @@ TEST_P(GpuPath, RendersTheCpusImageOfTheRoom) {
 // support/rt_textured.h's room (with vertex colours) in classic shading, then in PBR
 // under the gradient sky and under an image sky (sampled through its distribution); and the shipped scenes that use them (materials.json, terrain.json); judged
 // as the room above. Measured on llvmpipe: the same ray counts and images equal to
-// the last bits (README.md).
+// the last bits (docs/gpu.md).
 TEST_P(GpuPath, RendersTheCpusImageOfTexturedSurfaces) {
   rt::RtScene room = test::texturedRoom();
   expectAgreement(room, "textured room, classic");
