@@ -2,7 +2,7 @@
 // The CPU tracer's scene traced on the GPU in GL 4.5 compute shaders (shaders/rt/):
 // the scene flattened by raytrace/gpu_layout.h into shader storage buffers, ray
 // queries (closest and any hit, what the tests compare with the CPU's), the
-// Whitted integrator of raytrace/integrator.h and the path tracer of
+// Whitted integrator of raytrace/whitted_tracer.h and the path tracer of
 // raytrace/path_tracer.h. Above both raytrace/ (which never
 // touches GL) and gl/; needs a current GL 4.5 context.
 #include <cstdint>
@@ -15,7 +15,7 @@
 
 #include "core/result.h"
 #include "gputrace/gpu_refit.h"
-#include "raytrace/integrator.h"
+#include "raytrace/render_types.h"
 #include "raytrace/rt_scene.h"
 
 namespace engine::gpurt {
