@@ -109,7 +109,7 @@ class RtAccel {
   int groupCount() const { return int(groups_.size()); }
   const Bvh& bvh(int group = 0) const { return groups_[std::size_t(group)].bvh; }
   std::size_t triangleCount() const;
-  // What raytrace/gpu_layout.h flattens for the GPU: the float shapes, each plane's
+  // What gputrace/gpu_layout.h flattens for the GPU: the float shapes, each plane's
   // square (onPlaneSquare), and which mesh each of a group's triangles comes from
   // (the BVH's triangle index is its place in its group, meshes in group order).
   const std::vector<Sphere<float>>& floatSpheres() const { return spheresF_; }

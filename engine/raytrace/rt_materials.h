@@ -194,7 +194,7 @@ class RtMaterials {
   const std::vector<MaterialDesc>& materials() const { return materials_; }
   const MaterialExtras& extras(int material) const { return extras_[std::size_t(material)]; }
   // The textures materials point at (MaterialExtras' indices) and the terrains'
-  // layered materials: what the GPU tracer copies (raytrace/gpu_textures.h).
+  // layered materials: what the GPU tracer copies (gputrace/gpu_textures.h).
   const std::vector<RtTexture>& textures() const { return textures_; }
   const std::vector<RtTerrainMaterial>& terrains() const { return terrains_; }
 
