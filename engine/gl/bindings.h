@@ -90,7 +90,7 @@ inline constexpr unsigned kCullCounters = 15;
 // frame for every program that writes display values, on a unit no other program
 // samples.
 inline constexpr unsigned kDisplayTable = 30;
-// The GPU ray tracer (shaders/rt/): the flattened scene (raytrace/gpu_layout.h),
+// The GPU ray tracer (shaders/rt/): the flattened scene (gputrace/gpu_layout.h),
 // its materials and lights, and what a kernel reads and writes.
 inline constexpr unsigned kRtNodes = 0;
 inline constexpr unsigned kRtLeaves = 1;
@@ -105,7 +105,7 @@ inline constexpr unsigned kRtInput = 9;
 inline constexpr unsigned kRtOutput = 10;
 inline constexpr unsigned kRtEnvironment = 11;  // the path tracer's environment tables
 // Declared in the kernels only where the scene has them (a compute shader may have
-// 16 storage blocks): triangles' uvs and colours, textures (raytrace/gpu_textures.h),
+// 16 storage blocks): triangles' uvs and colours, textures (gputrace/gpu_textures.h),
 // an image sky's linear RGB.
 inline constexpr unsigned kRtTriangleAttributes = 17;
 inline constexpr unsigned kRtTextures = 18;

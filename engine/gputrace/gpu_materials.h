@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/gpu_textures.h"
+#include "gputrace/gpu_textures.h"
 #include "raytrace/rt_scene.h"
 
 namespace engine::gpurt {

@@ -1,6 +1,6 @@
 #pragma once
 // Skinned characters refitted on the GPU: one group of the flattened scene (a
-// character's BVH, raytrace/gpu_layout.h) updated in place in the tracer's buffers
+// character's BVH, gputrace/gpu_layout.h) updated in place in the tracer's buffers
 // from new vertices already on the GPU: its leaves' positions and its triangles'
 // normals, then its node boxes a level at a time from the deepest up (children before
 // parents, a dispatch per level), then its instance's bounds. The tree keeps its
@@ -11,7 +11,7 @@
 #include "core/result.h"
 #include "gl/resources.h"
 #include "gl/shader.h"
-#include "raytrace/gpu_layout.h"
+#include "gputrace/gpu_layout.h"
 
 namespace engine::gpurt {
 

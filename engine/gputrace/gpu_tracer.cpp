@@ -10,7 +10,7 @@
 #include "gl/bindings.h"
 #include "gputrace/gpu_materials.h"
 #include "gputrace/tracer_state.h"
-#include "raytrace/gpu_textures.h"
+#include "gputrace/gpu_textures.h"
 #include "raytrace/ray_cone.h"
 #include "raytrace/tile_render.h"
 

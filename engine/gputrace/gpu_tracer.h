@@ -1,8 +1,8 @@
 #pragma once
 // The CPU tracer's scene traced on the GPU in GL 4.5 compute shaders (shaders/rt/):
-// the scene flattened by raytrace/gpu_layout.h into shader storage buffers, ray
+// the scene flattened by gputrace/gpu_layout.h into shader storage buffers, ray
 // queries (closest and any hit, what the tests compare with the CPU's), the
-// Whitted integrator of raytrace/integrator.h and the path tracer of
+// Whitted integrator of raytrace/whitted_tracer.h and the path tracer of
 // raytrace/path_tracer.h. Above both raytrace/ (which never
 // touches GL) and gl/; needs a current GL 4.5 context.
 #include <cstdint>
@@ -15,7 +15,7 @@
 
 #include "core/result.h"
 #include "gputrace/gpu_refit.h"
-#include "raytrace/integrator.h"
+#include "raytrace/render_types.h"
 #include "raytrace/rt_scene.h"
 
 namespace engine::gpurt {
@@ -50,7 +50,7 @@ class GpuTracer {
  public:
   // Flattens and uploads the scene (it must stay unchanged while this lives) and
   // builds the programs; errors are shader compile errors. `width`: the BVH layout,
-  // 8 or 4 wide (raytrace/gpu_layout.h); 4 traced twice as fast on llvmpipe.
+  // 8 or 4 wide (gputrace/gpu_layout.h); 4 traced twice as fast on llvmpipe.
   static Result<GpuTracer> create(const rt::RtScene& scene, const std::string& shaderDir, int width = 4);
 
   // Each ray's closest hit and any hit.

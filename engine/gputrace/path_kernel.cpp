@@ -1,6 +1,6 @@
 // GpuTracer's path tracer (shaders/rt/pathtrace.comp): the lights and the
 // environment's sampling tables as the CPU's path tracer prepares them
-// (raytrace/path_tracer.h's preparePathLights), uploaded, and the samples in
+// (raytrace/path_lights.h's preparePathLights), uploaded, and the samples in
 // batches, a dispatch each, every batch adding to the pixels' sums.
 #include <algorithm>
 #include <cstddef>
@@ -10,7 +10,7 @@
 #include "gputrace/gpu_tracer.h"
 #include "gputrace/tracer_state.h"
 #include "core/sheen_table.h"
-#include "raytrace/path_tracer.h"
+#include "raytrace/path_lights.h"
 #include "raytrace/ray_cone.h"
 
 namespace engine::gpurt {

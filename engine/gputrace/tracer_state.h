@@ -10,7 +10,7 @@
 #include "gl/resources.h"
 #include "gl/shader.h"
 #include "gputrace/gpu_tracer.h"
-#include "raytrace/gpu_layout.h"
+#include "gputrace/gpu_layout.h"
 
 namespace engine::gpurt {
 namespace detail {

@@ -116,7 +116,7 @@ class Bvh {
   // children (the same answers bit for bit): the mask of the boxes entered before tMax
   // and their entry distances. For a caller's own node of boxes (RtScene's roots).
   static int testBoxes(const Node& node, const Ray<float>& ray, float tMax, float tEntry[kWidth]);
-  // What the traversal reads; also what raytrace/gpu_layout.h flattens for the GPU.
+  // What the traversal reads; also what gputrace/gpu_layout.h flattens for the GPU.
   struct View {
     const Node* nodes;
     const Triangle4* leaves;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "raytrace/whitted_packets.h"
+#include "raytrace/whitted_tracer.h"
 
 namespace engine::rt {
 namespace {
@@ -49,7 +50,7 @@ std::string environmentOf(const Environment& environment) {
 
 // How many rays meet the spheres and planes at once: the Whitted tracer's packets
 // (whitted_packets.h) or its samples one at a time and why, and then whether a row's
-// camera rays find their first hits together (integrator.cpp's SpanTracer); the path
+// camera rays find their first hits together (whitted_tracer.cpp's SpanTracer); the path
 // tracer's bounces eight or four to a pass (RtScene::intersectMany).
 std::string lanesOf(const RtScene& scene, const RenderSettings& s) {
   if (s.method == Method::Path) {
@@ -58,7 +59,7 @@ std::string lanesOf(const RtScene& scene, const RenderSettings& s) {
   }
   if (const char* why = WhittedPackets::unsupported(scene, s)) {
     return std::string("packets: none, one sample at a time (") + why + ")" +
-           (Integrator::firstHitsInRows(s) ? "; first hits eight camera rays at a time (AVX2)" : "");
+           (WhittedIntegrator::firstHitsInRows(s) ? "; first hits eight camera rays at a time (AVX2)" : "");
   }
   return "packets: eight camera samples at a time, shadow rays too (AVX2)";
 }

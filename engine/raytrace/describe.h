@@ -5,7 +5,7 @@
 // lights, materials, textures and environment.
 #include <string>
 
-#include "raytrace/integrator.h"
+#include "raytrace/render_types.h"
 #include "raytrace/rt_scene.h"
 
 namespace engine::rt {

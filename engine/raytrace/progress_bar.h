@@ -3,7 +3,7 @@
 // rate, redrawn on stderr at most ten times a second.
 #include <chrono>
 
-#include "raytrace/integrator.h"
+#include "raytrace/render_types.h"
 
 namespace engine::rt {
 

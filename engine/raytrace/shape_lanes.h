@@ -198,7 +198,7 @@ struct Shapes {
   glm::vec3 vec(std::size_t i) const { return {shapes.ax[i], shapes.ay[i], shapes.az[i]}; }
 
   // The lanes of `hit` on plane `plane` whose point at t is on its square, the test
-  // RtScene::onPlaneSquare makes (its float pre-test only ever agrees with this one).
+  // RtAccel::onPlaneSquare makes (its float pre-test only ever agrees with this one).
   F onSquare(std::size_t plane, const Rays& r, F t, F hit) const {
     const ShapeLanes::Square& square = shapes.squares[plane];
     if (!shapes.boundedPlanes || square.exact.extent <= 0.0) return hit;

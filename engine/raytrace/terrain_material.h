@@ -28,7 +28,7 @@ class RtTerrainMaterial {
   // world height `y` and unit shading normal y component `normalY`.
   TerrainLayerSample sample(glm::vec2 uv, float footprint, double y, float normalY) const;
 
-  // What the GPU tracer copies (raytrace/gpu_textures.h).
+  // What the GPU tracer copies (gputrace/gpu_textures.h).
   const std::array<RtTexture, 3>& layers() const { return layers_; }
   double originY() const { return originY_; }
   float heightScale() const { return heightScale_; }

@@ -86,7 +86,7 @@ class RtTexture {
   int width() const { return levels_[0].width; }
   int height() const { return levels_[0].height; }
   int levels() const { return int(levels_.size()); }
-  // What the GPU tracer copies (raytrace/gpu_textures.h): each level's size and texels
+  // What the GPU tracer copies (gputrace/gpu_textures.h): each level's size and texels
   // (linear RGBA, rows with v = 0 first), the wrap modes and the mapping.
   glm::ivec2 levelSize(int level) const { return {levels_[std::size_t(level)].width, levels_[std::size_t(level)].height}; }
   const std::vector<glm::vec4>& levelTexels(int level) const { return levels_[std::size_t(level)].texels; }

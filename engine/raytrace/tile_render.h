@@ -1,7 +1,7 @@
 #pragma once
 // What the Whitted and the path tracer share about covering an image: the strata of a
 // pixel's samples, and the parallel loop over tiles with its progress and ray counts.
-// Internal to the ray tracer (integrator.cpp, path_tracer.cpp).
+// Internal to the ray tracer (whitted_tracer.cpp, path_tracer.cpp) and the GPU tracer.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -14,7 +14,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
-#include "raytrace/integrator.h"
+#include "raytrace/render_types.h"
 #include "raytrace/rng.h"
 
 namespace engine::rt::detail {

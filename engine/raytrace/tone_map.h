@@ -3,7 +3,7 @@
 // curve (sRGB, or gamma 1/2.2 as the course), then (int)(v * 255 + 0.5). Alpha is 255.
 #include "asset/scene_desc.h"
 #include "core/image.h"
-#include "raytrace/integrator.h"
+#include "raytrace/render_types.h"
 
 namespace engine::rt {
 

@@ -9,7 +9,7 @@
 #include "core/brdf.h"
 #include "raytrace/avx2_region.h"
 #include "raytrace/camera_lanes.h"
-#include "raytrace/integrator.h"
+#include "raytrace/render_types.h"
 #include "raytrace/rt_scene.h"
 #include "raytrace/shape_lanes.h"
 

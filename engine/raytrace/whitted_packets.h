@@ -5,7 +5,7 @@
 // Each lane runs the scalar tracer's operations in its order (the camera's double
 // arithmetic, Sphere and Plane::intersect, the hit record, offsetRayOrigin, shadow rays,
 // classicReflected), so every sample's colour is the scalar tracer's bit for bit;
-// rays that leave a mirror go on in the scalar tracer (integrator.cpp), which has them
+// rays that leave a mirror go on in the scalar tracer (whitted_tracer.cpp), which has them
 // at a few per cent of the samples. Rays in packets, the shapes tested against eight
 // rays at once, shading out of the intersection loop: issue 14's course room.
 //

@@ -1,4 +1,4 @@
-// The flattened scene's std430 structs (raytrace/gpu_layout.h's GpuNode, GpuNode4,
+// The flattened scene's std430 structs (gputrace/gpu_layout.h's GpuNode, GpuNode4,
 // GpuLeaf, GpuInstance, GpuSphere, GpuPlane, GpuTriangle) and its reference
 // encoding (raytrace/bvh.h): what rt/trace.glsl reads and rt/refit.comp writes.
 // Built with RT_WIDTH, 8 or 4.

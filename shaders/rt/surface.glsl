@@ -13,7 +13,7 @@ struct Surface {
   vec3 dpdu, dpdv;   // a triangle's uv gradient, for an anisotropic material (else 0)
 };
 
-// The triangles' uvs and colours (raytrace/gpu_layout.h's triangleAttributes,
+// The triangles' uvs and colours (gputrace/gpu_layout.h's triangleAttributes,
 // RT_ATTRIBUTE_SLOTS vec4 a triangle), built with RT_TRIANGLE_UVS where a material
 // reads a texture and with RT_TRIANGLE_COLORS where a mesh has vertex colours.
 #if defined(RT_TRIANGLE_UVS) || defined(RT_TRIANGLE_COLORS)

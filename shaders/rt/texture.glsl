@@ -1,11 +1,11 @@
 // The CPU tracer's textures on the GPU (raytrace/texture.cpp's RtTexture, flattened
-// by raytrace/gpu_textures.h): every mipmap level in linear RGBA in one texel array,
+// by gputrace/gpu_textures.h): every mipmap level in linear RGBA in one texel array,
 // sampled as RtTexture::sampleRgba does, operation for operation: the uv set, the
 // KHR_texture_transform matrix, GL's wrap of coordinates and texel indices,
 // bilinear between texel centres, and the level of detail a ray cone's footprint
 // picks, blended trilinearly. Change both together.
 
-#define RT_TEXTURE_LEVELS 16  // raytrace/gpu_textures.h's kGpuTextureLevels
+#define RT_TEXTURE_LEVELS 16  // gputrace/gpu_textures.h's kGpuTextureLevels
 
 struct RtTexture {
   ivec4 info;          // levels, wrap s, wrap t (GL's enums), uv set

@@ -1,5 +1,5 @@
 // The CPU tracer's ray queries on the GPU: its spheres, planes and two-level BVH8
-// (raytrace/gpu_layout.h flattens them; engine/render/gpu_tracer.cpp binds them),
+// (gputrace/gpu_layout.h flattens them; engine/render/gpu_tracer.cpp binds them),
 // closest hit and any hit, written after raytrace/shapes.h, ray.h and
 // bvh_traverse.inl operation for operation. `precise` keeps the compiler from fusing
 // a multiply and an add, as the CPU build does not (-ffp-contract=off): the

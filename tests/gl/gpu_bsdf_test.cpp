@@ -21,7 +21,7 @@
 #include "gputrace/gpu_materials.h"
 #include "core/sheen_table.h"
 #include "raytrace/bsdf.h"
-#include "raytrace/gpu_textures.h"
+#include "gputrace/gpu_textures.h"
 #include "raytrace/rt_scene.h"
 
 using namespace engine;

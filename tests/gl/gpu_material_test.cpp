@@ -22,8 +22,8 @@
 #include "gl/shader.h"
 #include "gputrace/gpu_materials.h"
 #include "gputrace/tracer_state.h"
-#include "raytrace/gpu_layout.h"
-#include "raytrace/gpu_textures.h"
+#include "gputrace/gpu_layout.h"
+#include "gputrace/gpu_textures.h"
 
 using namespace engine;
 using engine::test::GlTest;

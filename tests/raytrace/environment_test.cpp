@@ -46,7 +46,7 @@ float angleBetween(const glm::vec3& a, const glm::vec3& b) {
   return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
 
-// The gradient sky of integrator.cpp's escaped() before the environment existed,
+// The gradient sky of whitted_tracer.cpp's escaped() before the environment existed,
 // copied verbatim: the new code must give these very bits.
 glm::vec3 oldEscaped(const SkyDesc& sky, std::optional<glm::vec3> sunDirection, const glm::vec3& dir) {
   if (!sky.enabled) return sky.background;

@@ -1,4 +1,4 @@
-// raytrace/gpu_layout.h: the flattened BVH8 is the CPU's tree. A small traversal of
+// gputrace/gpu_layout.h: the flattened BVH8 is the CPU's tree. A small traversal of
 // the flat arrays (what shaders/rt/trace.glsl does, in C++ with the CPU's own box
 // and triangle tests) finds the CPU's closest hits, distance for distance, over
 // random rays and rays aimed exactly at shared vertices and edges.
@@ -10,7 +10,7 @@
 #include <cstdio>
 
 #include "../support/rt_queries.h"
-#include "raytrace/gpu_layout.h"
+#include "gputrace/gpu_layout.h"
 
 namespace rt = engine::rt;
 using engine::test::hitsAt;

@@ -1,12 +1,12 @@
-// raytrace/gpu_textures.h and the layout's texture coordinates: what the GPU tracer
+// gputrace/gpu_textures.h and the layout's texture coordinates: what the GPU tracer
 // samples is the CPU tracer's own data, texel for texel, at the indices the
 // materials hold (the shaders' sampling is judged against the CPU's images in
 // tests/gl/gpu_trace_test.cpp and gpu_path_test.cpp).
 #include <gtest/gtest.h>
 
 #include "../support/rt_textured.h"
-#include "raytrace/gpu_layout.h"
-#include "raytrace/gpu_textures.h"
+#include "gputrace/gpu_layout.h"
+#include "gputrace/gpu_textures.h"
 
 namespace rt = engine::rt;
 

@@ -12,7 +12,7 @@
 
 #include "chi_square.h"
 #include "raytrace/bsdf.h"
-#include "raytrace/path_tracer.h"
+#include "raytrace/path_lights.h"
 #include "raytrace/sampling.h"
 
 namespace rt = engine::rt;

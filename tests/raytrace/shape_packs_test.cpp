@@ -172,7 +172,7 @@ class RandomShapes {
   }
   // A triangle of zero area (never hit) in a group of its own or the static one, near
   // the shapes or far out: the scene then has a BVH, and float rays go through the
-  // root boxes (RtScene::RootHits), which also box the spheres.
+  // root boxes (RtAccel::RootHits), which also box the spheres.
   void addUnhittableTriangle(rt::RtScene& scene) {
     const double away = uniform(0.0, 1.0) < 0.5 ? 0.0 : scale_ * std::pow(10.0, uniform(0.0, 4.0));
     const glm::vec3 p(centre_ + randomUnit() * away);
@@ -232,7 +232,7 @@ TEST(ShapePacks, FourAtATimeIsTheScalarLoopBitForBit) {
 }
 
 // With triangles in the scene, float rays test the groups' root boxes and a box
-// around all the spheres at once first (RtScene::RootHits) and skip the spheres when
+// around all the spheres at once first (RtAccel::RootHits) and skip the spheres when
 // that box is missed: the same answers as the scalar loop, bit for bit, grazing rays
 // and rays from a million times the scene's size away included.
 TEST(ShapePacks, PastTheRootBoxesTheScalarLoopBitForBit) {

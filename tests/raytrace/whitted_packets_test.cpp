@@ -227,7 +227,7 @@ TEST(WhittedPackets, LeaveWhatTheyDoNotTraceToTheScalarTracer) {
 
 // Scenes the packets leave to the scalar tracer (meshes, textures, PBR, area lights)
 // are rendered a row at a time with the camera's rays made eight at once
-// (integrator.cpp's SpanTracer): still renderPixel's bits and ray counts, at sample
+// (whitted_tracer.cpp's SpanTracer): still renderPixel's bits and ray counts, at sample
 // counts whose strata are square, not, and one, on sizes that leave lanes empty.
 TEST(SpanTracer, IsTheScalarTracerBitForBit) {
   for (const char* name : {"materials.json", "demo.json", "materials.json + area light"}) {

@@ -12,7 +12,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/gpu_layout.h"
+#include "gputrace/gpu_layout.h"
 #include "raytrace/rt_scene.h"
 
 namespace engine::test {

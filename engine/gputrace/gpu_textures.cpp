@@ -1,4 +1,4 @@
-#include "raytrace/gpu_textures.h"
+#include "gputrace/gpu_textures.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "raytrace/gpu_layout.h"
+#include "gputrace/gpu_layout.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,0 +1,212 @@
+#include "raytrace/rt_materials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace engine::rt {
+
+RtMaterials::RtMaterials() {
+  MaterialDesc fallback;
+  fallback.name = "default";
+  materials_.push_back(fallback);
+  extras_.emplace_back();
+}
+
+RtMaterials::RtMaterials(std::vector<MaterialDesc> materials)
+    : materials_(std::move(materials)), extras_(materials_.size(), MaterialExtras{}) {}
+
+int RtMaterials::addMaterial(const MaterialDesc& material) {
+  materials_.push_back(material);
+  extras_.emplace_back().dielectricF0 = material.layers.dielectricF0();
+  return int(materials_.size() - 1);
+}
+
+Status RtMaterials::checkMaterial(int material) const {
+  if (material < 0 || material >= int(materials_.size())) {
+    return makeError("material " + std::to_string(material) + " out of range");
+  }
+  return Ok{};
+}
+
+// Stores the texture and points the material's `slot` at it.
+Status RtMaterials::attachTexture(int material, int MaterialExtras::*slot, RtTexture texture) {
+  if (auto s = checkMaterial(material); !s) return s.error();
+  extras_[size_t(material)].*slot = int(textures_.size());
+  textures_.push_back(std::move(texture));
+  return Ok{};
+}
+
+Status RtMaterials::setMaterialTexture(int material, RtTexture texture) {
+  return attachTexture(material, &MaterialExtras::texture, std::move(texture));
+}
+
+glm::vec3 RtMaterials::baseColor(int material, const HitUv& uv, float footprint) const {
+  const glm::vec3 color = materials_[size_t(material)].color * glm::vec3(uv.color);
+  const int texture = extras_[size_t(material)].texture;
+  return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv, footprint);
+}
+
+Status RtMaterials::setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff) {
+  if (auto s = checkMaterial(material); !s) return s.error();
+  MaterialExtras& e = extras_[size_t(material)];
+  e.alphaMode = mode;
+  e.alpha = factor;
+  e.alphaCutoff = cutoff;
+  if (mode != AlphaMode::Opaque) transparent_ = true;
+  return Ok{};
+}
+
+Status RtMaterials::setMetallicRoughnessTexture(int material, RtTexture texture) {
+  return attachTexture(material, &MaterialExtras::metallicRoughnessTexture, std::move(texture));
+}
+
+Status RtMaterials::setSingleSided(int material, bool singleSided) {
+  if (auto s = checkMaterial(material); !s) return s.error();
+  extras_[size_t(material)].singleSided = singleSided;
+  if (singleSided) singleSided_ = true;
+  return Ok{};
+}
+
+Status RtMaterials::setUnlit(int material, bool unlit) {
+  if (auto s = checkMaterial(material); !s) return s.error();
+  extras_[size_t(material)].unlit = unlit;
+  return Ok{};
+}
+
+Status RtMaterials::setLayerTexture(int material, TextureSlot slot, RtTexture texture) {
+  if (auto s = checkMaterial(material); !s) return s.error();
+  if (int(slot) < kFirstLayerSlot || int(slot) >= kTextureSlots) return makeError("not a layer texture slot");
+  MaterialExtras& e = extras_[size_t(material)];
+  e.layerTextures[size_t(slot) - kFirstLayerSlot] = int(textures_.size());
+  e.hasLayerTextures = true;
+  textures_.push_back(std::move(texture));
+  return Ok{};
+}
+
+// glTF's layer textures at a hit, applied to `out`'s dielectric f0 and f90, coat,
+// transmission, thickness and sheen.
+void RtMaterials::applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const {
+  const auto& t = extras_[size_t(material)].layerTextures;
+  auto at = [&](TextureSlot slot) -> const RtTexture* {
+    const int i = t[size_t(slot) - kFirstLayerSlot];
+    return i >= 0 ? &textures_[size_t(i)] : nullptr;
+  };
+  const MaterialLayers& layers = materials_[size_t(material)].layers;
+  const RtTexture* specular = at(TextureSlot::Specular);
+  const RtTexture* specularColor = at(TextureSlot::SpecularColor);
+  if (specular || specularColor) {
+    const float weight = layers.specular * (specular ? specular->sampleRgba(uv, footprint).a : 1.0f);
+    const glm::vec3 color = layers.specularColor * (specularColor ? specularColor->sample(uv, footprint) : glm::vec3(1.0f));
+    out.dielectricF0 = layers.dielectricF0(color, weight);
+    out.dielectricF90 = weight;
+  }
+  if (const RtTexture* coat = at(TextureSlot::Clearcoat)) out.clearcoat *= coat->sample(uv, footprint).x;
+  if (const RtTexture* rough = at(TextureSlot::ClearcoatRoughness)) out.clearcoatRoughness *= rough->sample(uv, footprint).y;
+  if (const RtTexture* share = at(TextureSlot::Transmission)) out.transmission *= share->sample(uv, footprint).x;
+  if (const RtTexture* thick = at(TextureSlot::Thickness)) out.thickness *= thick->sample(uv, footprint).y;
+  if (const RtTexture* sheen = at(TextureSlot::SheenColor)) out.sheenColor *= sheen->sample(uv, footprint);
+  if (const RtTexture* rough = at(TextureSlot::SheenRoughness)) out.sheenRoughness *= rough->sampleRgba(uv, footprint).a;
+  if (const RtTexture* stretch = at(TextureSlot::Anisotropy)) {
+    const glm::vec3 texel = stretch->sample(uv, footprint);
+    out.anisotropyDirection = glm::vec2(texel) * 2.0f - 1.0f;
+    out.anisotropy *= texel.z;
+  }
+  if (const RtTexture* film = at(TextureSlot::Iridescence)) out.iridescence *= film->sample(uv, footprint).x;
+  if (const RtTexture* thick = at(TextureSlot::IridescenceThickness)) {
+    out.iridescenceThickness =
+        glm::mix(layers.iridescenceThicknessMin, layers.iridescenceThicknessMax, thick->sample(uv, footprint).y);
+  }
+}
+
+namespace {
+
+// KHR_materials_anisotropy's stretch in world space: the tangent frame of the
+// triangle's uv gradient (the tangent MikkTSpace builds, flat across the triangle and
+// following the posed mesh; the rasterizer interpolates the file's or the loader's
+// tangents instead), the material's direction in it turned by its rotation
+// (brdf.glsl's anisotropyDirection, as the rasterizer turns it).
+void orientAnisotropy(HitMaterial& m, const glm::vec3& ns, const glm::vec3& dpdu, const glm::vec3& dpdv) {
+  glm::vec3 t = dpdu - ns * glm::dot(ns, dpdu);
+  const float len = glm::length(t);
+  const glm::vec2 d = brdf::anisotropyDirection(m.anisotropyDirection, m.anisotropyRotation);
+  if (len > 0.0f && std::isfinite(len)) {
+    t /= len;
+    // glTF's bitangent points up the image, against dP/dv (uv's v runs down it; its
+    // normal maps are +Y up): the files' TANGENT handedness says the same
+    // (RasterVsRaytrace.GltfAnisotropyAgrees turns on it).
+    const glm::vec3 across = glm::cross(ns, t);
+    const glm::vec3 b = glm::dot(across, dpdv) < 0.0f ? across : -across;
+    const glm::vec3 stretched = t * d.x + b * d.y;
+    const float slen = glm::length(stretched);
+    if (slen > 1e-6f) {
+      m.anisotropyT = stretched / slen;
+      m.anisotropy = std::clamp(m.anisotropy, 0.0f, 1.0f);
+      return;
+    }
+  }
+  m.anisotropy = 0.0f;  // nothing to orient it by
+}
+
+}  // namespace
+
+Status RtMaterials::setEmissiveTexture(int material, RtTexture texture) {
+  return attachTexture(material, &MaterialExtras::emissiveTexture, std::move(texture));
+}
+
+float RtMaterials::opacityAt(int material, const HitUv& uv, float footprint) const {
+  const MaterialExtras& e = extras_[size_t(material)];
+  if (e.alphaMode == AlphaMode::Opaque) return 1.0f;
+  const float alpha =
+      e.alpha * uv.color.a * (e.texture >= 0 ? textures_[size_t(e.texture)].sampleRgba(uv, footprint).a : 1.0f);
+  // MASK as scene.frag's discard: below the cutoff the surface is not there at all.
+  if (e.alphaMode == AlphaMode::Mask) return alpha >= e.alphaCutoff ? 1.0f : 0.0f;
+  return std::clamp(alpha, 0.0f, 1.0f);
+}
+
+Status RtMaterials::setTerrainMaterial(int material, RtTerrainMaterial layers) {
+  if (auto s = checkMaterial(material); !s) return s.error();
+  extras_[size_t(material)].terrain = int(terrains_.size());
+  terrains_.push_back(std::move(layers));
+  return Ok{};
+}
+
+HitMaterial RtMaterials::baseMaterial(int material) const {
+  const MaterialDesc& m = materials_[size_t(material)];
+  HitMaterial out{m.color, m.ambient, m.diffuse, m.specular, m.shininess, m.reflection,
+                  m.metallic, m.roughness, m.emission, extras_[size_t(material)].unlit,
+                  extras_[size_t(material)].dielectricF0, m.layers.dielectricF90(), m.layers.clearcoat,
+                  m.layers.clearcoatRoughness, m.layers.transmission, m.layers.ior, m.layers.thickness,
+                  m.layers.attenuationDistance, m.layers.attenuationColor, m.layers.sheenColor,
+                  m.layers.sheenRoughness, m.layers.anisotropy, m.layers.anisotropyRotation};
+  out.iridescence = m.layers.iridescence;
+  out.iridescenceIor = m.layers.iridescenceIor;
+  out.iridescenceThickness = m.layers.iridescenceThicknessMax;
+  return out;
+}
+
+HitMaterial RtMaterials::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns,
+                                const glm::vec3& dpdu, const glm::vec3& dpdv) const {
+  HitMaterial out = baseMaterial(material);
+  out.albedo = baseColor(material, uv, footprint);
+  if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
+    const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
+    out.roughness *= t.y;
+    out.metallic *= t.z;
+  }
+  if (const int emissive = extras_[size_t(material)].emissiveTexture; emissive >= 0) {
+    out.emission *= textures_[size_t(emissive)].sample(uv, footprint);
+  }
+  if (extras_[size_t(material)].hasLayerTextures) applyLayerTextures(material, uv, footprint, out);
+  if (out.anisotropy > 0.0f) orientAnisotropy(out, ns, dpdu, dpdv);
+  if (const int terrain = extras_[size_t(material)].terrain; terrain >= 0) {
+    const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv.uv0, footprint, y, ns.y);
+    out.albedo *= layers.albedo;
+    out.roughness = layers.roughness;
+    out.specular = layers.specular;
+  }
+  return out;
+}
+
+}  // namespace engine::rt
