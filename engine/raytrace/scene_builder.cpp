@@ -194,7 +194,6 @@ Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, i
                                                 SceneBuildStats* statsOut, const CameraDesc* camera,
                                                 double terrainErrorOverride) {
   SceneDesc desc = source->desc();
-  desc.lights = source->lights();  // the glTF lights of its models too
   if (camera) desc.camera = *camera;
   auto scene = RtScene::fromSceneDesc(desc, source->images());
   if (!scene) return scene.error();

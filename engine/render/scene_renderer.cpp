@@ -79,7 +79,6 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(std::shared_ptr<Sce
                                                              const SceneRenderOptions& options) {
   auto impl = std::make_unique<Impl>();
   impl->scene = source->desc();
-  impl->scene.lights = source->lights();  // the glTF lights of its models too
   impl->source = std::move(source);
   std::unique_ptr<SceneRenderer> renderer(new SceneRenderer(std::move(impl)));
   if (auto s = renderer->impl_->init(options); !s) return s.error();

@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "scene/instances.h"
-#include "scene/scene_lights.h"
 #include "terrain/scene_terrain.h"
 #include "terrain/terrain.h"
 
@@ -25,7 +24,6 @@ Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc,
     scene->terrain_ = std::make_unique<terrain::Terrain>(std::move(created).value());
   }
   if (auto s = scene->loadModels(preloaded); !s) return s.error();
-  scene->lights_ = sceneLights(desc, scene->assets_, scene->instances_);
   auto images = SceneImages::load(desc);
   if (!images) return images.error();
   scene->images_ = std::move(images).value();

@@ -58,9 +58,6 @@ class Scene {
   std::span<const ModelInstance> instances() const { return instances_; }
   // The height field, or null without terrain. Not const: it pages heights in.
   terrain::Terrain* terrain() const { return terrain_.get(); }
-  // What every renderer lights the scene with: the file's lights, then each
-  // instance's glTF lights (scene/scene_lights.h).
-  const std::vector<LightDesc>& lights() const { return lights_; }
   // The scene file's material textures and sky image, decoded once at load.
   const SceneImages& images() const { return images_; }
   // Whether anything in the scene moves with time (today: whether it has models).
@@ -75,7 +72,6 @@ class Scene {
   std::vector<ModelInstance> instances_;
   std::unique_ptr<terrain::Terrain> terrain_;
   SceneImages images_;
-  std::vector<LightDesc> lights_;
   std::vector<Srt> locals_;  // scratch of update
   double time_ = 0.0;
   QuatInterpolation rotations_ = QuatInterpolation::Slerp;

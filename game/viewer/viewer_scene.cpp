@@ -24,17 +24,17 @@ struct ViewerScene::Overlay {
 
 namespace {
 
-// Whether the model has KHR_lights_punctual lights (asset/model_lights.h), which
-// the scene layer adds to the scene's (scene/scene_lights.h). The rasterizer draws
-// the first kMaxPointLights point lights; the others are named in a warning.
-bool hasLights(const ModelData& model) {
-  const std::vector<LightDesc> lights = modelLights(model);
+// The model's KHR_lights_punctual lights (asset/model_lights.h), at the origin as
+// the model is. The rasterizer draws the first kMaxPointLights point lights; the
+// others are named in a warning.
+std::vector<LightDesc> lightsOfModel(const ModelData& model) {
+  std::vector<LightDesc> lights = modelLights(model);
   int points = 0;
   for (const LightDesc& l : lights) points += l.type == LightType::Point;
   if (points > kMaxPointLights)
     logWarning(model.path + ": " + std::to_string(points) + " point lights; the rasterizer draws the first " +
                std::to_string(kMaxPointLights) + " (the ray tracer all of them)");
-  return !lights.empty();
+  return lights;
 }
 
 // The scene the viewer draws a model in: the sky (which lights it through the
@@ -45,7 +45,8 @@ bool hasLights(const ModelData& model) {
 SceneDesc viewerScene(const ModelData& model, const glm::dvec3& lo, double radius, const ViewerSettings& settings) {
   SceneDesc scene;
   scene.path = model.path;
-  if (!hasLights(model)) {
+  scene.lights = lightsOfModel(model);
+  if (scene.lights.empty()) {
     LightDesc sun;
     sun.direction = glm::normalize(glm::dvec3(0.5, 0.8, 0.3));
     sun.color = glm::vec3(1.0f, 0.94f, 0.85f);

@@ -6,7 +6,6 @@
 #include <set>
 
 #include "asset/scene_file.h"
-#include "asset/model_lights.h"
 #include "raytrace/scene_builder.h"
 #include "scene/instances.h"
 #include "scene/scene.h"
@@ -215,38 +214,4 @@ TEST(Scene, TheTracerSkinsTheSharedScenesPose) {
 }
 
 }  // namespace
-// A model's KHR_lights_punctual lights light the scene in both renderers: the scene
-// layer adds them after the file's, placed by the instance's root (the lamp stands
-// 10 m along x), and the tracer's scene has the same list.
-TEST(Scene, AModelsGltfLightsAreTheScenesLights) {
-  const std::string lamp =
-      std::string(ENGINE_SOURCE_DIR) + "/../shared/gltf-samples/LightsPunctualLamp/glTF/LightsPunctualLamp.gltf";
-  SceneDesc desc;
-  desc.path = "lamp.json";
-  LightDesc sun;
-  sun.direction = glm::dvec3(0.0, 1.0, 0.0);
-  desc.lights.push_back(sun);
-  ModelDesc model;
-  model.path = lamp;
-  model.position = glm::dvec3(10.0, 0.0, 0.0);
-  desc.models.push_back(model);
-  auto scene = loadScene(desc);
-  ASSERT_TRUE(scene);
-  const std::vector<LightDesc> own = modelLights(scene->assets()[0]->model);
-  ASSERT_FALSE(own.empty());
-  const auto& lights = scene->lights();
-  ASSERT_EQ(lights.size(), 1 + own.size());
-  EXPECT_EQ(lights[0].direction, sun.direction);
-  for (std::size_t i = 0; i < own.size(); ++i) {
-    EXPECT_EQ(lights[1 + i].type, own[i].type) << i;
-    EXPECT_LT(glm::distance(lights[1 + i].position, own[i].position + glm::dvec3(10.0, 0.0, 0.0)), 1e-9) << i;
-    EXPECT_EQ(lights[1 + i].intensity, own[i].intensity) << i;
-  }
-  auto traced = rt::AnimatedRtScene::create(scene);
-  ASSERT_TRUE(traced.ok()) << traced.error().message;
-  ASSERT_EQ(traced->scene().lights().size(), lights.size());
-  for (std::size_t i = 0; i < lights.size(); ++i)
-    EXPECT_EQ(traced->scene().lights()[i].position, lights[i].position) << i;
-}
-
 }  // namespace engine
