@@ -48,29 +48,6 @@ glm::dmat4 viewRotation(const glm::dvec3& forward, const glm::dvec3& upHint, boo
 
 }  // namespace
 
-// "lod(within 1 px: 4672 triangles > 2336 (0.0012) > 1168 (0.0094))": each
-// primitive with levels, its triangles and each level's, with its error (relative
-// to the model's size in any pose).
-std::string SceneRenderer::Impl::describeLevelsOfDetail() const {
-  std::ostringstream out;
-  out << "lod(within " << render.lodPixels << " px:";
-  std::set<const CharacterAsset*> seen;
-  int described = 0;
-  for (const CharacterDraw& c : characters) {
-    if (!seen.insert(&c.instance->asset()).second) continue;
-    for (const auto& mesh : c.instance->asset().gpu.meshes())
-      for (const GpuPrimitive& p : mesh) {
-        if (p.levels.empty()) continue;
-        out << (described++ ? ";" : "") << " " << p.indexCount / 3 << " triangles";
-        for (const GpuPrimitive::Level& l : p.levels)
-          out << " > " << l.indexCount / 3 << " (" << std::setprecision(2) << l.error << ")";
-      }
-  }
-  if (described == 0) out << " no mesh has levels";
-  out << ")";
-  return out.str();
-}
-
 SceneRenderer::SceneRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) { impl_->stats = &stats_; }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -80,9 +57,8 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(std::shared_ptr<Sce
   auto impl = std::make_unique<Impl>();
   impl->scene = source->desc();
   impl->scene.lights = source->lights();  // the glTF lights of its models too
-  impl->source = std::move(source);
   std::unique_ptr<SceneRenderer> renderer(new SceneRenderer(std::move(impl)));
-  if (auto s = renderer->impl_->init(options); !s) return s.error();
+  if (auto s = renderer->impl_->init(std::move(source), options); !s) return s.error();
   return renderer;
 }
 
@@ -100,22 +76,20 @@ const EnvironmentLighting* SceneRenderer::environmentLighting() const {
 
 std::vector<CharacterInstance*> SceneRenderer::characters() {
   std::vector<CharacterInstance*> out;
-  for (auto& c : impl_->characters) out.push_back(c.instance.get());
+  for (auto& c : impl_->gpu->characters()) out.push_back(c.instance.get());
   return out;
 }
 
 Status SceneRenderer::update(double time) {
   const auto start = std::chrono::steady_clock::now();
-  if (auto s = impl_->source->update(time, impl_->rotations); !s) return s;
-  const auto instances = impl_->source->instances();
-  for (size_t i = 0; i < impl_->characters.size(); ++i) impl_->characters[i].instance->setPose(instances[i].pose);
+  if (auto s = impl_->gpu->source().update(time, impl_->rotations); !s) return s;
+  impl_->gpu->takePoses();
   impl_->animationMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return Ok{};
 }
 
 void SceneRenderer::setPose(int instance, const Pose& pose) {
-  impl_->source->setPose(instance, pose);
-  impl_->characters[size_t(instance)].instance->setPose(pose);
+  impl_->gpu->setPose(instance, pose);
 }
 
 Camera SceneRenderer::initialCamera() const {
@@ -171,16 +145,6 @@ Status SceneRenderer::render(const Camera& camera, int width, int height) {
   return status;
 }
 
-// The skin cache's pass: every character's pose deformed once, before any pass
-// draws it.
-Status SceneRenderer::Impl::deformCharacters() {
-  for (CharacterDraw& c : characters) {
-    if (auto s = c.instance->prepare(skinModeOf(c.desc)); !s) return s;
-    stats->verticesDeformed += c.instance->skinCache() ? c.instance->skinCache()->verticesDeformed() : 0;
-  }
-  return Ok{};
-}
-
 // The direct path's colour image in drawFbo: the caller's (`caller`, when it can be
 // attached elsewhere), else drawFbo's own. True when the caller's is attached.
 // Attached anew every frame: a caller's resized target may be a new image under
@@ -223,20 +187,21 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   glm::dvec4 planes[6];
   frustumPlanes(viewProjection, planes);
 
-  placeCharacters(cameraPosition);
-  chooseLevelsOfDetail(cameraPosition, fovy, targetHeight, camera.nearPlane);
+  gpu->place(cameraPosition);
+  gpu->chooseLevelsOfDetail(cameraPosition, fovy, targetHeight, camera.nearPlane, render.lodPixels);
   if (terrain) measureTerrain(fovy, targetHeight);
   // Shadow passes use only their own light matrix, but every scene program declares
   // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
   glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
   collectTimers();
-  if (skinPrograms && !characters.empty()) {
+  const bool still = gpu->characters().empty();  // nothing moves
+  if (gpu->skinPrograms() && !still) {
     beginTimer("skinning");
-    const Status status = deformCharacters();
+    const Status status = gpu->deform(*stats);
     endTimer();
     if (!status) return status;
   }
-  if (pointShadows && !(pointShadowValid && characters.empty())) {
+  if (pointShadows && !(pointShadowValid && still)) {
     beginTimer("shadow-point");
     const Status status = renderPointShadow(cameraPosition);
     endTimer();
@@ -245,7 +210,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   }
   // Probes depend on the scene, not on the camera: a scene where nothing moves
   // draws them once.
-  if (!probes.empty() && !(probesValid && characters.empty())) {
+  if (!probes.empty() && !(probesValid && still)) {
     beginTimer("reflection-probes");
     const Status status = renderProbes(cameraPosition);
     endTimer();
@@ -348,25 +313,6 @@ long long SceneRenderer::lastFrameTriangles() const {
   return impl_->primitivesValid ? static_cast<long long>(impl_->primitives.result()) : 0;
 }
 
-// "skinning(skin cache: 3 primitives, 4210 vertices, 197 KiB)": what the skin
-// cache holds across every instance.
-std::string SceneRenderer::Impl::describeSkinCache() const {
-  int entries = 0;
-  long long vertices = 0;
-  std::size_t bytes = 0;
-  for (const CharacterDraw& c : characters) {
-    const SkinCache* cache = c.instance->skinCache();
-    if (!cache) continue;
-    entries += cache->entries();
-    vertices += cache->verticesDeformed();
-    bytes += cache->bytes();
-  }
-  std::ostringstream out;
-  out << "skinning(skin cache: " << entries << " primitives, " << vertices << " vertices, " << (bytes + 1023) / 1024
-      << " KiB)";
-  return out.str();
-}
-
 namespace {
 constexpr const char* kDebugViewNames[] = {"none",      "normal",    "uv",       "basecolor", "metallic",
                                            "roughness", "occlusion", "emissive", "alpha"};
@@ -399,13 +345,13 @@ std::string SceneRenderer::describe() const {
   if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
   if (!s.probes.empty()) out << " reflection-probes(" << s.probes.size() << " x cube " << s.probeSize << ")";
   if (s.scene.sky.enabled) out << " sky";
-  if (s.skyImage) {
-    out << "(image " << std::filesystem::path(s.scene.sky.image).filename().string() << " " << s.skyImage.width() << "x"
-        << s.skyImage.height() << ")";
+  if (const gl::Texture& image = s.gpu->skyImage()) {
+    out << "(image " << std::filesystem::path(s.scene.sky.image).filename().string() << " " << image.width() << "x"
+        << image.height() << ")";
   }
   if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
-  if (s.skinPrograms) out << " " << s.describeSkinCache();
-  if (s.render.lodPixels > 0.0) out << " " << s.describeLevelsOfDetail();
+  if (s.gpu->skinPrograms()) out << " " << s.gpu->describeSkinCache();
+  if (s.render.lodPixels > 0.0) out << " " << s.gpu->describeLevelsOfDetail(s.render.lodPixels);
   if (s.terrain) {
     out << " terrain(cdlod, " << s.terrainError << " px, "
         << (s.deferredTerrain ? "deferred: RGBA32F surface + stencil, shaded once a pixel" : "forward") << ")";
@@ -422,8 +368,8 @@ std::string SceneRenderer::describe() const {
         << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, occluder prepass")
         << (s.terrainCuller ? "; terrain patches too" : "") << ")";
   }
-  if (s.transmissionPass) out << " transmission(copy + mips)";
-  if (s.blendPass) out << " blend(sorted)";
+  if (s.gpu->refracts()) out << " transmission(copy + mips)";
+  if (s.gpu->blends()) out << " blend(sorted)";
   if (s.directOutput) {
     out << " direct(display values from the fragment shaders: exposure, tone map and curve applied there; RGBA8, no"
            " post pass; into the caller's framebuffer when it is single-sample RGBA8 with float depth (its colour image"
@@ -440,9 +386,9 @@ std::string SceneRenderer::describe() const {
   out << "; lights compiled in: " << (s.sunLight >= 0 ? "sun + " : "") << s.pointLights.size() << " point";
   out << "\nvariants:";
   for (const auto& v : s.variants->built()) out << " " << v.describe();
-  if (s.skinPrograms) {
+  if (const SkinPrograms* skinPrograms = s.gpu->skinPrograms()) {
     out << "\nskin-cache variants:";
-    for (const auto& v : s.skinPrograms->built()) out << " " << v.describe();
+    for (const auto& v : skinPrograms->built()) out << " " << v.describe();
   }
   out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes (" << stats_.programsNeeded << " needed), "
       << stats_.objectsDrawn << " objects drawn, " << stats_.objectsCulled << " culled";

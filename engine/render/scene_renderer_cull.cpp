@@ -19,9 +19,8 @@ Status SceneRenderer::Impl::makeCuller() {
   auto pyramid = HiZPyramid::create(shaderDir, depthFormat());
   if (!pyramid) return makeError(scene.path + ": /render/gpu_culling: " + pyramid.error().message);
   hiz = std::make_unique<HiZPyramid>(std::move(pyramid).value());
-  for (const GpuMesh* mesh : {sphere.get(), cube.get(), quad.get()})
-    if (mesh) shapeClusterBase[mesh] = culler->addClusters(mesh->clusters());
-  for (const CharacterDraw& c : characters)
+  for (const GpuMesh* mesh : gpu->meshes()) shapeClusterBase[mesh] = culler->addClusters(mesh->clusters());
+  for (const CharacterDraw& c : gpu->characters())
     for (const auto& mesh : c.instance->asset().gpu.meshes())
       for (const GpuPrimitive& p : mesh)
         if (!p.clusters.empty() && !primitiveClusterBase.count(&p)) primitiveClusterBase[&p] = culler->addClusters(p.clusters);
@@ -31,8 +30,8 @@ Status SceneRenderer::Impl::makeCuller() {
 // A shape's job: its own matrix and clusters, its bounding sphere (none for a plane).
 std::vector<IndirectDraw> SceneRenderer::Impl::queueShapeJob(const ShapeDraw& s) {
   cull::Job job;
-  job.model = shapeModel(s);
-  job.sphere = s.radius < 0.0 ? glm::vec4(0.0f, 0.0f, 0.0f, -1.0f) : glm::vec4(glm::vec3(s.center - eye), float(s.radius));
+  job.model = gpu->shapeModel(s);
+  job.sphere = s.radius < 0.0 ? glm::vec4(0.0f, 0.0f, 0.0f, -1.0f) : glm::vec4(glm::vec3(s.center - gpu->eye()), float(s.radius));
   const cull::ClusterRange range = s.mesh->clusterRange();
   job.firstCluster = shapeClusterBase.at(s.mesh) + range.first;
   job.clusterCount = range.count;
@@ -45,7 +44,7 @@ std::vector<IndirectDraw> SceneRenderer::Impl::queueShapeJob(const ShapeDraw& s)
 // skinned or morphed primitive's vertices move away from the rest positions its
 // clusters were bounded by, so only its sphere is tested (cull::kInstanceOnly).
 std::vector<IndirectDraw> SceneRenderer::Impl::queueCharacterJobs(const DrawItem& item) {
-  const CharacterDraw& c = characters[size_t(item.object)];
+  const CharacterDraw& c = gpu->characters()[size_t(item.object)];
   const ModelData& model = c.instance->asset().model;
   const NodeData& node = model.nodes[size_t(item.node)];
   const GpuPrimitive& prim = c.instance->asset().gpu.meshes()[size_t(node.mesh)][size_t(item.primitive)];
@@ -55,7 +54,7 @@ std::vector<IndirectDraw> SceneRenderer::Impl::queueCharacterJobs(const DrawItem
   const int level = levelIndexWithin(prim, c.instance->lodBudget());
   const cull::ClusterRange range = level < 0 ? prim.fullClusters : prim.levels[size_t(level)].clusters;
   cull::Job job;
-  const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
+  const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - gpu->eye();
   job.sphere = glm::vec4(glm::vec3(center), float(c.localRadius));
   job.firstCluster = primitiveClusterBase.at(&prim) + range.first;
   job.clusterCount = range.count;
@@ -72,7 +71,7 @@ ItemCommands SceneRenderer::Impl::queueJobs(const std::vector<DrawItem>& items) 
   ItemCommands out;
   out.reserve(items.size());
   for (const DrawItem& item : items) {
-    out.push_back(item.source == DrawItem::Source::Shape ? queueShapeJob(shapes[size_t(item.object)])
+    out.push_back(item.source == DrawItem::Source::Shape ? queueShapeJob(gpu->shapes()[size_t(item.object)])
                                                          : queueCharacterJobs(item));
   }
   return out;
@@ -105,7 +104,7 @@ void SceneRenderer::Impl::cullPhase(GpuCuller& with, std::size_t firstJob, std::
 // the prepass is depth the pass's own depth buffer will hold.
 bool SceneRenderer::Impl::isOccluder(const DrawItem& item) const {
   if (item.source == DrawItem::Source::Shape) return true;
-  const CharacterDraw& c = characters[size_t(item.object)];
+  const CharacterDraw& c = gpu->characters()[size_t(item.object)];
   const ModelData& model = c.instance->asset().model;
   const NodeData& node = model.nodes[size_t(item.node)];
   const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[size_t(item.primitive)];
@@ -239,7 +238,7 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   for (const std::size_t j : {near, far}) {
     cullPhase(*terrainCuller, j, j + 1, view, j == far && render.msaa <= 1);
     const IndirectDraw commands = terrainCuller->commandsOf(j);
-    terrainRenderer->drawIndirect(selection, eye, uniforms, commands.offset, commands.count, output);
+    terrainRenderer->drawIndirect(selection, gpu->eye(), uniforms, commands.offset, commands.count, output);
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   shadeTerrainSurface(view, selection);

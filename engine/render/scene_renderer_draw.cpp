@@ -70,7 +70,7 @@ void SceneRenderer::Impl::fillFrame(const glm::dvec3& cameraPosition, const glm:
 // A shape's program: textured where its material has a texture, matte where it has
 // no highlight.
 ShaderVariant SceneRenderer::Impl::shapeVariant(const ShapeDraw& shape, bool depthOnly, bool nearSunOnly) const {
-  ShaderVariant v{0, SkinMode::Linear, !depthOnly && materialTextures[size_t(shape.material)].id() != 0, depthOnly};
+  ShaderVariant v{0, SkinMode::Linear, !depthOnly && gpu->materialTexture(shape.material).id() != 0, depthOnly};
   v.matte = scene.materials[size_t(shape.material)].specular <= 0.0f;
   v.oneSided = !shape.twoSided;
   v.nearSunOnly = nearSunOnly;
@@ -84,33 +84,25 @@ bool SceneRenderer::Impl::nearSunCovers(const glm::dvec3& lo, const glm::dvec3& 
   return sunFarShadows && withinNearSunMap(glm::dmat4(frame.sunShadowMatrix), lo, hi, sunTexelWorld);
 }
 
-// The character's bounding sphere (of every pose), placed: camera-relative, its
-// radius grown by the placement's largest scale.
-std::pair<glm::dvec3, double> SceneRenderer::Impl::placedSphere(const CharacterDraw& c) const {
-  const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
-  const glm::dmat3 linear(c.world);
-  return {center, c.localRadius * std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])})};
-}
-
 // The near sun map covers the character's placed bounding sphere.
 bool SceneRenderer::Impl::characterNearSunOnly(const CharacterDraw& c) const {
-  const auto [center, r] = placedSphere(c);
+  const auto [center, r] = gpu->placedSphere(c);
   return nearSunCovers(center - r, center + r);
 }
 
 // The scene's shapes for one view: culled, each with its program (shadow passes
 // draw the depth-only one), keyed by program, material and distance.
 Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists) {
-  for (int index = 0; index < int(shapes.size()); ++index) {
-    const ShapeDraw& s = shapes[size_t(index)];
+  for (int index = 0; index < int(gpu->shapes().size()); ++index) {
+    const ShapeDraw& s = gpu->shapes()[size_t(index)];
     if (index == skipShape) continue;
-    const glm::dvec3 center = s.center - eye;
+    const glm::dvec3 center = s.center - gpu->eye();
     if (planes && !sphereVisible(planes, center, s.radius)) {
       ++stats->objectsCulled;
       continue;
     }
     ++stats->objectsDrawn;
-    const bool nearSunOnly = !depthOnly && nearSunCovers(s.lo - eye, s.hi - eye);
+    const bool nearSunOnly = !depthOnly && nearSunCovers(s.lo - gpu->eye(), s.hi - gpu->eye());
     auto program = variants->get(shapeVariant(s, depthOnly, nearSunOnly));
     if (!program) return program.error();
     const GLuint id = (*program)->id();
@@ -128,9 +120,9 @@ Status SceneRenderer::Impl::collectShapes(const glm::dvec4* planes, bool depthOn
 // would be an opaque sheet.
 Status SceneRenderer::Impl::collectCharacters(const glm::dvec4* planes, bool depthOnly, bool surfaces,
                                               DrawLists& lists) {
-  for (int index = 0; index < int(characters.size()); ++index) {
-    const CharacterDraw& c = characters[size_t(index)];
-    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - eye;
+  for (int index = 0; index < int(gpu->characters().size()); ++index) {
+    const CharacterDraw& c = gpu->characters()[size_t(index)];
+    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0)) - gpu->eye();
     if (planes && !sphereVisible(planes, center, c.localRadius)) {
       ++stats->objectsCulled;
       continue;
@@ -199,21 +191,13 @@ Result<DrawLists> SceneRenderer::Impl::collectDraws(const glm::dvec4* planes, bo
   return lists;
 }
 
-// A shape's u_model, camera-relative: the offset is taken in double, then the
-// matrix goes to float. GPU culling transforms its clusters by the same matrix.
-glm::mat4 SceneRenderer::Impl::shapeModel(const ShapeDraw& s) const {
-  glm::dmat4 relative = s.world;
-  relative[3] -= glm::dvec4(eye, 0.0);
-  return glm::mat4(relative);
-}
-
 void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, const PassInputs& pass,
                                     const IndirectDraw* indirect) {
   const MaterialDesc& m = scene.materials[size_t(s.material)];
-  const glm::mat4 model = shapeModel(s);
+  const glm::mat4 model = gpu->shapeModel(s);
   p.set("u_model", model);
   p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model)))));
-  p.set("u_uvScale", s.uvScale * (s.mesh == quad.get() ? 1.0f : m.textureScale));
+  p.set("u_uvScale", s.uvScale * (gpu->isQuad(s.mesh) ? 1.0f : m.textureScale));
   if (pass.depthOnly) {
     p.set("u_lightViewProjection", pass.lightViewProjection);
   } else {
@@ -226,7 +210,7 @@ void SceneRenderer::Impl::drawShape(const ShapeDraw& s, const gl::Program& p, co
     p.set("u_shininess", m.shininess);
     p.set("u_reflection", m.reflection);
     p.set("u_emissive", m.emission);
-    if (materialTextures[size_t(s.material)].id() != 0) materialTextures[size_t(s.material)].bind(gl::binding::kBaseColor);
+    if (gpu->materialTexture(s.material).id() != 0) gpu->materialTexture(s.material).bind(gl::binding::kBaseColor);
     if (!probes.empty()) {
       const bool probed = pass.useProbes && s.probe >= 0;
       p.set("u_hasProbe", probed ? 1 : 0);
@@ -282,12 +266,12 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
       glFlush();
       pending = 0;
     }
-    pending += itemTriangles(item);
+    pending += gpu->triangles(item);
     const std::span<const IndirectDraw> indirect =
         commands ? std::span<const IndirectDraw>((*commands)[k]) : std::span<const IndirectDraw>();
     ++stats->drawCalls;
     if (item.source == DrawItem::Source::Shape) {
-      const ShapeDraw& shape = shapes[size_t(item.object)];
+      const ShapeDraw& shape = gpu->shapes()[size_t(item.object)];
       auto program = variants->get(shapeVariant(shape, pass.depthOnly, item.nearSunOnly));
       if (!program) return program.error();
       (*program)->use();
@@ -295,7 +279,7 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
       drawShape(shape, **program, pass, indirect.empty() ? nullptr : &indirect[0]);
       continue;
     }
-    CharacterDraw& c = characters[size_t(item.object)];
+    CharacterDraw& c = gpu->characters()[size_t(item.object)];
     CharacterInstance::PrimitivePass how;
     how.depthOnly = pass.depthOnly;
     how.nearSunOnly = item.nearSunOnly;
@@ -313,18 +297,9 @@ Status SceneRenderer::Impl::submitItems(const std::vector<DrawItem>& items, cons
   return Ok{};
 }
 
-// A draw item's triangles at full detail (an upper bound: a level of detail draws fewer).
-std::size_t SceneRenderer::Impl::itemTriangles(const DrawItem& item) const {
-  if (item.source == DrawItem::Source::Shape) return std::size_t(shapes[size_t(item.object)].mesh->indexCount()) / 3;
-  const CharacterAsset& asset = characters[size_t(item.object)].instance->asset();
-  const int mesh = asset.model.nodes[size_t(item.node)].mesh;
-  const GpuPrimitive& prim = asset.gpu.meshes()[size_t(mesh)][size_t(item.primitive)];
-  return std::size_t(prim.indexCount > 0 ? prim.indexCount : prim.vertexCount) / 3;
-}
-
 void SceneRenderer::Impl::drawSky(const gl::Program& program, const glm::dmat4& viewProjection, bool sunDisk) {
   program.use();
-  if (skyImage) {
+  if (const gl::Texture& skyImage = gpu->skyImage()) {
     const float radians = glm::radians(scene.sky.rotationDegrees);
     program.set("u_skyIntensity", scene.sky.intensity);
     program.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
@@ -416,7 +391,7 @@ void SceneRenderer::Impl::measureTerrain(double fovy, int viewportHeight) {
 // select theirs through the same function with the same target and page budget.
 TerrainView SceneRenderer::Impl::terrainView(double fovy, int viewportHeight) const {
   TerrainView view;
-  view.eye = eye;
+  view.eye = gpu->eye();
   view.fovY = fovy;
   view.viewportHeight = viewportHeight;
   view.errorPixels = terrainError;
@@ -429,7 +404,7 @@ void SceneRenderer::Impl::drawTerrain(const View& view, int skipShape) {
   hidePatchesBehindPlanes(selection, view, skipShape);
   const terrain::TerrainOutput output = beginTerrainSurface(view);
   const auto drawn =
-      terrainRenderer->draw(selection, eye, [this](const gl::Program& p) { setUniforms(p); }, output);
+      terrainRenderer->draw(selection, gpu->eye(), [this](const gl::Program& p) { setUniforms(p); }, output);
   stats->drawCalls += 1;
   stats->terrainTriangles = int(drawn.trianglesDrawn);
   shadeTerrainSurface(view, selection);
@@ -463,7 +438,7 @@ void SceneRenderer::Impl::shadeTerrainSurface(const View& view, const terrain::L
   applyPassState(kSurfaceShadingPass);
   glStencilFunc(GL_EQUAL, kTerrainStencil, 0xff);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  terrainRenderer->shadeDeferred(selection, eye, glm::mat4(glm::inverse(view.viewProjection)),
+  terrainRenderer->shadeDeferred(selection, gpu->eye(), glm::mat4(glm::inverse(view.viewProjection)),
                                  [this](const gl::Program& p) {
                                    setUniforms(p);
                                    terrainSurface.bind(gl::binding::kTerrainSurface);
@@ -480,7 +455,7 @@ void SceneRenderer::Impl::hidePatchesBehindPlanes(terrain::LodSelection& selecti
                                                   int skipShape) const {
   if (!planeOcclusion) return;
   const glm::dvec2 viewport(view.width, view.height);
-  const auto quads = cull::opaquePlanes(scene, eye, view.viewProjection, viewport, skipShape);
+  const auto quads = cull::opaquePlanes(scene, gpu->eye(), view.viewProjection, viewport, skipShape);
   stats->terrainPatchesHidden +=
       int(removeHiddenPatches(*terrain, selection, quads, view.viewProjection, viewport, planeOcclusionPixelMargin));
 }
@@ -493,30 +468,6 @@ void SceneRenderer::Impl::copyTransmissionSource() {
   glGenerateTextureMipmap(transmissionSource.id());
 }
 
-// Every character placed for a view from `cameraPosition`: only its root moves, the
-// pose (and its palettes) stay as update left them.
-void SceneRenderer::Impl::placeCharacters(const glm::dvec3& cameraPosition) {
-  eye = cameraPosition;
-  for (auto& c : characters) c.instance->place(c.world, cameraPosition);
-}
-
-// Each character's level-of-detail budget, from the main camera and for every pass
-// of the frame: a shadow cast by another level than the one drawn would not fit
-// its caster. Levels state their error relative to the diagonal of the bounds of
-// every pose (ModelAsset::levelsOfDetail), the instance's bounding sphere's
-// diameter: on screen, at most that error times the diameter's size in pixels at
-// the sphere's nearest point.
-void SceneRenderer::Impl::chooseLevelsOfDetail(const glm::dvec3& cameraPosition, double fovy, int height,
-                                               double nearPlane) {
-  const double pixelsAtOne = double(height) / (2.0 * std::tan(fovy / 2.0));
-  for (CharacterDraw& c : characters) {
-    const glm::dvec3 center = glm::dvec3(c.world * glm::dvec4(c.localCenter, 1.0));
-    const double distance = std::max(glm::length(center - cameraPosition) - c.localRadius, nearPlane);
-    const double diameterPixels = 2.0 * c.localRadius * pixelsAtOne / distance;
-    c.instance->setLodBudget(render.lodPixels > 0.0 ? float(render.lodPixels / diameterPixels) : 0.0f);
-  }
-}
-
 // Each probe's six faces, seen from the mirror's centre without the mirror itself.
 // Positions stay camera-relative, now to the probe's centre. The sun's maps are
 // drawn again around the probe: the camera's maps cover what the camera sees, and
@@ -527,7 +478,7 @@ Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
   const glm::dmat4 projection = reverseZProjection(glm::half_pi<double>(), 1.0, kProbeNear, scene.camera.farPlane);
   const glm::vec3 background = scene.sky.background;
   for (const Probe& probe : probes) {
-    placeCharacters(probe.center);
+    gpu->place(probe.center);
     if (sunShadows) {
       // All around the probe, as far as the camera's maps reach ahead of it.
       const ShadowSphere nearSphere{glm::dvec3(0.0), std::min(scene.camera.farPlane, kSunShadowDistance)};
@@ -551,7 +502,7 @@ Status SceneRenderer::Impl::renderProbes(const glm::dvec3& cameraPosition) {
       if (auto s = drawWorld(view, probe.shape, false); !s) return s;
     }
   }
-  placeCharacters(cameraPosition);
+  gpu->place(cameraPosition);
   return Ok{};
 }
 

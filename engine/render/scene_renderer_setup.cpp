@@ -13,23 +13,6 @@ namespace {
 constexpr int kMaxCubeShadowSize = 1024;
 constexpr int kMaxReflectionProbes = 4;
 
-// The sky's lat-long image as half floats, mipmapped, repeating in u and clamped in
-// v. Rows go up as the image stores them (top first), so texture t = v: t = 0 is the
-// zenith, as common/latlong.glsl has it. Radiance past half's largest value (65504)
-// is clamped rather than left to the driver's conversion. RGBA16F, not RGB16F: it is
-// colour-renderable everywhere, which glGenerateMipmap may demand, and drivers
-// store RGB16F as four channels anyway; the upload's RGB leaves alpha 1. A row of
-// 12-byte texels meets any unpack alignment up to 4.
-gl::Texture uploadSkyImage(const FloatImage& image) {
-  gl::Texture texture = gl::Texture::create2D(GL_RGBA16F, image.width, image.height, 0);
-  std::vector<float> clamped(image.rgb.size());
-  std::transform(image.rgb.begin(), image.rgb.end(), clamped.begin(),
-                 [](float v) { return std::clamp(v, 0.0f, 65504.0f); });
-  glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, clamped.data());
-  texture.mipmapTrilinear(GL_REPEAT, GL_CLAMP_TO_EDGE);
-  return texture;
-}
-
 }  // namespace
 
 gl::Texture makeSunShadowMap(int size) {
@@ -43,7 +26,7 @@ gl::Texture makeSunShadowMap(int size) {
   return map;
 }
 
-Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
+Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRenderOptions& options) {
   shaderDir = options.shaderDir;
   render = scene.render;
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
@@ -115,7 +98,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
   if (auto s = makeProbes(); !s) return s;
   if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
-  directOutput = !options.hdrTarget && needsNoHdrTarget();
+  directOutput = !options.hdrTarget && needsNoHdrTarget(*source);
   if (directOutput) {
     const std::vector<std::string> display = displayDefines();
     defines.insert(defines.end(), display.begin(), display.end());
@@ -123,6 +106,12 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
   if (render.output != OutputCurve::Gamma22) makeDisplayTable();
+  GpuSceneOptions upload{shaderDir, render.skinning, pointShadows || !probes.empty(), render.lodPixels > 0.0,
+                         skinModeOverride, {}};
+  for (const Probe& probe : probes) upload.probeShapes.push_back(probe.shape);
+  auto uploaded = GpuScene::create(std::move(source), scene, upload);
+  if (!uploaded) return uploaded.error();
+  gpu = std::move(uploaded).value();
   if (auto s = makeSky(); !s) return s;
   if (auto s = makePost(); !s) return s;
   emptyVao = gl::VertexArray::create();
@@ -132,10 +121,6 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   deferredTerrain = render.msaa <= 1 && !options.forwardTerrain;
   deferredCharacters = render.msaa <= 1 && !options.forwardCharacters;
   if (auto s = loadTerrain(defines); !s) return s;
-  if (auto s = loadMaterials(); !s) return s;
-  if (auto s = loadModels(); !s) return s;
-  addShapes();
-  for (int i = 0; i < int(probes.size()); ++i) shapes[size_t(probes[size_t(i)].shape)].probe = i;
   if (auto s = makeCuller(); !s) return s;
 
   if (sunShadows) {
@@ -177,10 +162,7 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
 Status SceneRenderer::Impl::makeSky() {
   if (!scene.sky.enabled) return Ok{};
   std::vector<std::string> variant;
-  if (const FloatImage* image = source->images().sky.get()) {
-    skyImage = uploadSkyImage(*image);
-    variant.push_back("SKY_IMAGE 1");
-  }
+  if (gpu->skyImage()) variant.push_back("SKY_IMAGE 1");
   const auto build = [&](std::vector<std::string> defines, gl::Program& out) -> Status {
     defines.insert(defines.end(), variant.begin(), variant.end());
     auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
@@ -270,7 +252,7 @@ Status SceneRenderer::Impl::makeProbes() {
 }
 
 Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
-  terrain = source->terrain();
+  terrain = gpu->source().terrain();
   deferredTerrain = deferredTerrain && terrain;
   if (!terrain) return Ok{};
   // The scene programs' variant: the terrain is lit and shadowed as they are.
@@ -278,15 +260,6 @@ Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines)
   if (!renderer) return renderer.error();
   terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
   return deferredTerrain ? terrainRenderer->enableDeferred(shaderDir, defines) : Status(Ok{});
-}
-
-Status SceneRenderer::Impl::loadMaterials() {
-  // Decoded once by the scene layer (scene/scene_images.h), uploaded per renderer.
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const Image* image = source->images().materialTexture(i);
-    materialTextures.push_back(image ? uploadTexture(*image, true) : gl::Texture{});
-  }
-  return Ok{};
 }
 
 // Whether the frame can skip the HDR target and the post pass (issue 14: a scene
@@ -298,10 +271,10 @@ Status SceneRenderer::Impl::loadMaterials() {
 // supersampling's average (both before the tone map), blending and transmission (in
 // linear light), the probes' cubes (linear radiance for the scene's own shaders), the
 // debug views (their values as they are).
-bool SceneRenderer::Impl::needsNoHdrTarget() const {
+bool SceneRenderer::Impl::needsNoHdrTarget(const Scene& source) const {
   if (render.msaa > 1 || render.supersample > 1) return false;
   if (!probes.empty() || debugView != DebugView::None) return false;
-  for (const auto& asset : source->assets()) {
+  for (const auto& asset : source.assets()) {
     for (const MaterialData& m : asset->model.materials)
       if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
   }
@@ -324,92 +297,6 @@ std::vector<std::string> SceneRenderer::Impl::displayDefines() const {
   return defines;
 }
 
-// Whether an instance deforms in the skin cache. render.skinning auto sends it
-// there where each vertex would otherwise be deformed again at a price in every
-// pass that draws it (measured: bench/morph_cost, bench/skinning_cost): morph
-// targets (8 of them cost 1.5x the frame in the vertex shaders, 1.1-1.2x cached),
-// dual quaternions, or more than the view and one sun map drawing it (a point
-// light's six cube faces, the probes). Plain LBS under a sun stays in the vertex
-// shaders, cheaper there than a dispatch that writes 48 bytes a vertex.
-bool SceneRenderer::Impl::usesSkinCache(const ModelData& model, const ModelDesc& desc) const {
-  if (render.skinning == Skinning::Vertex) return false;
-  bool skins = false, morphs = false;
-  for (const NodeData& node : model.nodes) {
-    if (node.mesh < 0) continue;
-    for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-      skins = skins || (node.skin >= 0 && prim.influences > 0 && !desc.unskinned);
-      morphs = morphs || prim.morphTargets > 0;
-    }
-  }
-  if (render.skinning == Skinning::Compute) return skins || morphs;
-  const bool manyPasses = pointShadows || !probes.empty();
-  return morphs || (skins && (desc.dualQuat || manyPasses));
-}
-
-// One upload per model file, one CharacterInstance per scene instance.
-Status SceneRenderer::Impl::loadModels() {
-  std::vector<std::shared_ptr<const CharacterAsset>> uploaded;
-  for (const auto& asset : source->assets()) {
-    auto created = CharacterAsset::create(asset, render.lodPixels > 0.0);
-    if (!created) return makeError(scene.path + ": " + asset->model.path + ": " + created.error().message);
-    uploaded.push_back(std::move(created).value());
-  }
-  for (const ModelInstance& instance : source->instances()) {
-    CharacterDraw draw;
-    draw.instance = std::make_unique<CharacterInstance>(uploaded[size_t(instance.asset)]);
-    draw.instance->setPose(instance.pose);
-    draw.desc = instance.desc;
-    if (skinModeOverride) {
-      draw.desc.dualQuat = *skinModeOverride == SkinMode::DualQuat;
-      draw.desc.unskinned = *skinModeOverride == SkinMode::None;
-    }
-    if (usesSkinCache(draw.instance->asset().model, draw.desc)) {
-      if (!skinPrograms) skinPrograms = std::make_unique<SkinPrograms>(shaderDir);
-      draw.instance->useSkinCache(skinPrograms.get());
-    }
-    draw.world = instance.world;
-    draw.localCenter = instance.boundsCenter;
-    draw.localRadius = instance.boundsRadius;
-    characters.push_back(std::move(draw));
-  }
-  return Ok{};
-}
-
-void SceneRenderer::Impl::addShapes() {
-  for (const PrimitiveDesc& p : scene.primitives) {
-    ShapeDraw draw;
-    draw.material = p.material;
-    draw.world = primitiveTransform(p, scene.camera.farPlane);
-    std::unique_ptr<GpuMesh>& mesh =
-        p.type == PrimitiveType::Sphere ? sphere : p.type == PrimitiveType::Box ? cube : quad;
-    if (!mesh) mesh = std::make_unique<GpuMesh>(shapeForPrimitive(p));
-    draw.mesh = mesh.get();
-    const cull::Cluster& whole = mesh->clusters()[mesh->clusterRange().first + mesh->clusterRange().count];
-    draw.lo = glm::dvec3(std::numeric_limits<double>::max());
-    draw.hi = glm::dvec3(std::numeric_limits<double>::lowest());
-    for (int i = 0; i < 8; ++i) {
-      const glm::dvec3 corner(i & 1 ? whole.hi.x : whole.lo.x, i & 2 ? whole.hi.y : whole.lo.y,
-                              i & 4 ? whole.hi.z : whole.lo.z);
-      const glm::dvec3 placed(draw.world * glm::dvec4(corner, 1.0));
-      draw.lo = glm::min(draw.lo, placed);
-      draw.hi = glm::max(draw.hi, placed);
-    }
-    if (p.type == PrimitiveType::Sphere) {
-      draw.center = p.center;
-      draw.radius = p.radius;
-    } else if (p.type == PrimitiveType::Box) {
-      draw.center = (p.min + p.max) * 0.5;
-      draw.radius = 0.5 * glm::length(p.max - p.min);
-    } else {
-      // The quad's uv spans 2 units; one texture tile per `1 / texture_scale` metres.
-      const double extent = planeExtent(p, scene.camera.farPlane);
-      draw.uvScale = glm::vec2(float(extent) * scene.materials[size_t(p.material)].textureScale);
-      draw.twoSided = true;
-    }
-    shapes.push_back(draw);
-  }
-}
-
 // The deferred characters' programs: each deferrable primitive's surface pass (its
 // forward variant writing the surface) and each group's shading. Deferred only
 // where some primitive is deferrable and the stencil has a value for each group.
@@ -426,8 +313,8 @@ Status SceneRenderer::Impl::buildVariants() {
   // Everything the scene will draw, built now, so the first frame costs no
   // compile and --describe can list exactly what exists.
   std::vector<ShaderVariant> needed, surfacePasses;
-  for (const ShapeDraw& s : shapes) needed.push_back({0, SkinMode::Linear, materialTextures[size_t(s.material)].id() != 0, false});
-  for (const CharacterDraw& c : characters) {
+  for (const ShapeDraw& s : gpu->shapes()) needed.push_back({0, SkinMode::Linear, gpu->materialTexture(s.material).id() != 0, false});
+  for (const CharacterDraw& c : gpu->characters()) {
     const ModelData& model = c.instance->asset().model;
     const SkinMode mode = skinModeOf(c.desc);
     const bool cached = c.instance->skinCache() != nullptr;
@@ -445,12 +332,10 @@ Status SceneRenderer::Impl::buildVariants() {
           surfacePasses.back().surface = ShaderVariant::Surface::Out;
         }
         if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
-        blendPass = blendPass || blend;
-        transmissionPass = transmissionPass || (prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive());
       }
     }
   }
-  if ((sunShadows || pointShadows) && !shapes.empty()) needed.push_back({0, SkinMode::Linear, false, true});
+  if ((sunShadows || pointShadows) && !gpu->shapes().empty()) needed.push_back({0, SkinMode::Linear, false, true});
   addSurfaceVariants(surfacePasses, needed);
   // Each colour program also without the far sun map, for draws the near map
   // covers (ShaderVariant::nearSunOnly; which ones depends on the camera).
@@ -503,7 +388,7 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
     drawFbo.attach(GL_COLOR_ATTACHMENT1, terrainSurface);
   }
   if (auto s = drawFbo.check(directOutput ? "scene-display" : "scene-hdr"); !s) return s;
-  if (transmissionPass) {
+  if (gpu->refracts()) {
     const int levels = 1 + int(std::floor(std::log2(double(std::max(w, h)))));
     transmissionSource = gl::Texture::create2D(GL_RGBA16F, w, h, levels);
     transmissionSource.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);

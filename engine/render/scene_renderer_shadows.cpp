@@ -39,7 +39,7 @@ SceneRenderer::Impl::SunBox SceneRenderer::Impl::fitSunBox(const ShadowSphere& a
   box.radius = radius;
   box.texelWorld = 2.0 * radius / double(sunShadowSize);
   const double texel = box.texelWorld;
-  const glm::dvec3 world = center + eye;
+  const glm::dvec3 world = center + gpu->eye();
   const double u = glm::dot(world, lx), v = glm::dot(world, ly);
   center += lx * (std::floor(u / texel) * texel - u) + ly * (std::floor(v / texel) * texel - v);
 
@@ -87,7 +87,7 @@ glm::ivec4 SceneRenderer::Impl::moversFootprint(const std::vector<DrawItem>& mov
                                                 const glm::mat4& lightViewProjection) const {
   glm::dvec2 low(std::numeric_limits<double>::max()), high(std::numeric_limits<double>::lowest());
   for (const DrawItem& item : movers) {
-    const auto [center, r] = placedSphere(characters[size_t(item.object)]);
+    const auto [center, r] = gpu->placedSphere(gpu->characters()[size_t(item.object)]);
     for (int corner = 0; corner < 8; ++corner) {
       const glm::dvec3 offset((corner & 1) ? r : -r, (corner & 2) ? r : -r, (corner & 4) ? r : -r);
       const glm::dvec4 clip = glm::dmat4(lightViewProjection) * glm::dvec4(center + offset, 1.0);
@@ -153,7 +153,7 @@ Status SceneRenderer::Impl::renderSunShadow(const ShadowSphere& nearSphere, cons
   const SunBox box = fitSunBox(nearSphere);
   sunTexelWorld = box.texelWorld;
   frame.sunShadowMatrix = box.shadowMatrix;
-  SunMapsKey key{eye, glm::mat4(box.projection * box.view), glm::mat4(0.0f), fovy, viewportHeight};
+  SunMapsKey key{gpu->eye(), glm::mat4(box.projection * box.view), glm::mat4(0.0f), fovy, viewportHeight};
   SunBox far;
   if (sunFarShadows) {
     far = fitSunBox(farSphere);

@@ -59,7 +59,7 @@ Status SceneRenderer::Impl::shadeCharacterSurfaces(const View& view, const std::
   glm::ivec4 rect(targetWidth, targetHeight, 0, 0);
   for (const DrawItem& item : items) {
     drawn[size_t(item.surfaceGroup)] = 1;
-    const auto [center, radius] = placedSphere(characters[size_t(item.object)]);
+    const auto [center, radius] = gpu->placedSphere(gpu->characters()[size_t(item.object)]);
     const glm::ivec4 r = sphereScreenRect(view.viewProjection, center, radius, targetWidth, targetHeight);
     rect = glm::ivec4(glm::min(glm::ivec2(rect), glm::ivec2(r)), glm::max(glm::ivec2(rect.z, rect.w), glm::ivec2(r.z, r.w)));
   }
