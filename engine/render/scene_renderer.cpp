@@ -1,6 +1,15 @@
 #include "render/scene_renderer_impl.h"
 
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "asset/scene_file.h"
 #include "core/srgb_curve.h"
+#include "gl/bindings.h"
+#include "render/pass_state.h"
 
 namespace engine {
 namespace {
@@ -169,7 +178,7 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   const bool direct = directOutput && takesDirectFrame(callerLayout, width, height);
   // Deferred surfaces need their targets (and stencil) beside the frame's depth:
   // drawFbo then borrows the caller's colour image where it can, so nothing is copied.
-  const bool intoCaller = direct && !deferredTerrain && !deferredCharacters;
+  const bool intoCaller = direct && !(terrain && terrain->deferred()) && !surfaces;
   if (intoCaller) {
     targetWidth = width;
     targetHeight = height;
@@ -189,46 +198,43 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
 
   gpu->place(cameraPosition);
   gpu->chooseLevelsOfDetail(cameraPosition, fovy, targetHeight, camera.nearPlane, render.lodPixels);
-  if (terrain) measureTerrain(fovy, targetHeight);
-  // Shadow passes use only their own light matrix, but every scene program declares
-  // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
-  glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
+  if (terrain) terrain->measure(fovy, targetHeight);
+  // Bound before the shadow passes; filled once the sun's matrices exist.
+  frame->bind();
   collectTimers();
-  const bool still = gpu->characters().empty();  // nothing moves
-  if (gpu->skinPrograms() && !still) {
+  const bool staticScene = gpu->characters().empty();  // nothing moves
+  if (gpu->skinPrograms() && !staticScene) {
     beginTimer("skinning");
     const Status status = gpu->deform(*stats);
     endTimer();
     if (!status) return status;
   }
-  if (pointShadows && !(pointShadowValid && still)) {
+  if (point && !(point->drawn() && staticScene)) {
     beginTimer("shadow-point");
-    const Status status = renderPointShadow(cameraPosition);
+    const Status status = point->render(cameraPosition);
     endTimer();
     if (!status) return status;
-    pointShadowValid = true;
   }
-  // Probes depend on the scene, not on the camera: a scene where nothing moves
-  // draws them once.
-  if (!probes.empty() && !(probesValid && still)) {
+  if (probes && !(probes->drawn() && staticScene)) {
     beginTimer("reflection-probes");
-    const Status status = renderProbes(cameraPosition);
+    const Status status = probes->render(cameraPosition, *gpu, sun.get(), *frame, [this](const View& face, int mirror) {
+      return drawWorld(face, mirror, false);
+    });
     endTimer();
     if (!status) return status;
-    probesValid = true;
   }
-  if (sunShadows) {
+  if (sun) {
     const double farPlane = scene.camera.farPlane, nearPlane = camera.nearPlane;
     const ShadowSphere nearSphere =
         frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunShadowDistance));
     const ShadowSphere farSphere =
         frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunFarShadowDistance));
     beginTimer("shadow-sun");
-    const Status status = renderSunShadow(nearSphere, farSphere, fovy, targetHeight);
+    const Status status = sun->render(nearSphere, farSphere, fovy, targetHeight);
     endTimer();
     if (!status) return status;
   }
-  fillFrame(cameraPosition, glm::mat4(viewProjection));
+  frame->fill(cameraPosition, glm::mat4(viewProjection));
 
   glBindFramebuffer(GL_FRAMEBUFFER, intoCaller ? GLuint(callerFramebuffer) : drawFbo.id());
   glViewport(0, 0, targetWidth, targetHeight);
@@ -333,17 +339,17 @@ std::string debugViewList() {
 }
 
 const terrain::LodSelection* SceneRenderer::mainTerrainSelection() const {
-  return impl_->terrain ? &impl_->mainTerrain : nullptr;
+  return impl_->terrain ? &impl_->terrain->mainSelection() : nullptr;
 }
 
 std::string SceneRenderer::describe() const {
   const Impl& s = *impl_;
   std::ostringstream out;
   out << "passes:";
-  if (s.sunShadows) out << " shadow-sun(" << s.sunShadowSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
-  if (s.sunFarShadows) out << " shadow-sun-far(" << s.sunShadowSize << ", terrain, " << kSunFarShadowDistance << " m)";
-  if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
-  if (!s.probes.empty()) out << " reflection-probes(" << s.probes.size() << " x cube " << s.probeSize << ")";
+  const std::string filter = s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : "hard";
+  if (s.sun) out << " " << s.sun->describe(filter);
+  if (s.point) out << " " << s.point->describe(filter);
+  if (s.probes) out << " " << s.probes->describe();
   if (s.scene.sky.enabled) out << " sky";
   if (const gl::Texture& image = s.gpu->skyImage()) {
     out << "(image " << std::filesystem::path(s.scene.sky.image).filename().string() << " " << image.width() << "x"
@@ -352,17 +358,10 @@ std::string SceneRenderer::describe() const {
   if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
   if (s.gpu->skinPrograms()) out << " " << s.gpu->describeSkinCache();
   if (s.render.lodPixels > 0.0) out << " " << s.gpu->describeLevelsOfDetail(s.render.lodPixels);
-  if (s.terrain) {
-    out << " terrain(cdlod, " << s.terrainError << " px, "
-        << (s.deferredTerrain ? "deferred: RGBA32F surface + stencil, shaded once a pixel" : "forward") << ")";
-  }
+  if (s.terrain) out << " " << s.terrain->describe();
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
-  if (s.deferredCharacters) {
-    out << " characters(deferred: RGBA32UI surface" << (s.surfacePosition ? " + R32F distance" : "")
-        << (s.surfaceStencil() ? " + stencil" : "") << ", shaded once a pixel by " << s.surfaceGroups.size()
-        << " full-screen pass" << (s.surfaceGroups.size() == 1 ? "" : "es") << ")";
-  }
+  if (s.surfaces) out << " " << s.surfaces->describe();
   if (s.culler) {
     out << " gpu-culling(" << s.culler->clusters().size() << " clusters of <= " << cull::kClusterTriangles
         << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, occluder prepass")
@@ -383,9 +382,9 @@ std::string SceneRenderer::describe() const {
     out << ", ambient " << ambientName(s.ambient);
     if (s.environmentLighting) out << " (built once in " << std::fixed << std::setprecision(1) << s.iblMilliseconds << " ms)";
   }
-  out << "; lights compiled in: " << (s.sunLight >= 0 ? "sun + " : "") << s.pointLights.size() << " point";
+  out << "; lights compiled in: " << (s.lights.sun >= 0 ? "sun + " : "") << s.lights.points.size() << " point";
   out << "\nvariants:";
-  for (const auto& v : s.variants->built()) out << " " << v.describe();
+  for (const auto& v : s.draws->variants().built()) out << " " << v.describe();
   if (const SkinPrograms* skinPrograms = s.gpu->skinPrograms()) {
     out << "\nskin-cache variants:";
     for (const auto& v : skinPrograms->built()) out << " " << v.describe();

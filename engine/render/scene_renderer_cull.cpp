@@ -2,6 +2,14 @@
 // draw items, the Hi-Z occluder pyramid, and the indirect draws it leaves.
 #include "render/scene_renderer_impl.h"
 
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+
+#include "gl/bindings.h"
+#include "render/pass_state.h"
+#include "render/terrain_cull.h"
+
 namespace engine {
 
 // GPU culling's programs and cluster table: every shape mesh's and every model
@@ -132,7 +140,7 @@ Status SceneRenderer::Impl::buildOccluderPyramid(const View& view, const std::ve
   if (!occluders.empty()) {
     glBindFramebuffer(GL_FRAMEBUFFER, hiz->depthFramebuffer());
     const glm::mat4 viewProjection(view.viewProjection);
-    drawn = drawItems(occluders, {true, viewProjection, viewProjection, false});
+    drawn = draws->draw(occluders, {true, viewProjection, viewProjection, false});
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
   }
   hiz->reduce();
@@ -166,8 +174,8 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
   ++stats->cullDispatches;
   stats->gpuCullMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const PassInputs pass{false, glm::mat4(1.0f), glm::mat4(view.viewProjection), useProbes};
-  Status status = drawCharacterSurfaces(view, lists.surface, pass, &surfaceCommands);
-  if (status) status = drawItems(lists.opaque, pass, &opaqueCommands);
+  Status status = surfaces ? surfaces->draw(view, lists.surface, pass, &surfaceCommands, drawFbo) : Status(Ok{});
+  if (status) status = draws->draw(lists.opaque, pass, &opaqueCommands);
   // The terrain after the opaque items, as drawWorld draws it: its patches then
   // meet their depth (a plaza over a valley) in the pyramid of its second half.
   if (status && terrain && terrainCuller) {
@@ -180,11 +188,11 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
     copyTransmissionSource();
     transmissionSource.bind(gl::binding::kTransmissionSource);
     applyPassState(opaquePassFor(view.mirrored));
-    status = drawItems(lists.transmissive, pass, &transmissiveCommands);
+    status = draws->draw(lists.transmissive, pass, &transmissiveCommands);
   }
   if (status && !lists.blend.empty()) {
     applyPassState(blendPassFor(view.mirrored));
-    status = drawItems(lists.blend, pass, &blendCommands);
+    status = draws->draw(lists.blend, pass, &blendCommands);
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   return status;
@@ -195,7 +203,8 @@ Status SceneRenderer::Impl::drawCulled(const View& view, const DrawLists& lists,
 std::vector<cull::Cluster> SceneRenderer::Impl::terrainPatchBoxes(const terrain::LodSelection& selection) const {
   std::vector<cull::Cluster> out;
   const auto count = std::uint32_t(terrain::TerrainRenderer::indexCount());
-  for (const terrain::LodPatch& p : terrainRenderer->patches()) out.push_back(terrainPatchBox(*terrain, selection, p, count));
+  for (const terrain::LodPatch& p : terrain->renderer().patches())
+    out.push_back(terrainPatchBox(terrain->terrain(), selection, p, count));
   return out;
 }
 
@@ -206,18 +215,19 @@ std::vector<cull::Cluster> SceneRenderer::Impl::terrainPatchBoxes(const terrain:
 // first half). Each command is a run of the instance buffer's patches
 // (cull::kInstances), so they are drawn in the same order as the one instanced draw.
 void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
-  auto selection = selectTerrain(glm::mat4(view.viewProjection), view.fovy, view.height);
-  hidePatchesBehindPlanes(selection, view, -1);
-  const auto prepared = terrainRenderer->prepare(selection);
+  auto selection = terrain->select(glm::mat4(view.viewProjection), view.fovy, view.height);
+  terrain->hidePatchesBehindPlanes(selection, view, -1);
+  terrain::TerrainRenderer& renderer = terrain->renderer();
+  const auto prepared = renderer.prepare(selection);
   stats->drawCalls += 1;
   stats->terrainTriangles = int(prepared.trianglesDrawn);
-  const auto patches = std::uint32_t(terrainRenderer->patches().size());
+  const auto patches = std::uint32_t(renderer.patches().size());
   terrainCuller->clearClusters();
   terrainCuller->clearJobs();
   if (patches == 0) {
     terrainCuller->upload();  // this frame's counters: zero
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    mainTerrain = std::move(selection);
+    terrain->keepMainSelection(std::move(selection));
     return;
   }
   const std::uint32_t first = terrainCuller->addClusters(terrainPatchBoxes(selection));
@@ -233,16 +243,16 @@ void SceneRenderer::Impl::drawTerrainCulled(const View& view) {
   job.firstInstance = split;
   const std::size_t far = terrainCuller->addJob(job);
   terrainCuller->upload();
-  const auto uniforms = [this](const gl::Program& p) { setUniforms(p); };
-  const terrain::TerrainOutput output = beginTerrainSurface(view);
+  const auto uniforms = [this](const gl::Program& p) { draws->setUniforms(p); };
+  const terrain::TerrainOutput output = terrain->beginSurface(view, drawFbo);
   for (const std::size_t j : {near, far}) {
     cullPhase(*terrainCuller, j, j + 1, view, j == far && render.msaa <= 1);
     const IndirectDraw commands = terrainCuller->commandsOf(j);
-    terrainRenderer->drawIndirect(selection, gpu->eye(), uniforms, commands.offset, commands.count, output);
+    renderer.drawIndirect(selection, gpu->eye(), uniforms, commands.offset, commands.count, output);
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-  shadeTerrainSurface(view, selection);
-  mainTerrain = std::move(selection);
+  terrain->shadeSurface(view, selection, drawFbo);
+  terrain->keepMainSelection(std::move(selection));
 }
 
 }  // namespace engine

@@ -1,30 +1,17 @@
-// SceneRenderer at load: settings, programs, targets, shadow maps, probes, the
-// models and shapes drawn.
+// SceneRenderer at load: settings, programs, passes, targets.
 #include "render/scene_renderer_impl.h"
 
+#include <chrono>
+#include <cmath>
 #include <cstdio>
-#include <limits>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/srgb_curve.h"
+#include "render/pass_state.h"
+#include "render/render_target.h"
+#include "render/textures.h"
 
 namespace engine {
-namespace {
-
-constexpr int kMaxCubeShadowSize = 1024;
-constexpr int kMaxReflectionProbes = 4;
-
-}  // namespace
-
-gl::Texture makeSunShadowMap(int size) {
-  gl::Texture map = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size, 1);
-  map.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  map.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  map.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  map.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  map.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  map.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return map;
-}
 
 Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRenderOptions& options) {
   shaderDir = options.shaderDir;
@@ -34,14 +21,10 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
   render.lodPixels = options.lodPixelsOverride.value_or(render.lodPixels);
   render.gpuCulling = options.gpuCullingOverride.value_or(render.gpuCulling);
   cullDepthMargin = options.gpuCullingDepthMargin;
-  planeOcclusion = options.planeOcclusion;
-  planeOcclusionPixelMargin = options.planeOcclusionPixelMargin;
   render.shading = options.shadingOverride.value_or(render.shading);
   if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
   render.toneMap = options.toneMapOverride.value_or(render.toneMap);
   render.output = options.outputOverride.value_or(render.output);
-  terrainError = terrainErrorTarget(scene, options.terrainErrorOverride);
-  skinModeOverride = options.skinModeOverride;
   rotations = options.rotations;
   if (options.supersampleOverride > 0) render.supersample = options.supersampleOverride;
   if (options.shadowMapOverride > 0) render.shadowMapSize = options.shadowMapOverride;
@@ -57,22 +40,16 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
                      " samples asked, this GL offers up to " + std::to_string(most));
   }
 
-  for (int i = 0; i < int(scene.lights.size()); ++i) {
-    const LightDesc& l = scene.lights[size_t(i)];
-    if (l.type == LightType::Sun && sunLight < 0) sunLight = i;
-    // Area lights are drawn as a point at their centre; their soft shadow is the
-    // ray tracer's job (PCF only imitates it).
-    if (l.type != LightType::Sun && int(pointLights.size()) < kMaxPointLights) pointLights.push_back(i);
-  }
-  sunShadows = sunLight >= 0 && scene.lights[size_t(sunLight)].shadows;
-  pointShadows = !pointLights.empty() && scene.lights[size_t(pointLights[0])].shadows;
+  lights = compileLights(scene);
+  const bool sunShadows = lights.sun >= 0 && scene.lights[size_t(lights.sun)].shadows;
+  const bool pointShadows = !lights.points.empty() && scene.lights[size_t(lights.points[0])].shadows;
 
   // The lights' counts are compile-time (common/direct_light.glsl says why).
-  std::vector<std::string> defines = {"SUN_LIGHT " + std::to_string(sunLight >= 0 ? 1 : 0),
-                                      "POINT_LIGHTS " + std::to_string(pointLights.size())};
+  std::vector<std::string> defines = {"SUN_LIGHT " + std::to_string(lights.sun >= 0 ? 1 : 0),
+                                      "POINT_LIGHTS " + std::to_string(lights.points.size())};
   if (render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
-  sunFarShadows = sunShadows && scene.terrain.enabled;
+  const bool sunFarShadows = sunShadows && scene.terrain.enabled;
   if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
   // The PCF kernel too, so that its loops unroll (common/shadows.glsl).
@@ -80,7 +57,7 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
   if (scene.fog.enabled) defines.push_back("FOG 1");
   // What of a fragment's position the lighting reads beyond its direction: the
   // deferred characters' surface then keeps its distance (common/surface.glsl).
-  surfacePosition = sunShadows || pointShadows || !pointLights.empty() || scene.fog.enabled;
+  const bool surfacePosition = sunShadows || pointShadows || !lights.points.empty() || scene.fog.enabled;
   if (surfacePosition) defines.push_back("SURFACE_POSITION 1");
   if (render.shading == Shading::Pbr) {
     ambient = options.ambientOverride.value_or(ambientOf(scene));
@@ -95,65 +72,68 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
     render.exposure = 1.0f;
     render.toneMap = ToneMap::None;
   }
-  probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
-  if (auto s = makeProbes(); !s) return s;
-  if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
+  auto probePass = ReflectionProbePass::create(
+      scene, options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe);
+  if (!probePass) return probePass.error();
+  probes = std::move(probePass).value();
+  if (probes) defines.push_back("REFLECTION_PROBES 1");
   directOutput = !options.hdrTarget && needsNoHdrTarget(*source);
   if (directOutput) {
     const std::vector<std::string> display = displayDefines();
     defines.insert(defines.end(), display.begin(), display.end());
   }
-  variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
   if (render.output != OutputCurve::Gamma22) makeDisplayTable();
-  GpuSceneOptions upload{shaderDir, render.skinning, pointShadows || !probes.empty(), render.lodPixels > 0.0,
-                         skinModeOverride, {}};
-  for (const Probe& probe : probes) upload.probeShapes.push_back(probe.shape);
+  GpuSceneOptions upload;
+  upload.shaderDir = shaderDir;
+  upload.skinning = render.skinning;
+  upload.manyPasses = pointShadows || probes;
+  upload.levelsOfDetail = render.lodPixels > 0.0;
+  upload.skinModeOverride = options.skinModeOverride;
+  if (probes) upload.probeShapes = probes->shapes();
   auto uploaded = GpuScene::create(std::move(source), scene, upload);
   if (!uploaded) return uploaded.error();
   gpu = std::move(uploaded).value();
+  draws = std::make_unique<SceneDraws>(*gpu, scene,
+                                       std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines),
+                                       stats);
   if (auto s = makeSky(); !s) return s;
   if (auto s = makePost(); !s) return s;
   emptyVao = gl::VertexArray::create();
-  frameUbo = gl::Buffer::create(sizeof(FrameBlock));
   if (auto s = makeEnvironmentLighting(); !s) return s;
 
-  deferredTerrain = render.msaa <= 1 && !options.forwardTerrain;
-  deferredCharacters = render.msaa <= 1 && !options.forwardCharacters;
-  if (auto s = loadTerrain(defines); !s) return s;
+  if (terrain::Terrain* field = gpu->source().terrain()) {
+    const TerrainPassSettings settings{terrainErrorTarget(scene, options.terrainErrorOverride),
+                                       render.msaa <= 1 && !options.forwardTerrain, options.planeOcclusion,
+                                       options.planeOcclusionPixelMargin};
+    auto made = TerrainPass::create(shaderDir, *field, defines, settings, scene, *gpu, *draws, stats);
+    if (!made) return made.error();
+    terrain = std::move(made).value();
+  }
+  // The deferred characters' groups are known once their programs are (buildVariants).
+  if (render.msaa <= 1 && !options.forwardCharacters) {
+    surfaces = std::make_unique<CharacterSurfacePass>(surfacePosition, terrain && terrain->deferred(), *gpu, *draws,
+                                                      stats);
+  }
   if (auto s = makeCuller(); !s) return s;
 
   if (sunShadows) {
-    sunShadowSize = render.shadowMapSize;
-    sunShadowMap = makeSunShadowMap(sunShadowSize);
-    sunShadowFbo = gl::Framebuffer::create();
-    sunShadowFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMap);
-    if (auto s = sunShadowFbo.check("shadow-sun"); !s) return s;
-  }
-  if (sunFarShadows) {
-    sunShadowMapFar = makeSunShadowMap(sunShadowSize);
-    sunShadowFarFbo = gl::Framebuffer::create();
-    sunShadowFarFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMapFar);
-    if (auto s = sunShadowFarFbo.check("shadow-sun-far"); !s) return s;
+    auto made = SunShadowPass::create(scene.lights[size_t(lights.sun)], render.shadowMapSize, sunFarShadows, *gpu,
+                                      *draws, terrain.get(), stats);
+    if (!made) return made.error();
+    sun = std::move(made).value();
   }
   if (pointShadows) {
-    cubeSize = std::min(render.shadowMapSize, kMaxCubeShadowSize);
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
-    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, cubeSize, cubeSize);
-    pointShadowMap = gl::Texture::adopt(id, cubeSize, cubeSize);
-    pointShadowMap.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    pointShadowMap.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    pointShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    pointShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    pointShadowFbo = gl::Framebuffer::create();
-    // Each face is attached in turn when drawn; all six are alike, so face 0 stands
-    // for them here.
-    glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, 0);
-    if (auto s = pointShadowFbo.check("shadow-point"); !s) return s;
-    pointFar = std::max(1.0, scene.camera.farPlane);
+    auto made = PointShadowPass::create(scene.lights[size_t(lights.points[0])].position, render.shadowMapSize,
+                                        std::max(1.0, scene.camera.farPlane), *draws);
+    if (!made) return made.error();
+    point = std::move(made).value();
   }
-  return buildVariants();
+  if (auto s = draws->buildVariants(sunShadows || pointShadows, sunFarShadows, surfaces); !s) return s;
+  draws->link({sun.get(), point.get(), probes.get(), surfaces.get()});
+  frame = std::make_unique<FrameUniforms>(scene, lights, pcfRadius, sun.get(), point.get(),
+                                          environmentLighting ? &*environmentLighting : nullptr);
+  return Ok{};
 }
 
 // The sky pass's programs: the gradient, or the SKY_IMAGE variant with its texture,
@@ -224,44 +204,6 @@ Status SceneRenderer::Impl::makeEnvironmentLighting() {
   return Ok{};
 }
 
-// One probe per mirror sphere or box (material reflection > 0), up to four. Planes
-// get none: a plane mirror needs a planar reflection, which this renderer lacks.
-Status SceneRenderer::Impl::makeProbes() {
-  if (probeSize <= 0) return Ok{};
-  for (int i = 0; i < int(scene.primitives.size()) && int(probes.size()) < kMaxReflectionProbes; ++i) {
-    const PrimitiveDesc& p = scene.primitives[size_t(i)];
-    if (p.type == PrimitiveType::Plane || scene.materials[size_t(p.material)].reflection <= 0.0f) continue;
-    Probe probe;
-    probe.shape = i;
-    probe.center = p.type == PrimitiveType::Sphere ? p.center : (p.min + p.max) * 0.5;
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
-    glTextureStorage2D(id, 1, GL_RGBA16F, probeSize, probeSize);
-    probe.cube = gl::Texture::adopt(id, probeSize, probeSize);
-    probe.cube.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    probe.cube.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    probes.push_back(std::move(probe));
-  }
-  if (probes.empty()) return Ok{};
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // no seams where faces meet
-  probeDepth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, probeSize, probeSize);
-  probeFbo = gl::Framebuffer::create();
-  probeFbo.attach(GL_DEPTH_ATTACHMENT, probeDepth);
-  glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probes[0].cube.id(), 0, 0);
-  return probeFbo.check("reflection-probe");
-}
-
-Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
-  terrain = gpu->source().terrain();
-  deferredTerrain = deferredTerrain && terrain;
-  if (!terrain) return Ok{};
-  // The scene programs' variant: the terrain is lit and shadowed as they are.
-  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, defines);
-  if (!renderer) return renderer.error();
-  terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
-  return deferredTerrain ? terrainRenderer->enableDeferred(shaderDir, defines) : Status(Ok{});
-}
-
 // Whether the frame can skip the HDR target and the post pass (issue 14: a scene
 // with no HDR effect pays for none). Exposure, the tone map and the curve are per
 // pixel, so the fragment shaders apply them as well as a post pass (the sky's view
@@ -273,7 +215,7 @@ Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines)
 // debug views (their values as they are).
 bool SceneRenderer::Impl::needsNoHdrTarget(const Scene& source) const {
   if (render.msaa > 1 || render.supersample > 1) return false;
-  if (!probes.empty() || debugView != DebugView::None) return false;
+  if (probes || debugView != DebugView::None) return false;
   for (const auto& asset : source.assets()) {
     for (const MaterialData& m : asset->model.materials)
       if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
@@ -297,61 +239,6 @@ std::vector<std::string> SceneRenderer::Impl::displayDefines() const {
   return defines;
 }
 
-// The deferred characters' programs: each deferrable primitive's surface pass (its
-// forward variant writing the surface) and each group's shading. Deferred only
-// where some primitive is deferrable and the stencil has a value for each group.
-void SceneRenderer::Impl::addSurfaceVariants(const std::vector<ShaderVariant>& surfacePasses,
-                                             std::vector<ShaderVariant>& needed) {
-  if (surfaceGroups.size() > kMaxSurfaceGroups) surfaceGroups.clear();
-  deferredCharacters = deferredCharacters && !surfaceGroups.empty();
-  if (!deferredCharacters) return;
-  needed.insert(needed.end(), surfacePasses.begin(), surfacePasses.end());
-  for (const SurfaceGroup& g : surfaceGroups) needed.push_back(g.shading);
-}
-
-Status SceneRenderer::Impl::buildVariants() {
-  // Everything the scene will draw, built now, so the first frame costs no
-  // compile and --describe can list exactly what exists.
-  std::vector<ShaderVariant> needed, surfacePasses;
-  for (const ShapeDraw& s : gpu->shapes()) needed.push_back({0, SkinMode::Linear, gpu->materialTexture(s.material).id() != 0, false});
-  for (const CharacterDraw& c : gpu->characters()) {
-    const ModelData& model = c.instance->asset().model;
-    const SkinMode mode = skinModeOf(c.desc);
-    const bool cached = c.instance->skinCache() != nullptr;
-    // Deforms the first pose, which builds the skin cache's compute programs too.
-    if (auto s = c.instance->prepare(mode); !s) return s;
-    for (const NodeData& node : model.nodes) {
-      if (node.mesh < 0) continue;
-      for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        const ShaderVariant forward = primitiveVariant(model, node, prim, mode, false, cached);
-        needed.push_back(forward);
-        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
-        if (deferredCharacters && !blend && forward.deferrable()) {
-          addSurfaceGroup(c.instance->asset(), prim.material, forward);
-          surfacePasses.push_back(forward);
-          surfacePasses.back().surface = ShaderVariant::Surface::Out;
-        }
-        if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
-      }
-    }
-  }
-  if ((sunShadows || pointShadows) && !gpu->shapes().empty()) needed.push_back({0, SkinMode::Linear, false, true});
-  addSurfaceVariants(surfacePasses, needed);
-  // Each colour program also without the far sun map, for draws the near map
-  // covers (ShaderVariant::nearSunOnly; which ones depends on the camera).
-  for (std::size_t i = 0, n = needed.size(); i < n && sunFarShadows; ++i) {
-    if (needed[i].depthOnly || needed[i].surface != ShaderVariant::Surface::None) continue;
-    ShaderVariant nearOnly = needed[i];
-    nearOnly.nearSunOnly = true;
-    needed.push_back(nearOnly);
-  }
-  for (const ShaderVariant& v : needed) {
-    auto program = variants->get(v);
-    if (!program) return program.error();
-  }
-  return Ok{};
-}
-
 Status SceneRenderer::Impl::makeTarget(int width, int height) {
   const int w = width * render.supersample, h = height * render.supersample;
   if (w == targetWidth && h == targetHeight && drawFbo) return Ok{};
@@ -373,20 +260,8 @@ Status SceneRenderer::Impl::makeTarget(int width, int height) {
     drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
   }
   drawFbo.attach(stencilled() ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth);
-  if (deferredCharacters) {
-    characterSurface = gl::Texture::create2D(GL_RGBA32UI, w, h, 1);
-    characterSurface.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // an integer texture filters nothing
-    characterSurface.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    drawFbo.attach(GL_COLOR_ATTACHMENT2, characterSurface);
-  }
-  if (deferredCharacters && surfacePosition) {
-    characterDistance = gl::Texture::create2D(GL_R32F, w, h, 1);
-    drawFbo.attach(GL_COLOR_ATTACHMENT3, characterDistance);
-  }
-  if (deferredTerrain) {
-    terrainSurface = gl::Texture::create2D(GL_RGBA32F, w, h, 1);
-    drawFbo.attach(GL_COLOR_ATTACHMENT1, terrainSurface);
-  }
+  if (surfaces) surfaces->attach(drawFbo, w, h);
+  if (terrain && terrain->deferred()) terrain->attach(drawFbo, w, h);
   if (auto s = drawFbo.check(directOutput ? "scene-display" : "scene-hdr"); !s) return s;
   if (gpu->refracts()) {
     const int levels = 1 + int(std::floor(std::log2(double(std::max(w, h)))));
