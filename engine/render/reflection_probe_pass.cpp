@@ -7,6 +7,7 @@
 #include "render/gpu_scene.h"
 #include "render/pass_state.h"
 #include "render/sun_shadow_pass.h"
+#include "render/world_pass.h"
 
 namespace engine {
 namespace {
@@ -58,7 +59,7 @@ std::vector<int> ReflectionProbePass::shapes() const {
 // mirrors: one bounce, where the ray tracer follows --max-depth bounces. Before the
 // camera's own sun maps, which this overwrites.
 Status ReflectionProbePass::render(const glm::dvec3& cameraPosition, GpuScene& gpu, SunShadowPass* sun,
-                                   FrameUniforms& frame, const DrawFace& drawFace) {
+                                   FrameUniforms& frame, WorldPass& world) {
   const glm::dmat4 projection = reverseZProjection(glm::half_pi<double>(), 1.0, kProbeNear, farPlane_);
   for (const Probe& probe : probes_) {
     gpu.place(probe.center);
@@ -82,7 +83,7 @@ Status ReflectionProbePass::render(const glm::dvec3& cameraPosition, GpuScene& g
       glClearColor(background_.r, background_.g, background_.b, 1.0f);
       glClearDepth(0.0);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      if (auto s = drawFace(view, probe.shape); !s) return s;
+      if (auto s = world.draw(view, probe.shape, false); !s) return s;
     }
   }
   gpu.place(cameraPosition);

@@ -2,8 +2,8 @@
 // Reflection probes, the rasterizer's stand-in for the ray tracer's reflected
 // rays: a cube map of the scene seen from each mirror shape's centre, which the
 // mirror's own draws then sample (SceneDraws). Not part of the engine's interface.
-#include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "asset/scene_desc.h"
@@ -16,6 +16,7 @@ namespace engine {
 class FrameUniforms;
 class GpuScene;
 class SunShadowPass;
+class WorldPass;
 
 class ReflectionProbePass {
  public:
@@ -28,15 +29,12 @@ class ReflectionProbePass {
   std::vector<int> shapes() const;
   const gl::Texture& cube(int probe) const { return probes_[size_t(probe)].cube; }
 
-  // Draws one face of a probe: the world of `view` without the mirror `skipShape`,
-  // into the bound framebuffer (cleared).
-  using DrawFace = std::function<Status(const View& view, int skipShape)>;
   // Each probe's six faces, seen from the mirror's centre without the mirror
-  // itself: `gpu`'s characters are placed around it, then back at
-  // `cameraPosition`; the sun's maps (`sun`, where the scene has them) are drawn
-  // again around it, and the frame block filled for each face.
+  // itself, drawn by `world`: `gpu`'s characters are placed around it, then back
+  // at `cameraPosition`; the sun's maps (`sun`, where the scene has them) are
+  // drawn again around it, and the frame block filled for each face.
   Status render(const glm::dvec3& cameraPosition, GpuScene& gpu, SunShadowPass* sun, FrameUniforms& frame,
-                const DrawFace& drawFace);
+                WorldPass& world);
   // Probes depend on the scene, not on the camera: a scene where nothing moves
   // draws them once.
   bool drawn() const { return drawn_; }
