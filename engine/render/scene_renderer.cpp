@@ -1,35 +1,15 @@
+// SceneRenderer's public face and its frame: the passes in order.
 #include "render/scene_renderer_impl.h"
 
-#include "core/srgb_curve.h"
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+
+#include "asset/scene_file.h"
+#include "render/pass_state.h"
 
 namespace engine {
 namespace {
-
-// common/output.glsl's targetColor under DIRECT_OUTPUT on the CPU (the direct path's
-// clear colour): exposure, the tone map, then the curve.
-glm::vec3 displayValue(glm::vec3 c, const RenderDesc& render) {
-  c *= render.exposure;
-  if (render.toneMap == ToneMap::Aces && render.output != OutputCurve::Gamma22)
-    return glm::vec3(acesSrgbByte(c.r), acesSrgbByte(c.g), acesSrgbByte(c.b)) / 255.0f;
-  if (render.toneMap == ToneMap::Reinhard) c = c / (1.0f + c);
-  if (render.toneMap == ToneMap::Aces) c = acesFit(c);
-  c = glm::clamp(c, 0.0f, 1.0f);
-  if (render.output == OutputCurve::Gamma22) return glm::pow(c, glm::vec3(1.0f / 2.2f));
-  return glm::vec3(srgbByte(c.r), srgbByte(c.g), srgbByte(c.b)) / 255.0f;
-}
-
-// The direct path draws into the caller's framebuffer itself, with no target of its
-// own and no copy, when that is a single-sample framebuffer object of the frame's
-// size with 8-bit normalised colour (RGBA8 or SRGB8_ALPHA8: with GL_FRAMEBUFFER_SRGB
-// off both store the shader's bytes as they are) and 32-bit float depth (the
-// reverse-Z depth every pass tests against; fixed-point depth would move bytes).
-// On llvmpipe the copy was a shader pass over every pixel: about 3 ms at 1280x720.
-bool takesDirectFrame(const gl::FramebufferLayout& l, int width, int height) {
-  const bool color8 = l.colorType == GL_UNSIGNED_NORMALIZED && l.colorBits[0] == 8 && l.colorBits[1] == 8 &&
-                      l.colorBits[2] == 8 && l.colorBits[3] == 8;
-  return l.samples == 0 && l.width == width && l.height == height && color8 && l.depthBits == 32 &&
-         l.depthType == GL_FLOAT;
-}
 
 // View rotation from a forward and an up vector; a left-handed scene (the course's
 // room) puts +x on the right when looking along +z, which mirrors GL's convention.
@@ -48,29 +28,6 @@ glm::dmat4 viewRotation(const glm::dvec3& forward, const glm::dvec3& upHint, boo
 
 }  // namespace
 
-// "lod(within 1 px: 4672 triangles > 2336 (0.0012) > 1168 (0.0094))": each
-// primitive with levels, its triangles and each level's, with its error (relative
-// to the model's size in any pose).
-std::string SceneRenderer::Impl::describeLevelsOfDetail() const {
-  std::ostringstream out;
-  out << "lod(within " << render.lodPixels << " px:";
-  std::set<const CharacterAsset*> seen;
-  int described = 0;
-  for (const CharacterDraw& c : characters) {
-    if (!seen.insert(&c.instance->asset()).second) continue;
-    for (const auto& mesh : c.instance->asset().gpu.meshes())
-      for (const GpuPrimitive& p : mesh) {
-        if (p.levels.empty()) continue;
-        out << (described++ ? ";" : "") << " " << p.indexCount / 3 << " triangles";
-        for (const GpuPrimitive::Level& l : p.levels)
-          out << " > " << l.indexCount / 3 << " (" << std::setprecision(2) << l.error << ")";
-      }
-  }
-  if (described == 0) out << " no mesh has levels";
-  out << ")";
-  return out.str();
-}
-
 SceneRenderer::SceneRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) { impl_->stats = &stats_; }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -79,9 +36,8 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(std::shared_ptr<Sce
                                                              const SceneRenderOptions& options) {
   auto impl = std::make_unique<Impl>();
   impl->scene = source->desc();
-  impl->source = std::move(source);
   std::unique_ptr<SceneRenderer> renderer(new SceneRenderer(std::move(impl)));
-  if (auto s = renderer->impl_->init(options); !s) return s.error();
+  if (auto s = renderer->impl_->init(std::move(source), options); !s) return s.error();
   return renderer;
 }
 
@@ -94,27 +50,25 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const SceneDesc& sc
 const SceneDesc& SceneRenderer::scene() const { return impl_->scene; }
 
 const EnvironmentLighting* SceneRenderer::environmentLighting() const {
-  return impl_->environmentLighting ? &*impl_->environmentLighting : nullptr;
+  return impl_->sky->environment();
 }
 
 std::vector<CharacterInstance*> SceneRenderer::characters() {
   std::vector<CharacterInstance*> out;
-  for (auto& c : impl_->characters) out.push_back(c.instance.get());
+  for (auto& c : impl_->gpu->characters()) out.push_back(c.instance.get());
   return out;
 }
 
 Status SceneRenderer::update(double time) {
   const auto start = std::chrono::steady_clock::now();
-  if (auto s = impl_->source->update(time, impl_->rotations); !s) return s;
-  const auto instances = impl_->source->instances();
-  for (size_t i = 0; i < impl_->characters.size(); ++i) impl_->characters[i].instance->setPose(instances[i].pose);
+  if (auto s = impl_->gpu->source().update(time, impl_->rotations); !s) return s;
+  impl_->gpu->takePoses();
   impl_->animationMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return Ok{};
 }
 
 void SceneRenderer::setPose(int instance, const Pose& pose) {
-  impl_->source->setPose(instance, pose);
-  impl_->characters[size_t(instance)].instance->setPose(pose);
+  impl_->gpu->setPose(instance, pose);
 }
 
 Camera SceneRenderer::initialCamera() const {
@@ -128,33 +82,9 @@ Camera SceneRenderer::initialCamera() const {
   return camera;
 }
 
-void SceneRenderer::Impl::beginTimer(const std::string& pass) {
-  auto it = std::find_if(timers.begin(), timers.end(), [&](const PassTimer& t) { return t.pass == pass; });
-  if (it == timers.end()) it = timers.insert(timers.end(), PassTimer{pass, gl::Query::create(GL_TIME_ELAPSED)});
-  activeTimer = it->pending ? -1 : int(it - timers.begin());
-  if (activeTimer >= 0) it->query.begin();
-}
-
-void SceneRenderer::Impl::endTimer() {
-  if (activeTimer < 0) return;
-  timers[size_t(activeTimer)].query.end();
-  timers[size_t(activeTimer)].pending = true;
-  activeTimer = -1;
-}
-
-void SceneRenderer::Impl::collectTimers() {
-  for (PassTimer& t : timers) {
-    if (!t.pending || !t.query.available()) continue;
-    t.ms = double(t.query.result()) * 1e-6;
-    t.pending = false;
-  }
-}
-
 std::vector<PassTime> SceneRenderer::passTimes() const {
-  impl_->collectTimers();
-  std::vector<PassTime> out;
-  for (const auto& t : impl_->timers) out.push_back({t.pass, t.ms});
-  return out;
+  impl_->timers.collect();
+  return impl_->timers.times();
 }
 
 Status SceneRenderer::render(const Camera& camera, int width, int height) {
@@ -166,204 +96,80 @@ Status SceneRenderer::render(const Camera& camera, int width, int height) {
   s.primitives.begin();
   Status status = s.renderFrame(camera, width, height);
   s.primitives.end();
-  s.primitivesValid = true;
   return status;
 }
 
-// The skin cache's pass: every character's pose deformed once, before any pass
-// draws it.
-Status SceneRenderer::Impl::deformCharacters() {
-  for (CharacterDraw& c : characters) {
-    if (auto s = c.instance->prepare(skinModeOf(c.desc)); !s) return s;
-    stats->verticesDeformed += c.instance->skinCache() ? c.instance->skinCache()->verticesDeformed() : 0;
-  }
-  return Ok{};
-}
-
-// The direct path's colour image in drawFbo: the caller's (`caller`, when it can be
-// attached elsewhere), else drawFbo's own. True when the caller's is attached.
-// Attached anew every frame: a caller's resized target may be a new image under
-// the name of the one it deleted.
-bool SceneRenderer::Impl::useColourOf(const gl::FramebufferLayout* caller) {
-  const GLuint wanted = caller && caller->colorObjectType != GL_NONE ? caller->colorObject : 0;
-  if (wanted == 0) {
-    if (borrowedColour != 0) drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
-  } else if (caller->colorObjectType == GL_RENDERBUFFER) {
-    glNamedFramebufferRenderbuffer(drawFbo.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, wanted);
-  } else {
-    glNamedFramebufferTexture(drawFbo.id(), GL_COLOR_ATTACHMENT0, wanted, caller->colorLevel);
-  }
-  borrowedColour = wanted;
-  return wanted != 0;
+GLenum SceneRenderer::Impl::depthFormat() const {
+  const bool stencilled = (terrain && terrain->deferred()) || (surfaces && surfaces->stencil());
+  return stencilled ? GL_DEPTH32F_STENCIL8 : GL_DEPTH_COMPONENT32F;
 }
 
 Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int height) {
-  GLint callerFramebuffer = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
-  const gl::FramebufferLayout callerLayout = gl::framebufferLayout(GLuint(callerFramebuffer));
-  const bool direct = directOutput && takesDirectFrame(callerLayout, width, height);
-  // Deferred surfaces need their targets (and stencil) beside the frame's depth:
-  // drawFbo then borrows the caller's colour image where it can, so nothing is copied.
-  const bool intoCaller = direct && !deferredTerrain && !deferredCharacters;
-  if (intoCaller) {
-    targetWidth = width;
-    targetHeight = height;
-  } else if (auto status = makeTarget(width, height); !status) {
-    return status;
-  }
-  const bool borrowed = directOutput && !intoCaller && useColourOf(direct ? &callerLayout : nullptr);
-  if (displayTable) displayTable.bind(gl::binding::kDisplayTable);
+  const bool deferred = (terrain && terrain->deferred()) || surfaces;
+  const auto attach = [this](gl::Framebuffer& target, int w, int h) {
+    if (surfaces) surfaces->attach(target, w, h);
+    if (terrain && terrain->deferred()) terrain->attach(target, w, h);
+    return transmission ? transmission->resize(w, h) : Status(Ok{});
+  };
+  if (auto s = output->begin(width, height, deferred, depthFormat(), attach); !s) return s;
   const glm::dvec3 cameraPosition = camera.position;
   const double aspect = double(width) / double(height);
   const double fovy = glm::radians(camera.fovyDegrees);
   const glm::dmat4 view = viewRotation(camera.forward(), scene.camera.up, scene.camera.leftHanded);
   const glm::dmat4 projection = reverseZProjection(fovy, aspect, camera.nearPlane, camera.farPlane);
   const glm::dmat4 viewProjection = projection * view;
-  glm::dvec4 planes[6];
-  frustumPlanes(viewProjection, planes);
+  const int targetHeight = output->height();
 
-  placeCharacters(cameraPosition);
-  chooseLevelsOfDetail(cameraPosition, fovy, targetHeight, camera.nearPlane);
-  if (terrain) measureTerrain(fovy, targetHeight);
-  // Shadow passes use only their own light matrix, but every scene program declares
-  // the frame block: keep it bound; it is filled once, after the sun's matrix exists.
-  glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, frameUbo.id());
-  collectTimers();
-  if (skinPrograms && !characters.empty()) {
-    beginTimer("skinning");
-    const Status status = deformCharacters();
-    endTimer();
-    if (!status) return status;
+  gpu->place(cameraPosition);
+  gpu->chooseLevelsOfDetail(cameraPosition, fovy, targetHeight, camera.nearPlane, render.lodPixels);
+  if (terrain) terrain->measure(fovy, targetHeight);
+  // Bound for the shadow passes too; filled once the sun's matrices exist.
+  frame->bind();
+  timers.collect();
+  const bool staticScene = gpu->characters().empty();  // nothing moves
+  if (gpu->skinPrograms() && !staticScene) {
+    if (auto s = timers.time("skinning", [&] { return gpu->deform(*stats); }); !s) return s;
   }
-  if (pointShadows && !(pointShadowValid && characters.empty())) {
-    beginTimer("shadow-point");
-    const Status status = renderPointShadow(cameraPosition);
-    endTimer();
-    if (!status) return status;
-    pointShadowValid = true;
+  if (point && !(point->drawn() && staticScene)) {
+    if (auto s = timers.time("shadow-point", [&] { return point->render(cameraPosition); }); !s) return s;
   }
-  // Probes depend on the scene, not on the camera: a scene where nothing moves
-  // draws them once.
-  if (!probes.empty() && !(probesValid && characters.empty())) {
-    beginTimer("reflection-probes");
-    const Status status = renderProbes(cameraPosition);
-    endTimer();
-    if (!status) return status;
-    probesValid = true;
+  if (probes && !(probes->drawn() && staticScene)) {
+    const auto drawProbes = [&] { return probes->render(cameraPosition, *gpu, sun.get(), *frame, *world); };
+    if (auto s = timers.time("reflection-probes", drawProbes); !s) return s;
   }
-  if (sunShadows) {
+  if (sun) {
     const double farPlane = scene.camera.farPlane, nearPlane = camera.nearPlane;
     const ShadowSphere nearSphere =
         frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunShadowDistance));
     const ShadowSphere farSphere =
         frustumSlice(view, fovy, aspect, nearPlane, std::min(farPlane, kSunFarShadowDistance));
-    beginTimer("shadow-sun");
-    const Status status = renderSunShadow(nearSphere, farSphere, fovy, targetHeight);
-    endTimer();
-    if (!status) return status;
+    const auto drawMaps = [&] { return sun->render(nearSphere, farSphere, fovy, targetHeight); };
+    if (auto s = timers.time("shadow-sun", drawMaps); !s) return s;
   }
-  fillFrame(cameraPosition, glm::mat4(viewProjection));
+  frame->fill(cameraPosition, glm::mat4(viewProjection));
 
-  glBindFramebuffer(GL_FRAMEBUFFER, intoCaller ? GLuint(callerFramebuffer) : drawFbo.id());
-  glViewport(0, 0, targetWidth, targetHeight);
-  glDisable(GL_FRAMEBUFFER_SRGB);
-  applyPassState(opaquePassFor(scene.camera.leftHanded));  // depth writes on, for the clear
-  const glm::vec3 background = directOutput ? displayValue(scene.sky.background, render) : scene.sky.background;
-  glClearColor(background.r, background.g, background.b, 1.0f);
-  glClearDepth(0.0);  // reverse-Z: far is 0
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  output->bindCleared(scene.sky.background, scene.camera.leftHanded);
   View mainView;
   mainView.mirrored = scene.camera.leftHanded;
   mainView.main = true;
   mainView.viewProjection = viewProjection;
-  std::copy(std::begin(planes), std::end(planes), std::begin(mainView.planes));
+  frustumPlanes(viewProjection, mainView.planes);
   mainView.fovy = fovy;
-  mainView.width = targetWidth;
+  mainView.width = output->width();
   mainView.height = targetHeight;
-  beginTimer("world");
-  const Status world = drawWorld(mainView, -1, true);
-  endTimer();
-  if (!world) return world;
-  if (directOutput) {
-    // Display values already: drawn into the caller's framebuffer, or copied into it
-    // as they are.
-    glClearDepth(1.0);
-    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
-    glViewport(0, 0, width, height);
-    if (!intoCaller && !borrowed) {
-      stats->frameCopies = 1;
-      glBlitNamedFramebuffer(drawFbo.id(), GLuint(callerFramebuffer), 0, 0, targetWidth, targetHeight, 0, 0, width,
-                             height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    }
-    applyPassState(kCallerState);
-    return Ok{};
-  }
-  beginTimer("post");
-
-  if (render.msaa > 1) {
-    glBlitNamedFramebuffer(drawFbo.id(), resolveFbo.id(), 0, 0, targetWidth, targetHeight, 0, 0,
-                           targetWidth, targetHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  }
-  // Post: into the framebuffer the caller bound. It receives display values, so
-  // sRGB encoding on write is off (the shader applies the output curve itself).
-  applyPassState(kPostPass);
-  stats->frameCopies = 1;
-  glClearDepth(1.0);
-  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
-  glViewport(0, 0, width, height);
-  glDisable(GL_FRAMEBUFFER_SRGB);
-  post.use();
-  post.set("u_exposure", render.exposure);
-  hdr.bind(gl::binding::kHdr);
-  emptyVao.bind();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  endTimer();
+  if (auto s = timers.time("world", [&] { return world->draw(mainView, -1, true); }); !s) return s;
+  const bool post = !output->direct();
+  if (post) timers.begin("post");
+  output->finish();
+  if (post) timers.end();
   applyPassState(kCallerState);
-  stats->drawCalls += 1;
   return Ok{};
 }
 
-CullStats SceneRenderer::cullStats() const {
-  CullStats out;
-  if (!impl_->culler) return out;
-  const cull::Counters c = impl_->culler->counters();
-  out.enabled = true;
-  out.instancesTested = c.instancesTested;
-  out.instancesFrustum = c.instancesFrustum;
-  out.instancesOccluded = c.instancesOccluded;
-  out.clustersTested = c.clustersTested;
-  out.clustersFrustum = c.clustersFrustum;
-  out.clustersOccluded = c.clustersOccluded;
-  if (impl_->terrainCuller) {
-    const cull::Counters t = impl_->terrainCuller->counters();
-    out.patchesTested = t.clustersTested;
-    out.patchesFrustum = t.clustersFrustum;
-    out.patchesOccluded = t.clustersOccluded;
-  }
-  return out;
-}
+CullStats SceneRenderer::cullStats() const { return impl_->culling ? impl_->culling->counters() : CullStats{}; }
 
 long long SceneRenderer::lastFrameTriangles() const {
-  return impl_->primitivesValid ? static_cast<long long>(impl_->primitives.result()) : 0;
-}
-
-// "skinning(skin cache: 3 primitives, 4210 vertices, 197 KiB)": what the skin
-// cache holds across every instance.
-std::string SceneRenderer::Impl::describeSkinCache() const {
-  int entries = 0;
-  long long vertices = 0;
-  std::size_t bytes = 0;
-  for (const CharacterDraw& c : characters) {
-    const SkinCache* cache = c.instance->skinCache();
-    if (!cache) continue;
-    entries += cache->entries();
-    vertices += cache->verticesDeformed();
-    bytes += cache->bytes();
-  }
-  std::ostringstream out;
-  out << "skinning(skin cache: " << entries << " primitives, " << vertices << " vertices, " << (bytes + 1023) / 1024
-      << " KiB)";
-  return out.str();
+  return impl_->primitives ? static_cast<long long>(impl_->primitives.result()) : 0;
 }
 
 namespace {
@@ -386,62 +192,38 @@ std::string debugViewList() {
 }
 
 const terrain::LodSelection* SceneRenderer::mainTerrainSelection() const {
-  return impl_->terrain ? &impl_->mainTerrain : nullptr;
+  return impl_->terrain ? &impl_->terrain->mainSelection() : nullptr;
 }
 
 std::string SceneRenderer::describe() const {
   const Impl& s = *impl_;
   std::ostringstream out;
   out << "passes:";
-  if (s.sunShadows) out << " shadow-sun(" << s.sunShadowSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
-  if (s.sunFarShadows) out << " shadow-sun-far(" << s.sunShadowSize << ", terrain, " << kSunFarShadowDistance << " m)";
-  if (s.pointShadows) out << " shadow-point(cube " << s.cubeSize << ", " << (s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : std::string("hard")) << ")";
-  if (!s.probes.empty()) out << " reflection-probes(" << s.probes.size() << " x cube " << s.probeSize << ")";
-  if (s.scene.sky.enabled) out << " sky";
-  if (s.skyImage) {
-    out << "(image " << std::filesystem::path(s.scene.sky.image).filename().string() << " " << s.skyImage.width() << "x"
-        << s.skyImage.height() << ")";
-  }
-  if (s.environmentLighting) out << " " << ambientName(s.ambient) << "(" << s.environmentLighting->describe() << ")";
-  if (s.skinPrograms) out << " " << s.describeSkinCache();
-  if (s.render.lodPixels > 0.0) out << " " << s.describeLevelsOfDetail();
-  if (s.terrain) {
-    out << " terrain(cdlod, " << s.terrainError << " px, "
-        << (s.deferredTerrain ? "deferred: RGBA32F surface + stencil, shaded once a pixel" : "forward") << ")";
-  }
+  const std::string filter = s.pcfRadius ? "pcf " + std::to_string(2 * s.pcfRadius + 1) : "hard";
+  if (s.sun) out << " " << s.sun->describe(filter);
+  if (s.point) out << " " << s.point->describe(filter);
+  if (s.probes) out << " " << s.probes->describe();
+  if (const std::string sky = s.sky->describe(); !sky.empty()) out << " " << sky;
+  if (s.gpu->skinPrograms()) out << " " << s.gpu->describeSkinCache();
+  if (s.render.lodPixels > 0.0) out << " " << s.gpu->describeLevelsOfDetail(s.render.lodPixels);
+  if (s.terrain) out << " " << s.terrain->describe();
   out << " opaque";
   if (s.scene.fog.enabled) out << "+fog";
-  if (s.deferredCharacters) {
-    out << " characters(deferred: RGBA32UI surface" << (s.surfacePosition ? " + R32F distance" : "")
-        << (s.surfaceStencil() ? " + stencil" : "") << ", shaded once a pixel by " << s.surfaceGroups.size()
-        << " full-screen pass" << (s.surfaceGroups.size() == 1 ? "" : "es") << ")";
-  }
-  if (s.culler) {
-    out << " gpu-culling(" << s.culler->clusters().size() << " clusters of <= " << cull::kClusterTriangles
-        << " triangles; " << (s.render.msaa > 1 ? "frustum only (msaa)" : "frustum + hi-z, occluder prepass")
-        << (s.terrainCuller ? "; terrain patches too" : "") << ")";
-  }
-  if (s.transmissionPass) out << " transmission(copy + mips)";
-  if (s.blendPass) out << " blend(sorted)";
-  if (s.directOutput) {
-    out << " direct(display values from the fragment shaders: exposure, tone map and curve applied there; RGBA8, no"
-           " post pass; into the caller's framebuffer when it is single-sample RGBA8 with float depth (its colour image"
-           " with the deferred surfaces' depth-stencil and targets), else copied)";
-  } else {
-    out << " post(msaa " << s.render.msaa << ", supersample " << s.render.supersample << ")";
-  }
+  if (s.surfaces) out << " " << s.surfaces->describe();
+  if (s.culling) out << " " << s.culling->describe();
+  if (s.transmission) out << " transmission(copy + mips)";
+  if (s.gpu->blends()) out << " blend(sorted)";
+  out << " " << s.output->describe();
   if (s.debugView != DebugView::None) out << "\ndebug view: " << debugViewName(s.debugView) << " (no exposure, no tone map)";
   out << "\nshading: " << (s.render.shading == Shading::Classic ? "classic" : "pbr");
-  if (s.render.shading == Shading::Pbr) {
-    out << ", ambient " << ambientName(s.ambient);
-    if (s.environmentLighting) out << " (built once in " << std::fixed << std::setprecision(1) << s.iblMilliseconds << " ms)";
-  }
-  out << "; lights compiled in: " << (s.sunLight >= 0 ? "sun + " : "") << s.pointLights.size() << " point";
+  if (s.render.shading == Shading::Pbr) out << ", ambient " << ambientName(s.ambient) << s.sky->describeEnvironmentCost();
+  const CompiledLights& lights = s.frame->lights();
+  out << "; lights compiled in: " << (lights.sun >= 0 ? "sun + " : "") << lights.points.size() << " point";
   out << "\nvariants:";
-  for (const auto& v : s.variants->built()) out << " " << v.describe();
-  if (s.skinPrograms) {
+  for (const auto& v : s.draws->variants().built()) out << " " << v.describe();
+  if (const SkinPrograms* skinPrograms = s.gpu->skinPrograms()) {
     out << "\nskin-cache variants:";
-    for (const auto& v : s.skinPrograms->built()) out << " " << v.describe();
+    for (const auto& v : skinPrograms->built()) out << " " << v.describe();
   }
   out << "\nlast frame: " << stats_.drawCalls << " draw calls, " << stats_.programChanges << " program changes (" << stats_.programsNeeded << " needed), "
       << stats_.objectsDrawn << " objects drawn, " << stats_.objectsCulled << " culled";

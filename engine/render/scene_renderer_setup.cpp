@@ -1,64 +1,26 @@
-// SceneRenderer at load: settings, programs, targets, shadow maps, probes, the
-// models and shapes drawn.
+// SceneRenderer at load: the settings, then the passes the scene needs.
 #include "render/scene_renderer_impl.h"
 
-#include <cstdio>
-#include <limits>
+#include <algorithm>
+#include <string>
+#include <vector>
 
-#include "core/srgb_curve.h"
+#include "render/render_target.h"
+#include "scene/terrain_mesh.h"
 
 namespace engine {
-namespace {
 
-constexpr int kMaxCubeShadowSize = 1024;
-constexpr int kMaxReflectionProbes = 4;
-
-// The sky's lat-long image as half floats, mipmapped, repeating in u and clamped in
-// v. Rows go up as the image stores them (top first), so texture t = v: t = 0 is the
-// zenith, as common/latlong.glsl has it. Radiance past half's largest value (65504)
-// is clamped rather than left to the driver's conversion. RGBA16F, not RGB16F: it is
-// colour-renderable everywhere, which glGenerateMipmap may demand, and drivers
-// store RGB16F as four channels anyway; the upload's RGB leaves alpha 1. A row of
-// 12-byte texels meets any unpack alignment up to 4.
-gl::Texture uploadSkyImage(const FloatImage& image) {
-  gl::Texture texture = gl::Texture::create2D(GL_RGBA16F, image.width, image.height, 0);
-  std::vector<float> clamped(image.rgb.size());
-  std::transform(image.rgb.begin(), image.rgb.end(), clamped.begin(),
-                 [](float v) { return std::clamp(v, 0.0f, 65504.0f); });
-  glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, clamped.data());
-  texture.mipmapTrilinear(GL_REPEAT, GL_CLAMP_TO_EDGE);
-  return texture;
-}
-
-}  // namespace
-
-gl::Texture makeSunShadowMap(int size) {
-  gl::Texture map = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size, 1);
-  map.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  map.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  map.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  map.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  map.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  map.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return map;
-}
-
-Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
-  shaderDir = options.shaderDir;
+Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRenderOptions& options) {
+  const std::string& shaderDir = options.shaderDir;
   render = scene.render;
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
   render.skinning = options.skinningOverride.value_or(render.skinning);
   render.lodPixels = options.lodPixelsOverride.value_or(render.lodPixels);
   render.gpuCulling = options.gpuCullingOverride.value_or(render.gpuCulling);
-  cullDepthMargin = options.gpuCullingDepthMargin;
-  planeOcclusion = options.planeOcclusion;
-  planeOcclusionPixelMargin = options.planeOcclusionPixelMargin;
   render.shading = options.shadingOverride.value_or(render.shading);
   if (options.exposureOverride > 0.0f) render.exposure = options.exposureOverride;
   render.toneMap = options.toneMapOverride.value_or(render.toneMap);
   render.output = options.outputOverride.value_or(render.output);
-  terrainError = terrainErrorTarget(scene, options.terrainErrorOverride);
-  skinModeOverride = options.skinModeOverride;
   rotations = options.rotations;
   if (options.supersampleOverride > 0) render.supersample = options.supersampleOverride;
   if (options.shadowMapOverride > 0) render.shadowMapSize = options.shadowMapOverride;
@@ -74,22 +36,17 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
                      " samples asked, this GL offers up to " + std::to_string(most));
   }
 
-  for (int i = 0; i < int(scene.lights.size()); ++i) {
-    const LightDesc& l = scene.lights[size_t(i)];
-    if (l.type == LightType::Sun && sunLight < 0) sunLight = i;
-    // Area lights are drawn as a point at their centre; their soft shadow is the
-    // ray tracer's job (PCF only imitates it).
-    if (l.type != LightType::Sun && int(pointLights.size()) < kMaxPointLights) pointLights.push_back(i);
-  }
-  sunShadows = sunLight >= 0 && scene.lights[size_t(sunLight)].shadows;
-  pointShadows = !pointLights.empty() && scene.lights[size_t(pointLights[0])].shadows;
+  CompiledLights lights = compileLights(scene);
+  const LightDesc* sunLight = lights.sun >= 0 ? &scene.lights[size_t(lights.sun)] : nullptr;
+  const bool sunShadows = sunLight && sunLight->shadows;
+  const bool pointShadows = !lights.points.empty() && scene.lights[size_t(lights.points[0])].shadows;
 
   // The lights' counts are compile-time (common/direct_light.glsl says why).
-  std::vector<std::string> defines = {"SUN_LIGHT " + std::to_string(sunLight >= 0 ? 1 : 0),
-                                      "POINT_LIGHTS " + std::to_string(pointLights.size())};
+  std::vector<std::string> defines = {"SUN_LIGHT " + std::to_string(sunLight ? 1 : 0),
+                                      "POINT_LIGHTS " + std::to_string(lights.points.size())};
   if (render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
-  sunFarShadows = sunShadows && scene.terrain.enabled;
+  const bool sunFarShadows = sunShadows && scene.terrain.enabled;
   if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
   // The PCF kernel too, so that its loops unroll (common/shadows.glsl).
@@ -97,8 +54,9 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
   if (scene.fog.enabled) defines.push_back("FOG 1");
   // What of a fragment's position the lighting reads beyond its direction: the
   // deferred characters' surface then keeps its distance (common/surface.glsl).
-  surfacePosition = sunShadows || pointShadows || !pointLights.empty() || scene.fog.enabled;
+  const bool surfacePosition = sunShadows || pointShadows || !lights.points.empty() || scene.fog.enabled;
   if (surfacePosition) defines.push_back("SURFACE_POSITION 1");
+  int iblSize = 0;
   if (render.shading == Shading::Pbr) {
     ambient = options.ambientOverride.value_or(ambientOf(scene));
     iblSize = options.iblSizeOverride > 0 ? options.iblSizeOverride : render.iblSize;
@@ -112,180 +70,77 @@ Status SceneRenderer::Impl::init(const SceneRenderOptions& options) {
     render.exposure = 1.0f;
     render.toneMap = ToneMap::None;
   }
-  probeSize = options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe;
-  if (auto s = makeProbes(); !s) return s;
-  if (!probes.empty()) defines.push_back("REFLECTION_PROBES 1");
-  directOutput = !options.hdrTarget && needsNoHdrTarget();
-  if (directOutput) {
-    const std::vector<std::string> display = displayDefines();
-    defines.insert(defines.end(), display.begin(), display.end());
+  auto probePass = ReflectionProbePass::create(
+      scene, options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe);
+  if (!probePass) return probePass.error();
+  probes = std::move(probePass).value();
+  if (probes) defines.push_back("REFLECTION_PROBES 1");
+  const bool directOutput = !options.hdrTarget && needsNoHdrTarget(*source);
+  const std::vector<std::string> display = directOutput ? displayDefines(render) : std::vector<std::string>{};
+  defines.insert(defines.end(), display.begin(), display.end());
+
+  GpuSceneOptions upload;
+  upload.shaderDir = shaderDir;
+  upload.skinning = render.skinning;
+  upload.manyPasses = pointShadows || probes;
+  upload.levelsOfDetail = render.lodPixels > 0.0;
+  upload.skinModeOverride = options.skinModeOverride;
+  if (probes) upload.probeShapes = probes->shapes();
+  auto uploaded = GpuScene::create(std::move(source), scene, upload);
+  if (!uploaded) return uploaded.error();
+  gpu = std::move(uploaded).value();
+  draws = std::make_unique<SceneDraws>(*gpu, scene,
+                                       std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines),
+                                       stats);
+  // Programs are built in this order (their names order the draws' sort keys).
+  auto skyPass = SkyPass::create(shaderDir, scene, sunLight, gpu->skyImage(), display, stats);
+  if (!skyPass) return skyPass.error();
+  sky = std::move(skyPass).value();
+  auto outputPass = OutputPass::create(shaderDir, render, directOutput, stats);
+  if (!outputPass) return outputPass.error();
+  output = std::move(outputPass).value();
+  if (render.shading == Shading::Pbr && ambient != Ambient::Hemisphere) {
+    if (auto s = sky->buildEnvironment(shaderDir, ambient, iblSize); !s) return s;
   }
-  variants = std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines);
 
-  if (render.output != OutputCurve::Gamma22) makeDisplayTable();
-  if (auto s = makeSky(); !s) return s;
-  if (auto s = makePost(); !s) return s;
-  emptyVao = gl::VertexArray::create();
-  frameUbo = gl::Buffer::create(sizeof(FrameBlock));
-  if (auto s = makeEnvironmentLighting(); !s) return s;
-
-  deferredTerrain = render.msaa <= 1 && !options.forwardTerrain;
-  deferredCharacters = render.msaa <= 1 && !options.forwardCharacters;
-  if (auto s = loadTerrain(defines); !s) return s;
-  if (auto s = loadMaterials(); !s) return s;
-  if (auto s = loadModels(); !s) return s;
-  addShapes();
-  for (int i = 0; i < int(probes.size()); ++i) shapes[size_t(probes[size_t(i)].shape)].probe = i;
-  if (auto s = makeCuller(); !s) return s;
-
+  if (terrain::Terrain* field = gpu->source().terrain()) {
+    const TerrainPassSettings settings{terrainErrorTarget(scene, options.terrainErrorOverride),
+                                       render.msaa <= 1 && !options.forwardTerrain, options.planeOcclusion,
+                                       options.planeOcclusionPixelMargin};
+    auto made = TerrainPass::create(shaderDir, *field, defines, settings, scene, *gpu, *draws, stats);
+    if (!made) return made.error();
+    terrain = std::move(made).value();
+  }
+  // The deferred characters' groups are known once their programs are (buildVariants).
+  if (render.msaa <= 1 && !options.forwardCharacters) {
+    surfaces = std::make_unique<CharacterSurfacePass>(surfacePosition, terrain && terrain->deferred(), *gpu, *draws,
+                                                      stats);
+  }
+  if (render.gpuCulling) {
+    auto made = GpuCullPass::create(shaderDir, scene.path, depthFormat(), render.msaa <= 1,
+                                    options.gpuCullingDepthMargin, *gpu, *draws, terrain.get(), stats);
+    if (!made) return made.error();
+    culling = std::move(made).value();
+  }
   if (sunShadows) {
-    sunShadowSize = render.shadowMapSize;
-    sunShadowMap = makeSunShadowMap(sunShadowSize);
-    sunShadowFbo = gl::Framebuffer::create();
-    sunShadowFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMap);
-    if (auto s = sunShadowFbo.check("shadow-sun"); !s) return s;
-  }
-  if (sunFarShadows) {
-    sunShadowMapFar = makeSunShadowMap(sunShadowSize);
-    sunShadowFarFbo = gl::Framebuffer::create();
-    sunShadowFarFbo.attach(GL_DEPTH_ATTACHMENT, sunShadowMapFar);
-    if (auto s = sunShadowFarFbo.check("shadow-sun-far"); !s) return s;
+    auto made = SunShadowPass::create(*sunLight, render.shadowMapSize, sunFarShadows, *gpu, *draws, terrain.get(),
+                                      stats);
+    if (!made) return made.error();
+    sun = std::move(made).value();
   }
   if (pointShadows) {
-    cubeSize = std::min(render.shadowMapSize, kMaxCubeShadowSize);
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
-    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, cubeSize, cubeSize);
-    pointShadowMap = gl::Texture::adopt(id, cubeSize, cubeSize);
-    pointShadowMap.parameter(GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    pointShadowMap.parameter(GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    pointShadowMap.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    pointShadowMap.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    pointShadowFbo = gl::Framebuffer::create();
-    // Each face is attached in turn when drawn; all six are alike, so face 0 stands
-    // for them here.
-    glNamedFramebufferTextureLayer(pointShadowFbo.id(), GL_DEPTH_ATTACHMENT, pointShadowMap.id(), 0, 0);
-    if (auto s = pointShadowFbo.check("shadow-point"); !s) return s;
-    pointFar = std::max(1.0, scene.camera.farPlane);
+    auto made = PointShadowPass::create(scene.lights[size_t(lights.points[0])].position, render.shadowMapSize,
+                                        std::max(1.0, scene.camera.farPlane), *draws);
+    if (!made) return made.error();
+    point = std::move(made).value();
   }
-  return buildVariants();
-}
-
-// The sky pass's programs: the gradient, or the SKY_IMAGE variant with its texture,
-// uploaded once; linear (HDR_OUTPUT) for the HDR target and the environment cube,
-// and with directOutput a second that writes the view's display values.
-Status SceneRenderer::Impl::makeSky() {
-  if (!scene.sky.enabled) return Ok{};
-  std::vector<std::string> variant;
-  if (const FloatImage* image = source->images().sky.get()) {
-    skyImage = uploadSkyImage(*image);
-    variant.push_back("SKY_IMAGE 1");
-  }
-  const auto build = [&](std::vector<std::string> defines, gl::Program& out) -> Status {
-    defines.insert(defines.end(), variant.begin(), variant.end());
-    auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
-    if (!program) return program.error();
-    out = std::move(program).value();
-    return Ok{};
-  };
-  if (auto s = build({"HDR_OUTPUT 1"}, sky); !s) return s;
-  return directOutput ? build(displayDefines(), skyDisplay) : Ok{};
-}
-
-// The one post variant these settings need (post.frag says why not uniforms);
-// none where the fragment shaders write display values themselves.
-Status SceneRenderer::Impl::makePost() {
-  if (directOutput) return Ok{};
-  std::vector<std::string> defines{"SUPERSAMPLE " + std::to_string(render.supersample),
-                                   "TONE_MAP " + std::to_string(int(render.toneMap))};
-  if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
-  auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "post.vert"}, {GL_FRAGMENT_SHADER, "post.frag"}}, defines);
-  if (!program) return program.error();
-  post = std::move(program).value();
-  return Ok{};
-}
-
-// The environment as the path tracer sees it (the sky without its sun disk, or the
-// background), drawn into a cube map once: the scene's sky never changes while it
-// is loaded. From it the SH irradiance, the BRDF table and, for IBL, the
-// prefiltered chain; the cube itself is dropped.
-Status SceneRenderer::Impl::makeEnvironmentLighting() {
-  if (render.shading == Shading::Classic || ambient == Ambient::Hemisphere) return Ok{};
-  const auto start = std::chrono::steady_clock::now();
-  GLint callerFramebuffer = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
-  const gl::Texture environment = makeCubeMap(iblSize, 0);
-  const gl::Framebuffer fbo = gl::Framebuffer::create();
-  // Any 90-degree projection will do: sky.vert takes only directions from it.
-  const glm::dmat4 projection = glm::perspective(glm::half_pi<double>(), 1.0, 0.1, 10.0);
-  const glm::vec3 background = scene.sky.background;
-  glViewport(0, 0, iblSize, iblSize);
-  applyPassState(kSkyPass);
-  for (int face = 0; face < 6; ++face) {
-    glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, environment.id(), 0, face);
-    if (auto s = fbo.check("ibl-environment"); !s) return s;
-    fbo.bind();
-    glClearColor(background.r, background.g, background.b, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    if (scene.sky.enabled) {
-      drawSky(sky, projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]), false);
-    }
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
-  applyPassState(kCallerState);
-  environment.generateMipmaps();
-  auto lighting = EnvironmentLighting::create(shaderDir, environment, iblSize, ambient);
-  if (!lighting) return makeError(scene.path + ": /render/ambient: " + lighting.error().message);
-  environmentLighting = std::move(lighting).value();
-  glFinish();
-  iblMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return Ok{};
-}
-
-// One probe per mirror sphere or box (material reflection > 0), up to four. Planes
-// get none: a plane mirror needs a planar reflection, which this renderer lacks.
-Status SceneRenderer::Impl::makeProbes() {
-  if (probeSize <= 0) return Ok{};
-  for (int i = 0; i < int(scene.primitives.size()) && int(probes.size()) < kMaxReflectionProbes; ++i) {
-    const PrimitiveDesc& p = scene.primitives[size_t(i)];
-    if (p.type == PrimitiveType::Plane || scene.materials[size_t(p.material)].reflection <= 0.0f) continue;
-    Probe probe;
-    probe.shape = i;
-    probe.center = p.type == PrimitiveType::Sphere ? p.center : (p.min + p.max) * 0.5;
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
-    glTextureStorage2D(id, 1, GL_RGBA16F, probeSize, probeSize);
-    probe.cube = gl::Texture::adopt(id, probeSize, probeSize);
-    probe.cube.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    probe.cube.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    probes.push_back(std::move(probe));
-  }
-  if (probes.empty()) return Ok{};
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // no seams where faces meet
-  probeDepth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, probeSize, probeSize);
-  probeFbo = gl::Framebuffer::create();
-  probeFbo.attach(GL_DEPTH_ATTACHMENT, probeDepth);
-  glNamedFramebufferTextureLayer(probeFbo.id(), GL_COLOR_ATTACHMENT0, probes[0].cube.id(), 0, 0);
-  return probeFbo.check("reflection-probe");
-}
-
-Status SceneRenderer::Impl::loadTerrain(const std::vector<std::string>& defines) {
-  terrain = source->terrain();
-  deferredTerrain = deferredTerrain && terrain;
-  if (!terrain) return Ok{};
-  // The scene programs' variant: the terrain is lit and shadowed as they are.
-  auto renderer = terrain::TerrainRenderer::create(shaderDir, *terrain, defines);
-  if (!renderer) return renderer.error();
-  terrainRenderer = std::make_unique<terrain::TerrainRenderer>(std::move(renderer).value());
-  return deferredTerrain ? terrainRenderer->enableDeferred(shaderDir, defines) : Status(Ok{});
-}
-
-Status SceneRenderer::Impl::loadMaterials() {
-  // Decoded once by the scene layer (scene/scene_images.h), uploaded per renderer.
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const Image* image = source->images().materialTexture(i);
-    materialTextures.push_back(image ? uploadTexture(*image, true) : gl::Texture{});
-  }
+  if (auto s = draws->buildVariants(sunShadows || pointShadows, sunFarShadows, surfaces); !s) return s;
+  draws->link({sun.get(), point.get(), probes.get(), surfaces.get()});
+  frame = std::make_unique<FrameUniforms>(scene, std::move(lights), pcfRadius, sun.get(), point.get(),
+                                          sky->environment());
+  if (gpu->refracts()) transmission = std::make_unique<TransmissionPass>();
+  world = std::make_unique<WorldPass>(*draws, *sky, *output, terrain.get(), surfaces.get(), transmission.get(),
+                                      culling.get());
   return Ok{};
 }
 
@@ -298,223 +153,14 @@ Status SceneRenderer::Impl::loadMaterials() {
 // supersampling's average (both before the tone map), blending and transmission (in
 // linear light), the probes' cubes (linear radiance for the scene's own shaders), the
 // debug views (their values as they are).
-bool SceneRenderer::Impl::needsNoHdrTarget() const {
+bool SceneRenderer::Impl::needsNoHdrTarget(const Scene& source) const {
   if (render.msaa > 1 || render.supersample > 1) return false;
-  if (!probes.empty() || debugView != DebugView::None) return false;
-  for (const auto& asset : source->assets()) {
+  if (probes || debugView != DebugView::None) return false;
+  for (const auto& asset : source.assets()) {
     for (const MaterialData& m : asset->model.materials)
       if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
   }
   return true;
-}
-
-// The table common/output.glsl reads: ACES and the curve in one where the fragment
-// shaders write display values after ACES (its targetColor), else the curve's.
-void SceneRenderer::Impl::makeDisplayTable() {
-  const DisplayTable& table = directOutput && render.toneMap == ToneMap::Aces ? acesSrgbTable() : srgbTable();
-  displayTableTexels = gl::Buffer::create(table.texels.size() * sizeof(float), table.texels.data(), 0);
-  displayTable = gl::Texture::ofBuffer(displayTableTexels, GL_RG32F);
-}
-
-std::vector<std::string> SceneRenderer::Impl::displayDefines() const {
-  char exposure[32];
-  std::snprintf(exposure, sizeof(exposure), "EXPOSURE %.9g", double(render.exposure));  // the float's exact value
-  std::vector<std::string> defines{"DIRECT_OUTPUT 1", "TONE_MAP " + std::to_string(int(render.toneMap)), exposure};
-  if (render.output == OutputCurve::Gamma22) defines.push_back("OUTPUT_GAMMA22 1");
-  return defines;
-}
-
-// Whether an instance deforms in the skin cache. render.skinning auto sends it
-// there where each vertex would otherwise be deformed again at a price in every
-// pass that draws it (measured: bench/morph_cost, bench/skinning_cost): morph
-// targets (8 of them cost 1.5x the frame in the vertex shaders, 1.1-1.2x cached),
-// dual quaternions, or more than the view and one sun map drawing it (a point
-// light's six cube faces, the probes). Plain LBS under a sun stays in the vertex
-// shaders, cheaper there than a dispatch that writes 48 bytes a vertex.
-bool SceneRenderer::Impl::usesSkinCache(const ModelData& model, const ModelDesc& desc) const {
-  if (render.skinning == Skinning::Vertex) return false;
-  bool skins = false, morphs = false;
-  for (const NodeData& node : model.nodes) {
-    if (node.mesh < 0) continue;
-    for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-      skins = skins || (node.skin >= 0 && prim.influences > 0 && !desc.unskinned);
-      morphs = morphs || prim.morphTargets > 0;
-    }
-  }
-  if (render.skinning == Skinning::Compute) return skins || morphs;
-  const bool manyPasses = pointShadows || !probes.empty();
-  return morphs || (skins && (desc.dualQuat || manyPasses));
-}
-
-// One upload per model file, one CharacterInstance per scene instance.
-Status SceneRenderer::Impl::loadModels() {
-  std::vector<std::shared_ptr<const CharacterAsset>> uploaded;
-  for (const auto& asset : source->assets()) {
-    auto created = CharacterAsset::create(asset, render.lodPixels > 0.0);
-    if (!created) return makeError(scene.path + ": " + asset->model.path + ": " + created.error().message);
-    uploaded.push_back(std::move(created).value());
-  }
-  for (const ModelInstance& instance : source->instances()) {
-    CharacterDraw draw;
-    draw.instance = std::make_unique<CharacterInstance>(uploaded[size_t(instance.asset)]);
-    draw.instance->setPose(instance.pose);
-    draw.desc = instance.desc;
-    if (skinModeOverride) {
-      draw.desc.dualQuat = *skinModeOverride == SkinMode::DualQuat;
-      draw.desc.unskinned = *skinModeOverride == SkinMode::None;
-    }
-    if (usesSkinCache(draw.instance->asset().model, draw.desc)) {
-      if (!skinPrograms) skinPrograms = std::make_unique<SkinPrograms>(shaderDir);
-      draw.instance->useSkinCache(skinPrograms.get());
-    }
-    draw.world = instance.world;
-    draw.localCenter = instance.boundsCenter;
-    draw.localRadius = instance.boundsRadius;
-    characters.push_back(std::move(draw));
-  }
-  return Ok{};
-}
-
-void SceneRenderer::Impl::addShapes() {
-  for (const PrimitiveDesc& p : scene.primitives) {
-    ShapeDraw draw;
-    draw.material = p.material;
-    draw.world = primitiveTransform(p, scene.camera.farPlane);
-    std::unique_ptr<GpuMesh>& mesh =
-        p.type == PrimitiveType::Sphere ? sphere : p.type == PrimitiveType::Box ? cube : quad;
-    if (!mesh) mesh = std::make_unique<GpuMesh>(shapeForPrimitive(p));
-    draw.mesh = mesh.get();
-    const cull::Cluster& whole = mesh->clusters()[mesh->clusterRange().first + mesh->clusterRange().count];
-    draw.lo = glm::dvec3(std::numeric_limits<double>::max());
-    draw.hi = glm::dvec3(std::numeric_limits<double>::lowest());
-    for (int i = 0; i < 8; ++i) {
-      const glm::dvec3 corner(i & 1 ? whole.hi.x : whole.lo.x, i & 2 ? whole.hi.y : whole.lo.y,
-                              i & 4 ? whole.hi.z : whole.lo.z);
-      const glm::dvec3 placed(draw.world * glm::dvec4(corner, 1.0));
-      draw.lo = glm::min(draw.lo, placed);
-      draw.hi = glm::max(draw.hi, placed);
-    }
-    if (p.type == PrimitiveType::Sphere) {
-      draw.center = p.center;
-      draw.radius = p.radius;
-    } else if (p.type == PrimitiveType::Box) {
-      draw.center = (p.min + p.max) * 0.5;
-      draw.radius = 0.5 * glm::length(p.max - p.min);
-    } else {
-      // The quad's uv spans 2 units; one texture tile per `1 / texture_scale` metres.
-      const double extent = planeExtent(p, scene.camera.farPlane);
-      draw.uvScale = glm::vec2(float(extent) * scene.materials[size_t(p.material)].textureScale);
-      draw.twoSided = true;
-    }
-    shapes.push_back(draw);
-  }
-}
-
-// The deferred characters' programs: each deferrable primitive's surface pass (its
-// forward variant writing the surface) and each group's shading. Deferred only
-// where some primitive is deferrable and the stencil has a value for each group.
-void SceneRenderer::Impl::addSurfaceVariants(const std::vector<ShaderVariant>& surfacePasses,
-                                             std::vector<ShaderVariant>& needed) {
-  if (surfaceGroups.size() > kMaxSurfaceGroups) surfaceGroups.clear();
-  deferredCharacters = deferredCharacters && !surfaceGroups.empty();
-  if (!deferredCharacters) return;
-  needed.insert(needed.end(), surfacePasses.begin(), surfacePasses.end());
-  for (const SurfaceGroup& g : surfaceGroups) needed.push_back(g.shading);
-}
-
-Status SceneRenderer::Impl::buildVariants() {
-  // Everything the scene will draw, built now, so the first frame costs no
-  // compile and --describe can list exactly what exists.
-  std::vector<ShaderVariant> needed, surfacePasses;
-  for (const ShapeDraw& s : shapes) needed.push_back({0, SkinMode::Linear, materialTextures[size_t(s.material)].id() != 0, false});
-  for (const CharacterDraw& c : characters) {
-    const ModelData& model = c.instance->asset().model;
-    const SkinMode mode = skinModeOf(c.desc);
-    const bool cached = c.instance->skinCache() != nullptr;
-    // Deforms the first pose, which builds the skin cache's compute programs too.
-    if (auto s = c.instance->prepare(mode); !s) return s;
-    for (const NodeData& node : model.nodes) {
-      if (node.mesh < 0) continue;
-      for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        const ShaderVariant forward = primitiveVariant(model, node, prim, mode, false, cached);
-        needed.push_back(forward);
-        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
-        if (deferredCharacters && !blend && forward.deferrable()) {
-          addSurfaceGroup(c.instance->asset(), prim.material, forward);
-          surfacePasses.push_back(forward);
-          surfacePasses.back().surface = ShaderVariant::Surface::Out;
-        }
-        if ((sunShadows || pointShadows) && !blend) needed.push_back(primitiveVariant(model, node, prim, mode, true, cached));
-        blendPass = blendPass || blend;
-        transmissionPass = transmissionPass || (prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive());
-      }
-    }
-  }
-  if ((sunShadows || pointShadows) && !shapes.empty()) needed.push_back({0, SkinMode::Linear, false, true});
-  addSurfaceVariants(surfacePasses, needed);
-  // Each colour program also without the far sun map, for draws the near map
-  // covers (ShaderVariant::nearSunOnly; which ones depends on the camera).
-  for (std::size_t i = 0, n = needed.size(); i < n && sunFarShadows; ++i) {
-    if (needed[i].depthOnly || needed[i].surface != ShaderVariant::Surface::None) continue;
-    ShaderVariant nearOnly = needed[i];
-    nearOnly.nearSunOnly = true;
-    needed.push_back(nearOnly);
-  }
-  for (const ShaderVariant& v : needed) {
-    auto program = variants->get(v);
-    if (!program) return program.error();
-  }
-  return Ok{};
-}
-
-Status SceneRenderer::Impl::makeTarget(int width, int height) {
-  const int w = width * render.supersample, h = height * render.supersample;
-  if (w == targetWidth && h == targetHeight && drawFbo) return Ok{};
-  targetWidth = w;
-  targetHeight = h;
-  hdr = gl::Texture::create2D(directOutput ? GL_RGBA8 : GL_RGBA16F, w, h, 1);
-  hdr.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  hdr.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  const int samples = render.msaa > 1 ? render.msaa : 0;
-  depth = gl::Renderbuffer::create(depthFormat(), w, h, samples);
-  drawFbo = gl::Framebuffer::create();
-  borrowedColour = 0;
-  if (samples > 0) {
-    msaaColor = gl::Renderbuffer::create(GL_RGBA16F, w, h, samples);
-    drawFbo.attach(GL_COLOR_ATTACHMENT0, msaaColor);
-    resolveFbo = gl::Framebuffer::create();
-    resolveFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
-  } else {
-    drawFbo.attach(GL_COLOR_ATTACHMENT0, hdr);
-  }
-  drawFbo.attach(stencilled() ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth);
-  if (deferredCharacters) {
-    characterSurface = gl::Texture::create2D(GL_RGBA32UI, w, h, 1);
-    characterSurface.parameter(GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // an integer texture filters nothing
-    characterSurface.parameter(GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    drawFbo.attach(GL_COLOR_ATTACHMENT2, characterSurface);
-  }
-  if (deferredCharacters && surfacePosition) {
-    characterDistance = gl::Texture::create2D(GL_R32F, w, h, 1);
-    drawFbo.attach(GL_COLOR_ATTACHMENT3, characterDistance);
-  }
-  if (deferredTerrain) {
-    terrainSurface = gl::Texture::create2D(GL_RGBA32F, w, h, 1);
-    drawFbo.attach(GL_COLOR_ATTACHMENT1, terrainSurface);
-  }
-  if (auto s = drawFbo.check(directOutput ? "scene-display" : "scene-hdr"); !s) return s;
-  if (transmissionPass) {
-    const int levels = 1 + int(std::floor(std::log2(double(std::max(w, h)))));
-    transmissionSource = gl::Texture::create2D(GL_RGBA16F, w, h, levels);
-    transmissionSource.parameter(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    transmissionSource.parameter(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    transmissionSource.parameter(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    transmissionSource.parameter(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    transmissionFbo = gl::Framebuffer::create();
-    transmissionFbo.attach(GL_COLOR_ATTACHMENT0, transmissionSource);
-    if (auto s = transmissionFbo.check("transmission-source"); !s) return s;
-  }
-  return samples > 0 ? resolveFbo.check("scene-hdr-resolve") : Status(Ok{});
 }
 
 }  // namespace engine

@@ -1,0 +1,52 @@
+#pragma once
+// The frame block (render/frame_block.h, shaders/common/frame.glsl) that every
+// scene program reads: the lights, the ambient, the fog and the shadow maps'
+// parameters, filled for each view the frame draws (the camera's, a reflection
+// probe's faces). Not part of the engine's interface.
+#include <vector>
+
+#include "asset/scene_desc.h"
+#include "gl/resources.h"
+#include "render/frame_block.h"
+
+namespace engine {
+
+class EnvironmentLighting;
+class PointShadowPass;
+class SunShadowPass;
+
+// The lights the scene programs have compiled in (common/direct_light.glsl says
+// why their counts are): the first sun, and up to kMaxPointLights others, indices
+// into SceneDesc::lights.
+struct CompiledLights {
+  int sun = -1;
+  std::vector<int> points;
+};
+CompiledLights compileLights(const SceneDesc& scene);
+
+class FrameUniforms {
+ public:
+  // The passes whose maps the block describes, where the scene has them (null
+  // otherwise); `pcfRadius`: the shadows' filter.
+  FrameUniforms(const SceneDesc& scene, CompiledLights lights, int pcfRadius, const SunShadowPass* sun,
+                const PointShadowPass* point, const EnvironmentLighting* environment);
+  const CompiledLights& lights() const { return lights_; }
+  // The block for a view from `eye` (positions relative to it), uploaded and bound;
+  // the sun's shadow matrices are its last render's.
+  void fill(const glm::dvec3& eye, const glm::mat4& viewProjection);
+  // Shadow passes use only their own light matrix, but every scene program declares
+  // the block: it stays bound.
+  void bind() const;
+
+ private:
+  const SceneDesc& scene_;
+  CompiledLights lights_;
+  int pcfRadius_ = 0;
+  const SunShadowPass* sun_;
+  const PointShadowPass* point_;
+  const EnvironmentLighting* environment_;
+  FrameBlock block_;
+  gl::Buffer ubo_;
+};
+
+}  // namespace engine

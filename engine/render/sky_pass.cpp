@@ -1,0 +1,131 @@
+#include "render/sky_pass.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <iomanip>
+#include <sstream>
+
+#include "asset/scene_file.h"
+#include "gl/bindings.h"
+#include "render/lighting.h"
+#include "render/pass_state.h"
+#include "render/scene_renderer.h"
+
+namespace engine {
+
+// Linear (HDR_OUTPUT) for the HDR target and the environment cube, and with
+// direct output a second that writes the view's display values.
+Result<std::unique_ptr<SkyPass>> SkyPass::create(const std::string& shaderDir, const SceneDesc& scene,
+                                                 const LightDesc* sun, const gl::Texture& image,
+                                                 const std::vector<std::string>& displayDefines, SceneStats* stats) {
+  std::unique_ptr<SkyPass> pass(new SkyPass(scene, image, stats));
+  pass->sun_ = sun != nullptr;
+  if (sun) pass->sunDirection_ = glm::vec3(sun->direction);
+  if (!scene.sky.enabled) return pass;
+  std::vector<std::string> variant;
+  if (image) variant.push_back("SKY_IMAGE 1");
+  const auto build = [&](std::vector<std::string> defines, gl::Program& out) -> Status {
+    defines.insert(defines.end(), variant.begin(), variant.end());
+    auto program = gl::Program::build(shaderDir, {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}}, defines);
+    if (!program) return program.error();
+    out = std::move(program).value();
+    return Ok{};
+  };
+  if (auto s = build({"HDR_OUTPUT 1"}, pass->program_); !s) return s.error();
+  if (!displayDefines.empty()) {
+    if (auto s = build(displayDefines, pass->displayProgram_); !s) return s.error();
+  }
+  return pass;
+}
+
+// The environment as the path tracer sees it (the sky without its sun disk, or the
+// background), drawn into a cube map once: the scene's sky never changes while it
+// is loaded. From it the SH irradiance, the BRDF table and, for IBL, the
+// prefiltered chain; the cube itself is dropped.
+Status SkyPass::buildEnvironment(const std::string& shaderDir, Ambient ambient, int size) {
+  ambient_ = ambient;
+  const auto start = std::chrono::steady_clock::now();
+  GLint callerFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  const gl::Texture environment = makeCubeMap(size, 0);
+  const gl::Framebuffer fbo = gl::Framebuffer::create();
+  // Any 90-degree projection will do: sky.vert takes only directions from it.
+  const glm::dmat4 projection = glm::perspective(glm::half_pi<double>(), 1.0, 0.1, 10.0);
+  const glm::vec3 background = scene_.sky.background;
+  glViewport(0, 0, size, size);
+  applyPassState(kSkyPass);
+  for (int face = 0; face < 6; ++face) {
+    glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, environment.id(), 0, face);
+    if (auto s = fbo.check("ibl-environment"); !s) return s;
+    fbo.bind();
+    glClearColor(background.r, background.g, background.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (scene_.sky.enabled) {
+      draw(program_, projection * glm::lookAt(glm::dvec3(0.0), kCubeFaceDirections[face], kCubeFaceUps[face]), false);
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(callerFramebuffer));
+  applyPassState(kCallerState);
+  environment.generateMipmaps();
+  auto lighting = EnvironmentLighting::create(shaderDir, environment, size, ambient);
+  if (!lighting) return makeError(scene_.path + ": /render/ambient: " + lighting.error().message);
+  environment_ = std::move(lighting).value();
+  glFinish();
+  environmentMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return Ok{};
+}
+
+void SkyPass::draw(const gl::Program& program, const glm::dmat4& viewProjection, bool sunDisk) {
+  program.use();
+  if (image_) {
+    const float radians = glm::radians(scene_.sky.rotationDegrees);
+    program.set("u_skyIntensity", scene_.sky.intensity);
+    program.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
+    image_.bind(gl::binding::kSkyImage);
+  } else {
+    Lighting lighting;
+    lighting.sunDirection = sunDirection_;
+    lighting.sunDisk = sunDisk && sun_ && scene_.sky.sunDisk;
+    lighting.skyZenith = scene_.sky.zenith;
+    lighting.skyHorizon = scene_.sky.horizon;
+    lighting.skyGround = scene_.sky.ground;
+    setSkyUniforms(program, lighting);
+  }
+  program.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
+  emptyVao_.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  ++stats_->drawCalls;
+}
+
+// Shaded once a pixel instead of under every surface (on demo.json about half the
+// screen), the same colour where it shows. Before the transmissive draws, which
+// see it through their copy of the frame.
+void SkyPass::drawBehind(const View& view) {
+  if (!scene_.sky.enabled) return;
+  applyPassState(kSkyBehindPass);
+  draw(displayProgram_ ? displayProgram_ : program_, view.viewProjection, true);
+}
+
+std::string SkyPass::describe() const {
+  std::ostringstream out;
+  if (scene_.sky.enabled) out << "sky";
+  if (image_) {
+    out << "(image " << std::filesystem::path(scene_.sky.image).filename().string() << " " << image_.width() << "x"
+        << image_.height() << ")";
+  }
+  if (environment_) {
+    out << (scene_.sky.enabled ? " " : "") << ambientName(ambient_) << "(" << environment_->describe() << ")";
+  }
+  return out.str();
+}
+
+std::string SkyPass::describeEnvironmentCost() const {
+  if (!environment_) return "";
+  std::ostringstream out;
+  out << " (built once in " << std::fixed << std::setprecision(1) << environmentMs_ << " ms)";
+  return out.str();
+}
+
+}  // namespace engine
