@@ -107,7 +107,7 @@ struct SceneStats {
   // path's copy when the caller's framebuffer could not be drawn into (0 or 1).
   int frameCopies = 0;
   // 1 when the sun's maps kept their shapes and terrain from an earlier frame (the
-  // camera stood still: see SceneRenderer::Impl::SunMapsKey), 0 when drawn anew.
+  // camera stood still: see SunShadowPass::MapsKey), 0 when drawn anew.
   int sunStaticKept = 0;
   // CPU time: the last update's posing (the scene layer's sampling and the copy of
   // its poses), this frame's collecting and sorting of draw items (culling
