@@ -55,7 +55,7 @@ struct GpuSceneOptions {
   std::string shaderDir;
   Skinning skinning = Skinning::Auto;
   // A point light's cube shadow or reflection probes draw every caster many times
-  // a frame (usesSkinCache).
+  // a frame: skinned characters then deform once, in the skin cache.
   bool manyPasses = false;
   bool levelsOfDetail = false;  // render.lod_pixels > 0
   std::optional<SkinMode> skinModeOverride;

@@ -14,7 +14,7 @@ class SceneDraws;
 
 class PointShadowPass {
  public:
-  // A cube of `size` texels a face (at most kMaxCubeShadowSize) around a light at
+  // A cube of `size` texels a face (at most 1024) around a light at
   // `position`, out to `farPlane`.
   static Result<std::unique_ptr<PointShadowPass>> create(const glm::dvec3& position, int size, double farPlane,
                                                          SceneDraws& draws);

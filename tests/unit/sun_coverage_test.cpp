@@ -14,7 +14,7 @@ using namespace engine;
 
 namespace {
 
-// A sun box as SceneRenderer::Impl::fitSunBox makes it: orthographic, around
+// A sun box as SunShadowPass::fitBox makes it: orthographic, around
 // `center` (camera-relative) with `radius`, looking along -l; the float matrix the
 // frame block holds.
 glm::mat4 sunShadowMatrix(const glm::dvec3& center, double radius, const glm::dvec3& l) {
