@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/ggx_sampling.h"
+#include "core/sampling.h"
 #include "core/ibl_sampling.h"
 
 namespace engine {

@@ -1,5 +1,8 @@
 #include "raytrace/sampling.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace engine::rt {
 
 Distribution1D::Distribution1D(std::span<const float> weights) : func_(weights.begin(), weights.end()) {

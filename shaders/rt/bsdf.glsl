@@ -4,7 +4,7 @@
 // _specular's f0 and f90, the clear coat, the sheen, the thin film, transmission
 // through thin walls and into volumes, and anisotropy). The BRDFs are common/brdf.glsl's, the
 // text the CPU evaluates; the lobe choice and its pdf are bsdf.cpp's, and the view's
-// terms rt/view_layers.glsl's. After rt/sampling.glsl, rt/materials.glsl,
+// terms rt/view_layers.glsl's. After common/sampling.glsl, rt/materials.glsl,
 // rt/environment_light.glsl, common/brdf.glsl and rt/view_layers.glsl.
 
 struct Bsdf {
@@ -255,7 +255,7 @@ bool bsdfSample(Bsdf b, vec2 u, float uLobe, out BsdfSample s) {
   vec3 h = vec3(0.0, 0.0, 1.0);
   if (lobe == 0 || lobe == 2 || lobe == 4) {
     vec2 alpha = lobe == 0 ? vec2(b.alphaCoat) : lobe == 2 ? (b.anisotropy > 0.0 ? b.alphas : vec2(b.alpha)) : vec2(b.alphaTransmit);
-    h = sampleGgxVisibleNormal(b.woLocal, alpha, u);
+    h = sampleGgxAnisotropicVisibleNormal(b.woLocal, alpha, u);
   }
   if (lobe == 4) return transmissionSample(b, h, s);
   vec3 wiLocal;

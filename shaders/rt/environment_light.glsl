@@ -2,8 +2,8 @@
 // through its piecewise-constant 2D distribution over the lat-long grid, whose tables
 // the CPU builds (preparePathLights) and uploads as they are (GpuTracer's path
 // kernel, engine/gputrace/path_kernel.cpp). Distribution1D and Distribution2D of
-// raytrace/sampling.cpp transcribed. After rt/sampling.glsl, rt/sky.glsl and
-// common/latlong.glsl.
+// raytrace/sampling.cpp transcribed. After common/brdf.glsl (BRDF_PI), rt/sky.glsl
+// and common/latlong.glsl.
 //
 // rtEnv holds, for a grid of w x h cells: the marginal's h weights, its h + 1 CDF
 // entries and its integral; then each row's w weights (row after row), each row's
@@ -64,9 +64,9 @@ vec3 envSample(vec2 u, out float pdf) {
   Distribution1D rowDistribution = envRow(row);
   float x = distributionSample(rowDistribution, u.x, column);
   precise float uvPdf = distributionPdf(marginal, row) * distributionPdf(rowDistribution, column);
-  float sinTheta = sin(RT_PI * v);
+  float sinTheta = sin(BRDF_PI * v);
   if (sinTheta <= 0.0) return vec3(0.0, 1.0, 0.0);
-  precise float solidAngle = uvPdf / (2.0 * RT_PI * RT_PI * sinTheta);
+  precise float solidAngle = uvPdf / (2.0 * BRDF_PI * BRDF_PI * sinTheta);
   pdf = solidAngle;
   return latLongDirection(vec2(x, v));
 }
@@ -75,11 +75,11 @@ vec3 envSample(vec2 u, out float pdf) {
 float envPdf(vec3 dir) {
   if (u_envBlack != 0) return 0.0;
   vec2 uv = latLongUv(dir);
-  float sinTheta = sin(RT_PI * uv.y);
+  float sinTheta = sin(BRDF_PI * uv.y);
   if (sinTheta <= 0.0) return 0.0;
   int row = clamp(int(uv.y * float(u_envSize.y)), 0, u_envSize.y - 1);
   int column = clamp(int(uv.x * float(u_envSize.x)), 0, u_envSize.x - 1);
   precise float uvPdf = distributionPdf(envMarginal(), row) * distributionPdf(envRow(row), column);
-  precise float solidAngle = uvPdf / (2.0 * RT_PI * RT_PI * sinTheta);
+  precise float solidAngle = uvPdf / (2.0 * BRDF_PI * BRDF_PI * sinTheta);
   return solidAngle;
 }

@@ -20,7 +20,7 @@
 #include "rt/material_at.glsl"
 #include "rt/sky.glsl"
 #include "rt/camera.glsl"
-#include "rt/sampling.glsl"
+#include "common/sampling.glsl"
 #include "rt/environment_light.glsl"
 #include "rt/view_layers.glsl"
 #include "rt/bsdf.glsl"
@@ -87,7 +87,7 @@ bool sampleLight(Surface s, PtLight l, vec2 u, out LightSample ls) {
       ls.value = l.radiance.xyz / ls.pdf;
     } else {
       ls.wi = l.directionCosMax.xyz;
-      ls.value = l.powerArea.xyz * RT_PI;
+      ls.value = l.powerArea.xyz * BRDF_PI;
     }
     return true;
   }
@@ -105,7 +105,7 @@ bool sampleLight(Surface s, PtLight l, vec2 u, out LightSample ls) {
   precise vec3 wi = toLight / sqrt(d2);
   ls.wi = wi;
   if (type == 1) {
-    ls.value = l.powerArea.xyz * (RT_PI / (l.typeShadowsFalloff.z != 0 ? d2 : 1.0));
+    ls.value = l.powerArea.xyz * (BRDF_PI / (l.typeShadowsFalloff.z != 0 ? d2 : 1.0));
     return true;
   }
   float cosLight = -rtDot(ls.wi, l.normal.xyz);

@@ -6,7 +6,7 @@
 #include "rt/sky.glsl"
 #include "rt/materials.glsl"
 #include "common/brdf.glsl"
-#include "rt/sampling.glsl"
+#include "common/sampling.glsl"
 #include "rt/environment_light.glsl"
 #include "rt/view_layers.glsl"
 #include "rt/bsdf.glsl"

@@ -9,8 +9,6 @@
 
 #include "../support/gl_test.h"
 #include "core/brdf.h"
-#include "gl/resources.h"
-#include "gl/shader.h"
 
 using namespace engine;
 using engine::test::GlTest;
@@ -186,18 +184,8 @@ ENGINE_INSTANTIATE_OFFSCREEN(Brdf);
 // 1e-6 are compared absolutely: there a relative error says nothing.
 TEST_P(Brdf, GlslAndCppAgree) {
   const std::vector<Case> cases = grid();
-  auto program = gl::Program::build(test::shaderDir(), {{GL_COMPUTE_SHADER, "test/brdf_eval.comp"}});
-  ASSERT_TRUE(program) << program.error().message;
-  gl::Buffer in = gl::Buffer::create(cases.size() * sizeof(Case), cases.data());
-  gl::Buffer out = gl::Buffer::create(cases.size() * sizeof(Result));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
-  program->use();
-  glUniform1ui(program->location("u_count"), GLuint(cases.size()));
-  glDispatchCompute(GLuint((cases.size() + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<Result> gpu(cases.size());
-  glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(gpu.size() * sizeof(Result)), gpu.data());
+  const std::vector<Result> gpu = test::runCases<Result>("test/brdf_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
 
   double worst = 0.0;
   std::size_t worstCase = 0;

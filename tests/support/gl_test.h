@@ -5,8 +5,11 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gl/debug.h"
+#include "gl/resources.h"
+#include "gl/shader.h"
 #include "platform/gl_context.h"
 
 namespace engine::test {
@@ -43,5 +46,30 @@ inline std::string backendParamName(const ::testing::TestParamInfo<Backend>& inf
                            ::engine::test::backendParamName)
 
 inline std::string shaderDir() { return std::string(ENGINE_SOURCE_DIR) + "/shaders"; }
+
+// Runs a test compute shader that reads one Case per invocation from binding 0 and
+// writes one Result to binding 1 (local size 64, the count in u_count), as
+// test/brdf_eval.comp and test/sampling_eval.comp do: the GPU's compile of a text
+// that C++ compiles too, for the test to compare. Empty, with the failure recorded,
+// when the shader does not build.
+template <typename Result, typename Case>
+std::vector<Result> runCases(const std::string& shader, const std::vector<Case>& cases) {
+  auto program = gl::Program::build(shaderDir(), {{GL_COMPUTE_SHADER, shader}});
+  if (!program) {
+    ADD_FAILURE() << program.error().message;
+    return {};
+  }
+  gl::Buffer in = gl::Buffer::create(cases.size() * sizeof(Case), cases.data());
+  gl::Buffer out = gl::Buffer::create(cases.size() * sizeof(Result));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+  program->use();
+  glUniform1ui(program->location("u_count"), GLuint(cases.size()));
+  glDispatchCompute(GLuint((cases.size() + 63) / 64), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<Result> results(cases.size());
+  glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(results.size() * sizeof(Result)), results.data());
+  return results;
+}
 
 }  // namespace engine::test

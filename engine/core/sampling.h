@@ -1,0 +1,48 @@
+#pragma once
+// The path tracers' sampling routines of shaders/common/sampling.glsl, compiled as
+// C++ beside the BRDF they sample (core/brdf.h): the CPU path tracer
+// (raytrace/sampling.h wraps them in its own names), the split-sum table
+// (core/ibl_tables.cpp) and the GPU path tracer evaluate one text
+// (tests/gl/sampling_test.cpp checks that the GPU's compiler gives the same bits, but
+// for what comes through GLSL's cos and sin).
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "core/brdf.h"
+
+namespace engine::brdf {
+// GLSL's built-ins the included text uses, beyond brdf.h's. std::abs, not glm::abs:
+// GLSL's abs(-0) is +0, as std::abs's, and std::abs is one instruction.
+using std::abs;
+inline std::uint32_t floatBitsToUint(float x) { return std::bit_cast<std::uint32_t>(x); }
+inline float uintBitsToFloat(std::uint32_t x) { return std::bit_cast<float>(x); }
+
+// What rt/math.glsl gives the GPU's side: glm's dot, cross and normalize, in glm's
+// order. The text's `precise` keeps the GPU's compiler from fusing a multiply and an
+// add; C++ has no such qualifier and rounds every operation as written where it does
+// not contract (engine_raytrace, and whatever includes its headers, is built with
+// -ffp-contract=off; x86-64's baseline has no FMA to contract into).
+inline float rtDot(vec3 a, vec3 b) { return glm::dot(a, b); }
+inline vec3 rtCross(vec3 a, vec3 b) { return glm::cross(a, b); }
+inline vec3 rtNormalize(vec3 v) { return glm::normalize(v); }
+
+#define BRDF_INLINE inline
+#define precise
+#include "common/sampling.glsl"
+#undef precise
+#undef BRDF_INLINE
+}  // namespace engine::brdf
+
+namespace engine {
+// The GGX sampling the path tracer (raytrace/sampling.h) and the split-sum table
+// (core/ibl_tables.cpp) share, under the names they have always called it by.
+using brdf::ggxAnisotropicG1;
+using brdf::ggxAnisotropicLambda;
+using brdf::ggxLambda;
+using brdf::ggxSmithG1;
+using brdf::sampleGgxAnisotropicVisibleNormal;
+using brdf::sampleGgxVisibleNormal;
+}  // namespace engine
