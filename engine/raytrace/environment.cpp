@@ -5,6 +5,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "core/image.h"
 
 namespace engine::rt {
 namespace latlong {
