@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "core/brdf.h"
+#include "core/rt_math.h"
 
 namespace engine::brdf {
 // GLSL's built-ins the included text uses, beyond brdf.h's. std::abs, not glm::abs:
@@ -19,15 +20,6 @@ namespace engine::brdf {
 using std::abs;
 inline std::uint32_t floatBitsToUint(float x) { return std::bit_cast<std::uint32_t>(x); }
 inline float uintBitsToFloat(std::uint32_t x) { return std::bit_cast<float>(x); }
-
-// What rt/math.glsl gives the GPU's side: glm's dot, cross and normalize, in glm's
-// order. The text's `precise` keeps the GPU's compiler from fusing a multiply and an
-// add; C++ has no such qualifier and rounds every operation as written where it does
-// not contract (engine_raytrace, and whatever includes its headers, is built with
-// -ffp-contract=off; x86-64's baseline has no FMA to contract into).
-inline float rtDot(vec3 a, vec3 b) { return glm::dot(a, b); }
-inline vec3 rtCross(vec3 a, vec3 b) { return glm::cross(a, b); }
-inline vec3 rtNormalize(vec3 v) { return glm::normalize(v); }
 
 #define BRDF_INLINE inline
 #define precise

@@ -15,6 +15,7 @@
 #include "core/brdf.h"
 #include "core/result.h"
 #include "core/sheen_table.h"
+#include "core/view_layers.h"
 #include "raytrace/terrain_material.h"
 #include "raytrace/texture.h"
 
@@ -24,12 +25,12 @@ namespace engine::rt {
 // the sheen's albedo E and the scaling it leaves the base, the anisotropic frame
 // about the shading normal (anisotropy 0 where there is none to orient), and the
 // thin film's Fresnel. HitMaterial::atView works them out once per hit, for the
-// Whitted tracer's lights and ambient and for the path tracer's Bsdf alike.
-struct ViewLayers {
-  float sheenAlbedo = 0.0f, sheenScale = 1.0f;
-  glm::vec3 anisotropyT{0.0f}, anisotropyB{0.0f};
-  float anisotropy = 0.0f;
-  glm::vec3 iridescenceF{0.0f};
+// Whitted tracer's lights and ambient and for the path tracer's Bsdf alike, by
+// common/view_layers.glsl, the GPU tracers' text (core/view_layers.h). Made empty:
+// no sheen, no stretch, no film.
+struct ViewLayers : brdf::ViewLayers {
+  ViewLayers() : brdf::ViewLayers{0.0f, 1.0f, glm::vec3(0.0f), glm::vec3(0.0f), 0.0f, glm::vec3(0.0f)} {}
+  ViewLayers(const brdf::ViewLayers& v) : brdf::ViewLayers(v) {}  // NOLINT(google-explicit-constructor)
 };
 
 // What the integrator shades one hit with: its material's weights, with the albedo
@@ -67,13 +68,6 @@ struct HitMaterial {
   float anisotropyRotation = 0.0f;
   glm::vec2 anisotropyDirection{1.0f, 0.0f};
   glm::vec3 anisotropyT{0.0f};
-  // That direction made orthogonal to the shading normal n (unit); the tracers' lobe
-  // is stretched along it, across it along n x it.
-  glm::vec3 anisotropyTangent(const glm::vec3& n) const {
-    const glm::vec3 t = anisotropyT - n * glm::dot(n, anisotropyT);
-    const float len = glm::length(t);
-    return len > 1e-6f ? t / len : glm::vec3(0.0f);
-  }
   // KHR_materials_iridescence: the thin film's share, index and thickness (nm) at the
   // hit, and its Fresnel at N.V over this base (brdf.glsl's iridescenceFresnel).
   float iridescence = 0.0f;
@@ -87,17 +81,12 @@ struct HitMaterial {
   float sheenAlbedo(float nDotV) const {
     return sheenColor != glm::vec3(0.0f) ? sheenTable().lookup(nDotV, sheenRoughness) : 0.0f;
   }
-  // The view's terms (ViewLayers) for the unit shading normal n at N.V = nDotV (the
-  // film's Fresnel at no less than 1e-4).
+  // The view's terms (ViewLayers) for the unit shading normal n at N.V = nDotV: the
+  // stretch made orthogonal to n (the tracers' lobe is stretched along it, across it
+  // along n x it), the film's Fresnel at N.V no less than 1e-4.
   ViewLayers atView(const glm::vec3& n, float nDotV) const {
-    ViewLayers v;
-    v.sheenAlbedo = sheenAlbedo(nDotV);
-    v.sheenScale = brdf::sheenScaling(sheenColor, v.sheenAlbedo);
-    v.anisotropyT = anisotropy > 0.0f ? anisotropyTangent(n) : glm::vec3(0.0f);
-    v.anisotropy = v.anisotropyT == glm::vec3(0.0f) ? 0.0f : anisotropy;
-    v.anisotropyB = glm::cross(n, v.anisotropyT);
-    if (iridescence > 0.0f) v.iridescenceF = iridescenceFresnelAt(std::max(nDotV, 1e-4f));
-    return v;
+    return brdf::viewLayersOf(n, nDotV, sheenAlbedo(nDotV), sheenColor, anisotropyT, anisotropy, iridescence,
+                              iridescenceIor, iridescenceThickness, dielectricF0, albedo, metallic);
   }
 };
 

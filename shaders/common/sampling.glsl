@@ -15,7 +15,8 @@
 // the CPU's: `precise` keeps the GPU's compiler from fusing a multiply and an add that
 // C++ rounds twice (C++ defines it away: the CPU tracer is built with
 // -ffp-contract=off), and rtDot, rtCross and rtNormalize are glm's dot, cross and
-// normalize in glm's order, unfused (rt/math.glsl on the GPU; glm's own in C++).
+// normalize in glm's order, unfused (rt/math.glsl on the GPU; glm's own in C++,
+// core/rt_math.h).
 
 // Frame (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017): s, t,
 // n orthonormal around the unit normal n, without a branch on which axis is smallest,

@@ -100,7 +100,7 @@ Bsdf bsdfOf(RtMaterial m, bool metallicRoughness, vec3 n, vec3 wo, bool entering
   // Bsdf::metallicRoughness.
   b.alpha = ggxAlpha(b.roughness);
   float cosO = clamp(b.woLocal.z, 0.0, 1.0);
-  RtViewLayers view = rtViewLayers(m, n, cosO);
+  ViewLayers view = rtViewLayers(m, n, cosO);
   if (view.anisotropy > 0.0) {
     // KHR_materials_anisotropy: the local frame's x along the stretch.
     b.frame = frameAlong(n, view.anisotropyT);

@@ -1,8 +1,9 @@
-// HitMaterial::atView on the GPU (raytrace/rt_scene.h): the terms of glTF's layers that
-// depend on the view, worked out once per hit for the Whitted tracer's lights and
-// ambient and for the path tracer's Bsdf alike, as both CPU tracers share them. Change
-// both together. After rt/materials.glsl and common/brdf.glsl, and after rtEnv is
-// declared (the sheen's table lies in it, at u_sheenTable).
+// HitMaterial::atView on the GPU (raytrace/rt_scene.h): common/view_layers.glsl's
+// terms of glTF's layers that depend on the view, for a material as rtMaterialAt
+// gives it, with the sheen's albedo from its table. After rt/math.glsl,
+// rt/materials.glsl and common/brdf.glsl, and after rtEnv is declared (the sheen's
+// table lies in it, at u_sheenTable).
+#include "common/view_layers.glsl"
 
 // The sheen's directional albedo table (core/sheen_table.h, SHEEN_TABLE_SIZE a side),
 // looked up as SheenTable::lookup does.
@@ -22,37 +23,11 @@ float sheenTableLookup(float nDotV, float roughness) {
   return r;
 }
 
-struct RtViewLayers {
-  float sheenAlbedo, sheenScale;    // the white sheen's albedo at N.V; what it leaves the base
-  vec3 anisotropyT, anisotropyB;    // the stretch made orthogonal to n, and n x it
-  float anisotropy;                 // 0 where there is no stretch to orient
-  vec3 iridescenceF;                // the thin film's Fresnel at N.V
-};
-
 // For the unit shading normal n at N.V = nDotV, of a material as rtMaterialAt gives it
 // (m.anisotropy: xyz the stretch in the world, w its strength).
-RtViewLayers rtViewLayers(RtMaterial m, vec3 n, float nDotV) {
-  RtViewLayers v;
+ViewLayers rtViewLayers(RtMaterial m, vec3 n, float nDotV) {
   vec3 sheenColor = m.sheenColorFilmIor.xyz;
-  v.sheenAlbedo = sheenColor != vec3(0.0) ? sheenTableLookup(nDotV, m.coatSheen.z) : 0.0;
-  v.sheenScale = sheenScaling(sheenColor, v.sheenAlbedo);
-  // HitMaterial::anisotropyTangent.
-  v.anisotropyT = vec3(0.0);
-  v.anisotropy = 0.0;
-  if (m.anisotropy.w > 0.0) {
-    precise vec3 t = m.anisotropy.xyz - n * rtDot(n, m.anisotropy.xyz);
-    float len = sqrt(rtDot(t, t));
-    if (len > 1e-6) {
-      v.anisotropyT = t / len;
-      v.anisotropy = m.anisotropy.w;
-    }
-  }
-  v.anisotropyB = rtCross(n, v.anisotropyT);
-  v.iridescenceF = vec3(0.0);
-  if (m.coatSheen.w > 0.0) {
-    float metallic = m.metallicRoughnessUnlit.x;
-    v.iridescenceF = iridescenceFresnel(1.0, m.sheenColorFilmIor.w, max(nDotV, 1e-4), m.film.x,
-                                        mixAsGlm(m.dielectric.xyz, m.colorAmbient.xyz, metallic));
-  }
-  return v;
+  float sheenAlbedo = sheenColor != vec3(0.0) ? sheenTableLookup(nDotV, m.coatSheen.z) : 0.0;
+  return viewLayersOf(n, nDotV, sheenAlbedo, sheenColor, m.anisotropy.xyz, m.anisotropy.w, m.coatSheen.w,
+                      m.sheenColorFilmIor.w, m.film.x, m.dielectric.xyz, m.colorAmbient.xyz, m.metallicRoughnessUnlit.x);
 }

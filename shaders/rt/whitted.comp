@@ -114,7 +114,7 @@ vec3 sampleLight(Surface s, RtLight light, inout Pcg32 rng, out vec3 wi, out flo
 // The course's model per light plus colour * ambient; or glTF's layered BRDF per light
 // (common/brdf.glsl's layeredBrdf, the CPU's own text) and the hemisphere ambient
 // scaled by the material.
-vec3 shade(Surface s, RtMaterial m, vec3 n, vec3 v, RtViewLayers view, inout Pcg32 rng) {
+vec3 shade(Surface s, RtMaterial m, vec3 n, vec3 v, ViewLayers view, inout Pcg32 rng) {
   vec3 albedo = m.colorAmbient.xyz;
   vec4 dssr = m.diffuseSpecularShininessReflection;
   float metallic = m.metallicRoughnessUnlit.x, roughness = m.metallicRoughnessUnlit.y;
@@ -173,7 +173,7 @@ struct LiFrame {
 // straight on through a thin wall, bent by the ior into and out of a volume,
 // reflected past the critical angle), the weight with Fresnel at the view angle.
 // `nDotV` and `view` are the hit's (N.V is -N.v here, the same float).
-void transmittedRay(inout LiFrame f, Surface s, RtMaterial m, vec3 n, vec3 v, float nDotV, RtViewLayers view) {
+void transmittedRay(inout LiFrame f, Surface s, RtMaterial m, vec3 n, vec3 v, float nDotV, ViewLayers view) {
   float metallic = m.metallicRoughnessUnlit.x;
   vec3 fresnel = schlickFresnel90(m.dielectric.xyz, m.dielectric.w, nDotV);
   precise vec3 share = transmittedShare(m.colorAmbient.xyz, metallic, m.transmission.x, fresnel) * view.sheenScale;
@@ -246,7 +246,7 @@ vec3 Li(vec3 o, vec3 d, float tMax, inout Pcg32 rng) {
       } else {
         vec3 n = rtDot(s.n, v) > 0.0 ? -s.ns : s.ns;
         float nDotV = max(rtDot(n, -v), 1e-4);
-        RtViewLayers view;
+        ViewLayers view;
         if (u_pbr != 0) view = rtViewLayers(m, n, nDotV);
         LiFrame f;
         f.color = shade(s, m, n, v, view, rng) + m.emission.xyz;

@@ -1,8 +1,9 @@
-// One text of sampling routines, two compilers: common/sampling.glsl run by the GPU's
-// GLSL compiler in a compute shader (test/sampling_eval.comp) and by the C++ build of
-// the same text (core/sampling.h, what the CPU path tracer calls) over random
-// normals, directions, roughnesses and uniform numbers: every routine of the text,
-// each with the same inputs on both sides.
+// The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl and
+// common/view_layers.glsl run by the GPU's GLSL compiler in a compute shader
+// (test/sampling_eval.comp, test/view_layers_eval.comp) and by the C++ build of the
+// same text (core/sampling.h, core/view_layers.h: what the CPU tracers call) over
+// random normals, directions, roughnesses, uniform numbers and layers: every
+// routine of the texts, each with the same inputs on both sides.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "../support/gl_test.h"
 #include "../support/random_draws.h"
 #include "core/sampling.h"
+#include "core/view_layers.h"
 
 using namespace engine;
 using engine::test::GlTest;
@@ -164,6 +166,84 @@ TEST_P(SamplingText, GlslAndCppAgree) {
   EXPECT_EQ(worst[0], 0.0) << "case " << worstCase << ", value " << worstValue;
   EXPECT_LE(worst[1], 8.0);
   EXPECT_LE(worst[2] * 0x1p-23, 2e-3);
+}
+
+struct ViewLayersCase {
+  glm::vec4 n, sheen, stretch, film, f0, albedo;
+};
+struct ViewLayersResult {
+  glm::vec4 anisotropyT, anisotropyB, iridescenceF;
+};
+
+std::vector<ViewLayersCase> viewLayersCases(int count) {
+  std::mt19937 rng(20261208);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<ViewLayersCase> cases;
+  cases.reserve(std::size_t(count));
+  for (int i = 0; i < count; ++i) {
+    ViewLayersCase c;
+    const glm::vec3 n = test::randomUnitVector(rng);
+    const float nDotV = i % 17 == 0 ? 0.0f : unit(rng);
+    c.n = glm::vec4(n, nDotV);
+    const glm::vec3 sheenColor = test::draw3(unit, rng);
+    c.sheen = glm::vec4(i % 3 == 0 ? glm::vec3(0.0f) : sheenColor, i % 3 == 0 ? 0.0f : 1.2f * unit(rng));
+    // The stretch anywhere, absent (no uv gradient), or along n (nothing left to orient).
+    glm::vec3 stretch = test::randomUnitVector(rng);
+    if (i % 11 == 0) stretch = glm::vec3(0.0f);
+    if (i % 13 == 0) stretch = n;
+    c.stretch = glm::vec4(stretch, i % 4 == 0 ? 0.0f : unit(rng));
+    const float share = i % 5 == 0 ? 0.0f : unit(rng), ior = 1.2f + 0.6f * unit(rng), nm = 1000.0f * unit(rng);
+    c.film = glm::vec4(share, ior, nm, unit(rng));
+    c.f0 = glm::vec4(0.08f * test::draw3(unit, rng), 0.0f);
+    c.albedo = glm::vec4(test::draw3(unit, rng), 0.0f);
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+class ViewLayersText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(ViewLayersText);
+
+// 16384 random cases. The sheen's scaling and the stretch's frame the same bits on
+// both sides (IEEE arithmetic and sqrt only). The film's Fresnel within 1e-5 per
+// unit of its largest phase, as tests/gl/brdf_test.cpp holds iridescenceFresnel:
+// the phase, up to 100 radians at 1000 nm, is rounded by some 1e-5 radians, which
+// the driver's cosine passes on in full. Absolute, not relative: the Fresnel is a
+// sum of terms of up to 1 that nearly cancel at times (a reflectance of 8e-5 came
+// out 7e-4 off relative, 6e-8 absolute; measured 0.014 of the limit).
+TEST_P(ViewLayersText, GlslAndCppAgree) {
+  const std::vector<ViewLayersCase> cases = viewLayersCases(1 << 14);
+  const std::vector<ViewLayersResult> gpu = test::runCases<ViewLayersResult>("test/view_layers_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  int exactDiffer = 0, stretched = 0, filmed = 0;
+  double worstFilm = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const ViewLayersCase& c = cases[i];
+    const brdf::ViewLayers v =
+        brdf::viewLayersOf(glm::vec3(c.n), c.n.w, c.sheen.w, glm::vec3(c.sheen), glm::vec3(c.stretch), c.stretch.w,
+                           c.film.x, c.film.y, c.film.z, glm::vec3(c.f0), glm::vec3(c.albedo), c.film.w);
+    const ViewLayersResult cpu{glm::vec4(v.anisotropyT, v.anisotropy), glm::vec4(v.anisotropyB, v.sheenScale),
+                               glm::vec4(v.iridescenceF, v.sheenAlbedo)};
+    exactDiffer += cpu.anisotropyT != gpu[i].anisotropyT || cpu.anisotropyB != gpu[i].anisotropyB ||
+                           cpu.iridescenceF.w != gpu[i].iridescenceF.w
+                       ? 1
+                       : 0;
+    stretched += v.anisotropy > 0.0f ? 1 : 0;
+    filmed += v.iridescenceF != glm::vec3(0.0f) ? 1 : 0;
+    const double opd = 2.0 * double(c.film.y) * double(c.film.z);  // nm, at most (cos theta2 <= 1)
+    const double phase = 1.0 + 2.2084e6 * 2.0 * M_PI * 2.0 * opd * 1e-9;  // iridescenceSensitivity's second pair
+    for (int k = 0; k < 3; ++k) {
+      const double a = cpu.iridescenceF[k], b = gpu[i].iridescenceF[k];
+      worstFilm = std::max(worstFilm, std::abs(a - b) / std::max(std::abs(a), 1.0) / (1e-5 * phase));
+    }
+  }
+  std::printf("view layers: %zu cases (%d stretched, %d with a film), %d differ in the exact terms; film's Fresnel "
+              "%.3g of its limit\n",
+              cases.size(), stretched, filmed, exactDiffer, worstFilm);
+  EXPECT_GT(stretched, int(cases.size()) / 2);
+  EXPECT_GT(filmed, int(cases.size()) / 2);
+  EXPECT_EQ(exactDiffer, 0);
+  EXPECT_LE(worstFilm, 1.0);
 }
 
 }  // namespace
