@@ -58,7 +58,7 @@ std::vector<IndirectDraw> GpuCullPass::queueShapeJob(const ShapeDraw& s) {
 
 // A character primitive's jobs, one per mesh instance, in the order drawPrimitive
 // draws them: the clusters of the level of detail it will draw, the character's
-// bounding sphere (of every pose: the bounds collectCharacters culls by). A
+// bounding sphere (of every pose: the bounds SceneDraws culls by). A
 // skinned or morphed primitive's vertices move away from the rest positions its
 // clusters were bounded by, so only its sphere is tested (cull::kInstanceOnly).
 std::vector<IndirectDraw> GpuCullPass::queueCharacterJobs(const DrawItem& item) {

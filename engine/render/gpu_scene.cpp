@@ -58,6 +58,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(std::shared_ptr<Scene> source
                                                    const GpuSceneOptions& options) {
   std::unique_ptr<GpuScene> gpu(new GpuScene);
   gpu->source_ = std::move(source);
+  gpu->options_ = options;
   const Scene& from = *gpu->source_;
   if (const FloatImage* image = from.images().sky.get(); image && scene.sky.enabled)
     gpu->skyImage_ = uploadSkyImage(*image);

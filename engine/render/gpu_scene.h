@@ -4,7 +4,8 @@
 // models and one character per instance, and the sky's image. Every pass draws from
 // it. Where its characters are placed (eye()) is the origin of the camera-relative
 // positions of whatever is drawn: the camera's, or a reflection probe's centre.
-// Not part of the engine's interface.
+// Renderers of one scene whose options upload alike share it (the trade panel's
+// rebuilds: SceneRenderer::create's `sharing`). Not part of the engine's interface.
 #include <memory>
 #include <optional>
 #include <string>
@@ -61,6 +62,7 @@ struct GpuSceneOptions {
   std::optional<SkinMode> skinModeOverride;
   // The shape each reflection probe belongs to, in the probes' order (ShapeDraw::probe).
   std::vector<int> probeShapes;
+  bool operator==(const GpuSceneOptions&) const = default;
 };
 
 class GpuScene {
@@ -69,6 +71,7 @@ class GpuScene {
   // current context.
   static Result<std::unique_ptr<GpuScene>> create(std::shared_ptr<Scene> source, const SceneDesc& scene,
                                                   const GpuSceneOptions& options);
+  const GpuSceneOptions& options() const { return options_; }
 
   Scene& source() const { return *source_; }
   const std::vector<ShapeDraw>& shapes() const { return shapes_; }
@@ -117,6 +120,7 @@ class GpuScene {
   void addShapes(const SceneDesc& scene);
 
   std::shared_ptr<Scene> source_;
+  GpuSceneOptions options_;
   std::unique_ptr<GpuMesh> sphere_, cube_, quad_;
   std::vector<ShapeDraw> shapes_;
   std::vector<gl::Texture> materialTextures_;  // empty texture = none

@@ -33,11 +33,13 @@ SceneRenderer::SceneRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)
 SceneRenderer::~SceneRenderer() = default;
 
 Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(std::shared_ptr<Scene> source,
-                                                             const SceneRenderOptions& options) {
+                                                             const SceneRenderOptions& options,
+                                                             const SceneRenderer* sharing) {
   auto impl = std::make_unique<Impl>();
   impl->scene = source->desc();
   std::unique_ptr<SceneRenderer> renderer(new SceneRenderer(std::move(impl)));
-  if (auto s = renderer->impl_->init(std::move(source), options); !s) return s.error();
+  const std::shared_ptr<GpuScene> shared = sharing ? sharing->impl_->gpu : nullptr;
+  if (auto s = renderer->impl_->init(std::move(source), options, shared); !s) return s.error();
   return renderer;
 }
 

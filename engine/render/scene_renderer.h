@@ -143,9 +143,12 @@ class SceneRenderer {
  public:
   // Uploads what the scene layer loaded (scene/scene.h: models, terrain), loads the
   // textures and builds the programs. Needs a current context. The renderer keeps
-  // `scene` and draws its poses.
+  // `scene` and draws its poses. `sharing`: a renderer of the same scene (the one
+  // the trade panel's knobs replace) whose uploads this one shares, where the
+  // options upload the same (the skinning, the levels of detail, the probes).
   static Result<std::unique_ptr<SceneRenderer>> create(std::shared_ptr<Scene> scene,
-                                                       const SceneRenderOptions& options);
+                                                       const SceneRenderOptions& options,
+                                                       const SceneRenderer* sharing = nullptr);
   // Scene::load (clip names are checked: "demo.json: /models/2/clip: no clip ..."),
   // then the above.
   static Result<std::unique_ptr<SceneRenderer>> create(const SceneDesc& scene, const SceneRenderOptions& options);

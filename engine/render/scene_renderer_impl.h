@@ -40,7 +40,7 @@ struct SceneRenderer::Impl {
   // The scene layer's models, poses and terrain (shared with any other renderer of
   // the same scene) as uploaded, each view's draws of them, and the frame block
   // their programs read.
-  std::unique_ptr<GpuScene> gpu;
+  std::shared_ptr<GpuScene> gpu;
   std::unique_ptr<SceneDraws> draws;
   std::unique_ptr<FrameUniforms> frame;
   // The passes, in about the order a frame draws them; null where the scene needs
@@ -59,7 +59,9 @@ struct SceneRenderer::Impl {
   gl::Query primitives;      // triangles of the whole frame
   double animationMs = 0.0;  // the last update's
 
-  Status init(std::shared_ptr<Scene> source, const SceneRenderOptions& options);
+  // `shared`: another renderer's GPU scene, taken where it is of `source` and
+  // uploaded as these options would.
+  Status init(std::shared_ptr<Scene> source, const SceneRenderOptions& options, std::shared_ptr<GpuScene> shared);
   // Whether the frame can skip the HDR target and the post pass (OutputPass::direct).
   bool needsNoHdrTarget(const Scene& source) const;
   // The frame's depth has a stencil where a deferred surface marks its pixels.

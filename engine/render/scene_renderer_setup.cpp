@@ -10,7 +10,8 @@
 
 namespace engine {
 
-Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRenderOptions& options) {
+Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRenderOptions& options,
+                                 std::shared_ptr<GpuScene> shared) {
   const std::string& shaderDir = options.shaderDir;
   render = scene.render;
   if (options.msaaOverride > 0) render.msaa = options.msaaOverride;
@@ -86,9 +87,13 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
   upload.levelsOfDetail = render.lodPixels > 0.0;
   upload.skinModeOverride = options.skinModeOverride;
   if (probes) upload.probeShapes = probes->shapes();
-  auto uploaded = GpuScene::create(std::move(source), scene, upload);
-  if (!uploaded) return uploaded.error();
-  gpu = std::move(uploaded).value();
+  if (shared && &shared->source() == source.get() && shared->options() == upload) {
+    gpu = std::move(shared);
+  } else {
+    auto uploaded = GpuScene::create(std::move(source), scene, upload);
+    if (!uploaded) return uploaded.error();
+    gpu = std::move(uploaded).value();
+  }
   draws = std::make_unique<SceneDraws>(*gpu, scene,
                                        std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines),
                                        stats);

@@ -15,7 +15,8 @@ SceneGame::SceneGame(engine::SceneDesc scene, engine::SceneRenderOptions options
 SceneGame::~SceneGame() = default;
 
 engine::Status SceneGame::build(std::shared_ptr<engine::Scene> scene, const engine::SceneRenderOptions& options) {
-  auto renderer = engine::SceneRenderer::create(scene, options);
+  // A knob over the same scene keeps what the renderer before it uploaded.
+  auto renderer = engine::SceneRenderer::create(scene, options, scene == scene_ ? renderer_.get() : nullptr);
   if (!renderer) return renderer.error();
   renderer_ = std::move(renderer).value();
   scene_ = std::move(scene);

@@ -74,11 +74,13 @@ TEST_P(TradePanel, AKnobRebuildsTheRendererOverTheSameScene) {
   const Scene* before = game->scene();
   // No MSAA: the fragment shaders write display values, no post pass.
   EXPECT_NE(game->renderer()->describe().find(" direct("), std::string::npos);
+  const std::vector<CharacterInstance*> uploaded = game->renderer()->characters();
   SceneRenderOptions options = game->options();
   options.msaaOverride = 4;
   options.pcfKernelOverride = 1;
   ASSERT_TRUE(game->applyOptions(options).ok()) << game->lastError();
   EXPECT_EQ(game->scene(), before) << "the scene was reloaded";
+  EXPECT_EQ(game->renderer()->characters(), uploaded) << "the models were uploaded again";
   const std::string described = game->renderer()->describe();
   EXPECT_NE(described.find("msaa 4,"), std::string::npos) << described;
   EXPECT_NE(described.find("shadow-sun(2048, hard)"), std::string::npos) << described;
@@ -89,6 +91,7 @@ TEST_P(TradePanel, AKnobRebuildsTheRendererOverTheSameScene) {
   EXPECT_NE(described.find("skinning(skin cache: 1 primitives"), std::string::npos) << described;
   options.skinningOverride = Skinning::Compute;
   ASSERT_TRUE(game->applyOptions(options).ok()) << game->lastError();
+  EXPECT_NE(game->renderer()->characters(), uploaded) << "the characters' skinning is uploaded with them";
   ASSERT_TRUE(frame(*game, *target, 0.7).ok());
   EXPECT_NE(game->renderer()->describe().find("skinning(skin cache: 4 primitives"), std::string::npos)
       << game->renderer()->describe();
