@@ -6,7 +6,7 @@
 // covers the sample's share of the lobe (filtered importance sampling, Krivanek and
 // Colbert 2008), so 128 samples give a smooth result. Their +1 level of bias is
 // left out: it blurred roughness 0.5 by 5.9 % against the exact convolution, where
-// this measures 1.55 % (tests/gl/ibl_test.cpp).
+// this measures 1.55 % (tests/render/ibl_test.cpp).
 #include "common/brdf.glsl"
 #include "common/ibl_sampling.glsl"
 

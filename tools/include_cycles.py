@@ -1,21 +1,26 @@
 #!/usr/bin/env python3
 """Whether a source folder's files include each other in a circle.
 
-    tools/include_cycles.py engine/raytrace
+    tools/include_cycles.py engine/raytrace [engine/render ...]
 
 Reads the `#include "<folder>/name.ext"` lines of the folder's .h, .cpp and .inl
 files (<folder> is the folder's own name: raytrace/ for engine/raytrace) and makes a
 graph of them by file stem: x.h, x.cpp and x.inl are one node, so that x.cpp
 including y.h while y.cpp includes x.h is a circle too (the two files depend on each
 other, whichever way their headers are arranged). A file including its own stem's
-header is no edge. Exits 0 when the graph is acyclic; else prints one circle, as the
-files whose lines make it, and exits 1. Includes of other folders are ignored.
+header is no edge. A class's private header x_impl.h (its insides, shared by the
+files that implement it) is part of x's node. Exits 0 when the graph is acyclic; else prints one circle, as the
+files whose lines make it, and exits 1. Includes of other folders are ignored. Several folders: each on its own.
 """
 import re
 import sys
 from pathlib import Path
 
 SUFFIXES = (".h", ".cpp", ".inl")
+
+
+def node(stem: str) -> str:
+    return stem[: -len("_impl")] if stem.endswith("_impl") else stem
 
 
 def include_graph(folder: Path):
@@ -25,13 +30,13 @@ def include_graph(folder: Path):
     for path in sorted(folder.iterdir()):
         if path.suffix not in SUFFIXES or not path.is_file():
             continue
-        edges = graph.setdefault(path.stem, {})
+        edges = graph.setdefault(node(path.stem), {})
         for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
             match = pattern.match(line)
             if not match:
                 continue
-            target = Path(match.group(1)).stem
-            if target != path.stem:
+            target = node(Path(match.group(1)).stem)
+            if target != node(path.stem):
                 edges.setdefault(target, f"{path.name}:{number}: {line.strip()}")
     return graph
 
@@ -60,10 +65,13 @@ def find_cycle(graph):
 
 
 def main(argv):
-    if len(argv) != 2:
+    if len(argv) < 2:
         print(__doc__.strip(), file=sys.stderr)
         return 2
-    folder = Path(argv[1])
+    return max(check(Path(folder)) for folder in argv[1:])
+
+
+def check(folder: Path):
     if not folder.is_dir():
         print(f"{folder}: not a folder", file=sys.stderr)
         return 2

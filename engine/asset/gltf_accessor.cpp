@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "asset/gltf_loader.h"
+#include "asset/gltf_limits.h"
 
 namespace engine::gltf {
 namespace {

@@ -14,7 +14,7 @@
 
 #include "asset/draco_mesh.h"
 #include "asset/gltf_accessor.h"
-#include "asset/gltf_loader.h"
+#include "asset/gltf_limits.h"
 
 // Why the loader decodes Draco itself rather than through tinygltf's
 // TINYGLTF_ENABLE_DRACO: Debian ships tinygltf as a prebuilt libtinygltf.so

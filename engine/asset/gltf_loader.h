@@ -6,21 +6,11 @@
 #include <span>
 #include <string>
 
+#include "asset/gltf_limits.h"
 #include "asset/model_data.h"
 #include "core/result.h"
 
 namespace engine {
-
-// Limits that keep a hostile file from exhausting memory.
-inline constexpr std::uint64_t kMaxModelFileBytes = 512ull * 1024 * 1024;
-inline constexpr std::size_t kMaxSkinJoints = 65536;
-inline constexpr std::size_t kMaxNodes = 1u << 20;
-inline constexpr std::size_t kMaxAccessorElements = 1u << 26;
-// Morph target displacements of one attribute of one primitive (targets x
-// vertices): many targets may name one small file's zero-filled sparse accessor.
-inline constexpr std::size_t kMaxMorphDeltas = 1u << 24;
-// EXT_mesh_gpu_instancing instances of one node (a mat4 each, and as many draws).
-inline constexpr std::size_t kMaxNodeInstances = 1u << 20;
 
 // Refuses URIs that leave the model's folder ("..", absolute paths, other
 // schemes than data:). Missing or undecodable images only warn and get a 1x1

@@ -1,7 +1,7 @@
 #pragma once
 // The material models of shaders/common/brdf.glsl, compiled as C++: the rasterizer's
 // shaders and the CPU tracers evaluate one text, so a change to either is a change to
-// both (tests/gl/brdf_test.cpp checks that they agree on the GPU's compiler too).
+// both (tests/core/brdf_test.cpp checks that they agree on the GPU's compiler too).
 #include <glm/glm.hpp>
 
 namespace engine::brdf {

@@ -3,7 +3,7 @@
 // C++ beside the BRDF they sample (core/brdf.h): the CPU path tracer
 // (raytrace/sampling.h wraps them in its own names), the split-sum table
 // (core/ibl_tables.cpp) and the GPU path tracer evaluate one text
-// (tests/gl/sampling_test.cpp checks that the GPU's compiler gives the same bits, but
+// (tests/core/shading_texts_test.cpp checks that the GPU's compiler gives the same bits, but
 // for what comes through GLSL's cos and sin).
 #include <bit>
 #include <cmath>

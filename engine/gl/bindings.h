@@ -3,7 +3,7 @@
 // and handed to every GLSL program as #defines (gl::preprocessShader puts them
 // after #version), so that the C++ that binds and the GLSL that samples cannot
 // disagree: shaders write `layout(binding = UNIT_BASE_COLOR)`, never a number
-// (tests/unit/shader_source_test checks). Units are per program: the terrain's
+// (tests/gl/shader_source_test checks). Units are per program: the terrain's
 // and post's reuse the material ones' numbers.
 #include <array>
 #include <string>

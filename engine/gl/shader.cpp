@@ -4,11 +4,16 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <regex>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace engine::gl {
 namespace fs = std::filesystem;
@@ -110,7 +115,68 @@ Result<GLuint> compileStage(GLenum type, const PreprocessedSource& source) {
   return makeError(translateShaderLog(log.c_str(), source.files));
 }
 
+bool isIdentifierChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// The identifier at `at` (after blanks), and the position after it.
+std::string_view identifierAt(std::string_view text, size_t& at) {
+  while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+  const size_t start = at;
+  while (at < text.size() && isIdentifierChar(text[at])) ++at;
+  return text.substr(start, at - start);
+}
+
+bool isQualifier(std::string_view word) {
+  return word == "highp" || word == "mediump" || word == "lowp" || word == "restrict" || word == "readonly" ||
+         word == "writeonly" || word == "coherent" || word == "volatile" || word == "flat";
+}
+
+std::mutex& undeclaredMutex() {
+  static std::mutex m;
+  return m;
+}
+std::vector<std::string>& undeclaredList() {
+  static std::vector<std::string> list;
+  return list;
+}
+
 }  // namespace
+
+std::vector<std::string> declaredUniforms(const std::string& source) {
+  std::vector<std::string> names;
+  const std::string_view text(source);
+  for (size_t at = text.find("uniform"); at != std::string_view::npos; at = text.find("uniform", at)) {
+    const bool word = (at == 0 || !isIdentifierChar(text[at - 1])) &&
+                      (at + 7 >= text.size() || !isIdentifierChar(text[at + 7]));
+    at += 7;
+    if (!word) continue;
+    std::string_view type = identifierAt(text, at);
+    while (isQualifier(type)) type = identifierAt(text, at);
+    const size_t end = text.find(';', at);
+    if (type.empty() || end == std::string_view::npos) continue;
+    const size_t brace = text.find('{', at);
+    if (brace < end) continue;  // a uniform block: its members are not set by name
+    // Declarators up to the ';': "a", "b[4]", "c = 1.0".
+    while (at < end) {
+      const std::string_view name = identifierAt(text, at);
+      if (!name.empty()) names.emplace_back(name);
+      const size_t comma = text.find(',', at);
+      at = comma < end ? comma + 1 : end;
+    }
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+std::vector<std::string> undeclaredUniformsSet() {
+  std::lock_guard lock(undeclaredMutex());
+  return undeclaredList();
+}
+
+void forgetUndeclaredUniforms() {
+  std::lock_guard lock(undeclaredMutex());
+  undeclaredList().clear();
+}
 
 Result<PreprocessedSource> preprocessShader(const std::string& shaderDir, const std::string& file,
                                             const std::vector<std::string>& defines) {
@@ -146,6 +212,7 @@ Result<Program> Program::build(const std::string& shaderDir, const std::vector<S
     for (GLuint s : shaders) glDeleteShader(s);
   };
   std::string names;
+  std::vector<std::string> declared;
   for (const auto& stage : stages) {
     auto source = preprocessShader(shaderDir, stage.file, defines);
     if (!source) {
@@ -159,6 +226,8 @@ Result<Program> Program::build(const std::string& shaderDir, const std::vector<S
     }
     shaders.push_back(*shader);
     names += (names.empty() ? "" : " + ") + stage.file;
+    const auto stageNames = declaredUniforms(source->text);
+    declared.insert(declared.end(), stageNames.begin(), stageNames.end());
   }
   Program program(glCreateProgram());
   for (GLuint s : shaders) glAttachShader(program.id(), s);
@@ -179,6 +248,10 @@ Result<Program> Program::build(const std::string& shaderDir, const std::vector<S
     glGetProgramInfoLog(program.id(), length, nullptr, log.data());
     return makeError(names + ": link failed: " + std::string(log.c_str()));
   }
+  std::sort(declared.begin(), declared.end());
+  declared.erase(std::unique(declared.begin(), declared.end()), declared.end());
+  program.declared_ = std::make_shared<const std::vector<std::string>>(std::move(declared));
+  program.files_ = std::move(names);
   return program;
 }
 
@@ -187,6 +260,20 @@ GLint Program::location(const char* name) const {
   if (it != locations_.end()) return it->second;
   const GLint loc = glGetUniformLocation(id(), name);
   locations_.emplace(name, loc);
+  if (loc < 0 && declared_) {
+    // "lights[2].color" is declared as "lights".
+    const std::string_view full(name);
+    const std::string base(full.substr(0, full.find_first_of("[.")));
+    if (!std::binary_search(declared_->begin(), declared_->end(), base)) {
+      const std::string entry = files_ + ": " + std::string(full);
+      std::lock_guard lock(undeclaredMutex());
+      auto& list = undeclaredList();
+      if (std::find(list.begin(), list.end(), entry) == list.end()) {
+        list.push_back(entry);
+        std::fprintf(stderr, "warning: %s is set but no stage declares it\n", entry.c_str());
+      }
+    }
+  }
   return loc;
 }
 

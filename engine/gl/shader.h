@@ -5,6 +5,7 @@
 // source.
 #include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +26,17 @@ struct PreprocessedSource {
 Result<PreprocessedSource> preprocessShader(const std::string& shaderDir, const std::string& file,
                                             const std::vector<std::string>& defines = {});
 
+// The names of the uniforms `source` declares (`uniform float a, b[4];` gives a and b;
+// uniform blocks are skipped): every branch of its #ifdefs, so a name a variant's
+// compiler optimised away is still declared. Sorted, each name once.
+std::vector<std::string> declaredUniforms(const std::string& source);
+
+// Every (program, name) a Program was asked to set that none of its stages' sources
+// declares: a misspelt or stale name, which GL would ignore silently. Each is also
+// written to stderr once. Tests check it stays empty over the scenes they draw.
+std::vector<std::string> undeclaredUniformsSet();
+void forgetUndeclaredUniforms();  // for a test that provokes one
+
 // Rewrites a driver log ("0:12(5): error: ...") with file names ("lit.frag:12(5): ...").
 std::string translateShaderLog(const std::string& log, const std::vector<std::string>& files);
 
@@ -42,6 +54,8 @@ class Program : public Object<ProgramDeleter> {
                                const std::vector<std::string>& feedbackVaryings = {});
 
   void use() const { glUseProgram(id()); }
+  // -1 for a name the linked program does not use (GL ignores a set of -1); a name
+  // no stage declares is also reported (undeclaredUniformsSet).
   GLint location(const char* name) const;
   void set(const char* name, int value) const { glProgramUniform1i(id(), location(name), value); }
   void set(const char* name, float value) const { glProgramUniform1f(id(), location(name), value); }
@@ -55,6 +69,9 @@ class Program : public Object<ProgramDeleter> {
   using Object::Object;
   // Uniform locations by name; filled lazily, so a program's map stays small.
   mutable std::map<std::string, GLint, std::less<>> locations_;
+  // What the stages' sources declare (declaredUniforms) and their files, for the report.
+  std::shared_ptr<const std::vector<std::string>> declared_;
+  std::string files_;
 };
 
 }  // namespace engine::gl

@@ -9,7 +9,7 @@
 #include "core/sheen_table.h"
 #include "gl/bindings.h"
 #include "gputrace/gpu_materials.h"
-#include "gputrace/tracer_state.h"
+#include "gputrace/gpu_tracer_impl.h"
 #include "gputrace/gpu_textures.h"
 #include "raytrace/ray_cone.h"
 #include "raytrace/tile_render.h"

@@ -8,7 +8,7 @@
 
 #include "gl/bindings.h"
 #include "gputrace/gpu_tracer.h"
-#include "gputrace/tracer_state.h"
+#include "gputrace/gpu_tracer_impl.h"
 #include "core/sheen_table.h"
 #include "raytrace/path_lights.h"
 #include "raytrace/ray_cone.h"

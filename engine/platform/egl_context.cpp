@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "platform/backends.h"
+#include "platform/gl_context_impl.h"
 
 namespace engine {
 namespace {

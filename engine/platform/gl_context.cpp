@@ -6,7 +6,7 @@
 #include <cstdlib>
 
 #include "gl/object.h"
-#include "platform/backends.h"
+#include "platform/gl_context_impl.h"
 
 namespace engine {
 

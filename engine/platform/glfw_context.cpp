@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "platform/backends.h"
+#include "platform/gl_context_impl.h"
 
 namespace engine {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "platform/backends.h"
+#include "platform/gl_context_impl.h"
 
 namespace engine {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // GPU culling's data and its CPU twin (issue 16: "GPU culling"). GL-free: the
 // compute shaders (shaders/cull/hiz.comp, shaders/cull/cull.comp) run the same
-// math on the GPU, and tests/gl/gpu_cull_test.cpp checks them against this.
+// math on the GPU, and tests/render/gpu_cull_test.cpp checks them against this.
 //
 // What it guarantees: a culled cluster or instance is one none of whose fragments
 // could pass the main view's depth test (GL_GREATER, reverse-Z), so culling

@@ -12,13 +12,13 @@ namespace {
 
 // The BRDF table: 32 x 32 entries of 256 visible-normal samples per lobe. Its
 // entries vary smoothly (bilinear filtering between them suffices), and 256 points
-// leave an entry within 0.003 of a 65536-point integral (tests/unit's comparison
+// leave an entry within 0.003 of a 65536-point integral (tests/core/ibl_tables_test.cpp's comparison
 // with a quadrature). About 45 ms on one core, once per process: it depends on the
 // BRDF alone, not on the scene.
 constexpr int kSplitSumSize = 32;
 constexpr int kSplitSumSamples = 256;
 // GGX samples per prefiltered texel: with filtered importance sampling 128 come
-// within 1.6 % of the exact convolution (64: 2.3 %, tests/gl/ibl_test.cpp); the
+// within 1.6 % of the exact convolution (64: 2.3 %, tests/render/ibl_test.cpp); the
 // chain's cost grows with them (about 1.5 ms per sample at 128 texels a side).
 constexpr int kPrefilterSamples = 128;
 // Levels of the prefiltered chain: roughness 0, 0.25, 0.5, 0.75, 1. The smallest

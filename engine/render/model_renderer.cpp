@@ -76,7 +76,6 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   if (variant.layerTextures) pr.set("u_layerTextures", layerTextureMask(*material));
   // scene.vert's tiling of analytic shapes: a program may be shared with them.
   pr.set("u_uvScale", glm::vec2(1.0f));
-  if (!frame.depthOnly) pr.set("u_viewProjection", frame.viewProjection);
   if (variant.influences > 0) {
     frame.skinPalettes[size_t(node.skin)].bind(gl::binding::kSkinPalette);
   }

@@ -82,7 +82,7 @@ struct ShaderVariant {
   // for a flip that never happens. ShaderVariants drops it from depth-only programs
   // and where its fragment shader is not scene.frag.
   bool oneSided = false;
-  // The deferred characters (render/scene_renderer_impl.h's deferredCharacters):
+  // The deferred characters (render/character_surface_pass.h):
   // the surface pass writes common/surface.glsl's targets instead of a colour
   // (SURFACE_OUT); the shading pass reads them back, a full-screen triangle
   // (SURFACE_IN, sky.vert's vertices), and lights each pixel once.

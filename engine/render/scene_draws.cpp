@@ -263,8 +263,12 @@ Status SceneDraws::submit(const std::vector<DrawItem>& items, const PassInputs& 
     if (p.id() == bound) return;
     bound = p.id();
     ++stats_->programChanges;
-    setUniforms(p);
-    if (pass.depthOnly) p.set("u_lightViewProjection", pass.lightViewProjection);
+    // A depth pass's programs read no shadow map (they write one).
+    if (pass.depthOnly) {
+      p.set("u_lightViewProjection", pass.lightViewProjection);
+    } else {
+      setUniforms(p);
+    }
   };
   std::size_t pending = 0;  // triangles submitted since the last flush
   for (std::size_t k = 0; k < items.size(); ++k) {

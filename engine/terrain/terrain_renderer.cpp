@@ -183,7 +183,7 @@ int TerrainRenderer::indexCount() { return kIndexCount; }
 
 void TerrainRenderer::useShadingProgram(const gl::Program& p, const LodSelection& selection,
                                         const glm::dvec3& cameraPosition, const UniformSetter& setUniforms) const {
-  setGridUniforms(p, selection);
+  p.set("u_cameraHeight", selection.cameraHeight);
   p.set("u_heightScale", std::max(terrain_->heightRange().max, 1e-3f));
   // Texture coordinates are camera-relative too.
   const glm::vec2 uvOffset = layerUvOffset(cameraPosition - terrain_->origin());

@@ -98,9 +98,12 @@ class TerrainRenderer {
   void drawInstances(std::size_t count) const;
   void useColourProgram(const LodSelection& selection, const glm::dvec3& cameraPosition,
                         const UniformSetter& setUniforms, TerrainOutput output) const {
-    if (output == TerrainOutput::Surface) return useShadingProgram(surfaceProgram_, selection, cameraPosition, nullptr);
-    useShadingProgram(program_, selection, cameraPosition, setUniforms);
+    const gl::Program& p = output == TerrainOutput::Surface ? surfaceProgram_ : program_;
+    setGridUniforms(p, selection);
+    useShadingProgram(p, selection, cameraPosition, output == TerrainOutput::Surface ? nullptr : setUniforms);
   }
+  // The layers' uniforms and textures, for terrain.vert's programs and the deferred
+  // shading pass's full-screen one (which has no grid).
   void useShadingProgram(const gl::Program& p, const LodSelection& selection, const glm::dvec3& cameraPosition,
                          const UniformSetter& setUniforms) const;
 

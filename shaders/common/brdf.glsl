@@ -1,6 +1,6 @@
 // The engine's two material models, written once. GLSL includes this file
 // (common/shading.glsl); C++ compiles the very same text with GLM (engine/core/brdf.h),
-// and the ray tracers evaluate it. tests/gl/brdf_test.cpp runs both, the GLSL in a
+// and the ray tracers evaluate it. tests/core/brdf_test.cpp runs both, the GLSL in a
 // compute shader, over a grid of angles and parameters and demands agreement.
 //
 // So this file is written in what the two languages share: float literals with an f
@@ -309,7 +309,7 @@ BRDF_INLINE float sheenScaling(vec3 sheenColor, float sheenAlbedo) {
 //   a sheen lobe of colour sheenColor, which dims the base by sheenScaling (above):
 //   f = sheenColor sheenBrdf + base sheenScaling, all under the coat.
 // With dielectricF0 = 0.04, dielectricF90 = 1, no coat, no transmission and no sheen
-// it equals metallicRoughnessBrdf (tests/gl/brdf_test.cpp).
+// it equals metallicRoughnessBrdf (tests/core/brdf_test.cpp).
 BRDF_INLINE vec3 layeredBrdf(vec3 n, vec3 toEye, vec3 l, vec3 albedo, float metallic, float roughness,
                              vec3 dielectricF0, float dielectricF90, vec3 nc, float clearcoat,
                              float clearcoatRoughness, float transmission, vec3 sheenColor, float sheenRoughness,

@@ -29,7 +29,7 @@
 // feature run the same programs as before. With it, each texture fetch costs a
 // select and a mat3 multiply more; the variant is built only for such materials.
 
-// The slots, as engine::TextureSlot numbers them (tests/unit/shader_source_test
+// The slots, as engine::TextureSlot numbers them (tests/gl/shader_source_test
 // holds the two together).
 const int SLOT_BASE_COLOR = 0;
 const int SLOT_NORMAL = 1;

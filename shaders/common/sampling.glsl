@@ -3,7 +3,7 @@
 // the very same text with GLM (engine/core/sampling.h) for the CPU path tracer
 // (raytrace/sampling.h, bsdf.cpp) and the split-sum table (core/ibl_tables.cpp).
 // tests/raytrace/sampling_test.cpp checks every sampler against its pdf with a
-// chi-square test; tests/gl/sampling_test.cpp runs this text on the GPU's compiler
+// chi-square test; tests/core/shading_texts_test.cpp runs this text on the GPU's compiler
 // and demands the C++ build's bits.
 //
 // Written in the subset of the two languages that common/brdf.glsl keeps to (float
@@ -138,7 +138,7 @@ BRDF_INLINE float ggxAnisotropicG1(vec3 w, vec2 alpha) {
 // that face away, so grazing views stay as cheap as head-on ones. wo.z > 0. The
 // uniform point on the disk comes as its radius r and (cos phi, sin phi), the only
 // values that come through GLSL's cos and sin: all else rounds alike in the two
-// languages (tests/gl/sampling_test.cpp holds this part to the bit).
+// languages (tests/core/shading_texts_test.cpp holds this part to the bit).
 BRDF_INLINE vec3 ggxVisibleNormalAt(vec3 wo, vec2 alpha, float r, vec2 cosSinPhi) {
   vec3 vh = rtNormalize(vec3(alpha.x * wo.x, alpha.y * wo.y, wo.z));
   precise float lensq = vh.x * vh.x + vh.y * vh.y;

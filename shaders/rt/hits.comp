@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/gpu_trace_test.cpp: one ray per invocation through rt/trace.glsl, its
+// tests/gputrace/gpu_trace_test.cpp: one ray per invocation through rt/trace.glsl, its
 // closest hit and whether any hit exists, for comparison with the CPU's RtScene.
 #include "rt/trace.glsl"
 

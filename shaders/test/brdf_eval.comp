@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/brdf_test.cpp: evaluates common/brdf.glsl on the GPU's compiler for a grid
+// tests/core/brdf_test.cpp: evaluates common/brdf.glsl on the GPU's compiler for a grid
 // of cases, so that the C++ build of the same text (core/brdf.h) can be compared.
 #include "common/brdf.glsl"
 

@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/display_output_test.cpp: common/output.glsl's display curves as a frame
+// tests/render/display_output_test.cpp: common/output.glsl's display curves as a frame
 // stores them, one value a pixel (row-major from the bottom row), to compare with
 // core/srgb_curve.h's exact bytes: under DIRECT_OUTPUT (TONE_MAP 2, EXPOSURE 1) a
 // direct-output fragment's ACES and sRGB, else the post pass's sRGB curve.

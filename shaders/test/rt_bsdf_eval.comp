@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/gpu_bsdf_test.cpp: the GPU path tracer's scattering (rt/bsdf.glsl) at given
+// tests/gputrace/gpu_bsdf_test.cpp: the GPU path tracer's scattering (rt/bsdf.glsl) at given
 // materials, normals, directions and random numbers, so that the CPU's Bsdf
 // (raytrace/bsdf.cpp) can be compared case by case.
 #include "rt/math.glsl"

@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/gpu_material_test.cpp: rtMaterialAt (rt/material_at.glsl), the GPU
+// tests/gputrace/gpu_material_test.cpp: rtMaterialAt (rt/material_at.glsl), the GPU
 // tracers' material at a hit, for given hits (material, uv sets, footprint, shading
 // normal, uv gradient, height, vertex colour), so that RtScene::materialAt can be
 // compared case by case. Built with rt/trace.glsl's constants and RT_TEXTURES.

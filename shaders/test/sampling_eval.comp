@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/sampling_test.cpp: the path tracers' sampling routines
+// tests/core/shading_texts_test.cpp: the path tracers' sampling routines
 // (common/sampling.glsl) on the GPU's compiler, for random inputs, so that the C++
 // build of the same text (core/sampling.h) can be compared case by case.
 #include "rt/math.glsl"

@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/vertex_runs_gl_test.cpp: see vertex_runs.vert.
+// tests/render/vertex_runs_gl_test.cpp: see vertex_runs.vert.
 in vec3 v_normal;
 layout(location = 0) out vec4 o_color;
 

@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/vertex_runs_gl_test.cpp: a mesh's normals as colours, with depth, so
+// tests/render/vertex_runs_gl_test.cpp: a mesh's normals as colours, with depth, so
 // that any vertex its runs copy wrong shows in the pixels.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

@@ -1,5 +1,5 @@
 #version 450 core
-// tests/gl/sampling_test.cpp: the view's terms of glTF's layers
+// tests/core/shading_texts_test.cpp: the view's terms of glTF's layers
 // (common/view_layers.glsl) on the GPU's compiler, for random inputs, so that the C++
 // build of the same text (core/view_layers.h) can be compared case by case.
 #include "rt/math.glsl"

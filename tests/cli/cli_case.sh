@@ -474,7 +474,7 @@ PY
     expect 0 "ray traced on the GPU 64x48" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" --mode raytrace --device gpu \
       --offscreen --size 64x48 --screenshot rtg.png
     cmp -s rtc.png rtg.png || { echo "FAIL: the GPU's image differs from the CPU's"; exit 1; }
-    # Textures, alpha and single-sided faces: materials.json (tests/gl/gpu_trace_test.cpp
+    # Textures, alpha and single-sided faces: materials.json (tests/gputrace/gpu_trace_test.cpp
     # judges the images; llvmpipe gives the same bytes, a mean of one level allows a GPU
     # whose log2 or atan rounds otherwise).
     rm -f rtc.png rtg.png
@@ -490,7 +490,7 @@ PY
     # refuses what it cannot draw yet with exit 2 and one line. llvmpipe gives the
     # same bytes at this size (the same paths from the same random numbers; at
     # 640x360 a few pixels by up to 5 levels); a mean of one level allows a GPU that
-    # rounds otherwise a few diverged paths. tests/gl/gpu_path_test.cpp judges the
+    # rounds otherwise a few diverged paths. tests/gputrace/gpu_path_test.cpp judges the
     # images themselves.
     for room in cornell cornell_soft; do
       rm -f ptc.png ptg.png ptg.json
@@ -547,7 +547,7 @@ PY
     cmp gpw.png gpo.png || { echo "FAIL: the window's path-traced image is not the offscreen one"; exit 1; }
     echo "ok: identical bytes"
     # --animate: the scene moves, each pass posed at its frame's time, the walking
-    # character's BVH refitted on the GPU (tests/gl/gpu_refit_test.cpp checks the
+    # character's BVH refitted on the GPU (tests/gputrace/gpu_refit_test.cpp checks the
     # images). Offscreen a whole image a frame: the last frame, posed by refits from
     # the first frame's pose, is the still of its time byte for byte, Whitted and
     # path traced. The CPU tracer refuses it.

@@ -123,6 +123,25 @@ class ShaderErrors : public GlTest {
 };
 ENGINE_INSTANTIATE_OFFSCREEN(ShaderErrors);
 
+// A uniform the linked program does not use is ignored, as GL ignores it; one that no
+// stage declares (a typo, a stale name) is reported, once.
+TEST_P(ShaderErrors, SettingAnUndeclaredUniformIsReported) {
+  write("u.comp",
+        "#version 450\nlayout(local_size_x = 1) in;\nuniform float u_unused;\n"
+        "#ifdef NEVER\nuniform float u_hidden;\n#endif\nvoid main() {}\n");
+  auto program = gl::Program::build(dir_.string(), {{GL_COMPUTE_SHADER, "u.comp"}});
+  ASSERT_TRUE(program.ok()) << program.error().message;
+  gl::forgetUndeclaredUniforms();
+  program->set("u_unused", 1.0f);
+  program->set("u_hidden", 1.0f);
+  EXPECT_TRUE(gl::undeclaredUniformsSet().empty());
+  program->set("u_typo", 1.0f);
+  program->set("u_typo", 2.0f);
+  program->set("u_typo[1].x", 2.0f);
+  EXPECT_EQ(gl::undeclaredUniformsSet(), (std::vector<std::string>{"u.comp: u_typo", "u.comp: u_typo[1].x"}));
+  gl::forgetUndeclaredUniforms();
+}
+
 TEST_P(ShaderErrors, CompileErrorNamesTheIncludedFileAndLine) {
   write("helper.glsl", "float helper() {\n  return undefinedThing;\n}\n");
   write("main.frag",

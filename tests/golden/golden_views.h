@@ -18,6 +18,7 @@
 #include "app/runner.h"
 #include "asset/scene_desc.h"
 #include "core/image.h"
+#include "../support/no_undeclared_uniforms.h"
 
 namespace engine::test {
 

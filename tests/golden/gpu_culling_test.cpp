@@ -3,7 +3,7 @@
 // rooms; the terrain from three views; the material scene; the viewer's robot with
 // LBS and DQS and its Khronos samples, instancing included) rendered with
 // render.gpu_culling on and off, through both backends, as the golden test
-// renders them: the same bytes. tests/gl/gpu_cull_test.cpp shows
+// renders them: the same bytes. tests/render/gpu_cull_test.cpp shows
 // that a non-conservative culling test does change an image.
 #include <gtest/gtest.h>
 

@@ -148,7 +148,7 @@ TEST(IblVsPathTrace, IblApproachesThePathTracedEnvironmentLight) {
   // without its 1 / pi (60.4 rough), the roughest level for every surface (11.9
   // metal), the unfiltered environment for every surface (2.11 metal, just past
   // its limit: this smooth sky tells a glossy lobe from a mirror only at the
-  // horizon; tests/gl/ibl_test.cpp checks the convolution itself).
+  // horizon; tests/render/ibl_test.cpp checks the convolution itself).
   EXPECT_LT(rough.ibl.mean, 2.3);
   EXPECT_LT(metal.ibl.mean, 2.0);
   EXPECT_GT(rough.ibl.psnr, 38.0);

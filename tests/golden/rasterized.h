@@ -8,6 +8,7 @@
 
 #include "app/runner.h"
 #include "core/image.h"
+#include "../support/no_undeclared_uniforms.h"
 #include "scene_game.h"
 
 namespace engine::test {

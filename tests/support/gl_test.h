@@ -11,6 +11,7 @@
 #include "gl/resources.h"
 #include "gl/shader.h"
 #include "platform/gl_context.h"
+#include "no_undeclared_uniforms.h"
 
 namespace engine::test {
 

@@ -1,6 +1,6 @@
 #pragma once
-// What the GPU layout's tests share (tests/raytrace/gpu_layout_test.cpp, the CPU
-// twin; tests/gl/gpu_trace_test.cpp, the GPU): a two-level mesh scene, rays that
+// What the GPU layout's tests share (tests/gputrace/gpu_layout_test.cpp, the CPU
+// twin; tests/gputrace/gpu_trace_test.cpp, the GPU): a two-level mesh scene, rays that
 // include ones aimed exactly at shared vertices and edges, and the CPU's closest hit
 // with the id the GPU layout gives it (RtScene::intersect's order of shapes).
 #include <algorithm>

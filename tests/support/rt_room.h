@@ -1,5 +1,5 @@
 #pragma once
-// The course room as the GPU tracer's image tests draw it (tests/gl/gpu_trace_test.cpp,
+// The course room as the GPU tracer's image tests draw it (tests/gputrace/gpu_trace_test.cpp,
 // the Whitted integrator; gpu_path_test.cpp, the path tracer): cornell_soft.json's
 // room and area light, the point light of cornell.json, a sun through the open front,
 // a box on the floor (12 flat triangles, through the scene file) and, in a BVH group

@@ -1,6 +1,6 @@
 #pragma once
 // The room of support/rt_room.h with textures sampled every way the tracers sample
-// them, for the GPU tracers' image tests (tests/gl/gpu_trace_test.cpp,
+// them, for the GPU tracers' image tests (tests/gputrace/gpu_trace_test.cpp,
 // gpu_path_test.cpp): odd-sized images (their mipmaps halve unevenly), every wrap
 // mode, a KHR_texture_transform on the second uv set, base colour, emissive and
 // metallic-roughness textures on planes, spheres and meshes (one without uvs), uvs

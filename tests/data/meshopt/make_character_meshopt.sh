@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates character_meshopt.glb, the EXT_meshopt_compression sample of the
-# loader tests (tests/anim/compressed_mesh_test.cpp), from the project's own robot
+# loader tests (tests/asset/compressed_mesh_test.cpp), from the project's own robot
 # (assets/models/character.gltf, so no third-party licence comes along). Run by
 # hand when the robot changes; the .glb is committed (about 30 KB). Needs Debian's
 # gltfpack (apt-get install gltfpack; 0.18 was used):

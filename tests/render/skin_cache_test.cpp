@@ -124,7 +124,7 @@ int compareInstance(ShaderVariants& variants, const CharacterInstance& instance,
       std::printf("  against the vertex shader: %.2f ulps of the largest coordinate\n", ulps);
       EXPECT_LE(ulps, kVertexShaderUlps) << model.path << " node " << n << " primitive " << p;
       // LBS normals take the blended matrix on the GPU, its cofactor on the CPU
-      // (tests/gl/morph_test.cpp says why): compared for DQS and rigid only.
+      // (tests/render/morph_gl_test.cpp says why): compared for DQS and rigid only.
       if (!normals.empty() && (mode == SkinMode::DualQuat || !skinned)) {
         EXPECT_LE(largestAngleError(gpu.normals, normals), 1e-5) << "normals, node " << n;
       }

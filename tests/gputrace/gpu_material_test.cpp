@@ -21,7 +21,7 @@
 #include "gl/resources.h"
 #include "gl/shader.h"
 #include "gputrace/gpu_materials.h"
-#include "gputrace/tracer_state.h"
+#include "gputrace/gpu_tracer_impl.h"
 #include "gputrace/gpu_layout.h"
 #include "gputrace/gpu_textures.h"
 

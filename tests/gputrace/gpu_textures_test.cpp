@@ -1,7 +1,7 @@
 // gputrace/gpu_textures.h and the layout's texture coordinates: what the GPU tracer
 // samples is the CPU tracer's own data, texel for texel, at the indices the
 // materials hold (the shaders' sampling is judged against the CPU's images in
-// tests/gl/gpu_trace_test.cpp and gpu_path_test.cpp).
+// tests/gputrace/gpu_trace_test.cpp and gpu_path_test.cpp).
 #include <gtest/gtest.h>
 
 #include "../support/rt_textured.h"

@@ -133,3 +133,23 @@ TEST(ShaderBindings, MaterialSlotsAreTextureSlotNumbers) {
   EXPECT_NE(text.find("uniform mat3 u_uvTransform[" + std::to_string(kTextureSlots) + "];"), std::string::npos);
   EXPECT_NE(text.find("uniform int u_texCoord[" + std::to_string(kTextureSlots) + "];"), std::string::npos);
 }
+
+// What Program::location checks a missing name against: every declarator of every
+// plain uniform, whatever #ifdef it sits under; not a block's members.
+TEST(DeclaredUniforms, EveryDeclaratorOfEveryPlainUniform) {
+  const std::string source = R"(#version 450
+layout(binding = 0) uniform sampler2D u_tex;
+uniform highp float u_a, u_b[4], u_c = 1.0;
+#ifdef NEVER
+uniform vec3 u_hidden;
+#endif
+uniform Light u_lights[2];
+layout(std140, binding = 1) uniform Frame { mat4 u_inBlock; } frame;
+float uniformity;  // not a declaration
+void main() {}
+)";
+  EXPECT_EQ(gl::declaredUniforms(source),
+            (std::vector<std::string>{"u_a", "u_b", "u_c", "u_hidden", "u_lights", "u_tex"}));
+  EXPECT_TRUE(gl::declaredUniforms("void main() {}").empty());
+  EXPECT_TRUE(gl::declaredUniforms("uniform").empty());  // cut off: no crash, nothing
+}

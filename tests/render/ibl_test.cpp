@@ -88,7 +88,7 @@ TEST_P(Ibl, PrefilteredLevelZeroIsThePathTracersEnvironment) {
 // The renderer's SH irradiance against the projection of the path tracer's own
 // environment, evaluated on the CPU at the cube's texel centres: the cube's
 // orientation, the sky's colours and the read-back in one. (How far order 2 is from
-// the true irradiance is tests/unit/ibl_tables_test.cpp's matter.) Measured worst
+// the true irradiance is tests/core/ibl_tables_test.cpp's matter.) Measured worst
 // 4.3e-4 relative (half floats, and level 0's directions, below); the limit is
 // 1e-3, and a face turned or mirrored moves E by percents.
 TEST_P(Ibl, ShIrradianceIsTheEnvironments) {

@@ -1,5 +1,5 @@
 // GPU culling's CPU twin (render/cull_math.h): clusters, the Hi-Z pyramid and the
-// box test, checked against brute force. tests/gl/gpu_cull_test.cpp checks the
+// box test, checked against brute force. tests/render/gpu_cull_test.cpp checks the
 // compute shaders against this twin.
 #include <gtest/gtest.h>
 
@@ -115,7 +115,7 @@ TEST(CullMath, ABoxIsOccludedOnlyWhenWhollyBehind) {
   EXPECT_EQ(testBox(view, id, {3, -1, -13}, {4, 1, -11}), Verdict::Visible);
   EXPECT_EQ(testBox(view, id, {-1, -1, -13}, {1, 1, -11}), Verdict::Visible);  // across the wall's edge
   // A non-conservative margin culls the box that pokes through: what the image
-  // tests (tests/gl/gpu_cull_test.cpp) must then catch.
+  // tests (tests/render/gpu_cull_test.cpp) must then catch.
   view.hiz = &full;
   view.depthMargin = -0.1f;
   EXPECT_EQ(testBox(view, id, {-1, -1, -13}, {1, 1, -9.9f}), Verdict::Occluded);

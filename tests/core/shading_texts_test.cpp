@@ -206,7 +206,7 @@ ENGINE_INSTANTIATE_OFFSCREEN(ViewLayersText);
 
 // 16384 random cases. The sheen's scaling and the stretch's frame the same bits on
 // both sides (IEEE arithmetic and sqrt only). The film's Fresnel within 1e-5 per
-// unit of its largest phase, as tests/gl/brdf_test.cpp holds iridescenceFresnel:
+// unit of its largest phase, as tests/core/brdf_test.cpp holds iridescenceFresnel:
 // the phase, up to 100 radians at 1000 nm, is rounded by some 1e-5 radians, which
 // the driver's cosine passes on in full. Absolute, not relative: the Fresnel is a
 // sum of terms of up to 1 that nearly cancel at times (a reflectance of 8e-5 came
