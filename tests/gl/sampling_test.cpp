@@ -1,7 +1,7 @@
-// The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl and
-// common/view_layers.glsl run by the GPU's GLSL compiler in a compute shader
-// (test/sampling_eval.comp, test/view_layers_eval.comp) and by the C++ build of the
-// same text (core/sampling.h, core/view_layers.h: what the CPU tracers call) over
+// The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl,
+// common/view_layers.glsl and common/sky.glsl run by the GPU's GLSL compiler in a
+// compute shader (test/*_eval.comp) and by the C++ build of the same text
+// (core/sampling.h, core/view_layers.h, core/sky.h: what the CPU tracers call) over
 // random normals, directions, roughnesses, uniform numbers and layers: every
 // routine of the texts, each with the same inputs on both sides.
 #include <gtest/gtest.h>
@@ -16,6 +16,7 @@
 #include "../support/gl_test.h"
 #include "../support/random_draws.h"
 #include "core/sampling.h"
+#include "core/sky.h"
 #include "core/view_layers.h"
 
 using namespace engine;
@@ -244,6 +245,51 @@ TEST_P(ViewLayersText, GlslAndCppAgree) {
   EXPECT_GT(filmed, int(cases.size()) / 2);
   EXPECT_EQ(exactDiffer, 0);
   EXPECT_LE(worstFilm, 1.0);
+}
+
+struct SkyCase {
+  glm::vec4 d, horizon, zenith, ground;
+};
+
+class SkyText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(SkyText);
+
+// 65536 random directions (a third on the horizon's either side, where the gradient
+// turns, and half of them near a random sun, many inside the disk's fading ring),
+// random colours, the disk drawn or not. Limits: within 4 ulps of the largest of the
+// value and 1: the text's mix and smoothstep are the driver's own on the GPU and
+// glm's in C++, which may round otherwise (half the cases differ in a last bit on
+// llvmpipe); sqrt and the sum are IEEE's. Measured 3 ulps on llvmpipe.
+TEST_P(SkyText, GlslAndCppAgree) {
+  std::mt19937 rng(20261208);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<SkyCase> cases;
+  int ring = 0;
+  for (int i = 0; i < (1 << 16); ++i) {
+    const glm::vec3 sun = test::randomUnitVector(rng);
+    glm::vec3 d = test::randomUnitVector(rng);
+    if (i % 2) d = glm::normalize(sun + 0.03f * test::randomUnitVector(rng) * unit(rng));
+    if (i % 3 == 0) d = glm::normalize(glm::vec3(d.x, (i % 2 ? 1e-4f : -1e-4f) * d.y, d.z));
+    const float cosToSun = glm::dot(d, sun), disk = i % 4 == 0 ? 0.0f : 1.0f;
+    ring += cosToSun > 0.9995f && cosToSun < 0.9998f ? 1 : 0;
+    cases.push_back(SkyCase{glm::vec4(d, cosToSun), glm::vec4(test::draw3(unit, rng), disk),
+                            glm::vec4(test::draw3(unit, rng), 0.0f), glm::vec4(test::draw3(unit, rng), 0.0f)});
+  }
+  const std::vector<glm::vec4> gpu = test::runCases<glm::vec4>("test/sky_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  double worst = 0.0;
+  int differ = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const SkyCase& c = cases[i];
+    const glm::vec3 cpu = skytext::gradientSky(glm::vec3(c.d), glm::vec3(c.horizon), glm::vec3(c.zenith),
+                                               glm::vec3(c.ground), c.d.w, c.horizon.w);
+    differ += cpu != glm::vec3(gpu[i]) ? 1 : 0;
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, ulpsApart(cpu[k], gpu[i][k], 1.0f));
+  }
+  std::printf("sky: %zu cases (%d in the sun's ring), %d not the same bits, worst %.3g ulps of max(value, 1)\n",
+              cases.size(), ring, differ, worst);
+  EXPECT_GT(ring, int(cases.size()) / 20);
+  EXPECT_LE(worst, 4.0);
 }
 
 }  // namespace
