@@ -1,6 +1,6 @@
 #version 450 core
 // The sky behind everything: a gradient from horizon to zenith, a darker ground and
-// a sun disk; or, with SKY_IMAGE, a lat-long image (common/latlong.glsl) times an
+// a sun disk (common/sky.glsl, the tracers' text too); or, with SKY_IMAGE, a lat-long image (common/latlong.glsl) times an
 // intensity, turned about +y. Both are linear radiance, as the ray tracer's
 // environment (raytrace/environment.h) gives it.
 in vec3 v_direction;
@@ -27,6 +27,7 @@ vec3 skyRadiance(vec3 d) {
   return textureGrad(u_skyImage, uv, dx, dy).rgb * u_skyIntensity;
 }
 #else
+#include "common/sky.glsl"
 uniform vec3 u_sunDirection;
 uniform vec3 u_skyColor;
 uniform vec3 u_horizonColor;
@@ -34,10 +35,7 @@ uniform vec3 u_groundColor;
 uniform float u_sunDisk;  // 1: draw the disk; 0: the scene has no sun or asked for none
 
 vec3 skyRadiance(vec3 d) {
-  vec3 color = d.y >= 0.0 ? mix(u_horizonColor, u_skyColor, pow(d.y, 0.5))
-                          : mix(u_horizonColor, u_groundColor, pow(-d.y, 0.5));
-  float sun = smoothstep(0.9995, 0.9998, dot(d, u_sunDirection));
-  return color + vec3(4.0, 3.6, 3.0) * (sun * u_sunDisk);
+  return gradientSky(d, u_horizonColor, u_skyColor, u_groundColor, dot(d, u_sunDirection), u_sunDisk);
 }
 #endif
 

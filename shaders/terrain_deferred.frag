@@ -19,7 +19,7 @@ void main() {
   vec4 surface = texelFetch(u_surface, ivec2(gl_FragCoord.xy), 0);
   vec3 position = normalize(v_direction) * surface.x;
   vec3 n = vec3(surface.y, sqrt(max(1.0 - dot(surface.yz, surface.yz), 0.0)), surface.z);
-  vec2 lod = vec2(surface.w, surface.w + log2(kFarLayerScale));
+  vec2 lod = vec2(surface.w, surface.w + log2(TERRAIN_FAR_LAYER_SCALE));
   vec2 uv = position.xz / u_tileMetres + u_uvOffset;
   o_color = targetColor(terrainColor(position, n, position.y + u_cameraHeight, uv, lod), 1.0);
 }

@@ -6,6 +6,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/image.h"
+#include "core/sky.h"
 
 namespace engine::rt {
 namespace latlong {
@@ -62,18 +63,12 @@ glm::vec3 Environment::radiance(const glm::vec3& dir, bool sunDisk) const {
   return bilinear(uvOf(local)) * intensity_;
 }
 
-// shaders/sky.frag's gradient, as escaped() of the Whitted integrator drew it: from
-// the horizon to the zenith or the ground by the square root of the elevation's sine,
-// and the sun disk, a smoothstep over the cosine.
+// The rasterizer's gradient sky (common/sky.glsl, core/sky.h), with its sun disk
+// where one is asked for and the scene has a sun.
 glm::vec3 Environment::gradient(const glm::vec3& d, bool sunDisk) const {
-  glm::vec3 color = d.y >= 0.0f ? glm::mix(sky_.horizon, sky_.zenith, std::sqrt(d.y))
-                                : glm::mix(sky_.horizon, sky_.ground, std::sqrt(-d.y));
-  if (sunDisk && sky_.sunDisk && sun_) {
-    const float c = glm::dot(d, *sun_);
-    const float s = std::clamp((c - 0.9995f) / (0.9998f - 0.9995f), 0.0f, 1.0f);
-    color += glm::vec3(4.0f, 3.6f, 3.0f) * (s * s * (3.0f - 2.0f * s));
-  }
-  return color;
+  const bool disk = sunDisk && sky_.sunDisk && sun_;
+  return skytext::gradientSky(d, sky_.horizon, sky_.zenith, sky_.ground, disk ? glm::dot(d, *sun_) : 0.0f,
+                              disk ? 1.0f : 0.0f);
 }
 
 // GL's GL_LINEAR between texel centres, repeating in u and clamped in v (the sky

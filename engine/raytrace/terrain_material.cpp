@@ -29,22 +29,18 @@ RtTerrainMaterial::RtTerrainMaterial(double originY, float heightScale)
 }
 
 TerrainLayerSample RtTerrainMaterial::sample(glm::vec2 uv, float footprint, double y, float normalY) const {
-  // terrain.frag's main: two scales of each layer break up visible repetition.
+  // Two scales of each layer break up visible repetition (terrain_layers.glsl).
   const glm::vec2 uvFar = uv * terrain::kLayerFarScale;
   const float footprintFar = footprint * terrain::kLayerFarScale;
   // The three images are made alike (tapsLike), so each scale's taps are found once
   // and read in each layer: what sample() gives per layer, bit for bit.
   const RtTexture::Taps near = layers_[0].taps(uv, footprint), far = layers_[0].taps(uvFar, footprintFar);
   const auto at = [&](int layer, const RtTexture::Taps& taps) { return glm::vec3(layers_[std::size_t(layer)].read(taps)); };
-  const glm::vec3 grass = at(0, near) * at(0, far) * 2.0f;
-  const glm::vec3 rock = at(1, near) * at(1, far) * 2.0f;
-  const glm::vec3 snow = at(2, near);
-  const glm::vec3 w = terrain::layerWeights(float(y - originY_) / heightScale_, 1.0f - normalY, rock.r * 2.0f - 0.5f);
-  TerrainLayerSample s;
-  s.albedo = grass * w.x + rock * w.y + snow * w.z;
-  s.roughness = glm::dot(w, terrain::kLayerRoughness);
-  s.specular = glm::mix(terrain::kLayerSpecular, terrain::kSnowSpecular, w.z);
-  return s;
+  // The blend is the rasterizer's text (common/terrain_layers.glsl).
+  const terrain::TerrainLayers t = terrain::terrainLayersOf(at(0, near), at(0, far), at(1, near), at(1, far),
+                                                            at(2, near), float(y - originY_) / heightScale_,
+                                                            1.0f - normalY);
+  return TerrainLayerSample{t.albedo, t.roughness, t.specular};
 }
 
 }  // namespace engine::rt

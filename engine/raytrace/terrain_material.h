@@ -2,8 +2,9 @@
 // The terrain's layered material for the ray tracer, as shaders/terrain.frag shades
 // it: grass, rock and snow images (the bytes the terrain renderer uploads, made by
 // terrain/materials.h), each sampled at two scales, blended per hit by the height
-// above the terrain origin and the slope of the shading normal (layerWeights), and
-// the roughness and classic highlight blended with the same weights.
+// above the terrain origin and the slope of the shading normal, and the roughness
+// and classic highlight blended with the same weights: the rasterizer's text,
+// shaders/common/terrain_layers.glsl (terrain::terrainLayersOf).
 #include <array>
 
 #include <glm/glm.hpp>

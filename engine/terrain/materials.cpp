@@ -49,24 +49,11 @@ Look lookOf(TerrainLayer layer) {
   return {};
 }
 
-// GLSL's smoothstep.
-float smoothstep(float edge0, float edge1, float x) {
-  const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 }  // namespace
 
 glm::vec2 layerUvOffset(const glm::dvec3& cameraFromOrigin) {
   const glm::dvec2 tiles = glm::dvec2(cameraFromOrigin.x, cameraFromOrigin.z) / double(kLayerTileMetres);
   return glm::vec2(tiles - glm::floor(tiles));
-}
-
-glm::vec3 layerWeights(float height01, float slope, float jitter) {
-  const float rock = smoothstep(0.28f, 0.5f, slope);
-  const float snow = smoothstep(0.6f, 0.7f, height01 + 0.05f * jitter) * (1.0f - smoothstep(0.35f, 0.6f, slope));
-  const float grass = std::max(1.0f - rock - snow, 0.0f);
-  return glm::vec3(grass, rock, snow) / std::max(grass + rock + snow, 1e-4f);
 }
 
 Image makeLayerImage(TerrainLayer layer, int size) {

@@ -26,18 +26,29 @@ Image makeLayerImage(TerrainLayer layer, int size);
 // (xz / kLayerTileMetres + this) stay small and exact far from the origin.
 glm::vec2 layerUvOffset(const glm::dvec3& cameraFromOrigin);
 
-// How the layers blend, as shaders/terrain.frag shades them (its layerWeights and
-// main): the two texture scales, and the roughness and classic highlight per layer.
-inline constexpr float kLayerFarScale = 0.173f;                       // uvFar = uv * this
-inline constexpr glm::vec3 kLayerRoughness{0.95f, 0.8f, 0.5f};         // dot(w, this)
-inline constexpr float kLayerSpecular = 0.02f, kSnowSpecular = 0.25f;  // mix(.., .., w.z)
-inline constexpr float kLayerShininess = 24.0f;
+// How the layers blend: shaders/common/terrain_layers.glsl, the rasterizer's and the
+// GPU tracers' text, compiled as C++ (terrainLayersOf, terrainLayerWeights).
+namespace layertext {
+// GLSL's built-ins and types, for the included text only (as core/brdf.h does).
+using glm::dot;
+using glm::max;
+using glm::mix;
+using glm::smoothstep;
+using glm::vec3;
 
-// The (grass, rock, snow) weights, summing to one, at `height01` (metres above the
-// terrain origin over the height scale), `slope` (1 - n.y of the unit shading
-// normal) and `jitter` (rock.r * 2 - 0.5 of the rock layer's linear colour): rock
-// where steep, snow high up but not on cliffs, grass elsewhere. The C++ twin of
-// layerWeights in shaders/terrain.frag, operation for operation: change both together.
-glm::vec3 layerWeights(float height01, float slope, float jitter);
+#define BRDF_INLINE inline
+#include "common/terrain_layers.glsl"
+#undef BRDF_INLINE
+}  // namespace layertext
+using layertext::TerrainLayers;
+using layertext::terrainLayersOf;
+// The far scale's uv (uvFar = uv * this) and the classic highlight's exponent.
+inline const float kLayerFarScale = layertext::TERRAIN_FAR_LAYER_SCALE;
+inline const float kLayerShininess = layertext::TERRAIN_LAYER_SHININESS;
+
+// The (grass, rock, snow) weights, summing to one (the text's terrainLayerWeights).
+inline glm::vec3 layerWeights(float height01, float slope, float jitter) {
+  return layertext::terrainLayerWeights(height01, slope, jitter);
+}
 
 }  // namespace engine::terrain

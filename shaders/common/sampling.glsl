@@ -1,7 +1,7 @@
 // The path tracers' sampling routines, each with the density it draws from, written
 // once: the GPU path tracer includes this file (rt/pathtrace.comp), and C++ compiles
 // the very same text with GLM (engine/core/sampling.h) for the CPU path tracer
-// (raytrace/sampling.h, bsdf.cpp) and the split-sum table (core/ibl_tables.cpp).
+// (raytrace/sampling.h, common/bsdf.glsl) and the split-sum table (core/ibl_tables.cpp).
 // tests/raytrace/sampling_test.cpp checks every sampler against its pdf with a
 // chi-square test; tests/core/shading_texts_test.cpp runs this text on the GPU's compiler
 // and demands the C++ build's bits.

@@ -1,51 +1,27 @@
 // RtScene::materialAt on the GPU (raytrace/rt_scene.cpp): a hit's material, its
 // vertex colour and, built with RT_TEXTURES, its textures applied at the hit's uv with the ray cone's footprint (rt/texture.glsl):
 // the base colour's, metallic-roughness's (roughness times G, metallic times B), the
-// emissive one's, glTF's layers' and the terrain's layered material (raytrace/terrain_material.cpp,
-// terrain::layerWeights), operation for operation. Change both together. After
+// emissive one's, glTF's layers' and the terrain's layered material (raytrace/terrain_material.cpp;
+// the blend is common/terrain_layers.glsl), operation for operation. Change both together. After
 // rt/surface.glsl and rt/texture.glsl.
 
 // A hit's texture reads at most: base colour, metallic-roughness, emissive, glTF's 12
 // layer slots, the terrain's five.
 #define RT_MOST_READS 20
 
-// terrain/materials.h's constants.
-const float RT_LAYER_FAR_SCALE = 0.173;
-const vec3 RT_LAYER_ROUGHNESS = vec3(0.95, 0.8, 0.5);
-const float RT_LAYER_SPECULAR = 0.02, RT_SNOW_SPECULAR = 0.25;
-
-// terrain/materials.cpp's smoothstep, not GLSL's (which may round otherwise).
-float rtSmoothstep(float edge0, float edge1, float x) {
-  precise float t = clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
-  precise float r = t * t * (3.0 - 2.0 * t);
-  return r;
-}
-
-// terrain::layerWeights: (grass, rock, snow), summing to one.
-vec3 rtLayerWeights(float height01, float slope, float jitter) {
-  float rock = rtSmoothstep(0.28, 0.5, slope);
-  precise float snow = rtSmoothstep(0.6, 0.7, height01 + 0.05 * jitter) * (1.0 - rtSmoothstep(0.35, 0.6, slope));
-  precise float grass = max(1.0 - rock - snow, 0.0);
-  precise vec3 w = vec3(grass, rock, snow) / max(grass + rock + snow, 1e-4);
-  return w;
-}
+#include "common/terrain_layers.glsl"
 
 // RtTerrainMaterial::sample into the material from its five reads (grass near and
-// far, rock near and far, snow): its albedo times the layers', their roughness and
-// highlight.
+// far, rock near and far, snow): its albedo times the layers' blend
+// (common/terrain_layers.glsl, the CPU's and the rasterizer's text), their roughness
+// and highlight.
 void rtApplyTerrain(inout RtMaterial m, vec4 reads[RT_MOST_READS], int first, double y, float normalY) {
-  precise vec3 grass = reads[first].xyz * reads[first + 1].xyz * 2.0;
-  precise vec3 rock = reads[first + 2].xyz * reads[first + 3].xyz * 2.0;
-  vec3 snow = reads[first + 4].xyz;
   precise float height01 = float(y - m.terrainOriginYHeightScale.x) / float(m.terrainOriginYHeightScale.y);
-  precise float jitter = rock.r * 2.0 - 0.5;
-  vec3 w = rtLayerWeights(height01, 1.0 - normalY, jitter);
-  precise vec3 albedo = grass * w.x + rock * w.y + snow * w.z;
-  m.colorAmbient.xyz = m.colorAmbient.xyz * albedo;
-  precise float roughness = w.x * RT_LAYER_ROUGHNESS.x + w.y * RT_LAYER_ROUGHNESS.y + w.z * RT_LAYER_ROUGHNESS.z;
-  m.metallicRoughnessUnlit.y = roughness;
-  precise float specular = RT_LAYER_SPECULAR * (1.0 - w.z) + RT_SNOW_SPECULAR * w.z;
-  m.diffuseSpecularShininessReflection.y = specular;
+  TerrainLayers t = terrainLayersOf(reads[first].xyz, reads[first + 1].xyz, reads[first + 2].xyz,
+                                    reads[first + 3].xyz, reads[first + 4].xyz, height01, 1.0 - normalY);
+  m.colorAmbient.xyz = m.colorAmbient.xyz * t.albedo;
+  m.metallicRoughnessUnlit.y = t.roughness;
+  m.diffuseSpecularShininessReflection.y = t.specular;
 }
 
 // The ray cone's footprint at the hit (raytrace/ray_cone.h's footprintAt): the cone
@@ -135,8 +111,8 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
     width[reads++] = footprint;
   }
   if (t.w >= 0) {
-    precise vec2 uvFar = s.uv0 * RT_LAYER_FAR_SCALE;
-    precise float footprintFar = footprint * RT_LAYER_FAR_SCALE;
+    precise vec2 uvFar = s.uv0 * TERRAIN_FAR_LAYER_SCALE;
+    precise float footprintFar = footprint * TERRAIN_FAR_LAYER_SCALE;
     for (int k = 0; k < 5; ++k) {
       texture[reads + k] = m.terrainLayers[k / 2];
       uv[reads + k] = k % 2 == 0 ? s.uv0 : uvFar;

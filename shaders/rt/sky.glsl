@@ -1,8 +1,9 @@
 // Environment::radiance, shared by the GPU integrators: the background colour, the
-// gradient sky, or a lat-long image (its linear RGB as Environment holds it, sampled
+// gradient sky (common/sky.glsl, the CPU's and the rasterizer's text), or a lat-long image (its linear RGB as Environment holds it, sampled
 // as Environment::bilinear does: wrapped around, clamped at the poles) times its
 // intensity, turned about +y. After rt/math.glsl.
 #include "common/latlong.glsl"
+#include "common/sky.glsl"
 
 // 0 the background colour, 1 the gradient sky (an image: RT_SKY_IMAGE).
 uniform int u_skyKind;
@@ -45,11 +46,5 @@ vec3 rtSky(vec3 dir, bool sunDisk) {
   return radiance;
 #endif
   vec3 d = rtNormalize(dir);
-  vec3 color = d.y >= 0.0 ? mix(u_horizon, u_zenith, sqrt(d.y)) : mix(u_horizon, u_ground, sqrt(-d.y));
-  if (sunDisk && u_sunDisk != 0) {
-    float c = rtDot(d, u_sun);
-    float s = clamp((c - 0.9995) / (0.9998 - 0.9995), 0.0, 1.0);
-    color += vec3(4.0, 3.6, 3.0) * (s * s * (3.0 - 2.0 * s));
-  }
-  return color;
+  return gradientSky(d, u_horizon, u_zenith, u_ground, rtDot(d, u_sun), sunDisk && u_sunDisk != 0 ? 1.0 : 0.0);
 }

@@ -1,7 +1,8 @@
 #version 450 core
-// tests/gputrace/gpu_bsdf_test.cpp: the GPU path tracer's scattering (rt/bsdf.glsl) at given
-// materials, normals, directions and random numbers, so that the CPU's Bsdf
-// (raytrace/bsdf.cpp) can be compared case by case.
+// tests/gputrace/gpu_bsdf_test.cpp: the GPU path tracer's scattering (common/bsdf.glsl
+// through rt/bsdf.glsl) at given materials, normals, directions and random numbers,
+// so that the C++ build of the same text (raytrace/bsdf.h's Bsdf) can be compared
+// case by case.
 #include "rt/math.glsl"
 #include "rt/sky.glsl"
 #include "rt/materials.glsl"

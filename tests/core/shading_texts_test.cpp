@@ -1,7 +1,8 @@
-// The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl and
-// common/view_layers.glsl run by the GPU's GLSL compiler in a compute shader
-// (test/sampling_eval.comp, test/view_layers_eval.comp) and by the C++ build of the
-// same text (core/sampling.h, core/view_layers.h: what the CPU tracers call) over
+// The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl,
+// common/view_layers.glsl, common/sky.glsl and common/terrain_layers.glsl run by the
+// GPU's GLSL compiler in a compute shader (test/*_eval.comp) and by the C++ build of
+// the same text (core/sampling.h, core/view_layers.h, core/sky.h,
+// terrain/materials.h: what the CPU tracers call) over
 // random normals, directions, roughnesses, uniform numbers and layers: every
 // routine of the texts, each with the same inputs on both sides.
 #include <gtest/gtest.h>
@@ -16,7 +17,9 @@
 #include "../support/gl_test.h"
 #include "../support/random_draws.h"
 #include "core/sampling.h"
+#include "core/sky.h"
 #include "core/view_layers.h"
+#include "terrain/materials.h"
 
 using namespace engine;
 using engine::test::GlTest;
@@ -244,6 +247,110 @@ TEST_P(ViewLayersText, GlslAndCppAgree) {
   EXPECT_GT(filmed, int(cases.size()) / 2);
   EXPECT_EQ(exactDiffer, 0);
   EXPECT_LE(worstFilm, 1.0);
+}
+
+struct SkyCase {
+  glm::vec4 d, horizon, zenith, ground;
+};
+
+class SkyText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(SkyText);
+
+// 65536 random directions (a third on the horizon's either side, where the gradient
+// turns, and half of them near a random sun, many inside the disk's fading ring),
+// random colours, the disk drawn or not. Limits: within 4 ulps of the largest of the
+// value and 1: the text's mix and smoothstep are the driver's own on the GPU and
+// glm's in C++, which may round otherwise (half the cases differ in a last bit on
+// llvmpipe); sqrt and the sum are IEEE's. Measured 3 ulps on llvmpipe.
+TEST_P(SkyText, GlslAndCppAgree) {
+  std::mt19937 rng(20261208);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<SkyCase> cases;
+  int ring = 0;
+  for (int i = 0; i < (1 << 16); ++i) {
+    const glm::vec3 sun = test::randomUnitVector(rng);
+    glm::vec3 d = test::randomUnitVector(rng);
+    if (i % 2) d = glm::normalize(sun + 0.03f * test::randomUnitVector(rng) * unit(rng));
+    if (i % 3 == 0) d = glm::normalize(glm::vec3(d.x, (i % 2 ? 1e-4f : -1e-4f) * d.y, d.z));
+    const float cosToSun = glm::dot(d, sun), disk = i % 4 == 0 ? 0.0f : 1.0f;
+    ring += cosToSun > 0.9995f && cosToSun < 0.9998f ? 1 : 0;
+    cases.push_back(SkyCase{glm::vec4(d, cosToSun), glm::vec4(test::draw3(unit, rng), disk),
+                            glm::vec4(test::draw3(unit, rng), 0.0f), glm::vec4(test::draw3(unit, rng), 0.0f)});
+  }
+  const std::vector<glm::vec4> gpu = test::runCases<glm::vec4>("test/sky_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  double worst = 0.0;
+  int differ = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const SkyCase& c = cases[i];
+    const glm::vec3 cpu = skytext::gradientSky(glm::vec3(c.d), glm::vec3(c.horizon), glm::vec3(c.zenith),
+                                               glm::vec3(c.ground), c.d.w, c.horizon.w);
+    differ += cpu != glm::vec3(gpu[i]) ? 1 : 0;
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, ulpsApart(cpu[k], gpu[i][k], 1.0f));
+  }
+  std::printf("sky: %zu cases (%d in the sun's ring), %d not the same bits, worst %.3g ulps of max(value, 1)\n",
+              cases.size(), ring, differ, worst);
+  EXPECT_GT(ring, int(cases.size()) / 20);
+  EXPECT_LE(worst, 4.0);
+}
+
+struct TerrainLayersCase {
+  glm::vec4 grassNear, grassFar, rockNear, rockFar, snow, slope;
+};
+struct TerrainLayersResult {
+  glm::vec4 albedo, weights;
+};
+
+class TerrainLayersText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(TerrainLayersText);
+
+// 65536 random layer colours, heights around the snow line and slopes around the
+// rock's and the snow's edges. Limits: within 16 ulps of the largest of the value and
+// 1: the text's smoothstep, mix and dot are the driver's own on the GPU and glm's in
+// C++, which may round otherwise, and the weights' division by their sum and the
+// blend pass a last-bit change of each smoothstep on (measured 7 ulps on llvmpipe;
+// three in ten cases differ in some bit).
+TEST_P(TerrainLayersText, GlslAndCppAgree) {
+  std::mt19937 rng(20261209);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<TerrainLayersCase> cases;
+  int mixed = 0;
+  for (int i = 0; i < (1 << 16); ++i) {
+    TerrainLayersCase c;
+    c.grassNear = glm::vec4(test::draw3(unit, rng), 0.0f);
+    c.grassFar = glm::vec4(test::draw3(unit, rng), 0.0f);
+    c.rockNear = glm::vec4(test::draw3(unit, rng), 0.0f);
+    c.rockFar = glm::vec4(test::draw3(unit, rng), 0.0f);
+    const float height01 = i % 2 ? 0.5f + 0.3f * unit(rng) : 1.4f * unit(rng) - 0.2f;
+    c.snow = glm::vec4(test::draw3(unit, rng), height01);
+    c.slope = glm::vec4(i % 3 ? 0.2f + 0.5f * unit(rng) : unit(rng), 0.0f, 0.0f, 0.0f);
+    cases.push_back(c);
+  }
+  const std::vector<TerrainLayersResult> gpu =
+      test::runCases<TerrainLayersResult>("test/terrain_layers_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  double worst = 0.0;
+  int differ = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const TerrainLayersCase& c = cases[i];
+    const terrain::TerrainLayers t =
+        terrain::terrainLayersOf(glm::vec3(c.grassNear), glm::vec3(c.grassFar), glm::vec3(c.rockNear),
+                                 glm::vec3(c.rockFar), glm::vec3(c.snow), c.snow.w, c.slope.x);
+    const glm::vec3 rock = glm::vec3(c.rockNear) * glm::vec3(c.rockFar) * 2.0f;
+    const glm::vec3 w = terrain::layerWeights(c.snow.w, c.slope.x, rock.x * 2.0f - 0.5f);
+    mixed += w.x < 0.99f && w.y < 0.99f && w.z < 0.99f ? 1 : 0;
+    const TerrainLayersResult cpu{glm::vec4(t.albedo, t.roughness), glm::vec4(w, t.specular)};
+    differ += cpu.albedo != gpu[i].albedo || cpu.weights != gpu[i].weights ? 1 : 0;
+    for (int k = 0; k < 4; ++k) {
+      worst = std::max(worst, ulpsApart(cpu.albedo[k], gpu[i].albedo[k], 1.0f));
+      worst = std::max(worst, ulpsApart(cpu.weights[k], gpu[i].weights[k], 1.0f));
+    }
+  }
+  std::printf("terrain layers: %zu cases (%d with no layer above 0.99), %d not the same bits, worst %.3g ulps of "
+              "max(value, 1)\n",
+              cases.size(), mixed, differ, worst);
+  EXPECT_GT(mixed, int(cases.size()) / 10);
+  EXPECT_LE(worst, 16.0);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
-// The GPU path tracer's scattering (shaders/rt/bsdf.glsl) against the CPU's Bsdf
-// (raytrace/bsdf.cpp), case by case through EGL and OSMesa: the
-// same f and pdf for a direction, and the same sample (direction, pdf, weight) for
+// The path tracers' scattering, one text (shaders/common/bsdf.glsl) by two compilers:
+// the GPU's GLSL build (rt/bsdf.glsl over the material buffer) against the C++ build
+// (core/bsdf.h under raytrace/bsdf.h's Bsdf), case by case through EGL and OSMesa:
+// the same f and pdf for a direction, and the same sample (direction, pdf, weight) for
 // the same random numbers, over random materials with and without clear coat,
 // sheen, thin film, transmission and anisotropy, random normals and directions. The path tracer's images
 // (gpu_path_test.cpp) judge whole paths statistically and cannot see a lobe a few
