@@ -140,7 +140,7 @@ void GpuScene::addShapes(const SceneDesc& scene) {
     } else {
       // The quad's uv spans 2 units; one texture tile per `1 / texture_scale` metres.
       const double extent = planeExtent(p, scene.camera.farPlane);
-      draw.uvScale = glm::vec2(float(extent) * scene.materials[size_t(p.material)].textureScale);
+      draw.uvScale = glm::vec2(float(extent) * source_->materials()[size_t(p.material)].surface.textureScale);
       draw.twoSided = true;
     }
     shapes_.push_back(draw);

@@ -88,7 +88,7 @@ void SceneDraws::setUniforms(const gl::Program& program) const {
 // no highlight.
 ShaderVariant SceneDraws::shapeVariant(const ShapeDraw& shape, bool depthOnly, bool nearSunOnly) const {
   ShaderVariant v{0, SkinMode::Linear, !depthOnly && gpu_.materialTexture(shape.material).id() != 0, depthOnly};
-  v.matte = scene_.materials[size_t(shape.material)].specular <= 0.0f;
+  v.matte = gpu_.source().materials()[size_t(shape.material)].surface.specular <= 0.0f;
   v.oneSided = !shape.twoSided;
   v.nearSunOnly = nearSunOnly;
   return v;

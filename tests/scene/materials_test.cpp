@@ -5,8 +5,10 @@
 // extras, built from the same table (raytrace/scene_builder.cpp). No GL.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
