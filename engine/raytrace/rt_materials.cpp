@@ -23,6 +23,51 @@ int RtMaterials::addMaterial(const MaterialDesc& material) {
   return int(materials_.size() - 1);
 }
 
+Result<int> RtMaterials::addSceneMaterial(const SceneMaterial& material) {
+  const int added = addMaterial(material.surface);
+  if (auto s = setSceneMaterial(added, material); !s) return s.error();
+  return added;
+}
+
+namespace {
+
+// Slot `slot` of `m` as the tracers sample it: its decoded image from the row the
+// table says uv v = 0 reads, in the slot's encoding, with its sampler's wrap, uv set
+// and KHR_texture_transform.
+RtTexture slotTexture(const SceneMaterial& m, TextureSlot slot) {
+  const MaterialTexture& t = m.texture(slot);
+  const TextureOrigin origin = m.origin == UvOrigin::TopLeft ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft;
+  RtTexture texture(*t.decoded, origin, isSrgbSlot(slot) ? TextureEncoding::Srgb : TextureEncoding::Linear);
+  texture.setWrap(t.sampling.sampler.wrapS, t.sampling.sampler.wrapT).setMapping(t.sampling.texCoord, t.sampling.uvTransform);
+  return texture;
+}
+
+// The slots the tracers sample beyond the base colour, emissive and
+// metallic-roughness ones: every layer's but the coat's normal map.
+bool tracedLayerSlot(int slot) { return slot >= kFirstLayerSlot && TextureSlot(slot) != TextureSlot::ClearcoatNormal; }
+
+}  // namespace
+
+Status RtMaterials::setSceneMaterial(int material, const SceneMaterial& from) {
+  auto has = [&](TextureSlot slot) { return from.texture(slot).decoded != nullptr; };
+  if (has(TextureSlot::BaseColor)) {
+    if (auto s = setMaterialTexture(material, slotTexture(from, TextureSlot::BaseColor)); !s) return s;
+  }
+  if (has(TextureSlot::Emissive)) {
+    if (auto s = setEmissiveTexture(material, slotTexture(from, TextureSlot::Emissive)); !s) return s;
+  }
+  if (has(TextureSlot::MetallicRoughness)) {
+    if (auto s = setMetallicRoughnessTexture(material, slotTexture(from, TextureSlot::MetallicRoughness)); !s) return s;
+  }
+  for (int slot = kFirstLayerSlot; slot < kTextureSlots; ++slot) {
+    if (!tracedLayerSlot(slot) || !has(TextureSlot(slot))) continue;
+    if (auto s = setLayerTexture(material, TextureSlot(slot), slotTexture(from, TextureSlot(slot))); !s) return s;
+  }
+  if (auto s = setMaterialAlpha(material, from.alphaMode, from.alpha, from.alphaCutoff); !s) return s;
+  if (auto s = setSingleSided(material, !from.doubleSided); !s) return s;
+  return setUnlit(material, from.unlit);
+}
+
 Status RtMaterials::checkMaterial(int material) const {
   if (material < 0 || material >= int(materials_.size())) {
     return makeError("material " + std::to_string(material) + " out of range");

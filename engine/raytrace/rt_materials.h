@@ -18,6 +18,7 @@
 #include "core/view_layers.h"
 #include "raytrace/terrain_material.h"
 #include "raytrace/texture.h"
+#include "scene/materials.h"
 
 namespace engine::rt {
 
@@ -124,6 +125,12 @@ class RtMaterials {
   explicit RtMaterials(std::vector<MaterialDesc> materials);
 
   int addMaterial(const MaterialDesc& material);
+  // A material of the scene layer's table (scene/materials.h): its surface, then
+  // what setSceneMaterial attaches.
+  Result<int> addSceneMaterial(const SceneMaterial& material);
+  // Gives `material` the rest of a table entry: its textures (the tracers read no
+  // normal map, nor the coat's, nor occlusion), glTF's alpha, one-sidedness and unlit.
+  Status setSceneMaterial(int material, const SceneMaterial& from);
   // An error naming the material when it is out of range.
   Status checkMaterial(int material) const;
   // A base colour texture that multiplies `material`'s colour (the rasterizer's

@@ -1,5 +1,6 @@
 #include "raytrace/rt_scene.h"
 
+#include "scene/materials.h"
 #include "scene/shapes.h"
 
 #include <cassert>
@@ -63,18 +64,25 @@ void RtScene::setEnvironment(Environment environment) {
 }
 
 Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc, const SceneImages& images) {
+  return fromSceneDesc(desc, sceneFileMaterials(desc, images), images.sky);
+}
+
+Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc, std::span<const SceneMaterial> materials,
+                                       std::shared_ptr<const FloatImage> sky) {
+  if (materials.size() != desc.materials.size()) return makeError(desc.path + ": the material table is another scene's");
   RtScene scene;
-  if (!desc.materials.empty()) scene.materialTable_ = RtMaterials(desc.materials);
-  for (size_t i = 0; i < desc.materials.size(); ++i) {
-    const Image* image = images.materialTexture(i);
-    // The rasterizer uploads the scene's textures flipped: uv (0, 0) is the bottom-left.
-    if (!image) continue;
-    if (auto s = scene.setMaterialTexture(int(i), RtTexture(*image, TextureOrigin::BottomLeft)); !s) return s.error();
+  // The file's materials as they are: the table's constructor leaves what addMaterial
+  // works out of a glTF material's layers at its defaults, as it always has.
+  std::vector<MaterialDesc> surfaces;
+  for (const SceneMaterial& m : materials) surfaces.push_back(m.surface);
+  if (!surfaces.empty()) scene.materialTable_ = RtMaterials(std::move(surfaces));
+  for (size_t i = 0; i < materials.size(); ++i) {
+    if (auto s = scene.materialTable_.setSceneMaterial(int(i), materials[i]); !s) return s.error();
   }
   scene.camera_ = desc.camera;
   scene.lights_ = desc.lights;
   scene.sky_ = desc.sky;
-  auto environment = Environment::create(desc.sky, scene.sunDirection(), images.sky);
+  auto environment = Environment::create(desc.sky, scene.sunDirection(), std::move(sky));
   if (!environment) return makeError(desc.path + ": /sky/image: " + environment.error().message);
   scene.environment_ = std::move(environment).value();
   scene.ambientSky_ = ambientSkyColor(desc);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -41,12 +42,17 @@ class RtScene {
   RtScene();  // one default material, no shapes, no lights, the default camera
   // Spheres, planes, boxes (as 12 triangles each), lights, materials, camera, sky and
   // render settings. Models and terrain are the caller's to add as meshes.
-  // The scene file's textures and sky image come decoded (scene/scene_images.h).
+  // The scene file's materials come from the scene layer's table (scene/materials.h,
+  // Scene::materials(): one per desc.materials), its sky image decoded (null: none).
+  static Result<RtScene> fromSceneDesc(const SceneDesc& desc, std::span<const SceneMaterial> materials,
+                                       std::shared_ptr<const FloatImage> sky);
+  // The same, the table made from `images` (scene/scene_images.h) as Scene::load makes it.
   static Result<RtScene> fromSceneDesc(const SceneDesc& desc, const SceneImages& images);
 
   // The materials: RtMaterials (rt_materials.h).
   using MaterialExtras = rt::MaterialExtras;
   int addMaterial(const MaterialDesc& material) { return materialTable_.addMaterial(material); }
+  Result<int> addSceneMaterial(const SceneMaterial& material) { return materialTable_.addSceneMaterial(material); }
   Status setMaterialTexture(int material, RtTexture texture) {
     return materialTable_.setMaterialTexture(material, std::move(texture));
   }

@@ -18,50 +18,14 @@ namespace engine::rt {
 
 namespace {
 
-// glTF base colour: the factor times the texture (uploaded as is by the rasterizer,
-// so uv (0, 0) is the image's top-left).
-Result<std::vector<int>> addMaterials(const ModelData& model, RtScene& scene) {
+// A model's materials from the scene layer's table (ModelAsset::materials,
+// scene/materials.h), which the rasterizer's uniforms read too.
+Result<std::vector<int>> addMaterials(const ModelAsset& asset, RtScene& scene) {
   std::vector<int> materials;  // glTF material -> RtScene material
-  for (const MaterialData& m : model.materials) {
-    MaterialDesc desc;
-    desc.name = m.name;
-    desc.color = glm::vec3(m.baseColorFactor);
-    desc.metallic = m.metallicFactor;
-    desc.roughness = m.roughnessFactor;
-    desc.specular = 0.5f * (1.0f - m.roughnessFactor);
-    desc.emission = m.emissiveFactor;
-    desc.layers = m.layers;
-    const int material = scene.addMaterial(desc);
-    // Each slot's image with its sampler's wrap, uv set and KHR_texture_transform.
-    auto slotTexture = [&](TextureSlot slot, TextureEncoding encoding) {
-      const TextureSlotData& t = m.texture(slot);
-      RtTexture texture(model.images[size_t(m.image(slot))].image, TextureOrigin::TopLeft, encoding);
-      texture.setWrap(t.sampler.wrapS, t.sampler.wrapT).setMapping(t.texCoord, t.uvTransform);
-      return texture;
-    };
-    if (m.baseColorImage >= 0) {
-      if (auto s = scene.setMaterialTexture(material, slotTexture(TextureSlot::BaseColor, TextureEncoding::Srgb)); !s)
-        return s.error();
-    }
-    if (m.emissiveImage >= 0) {
-      if (auto s = scene.setEmissiveTexture(material, slotTexture(TextureSlot::Emissive, TextureEncoding::Srgb)); !s)
-        return s.error();
-    }
-    if (m.metallicRoughnessImage >= 0) {
-      auto mr = slotTexture(TextureSlot::MetallicRoughness, TextureEncoding::Linear);
-      if (auto s = scene.setMetallicRoughnessTexture(material, std::move(mr)); !s) return s.error();
-    }
-    for (int slot = kFirstLayerSlot; slot < kTextureSlots; ++slot) {
-      // The tracers read no normal maps, the coat's neither.
-      if (m.image(TextureSlot(slot)) < 0 || TextureSlot(slot) == TextureSlot::ClearcoatNormal) continue;
-      const TextureEncoding encoding = isSrgbSlot(TextureSlot(slot)) ? TextureEncoding::Srgb : TextureEncoding::Linear;
-      if (auto s = scene.setLayerTexture(material, TextureSlot(slot), slotTexture(TextureSlot(slot), encoding)); !s)
-        return s.error();
-    }
-    if (auto s = scene.setMaterialAlpha(material, m.alphaMode, m.baseColorFactor.a, m.alphaCutoff); !s) return s.error();
-    if (auto s = scene.setSingleSided(material, !m.doubleSided); !s) return s.error();
-    if (auto s = scene.setUnlit(material, m.unlit); !s) return s.error();
-    materials.push_back(material);
+  for (const SceneMaterial& m : asset.materials) {
+    auto material = scene.addSceneMaterial(m);
+    if (!material) return material.error();
+    materials.push_back(*material);
   }
   return materials;
 }
@@ -195,7 +159,7 @@ Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, i
                                                 double terrainErrorOverride) {
   SceneDesc desc = source->desc();
   if (camera) desc.camera = *camera;
-  auto scene = RtScene::fromSceneDesc(desc, source->images());
+  auto scene = RtScene::fromSceneDesc(desc, source->materials(), source->images().sky);
   if (!scene) return scene.error();
   AnimatedRtScene out;
   out.scene_ = std::move(scene).value();
@@ -204,7 +168,7 @@ Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, i
   SceneBuildStats stats;
   const auto start = std::chrono::steady_clock::now();
   for (const auto& asset : out.source_->assets()) {
-    auto materials = addMaterials(asset->model, rt);
+    auto materials = addMaterials(*asset, rt);
     if (!materials) return makeError(desc.path + ": " + asset->model.path + ": " + materials.error().message);
     out.materials_.push_back(std::move(materials).value());
   }

@@ -4,6 +4,7 @@
 // (scene/scene.h), skinned on the CPU with the same jobs and palettes the
 // rasterizer uses (anim/jobs.h), as triangle meshes in the BVH.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,9 @@ class AnimatedRtScene {
   std::size_t instanceCount() const { return instances_.size(); }
   int instanceGroup(std::size_t i) const { return instances_[i].group; }
   const std::vector<RtMesh>& instanceMeshes(std::size_t i) const { return instances_[i].meshes; }
+  // The RtScene material of each glTF material of the scene's asset `asset`
+  // (Scene::assets() order), made from its table (ModelAsset::materials).
+  std::span<const int> assetMaterials(std::size_t asset) const { return materials_[asset]; }
 
   AnimatedRtScene(AnimatedRtScene&&) noexcept;
   AnimatedRtScene& operator=(AnimatedRtScene&&) noexcept;

@@ -14,7 +14,7 @@ Result<std::shared_ptr<const CharacterAsset>> CharacterAsset::create(std::shared
     if (!made) return made.error();
     levels = std::move(made).value();
   }
-  auto gpu = GpuModel::upload(source->model, UploadOptions{levelsOfDetail ? &levels : nullptr});
+  auto gpu = GpuModel::upload(source->model, UploadOptions{levelsOfDetail ? &levels : nullptr, &source->materials});
   if (!gpu) return gpu.error();
   const ModelAsset& m = *source;
   return std::shared_ptr<const CharacterAsset>(

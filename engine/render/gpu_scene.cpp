@@ -62,9 +62,10 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(std::shared_ptr<Scene> source
   const Scene& from = *gpu->source_;
   if (const FloatImage* image = from.images().sky.get(); image && scene.sky.enabled)
     gpu->skyImage_ = uploadSkyImage(*image);
-  // Decoded once by the scene layer (scene/scene_images.h), uploaded per renderer.
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const Image* image = from.images().materialTexture(i);
+  // Decoded once by the scene layer (scene/scene_images.h), referred to by its
+  // material table (scene/materials.h), uploaded per renderer.
+  for (const SceneMaterial& m : from.materials()) {
+    const Image* image = m.texture(TextureSlot::BaseColor).decoded;
     gpu->materialTextures_.push_back(image ? uploadTexture(*image, true) : gl::Texture{});
   }
   if (auto s = gpu->loadModels(scene, options); !s) return s.error();
@@ -139,7 +140,7 @@ void GpuScene::addShapes(const SceneDesc& scene) {
     } else {
       // The quad's uv spans 2 units; one texture tile per `1 / texture_scale` metres.
       const double extent = planeExtent(p, scene.camera.farPlane);
-      draw.uvScale = glm::vec2(float(extent) * scene.materials[size_t(p.material)].textureScale);
+      draw.uvScale = glm::vec2(float(extent) * source_->materials()[size_t(p.material)].surface.textureScale);
       draw.twoSided = true;
     }
     shapes_.push_back(draw);

@@ -60,7 +60,8 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   ShaderVariant variant = primitiveVariant(model, node, data, frame.skinMode, frame.depthOnly, cached != nullptr);
   variant.nearSunOnly = frame.nearSunOnly;
   variant.surface = frame.surface;
-  const MaterialData* material = materialOf(model, prim.material);
+  const bool gltfDefault = materialOf(model, prim.material) == nullptr;
+  const SceneMaterial& material = gpu.material(prim.material);
   auto program = variants.get(variant);
   if (!program) return program.error();
   const gl::Program& pr = **program;
@@ -69,11 +70,11 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   if (!frame.depthOnly) {
     setMaterialUniforms(pr, material);
   } else if (variant.alphaMask) {
-    pr.set("u_baseColorFactor", material->baseColorFactor);
-    pr.set("u_alphaCutoff", material->alphaCutoff);
+    pr.set("u_baseColorFactor", material.baseColor());
+    pr.set("u_alphaCutoff", material.alphaCutoff);
   }
-  if (variant.uvTransform) setUvTransforms(pr, *material);
-  if (variant.layerTextures) pr.set("u_layerTextures", layerTextureMask(*material));
+  if (variant.uvTransform) setUvTransforms(pr, material);
+  if (variant.layerTextures) pr.set("u_layerTextures", layerTextureMask(material));
   // scene.vert's tiling of analytic shapes: a program may be shared with them.
   pr.set("u_uvScale", glm::vec2(1.0f));
   if (variant.influences > 0) {
@@ -82,10 +83,10 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
   if (variant.morph) {
     if (auto s = bindNodeMorphTargets(pr, prim, frame, n); !s) return makeError(model.path + ": " + s.error().message);
   }
-  bindMaterialOrWhite(gpu, material, variant);
+  bindMaterialOrWhite(gpu, gltfDefault ? nullptr : &material, variant);
   // Double-sided: no culling for this draw; the caller's setting is restored (the
   // point-light shadow pass draws everything without culling).
-  const bool twoSided = material && material->doubleSided && glIsEnabled(GL_CULL_FACE);
+  const bool twoSided = material.doubleSided && glIsEnabled(GL_CULL_FACE);
   if (twoSided) glDisable(GL_CULL_FACE);
   (cached ? *cached : prim.vao).bind();
   // EXT_mesh_gpu_instancing: one draw per instance, each with its own u_model.
@@ -109,7 +110,7 @@ Status drawPrimitive(ShaderVariants& variants, const ModelData& model, const Gpu
     if (mirrored) flipFrontFace();
   }
   if (twoSided) glEnable(GL_CULL_FACE);
-  if (material) unbindMaterialSamplers(variant, *material);
+  if (!gltfDefault) unbindMaterialSamplers(variant, material);
   return Ok{};
 }
 
@@ -199,7 +200,8 @@ Status drawModelPrimitive(ShaderVariants& variants, const ModelData& model, cons
 Status shadeModelSurface(ShaderVariants& variants, const ModelData& model, const GpuModel& gpu, int material,
                          const ShaderVariant& shading, const std::function<void(const gl::Program&)>& setUniforms,
                          const glm::mat4& inverseViewProjection) {
-  const MaterialData* m = materialOf(model, material);
+  const bool gltfDefault = materialOf(model, material) == nullptr;
+  const SceneMaterial& m = gpu.material(material);
   auto program = variants.get(shading);
   if (!program) return program.error();
   const gl::Program& pr = **program;
@@ -207,9 +209,9 @@ Status shadeModelSurface(ShaderVariants& variants, const ModelData& model, const
   if (setUniforms) setUniforms(pr);
   setMaterialUniforms(pr, m);
   pr.set("u_inverseViewProjection", inverseViewProjection);
-  bindMaterialOrWhite(gpu, m, shading);
+  bindMaterialOrWhite(gpu, gltfDefault ? nullptr : &m, shading);
   glDrawArrays(GL_TRIANGLES, 0, 3);  // sky.vert's full-screen triangle
-  if (m) unbindMaterialSamplers(shading, *m);
+  if (!gltfDefault) unbindMaterialSamplers(shading, m);
   return Ok{};
 }
 

@@ -21,6 +21,7 @@
 #include "gl/resources.h"
 #include "gl/shader.h"
 #include "render/lighting.h"
+#include "scene/materials.h"
 
 namespace engine {
 
@@ -205,6 +206,9 @@ struct UploadOptions {
   // Levels of detail to upload, [mesh][primitive] (ModelAsset::levelsOfDetail),
   // drawn where ModelFrame::lodBudget allows; none without.
   const std::vector<std::vector<std::vector<MeshLod>>>* levels = nullptr;
+  // The model's material table as the scene layer made it (ModelAsset::materials);
+  // null: made here from the model, by the same translation.
+  const std::vector<SceneMaterial>* materials = nullptr;
 };
 
 class GpuModel {
@@ -223,9 +227,15 @@ class GpuModel {
   // KHR_materials_sheen's albedo table (core/sheen_table.h), uploaded only for a
   // model with a sheen.
   const gl::Texture& sheenAlbedo() const { return sheenAlbedo_; }
+  // glTF material `material`'s entry of the scene layer's table (scene/materials.h),
+  // or glTF's default material (-1): what its draws' uniforms and textures read.
+  // Its images are referred to by index (image()); the model it was uploaded from
+  // holds the decoded ones.
+  const SceneMaterial& material(int material) const { return gltfMaterialOf(materials_, material); }
 
  private:
   std::vector<std::vector<GpuPrimitive>> meshes_;
+  std::vector<SceneMaterial> materials_;
   std::vector<gl::Texture> srgbImages_;    // empty texture where no colour slot uses the image
   std::vector<gl::Texture> linearImages_;  // the same for data slots
   gl::Texture white_;

@@ -285,6 +285,7 @@ Result<GpuModel> GpuModel::upload(const ModelData& model, const UploadOptions& o
                                  [](const MaterialData& m) { return m.layers.sheen(); });
   // Filtered as SheenTable::lookup filters it.
   if (sheen) gpu.sheenAlbedo_ = gl::Texture::table(GL_R32F, GL_RED, sheenTable().size, sheenTable().texels.data());
+  gpu.materials_ = options.materials ? *options.materials : gltfMaterials(model);
   gpu.white_ = gl::Texture::create2D(GL_SRGB8_ALPHA8, 1, 1, 1);
   const std::uint8_t white[4] = {255, 255, 255, 255};
   gpu.white_.uploadRgba8(white);

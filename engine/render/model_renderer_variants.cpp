@@ -130,7 +130,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
   const MaterialData* m = materialOf(model, prim.material);
   const bool colored = !prim.colors.empty();  // COLOR_0 multiplies the base colour
   v.vertexColor = colored && !depthOnly;
-  v.matte = classicSpecular(m) <= 0.0f;
+  v.matte = classicSpecularOf(m ? m->roughnessFactor : 1.0f) <= 0.0f;
   v.oneSided = !m || !m->doubleSided;  // glTF's default material is one-sided
   if (!m) return v;
   v.alphaMask = m->alphaMode == AlphaMode::Mask;
@@ -156,7 +156,7 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
     v.anisotropy = m->layers.anisotropy > 0.0f && !prim.tangents.empty();
     v.iridescence = m->layers.iridescence > 0.0f;
   }
-  const auto sampled = sampledSlots(v, *m);
+  const auto sampled = sampledSlots(v, presentSlots(*m));
   for (int i = 0; i < kTextureSlots; ++i) v.uvTransform |= sampled[size_t(i)] && m->textures[size_t(i)].transformsUv();
   return v;
 }

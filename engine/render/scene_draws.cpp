@@ -7,10 +7,12 @@
 #include "gl/bindings.h"
 #include "render/character_surface_pass.h"
 #include "render/gpu_scene.h"
+#include "render/material_uniforms.h"
 #include "render/point_shadow_pass.h"
 #include "render/reflection_probe_pass.h"
 #include "render/scene_renderer.h"
 #include "render/sun_shadow_pass.h"
+#include "scene/scene.h"
 
 namespace engine {
 namespace {
@@ -86,7 +88,7 @@ void SceneDraws::setUniforms(const gl::Program& program) const {
 // no highlight.
 ShaderVariant SceneDraws::shapeVariant(const ShapeDraw& shape, bool depthOnly, bool nearSunOnly) const {
   ShaderVariant v{0, SkinMode::Linear, !depthOnly && gpu_.materialTexture(shape.material).id() != 0, depthOnly};
-  v.matte = scene_.materials[size_t(shape.material)].specular <= 0.0f;
+  v.matte = gpu_.source().materials()[size_t(shape.material)].surface.specular <= 0.0f;
   v.oneSided = !shape.twoSided;
   v.nearSunOnly = nearSunOnly;
   return v;
@@ -205,23 +207,16 @@ Result<DrawLists> SceneDraws::collect(const glm::dvec4* planes, bool depthOnly, 
 
 void SceneDraws::drawShape(const ShapeDraw& s, const gl::Program& p, const PassInputs& pass,
                            const IndirectDraw* indirect) {
-  const MaterialDesc& m = scene_.materials[size_t(s.material)];
+  // The scene layer's table (scene/materials.h): the tracers shade the shape with it too.
+  const SceneMaterial& m = gpu_.source().materials()[size_t(s.material)];
   const glm::mat4 model = gpu_.shapeModel(s);
   p.set("u_model", model);
   p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(model)))));
-  p.set("u_uvScale", s.uvScale * (gpu_.isQuad(s.mesh) ? 1.0f : m.textureScale));
+  p.set("u_uvScale", s.uvScale * (gpu_.isQuad(s.mesh) ? 1.0f : m.surface.textureScale));
   if (pass.depthOnly) {
     p.set("u_lightViewProjection", pass.lightViewProjection);
   } else {
-    p.set("u_baseColorFactor", glm::vec4(m.color, 1.0f));
-    p.set("u_metallic", m.metallic);
-    p.set("u_roughness", m.roughness);
-    p.set("u_ambient", m.ambient);
-    p.set("u_diffuse", m.diffuse);
-    p.set("u_specular", m.specular);
-    p.set("u_shininess", m.shininess);
-    p.set("u_reflection", m.reflection);
-    p.set("u_emissive", m.emission);
+    forEachSurfaceUniform(m, [&](const char* name, const auto& value) { p.set(name, value); });
     if (gpu_.materialTexture(s.material).id() != 0) gpu_.materialTexture(s.material).bind(gl::binding::kBaseColor);
     if (sources_.probes) {
       const bool probed = pass.useProbes && s.probe >= 0;

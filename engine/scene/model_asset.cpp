@@ -11,8 +11,9 @@ namespace engine {
 Result<std::shared_ptr<const ModelAsset>> ModelAsset::create(ModelData model) {
   auto animated = buildAnimatedModel(model);
   if (!animated) return animated.error();
-  return std::shared_ptr<const ModelAsset>(
-      std::make_shared<ModelAsset>(ModelAsset{std::move(model), std::move(animated).value()}));
+  auto asset = std::make_shared<ModelAsset>(ModelAsset{std::move(model), std::move(animated).value(), {}});
+  asset->materials = gltfMaterials(asset->model);
+  return std::shared_ptr<const ModelAsset>(std::move(asset));
 }
 
 Result<std::shared_ptr<const ModelAsset>> ModelAsset::load(const std::string& path) {

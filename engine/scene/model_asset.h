@@ -15,6 +15,7 @@
 #include "asset/mesh_lod.h"
 #include "asset/model_data.h"
 #include "core/result.h"
+#include "scene/materials.h"
 
 namespace engine {
 
@@ -23,6 +24,10 @@ struct Pose;
 struct ModelAsset {
   ModelData model;
   AnimatedModel animated;
+  // The model's materials as both renderers shade them (scene/materials.h), their
+  // textures pointing into model.images: made once by create, for the asset where
+  // it lies (a copy of the asset would point into the original's images).
+  std::vector<SceneMaterial> materials;
 
   // Builds the runtime animation data of `model`.
   static Result<std::shared_ptr<const ModelAsset>> create(ModelData model);

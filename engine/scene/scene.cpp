@@ -27,6 +27,7 @@ Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc,
   auto images = SceneImages::load(desc);
   if (!images) return images.error();
   scene->images_ = std::move(images).value();
+  scene->materials_ = sceneFileMaterials(desc, scene->images_);
   if (auto s = scene->update(0.0); !s) return s.error();
   return scene;
 }

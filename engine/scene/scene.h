@@ -10,6 +10,7 @@
 
 #include "asset/scene_desc.h"
 #include "core/result.h"
+#include "scene/materials.h"
 #include "scene/model_asset.h"
 #include "scene/scene_images.h"
 
@@ -60,6 +61,9 @@ class Scene {
   terrain::Terrain* terrain() const { return terrain_.get(); }
   // The scene file's material textures and sky image, decoded once at load.
   const SceneImages& images() const { return images_; }
+  // The scene file's materials as both renderers shade them (scene/materials.h),
+  // their textures in images(); a model's are its asset's (ModelAsset::materials).
+  std::span<const SceneMaterial> materials() const { return materials_; }
   // Whether anything in the scene moves with time (today: whether it has models).
   bool animated() const { return !instances_.empty(); }
 
@@ -72,6 +76,7 @@ class Scene {
   std::vector<ModelInstance> instances_;
   std::unique_ptr<terrain::Terrain> terrain_;
   SceneImages images_;
+  std::vector<SceneMaterial> materials_;
   std::vector<Srt> locals_;  // scratch of update
   double time_ = 0.0;
   QuatInterpolation rotations_ = QuatInterpolation::Slerp;
