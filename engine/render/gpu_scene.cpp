@@ -7,7 +7,6 @@
 #include <set>
 #include <sstream>
 
-#include "render/scene_renderer.h"
 #include "render/textures.h"
 #include "scene/shapes.h"
 

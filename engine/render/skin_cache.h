@@ -16,7 +16,7 @@
 #include "core/result.h"
 #include "gl/resources.h"
 #include "gl/shader.h"
-#include "render/model_renderer.h"
+#include "render/gpu_model.h"
 
 namespace engine {
 
