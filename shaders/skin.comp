@@ -1,7 +1,7 @@
 #version 450 core
 // The skin cache (render/skin_cache.h): morphs and skins every vertex of one
-// primitive instance once per pose, with the very functions model.vert and
-// scene.vert run per vertex (common/morph.glsl, common/skinning.glsl), and writes
+// primitive instance once per pose, with the very functions scene.vert runs per
+// vertex (common/morph.glsl, common/skinning.glsl), and writes
 // the result where every pass then reads it as a static mesh. Variants: SKINNED
 // (INFLUENCES 4 or 8, DUAL_QUAT), MORPH, HAS_NORMALS, NORMAL_MAP (the mesh has
 // tangents: they are deformed like the normal, their w kept).

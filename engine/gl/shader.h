@@ -37,7 +37,7 @@ std::vector<std::string> declaredUniforms(const std::string& source);
 std::vector<std::string> undeclaredUniformsSet();
 void forgetUndeclaredUniforms();  // for a test that provokes one
 
-// Rewrites a driver log ("0:12(5): error: ...") with file names ("lit.frag:12(5): ...").
+// Rewrites a driver log ("0:12(5): error: ...") with file names ("scene.frag:12(5): ...").
 std::string translateShaderLog(const std::string& log, const std::vector<std::string>& files);
 
 struct ShaderStage {

@@ -194,10 +194,4 @@ Status CharacterInstance::drawBlend(ShaderVariants& variants, const glm::mat4& v
   return drawBlendPrimitive(variants, asset_->model, asset_->gpu, *f, primitive);
 }
 
-Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-                               const Lighting& lighting) {
-  return draw(variants, viewProjection, mode,
-              [&lighting](const gl::Program& program) { setLightingUniforms(program, lighting); });
-}
-
 }  // namespace engine

@@ -94,9 +94,6 @@ class CharacterInstance {
   // joints, placed for the last place() view (primitiveInstanceModels).
   std::vector<glm::mat4> instanceModels(SkinMode mode, int node, int influences) const;
   float lodBudget() const { return lodBudget_; }
-  // The same with lit.frag's lighting uniforms (the viewer).
-  Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
-              const Lighting& lighting);
 
   // The joints of the pose in model space, and placed for the last place() view.
   std::span<const glm::mat4> models() const { return pose_.joints; }

@@ -20,7 +20,6 @@
 #include "core/result.h"
 #include "gl/resources.h"
 #include "gl/shader.h"
-#include "render/lighting.h"
 #include "render/gpu_model.h"
 #include "scene/materials.h"
 
@@ -70,7 +69,7 @@ struct ShaderVariant {
   // Classic shading of a material without a highlight (specular 0: CLASSIC_MATTE,
   // common/shading.glsl). ShaderVariants drops it where its shaders are not classic.
   bool matte = false;
-  // A draw lying wholly where the sun's near map covers fully (render/lighting.h's
+  // A draw lying wholly where the sun's near map covers fully (render/sun_coverage.h's
   // withinNearSunMap): the far map's lookups left out (SUN_FAR_SHADOWS), which
   // shadows.glsl weighs by zero there: the same bytes. ShaderVariants drops it where
   // its programs have no far map.
@@ -78,8 +77,7 @@ struct ShaderVariant {
   // Back faces culled (every colour pass culls them; the material is not
   // double-sided): gl_FrontFacing is always true, so scene.frag's flip of a back
   // face's normal is left out (ONE_SIDED): the same bytes, and no work a fragment
-  // for a flip that never happens. ShaderVariants drops it from depth-only programs
-  // and where its fragment shader is not scene.frag.
+  // for a flip that never happens. ShaderVariants drops it from depth-only programs.
   bool oneSided = false;
   // The deferred characters (render/character_surface_pass.h):
   // the surface pass writes common/surface.glsl's targets instead of a colour
@@ -99,20 +97,20 @@ struct ShaderVariant {
   ShaderVariant shadingFromSurface() const;
 };
 
-// Builds and caches the programs of one vertex + fragment shader pair by variant
-// (model.vert + lit.frag for the viewer, scene.vert + scene.frag for scenes), each
-// only when first asked for.
+// Builds and caches the scene programs by variant, each only when first asked for:
+// scene.vert + scene.frag (depth.frag for depth-only variants, sky.vert's
+// full-screen triangle for SURFACE_IN), as the scene renderer draws every mesh with
+// them. Without `defines` (tests) the lights' counts come from the frame block
+// (common/direct_light.glsl); whatever draws with these programs binds that block
+// (render/frame_block.h) and culls back faces in its colour passes, as the scene
+// renderer does (ShaderVariant::oneSided).
 class ShaderVariants {
  public:
-  explicit ShaderVariants(std::string shaderDir, std::string vertexShader = "model.vert",
-                          std::string fragmentShader = "lit.frag", std::vector<std::string> defines = {})
+  explicit ShaderVariants(std::string shaderDir, std::vector<std::string> defines = {})
       : shaderDir_(std::move(shaderDir)),
-        vertexShader_(std::move(vertexShader)),
-        fragmentShader_(std::move(fragmentShader)),
         defines_(std::move(defines)),
         classic_(std::find(defines_.begin(), defines_.end(), "CLASSIC 1") != defines_.end()),
-        farSun_(std::find(defines_.begin(), defines_.end(), kFarSunDefine) != defines_.end()),
-        facesCulled_(fragmentShader_ == "scene.frag") {}
+        farSun_(std::find(defines_.begin(), defines_.end(), kFarSunDefine) != defines_.end()) {}
   // `feedback` names varyings to capture with transform feedback (tests).
   Result<const gl::Program*> get(const ShaderVariant& variant,
                                  const std::vector<std::string>& feedback = {});
@@ -122,15 +120,10 @@ class ShaderVariants {
   Result<gl::Program> build(const ShaderVariant& variant, const std::vector<std::string>& feedback) const;
 
   std::string shaderDir_;
-  std::string vertexShader_;
-  std::string fragmentShader_;
   std::vector<std::string> defines_;  // for every variant (shading model, shadows, fog)
   static constexpr const char* kFarSunDefine = "SUN_FAR_SHADOWS 1";
   bool classic_;                      // defines_ has CLASSIC: ShaderVariant::matte applies
   bool farSun_;                       // defines_ has SUN_FAR_SHADOWS: ShaderVariant::nearSunOnly applies
-  // The scene renderer's colour passes cull back faces (render/pass_state.h), so
-  // ShaderVariant::oneSided applies; lit.frag's callers (tests, lit draws) may not.
-  bool facesCulled_;
   std::map<ShaderVariant, gl::Program> programs_;
   std::map<std::pair<ShaderVariant, std::vector<std::string>>, gl::Program> feedbackPrograms_;
 };

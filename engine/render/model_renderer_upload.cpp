@@ -194,7 +194,7 @@ void attachAttributes(const GpuPrimitive& prim, const gl::VertexArray& vao, cons
   const GpuPrimitive::Sources& in = prim.sources;
   auto buffer = [&prim](int index) -> const gl::Buffer& { return prim.buffers[size_t(index)]; };
   // Bindings: 0 positions, 1 normals, 2 uvs, 3 joints, 4 weights, 5 tangents,
-  // 6 TEXCOORD_1; locations as model.vert and scene.vert read them.
+  // 6 TEXCOORD_1; locations as scene.vert reads them.
   if (deformed) {
     constexpr GLsizei stride = 3 * sizeof(glm::vec4);  // skin.comp's DeformedVertex
     vao.vertexBuffer(0, *deformed, stride);

@@ -61,7 +61,7 @@ Result<const gl::Program*> ShaderVariants::get(const ShaderVariant& asked,
   const bool lights = !asked.depthOnly && asked.surface != ShaderVariant::Surface::Out;
   variant.matte = asked.matte && classic_ && lights;
   variant.nearSunOnly = asked.nearSunOnly && farSun_ && lights;
-  variant.oneSided = asked.oneSided && facesCulled_ && !asked.depthOnly;
+  variant.oneSided = asked.oneSided && !asked.depthOnly;
   // Programs with transform feedback (one-off captures) live in their own cache:
   // a pointer handed out for the plain variant stays valid and keeps its program.
   if (feedback.empty()) {
@@ -106,8 +106,8 @@ Result<gl::Program> ShaderVariants::build(const ShaderVariant& variant, const st
     defines.push_back("INFLUENCES " + std::to_string(variant.influences));
     if (variant.mode == SkinMode::DualQuat) defines.push_back("DUAL_QUAT 1");
   }
-  const std::string fragment = variant.depthOnly ? "depth.frag" : fragmentShader_;
-  const std::string vertex = variant.surface == ShaderVariant::Surface::In ? "sky.vert" : vertexShader_;
+  const std::string fragment = variant.depthOnly ? "depth.frag" : "scene.frag";
+  const std::string vertex = variant.surface == ShaderVariant::Surface::In ? "sky.vert" : "scene.vert";
   return gl::Program::build(shaderDir_, {{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines,
                             feedback);
 }

@@ -95,7 +95,7 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
     gpu = std::move(uploaded).value();
   }
   draws = std::make_unique<SceneDraws>(*gpu, scene,
-                                       std::make_unique<ShaderVariants>(shaderDir, "scene.vert", "scene.frag", defines),
+                                       std::make_unique<ShaderVariants>(shaderDir, defines),
                                        stats);
   // Programs are built in this order (their names order the draws' sort keys).
   auto skyPass = SkyPass::create(shaderDir, scene, sunLight, gpu->skyImage(), display, stats);

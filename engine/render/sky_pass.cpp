@@ -9,7 +9,6 @@
 
 #include "asset/scene_file.h"
 #include "gl/bindings.h"
-#include "render/lighting.h"
 #include "render/pass_state.h"
 #include "render/scene_renderer.h"
 
@@ -85,13 +84,12 @@ void SkyPass::draw(const gl::Program& program, const glm::dmat4& viewProjection,
     program.set("u_skyRotation", glm::vec2(std::cos(radians), std::sin(radians)));
     image_.bind(gl::binding::kSkyImage);
   } else {
-    Lighting lighting;
-    lighting.sunDirection = sunDirection_;
-    lighting.sunDisk = sunDisk && sun_ && scene_.sky.sunDisk;
-    lighting.skyZenith = scene_.sky.zenith;
-    lighting.skyHorizon = scene_.sky.horizon;
-    lighting.skyGround = scene_.sky.ground;
-    setSkyUniforms(program, lighting);
+    // sky.frag's gradient (common/sky.glsl).
+    program.set("u_sunDirection", glm::normalize(sunDirection_));
+    program.set("u_skyColor", scene_.sky.zenith);
+    program.set("u_horizonColor", scene_.sky.horizon);
+    program.set("u_groundColor", scene_.sky.ground);
+    program.set("u_sunDisk", sunDisk && sun_ && scene_.sky.sunDisk ? 1.0f : 0.0f);
   }
   program.set("u_inverseViewProjection", glm::mat4(glm::inverse(viewProjection)));
   emptyVao_.bind();

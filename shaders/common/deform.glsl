@@ -1,4 +1,4 @@
-// What model.vert and scene.vert do to a glTF vertex before placing it: morph
+// What scene.vert does to a glTF vertex before placing it: morph
 // targets (MORPH), then skinning (SKINNED), in glTF's order. The tangent of a
 // normal-mapped mesh goes through both like the normal, then to world space by
 // `model` (common/mesh_tangent.glsl).

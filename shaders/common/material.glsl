@@ -1,5 +1,5 @@
 // glTF 2.0 material inputs, shared by every program that draws glTF meshes
-// (scene.frag, lit.frag, depth.frag). Each texture is compiled in only for the
+// (scene.frag, depth.frag). Each texture is compiled in only for the
 // variants that use it (#defines set by engine/render/model_renderer.cpp):
 //   TEXTURED          base colour texture (sRGB, UNIT_BASE_COLOR)
 //   NORMAL_MAP        tangent-space normal map (linear, UNIT_NORMAL) with u_normalScale

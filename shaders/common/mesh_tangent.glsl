@@ -1,4 +1,4 @@
-// The TANGENT attribute of normal-mapped meshes (scene.vert, model.vert): xyz
+// The TANGENT attribute of normal-mapped meshes (scene.vert): xyz
 // skinned like the normal when the mesh is skinned, then taken to world space by
 // the model matrix (a tangent lies in the surface, so the matrix itself, not its
 // inverse transpose). A mirroring model matrix flips the bitangent's handedness.

@@ -99,7 +99,7 @@ TEST_P(GlObjects, DebugOutputCountsErrors) {
 
 TEST_P(GlObjects, ProjectShadersCompile) {
   for (const auto& pair : std::vector<std::pair<std::string, std::string>>{
-           {"lit.vert", "lit.frag"}, {"sky.vert", "sky.frag"}}) {
+           {"scene.vert", "scene.frag"}, {"sky.vert", "sky.frag"}}) {
     auto program = gl::Program::build(test::shaderDir(), {{GL_VERTEX_SHADER, pair.first},
                                                           {GL_FRAGMENT_SHADER, pair.second}});
     EXPECT_TRUE(program.ok()) << program.error().message;

@@ -72,11 +72,11 @@ TEST_F(ShaderSource, VersionMustComeFirst) {
 }
 
 TEST(ShaderLog, MesaAndNvidiaFormatsGetFileNames) {
-  const std::vector<std::string> files = {"lit.frag", "common/lighting.glsl"};
+  const std::vector<std::string> files = {"scene.frag", "common/shading.glsl"};
   EXPECT_EQ(gl::translateShaderLog("0:12(5): error: bad\n1:3(1): error: worse\n", files),
-            "lit.frag:12(5): error: bad\ncommon/lighting.glsl:3(1): error: worse");
+            "scene.frag:12(5): error: bad\ncommon/shading.glsl:3(1): error: worse");
   EXPECT_EQ(gl::translateShaderLog("1(7) : error C0000: syntax error", files),
-            "common/lighting.glsl:7 : error C0000: syntax error");
+            "common/shading.glsl:7 : error C0000: syntax error");
 }
 
 // Every binding in the shipped shaders names engine/gl/bindings.h's define, never a

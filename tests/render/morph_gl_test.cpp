@@ -296,12 +296,17 @@ TEST_P(GpuMorph, CharacterDrawsTheMorphVariant) {
   auto target = RenderTarget::create(32, 32, 1);
   ASSERT_TRUE(target.ok());
   target->bind();
+  // The scene programs, as a scene's colour pass draws with them: the frame block
+  // bound, back faces culled (the strip's default material is one-sided).
   ShaderVariants variants(test::shaderDir());
-  Lighting lighting;
-  ASSERT_TRUE(instance.draw(variants, glm::mat4(1.0f), SkinMode::Linear, lighting).ok());
+  const gl::Buffer frame = test::bindFrameBlock();
+  glEnable(GL_CULL_FACE);
+  const Status drawn = instance.draw(variants, glm::mat4(1.0f), SkinMode::Linear, {});
+  glDisable(GL_CULL_FACE);
+  ASSERT_TRUE(drawn.ok()) << drawn.error().message;
   std::vector<std::string> names;
   for (const ShaderVariant& v : variants.built()) names.push_back(v.describe());
-  EXPECT_EQ(names, (std::vector<std::string>{"static+morph", "lbs4+morph"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"static+morph+onesided", "lbs4+morph+onesided"}));
   // A model without targets draws as before.
   EXPECT_EQ((ShaderVariant{4, SkinMode::DualQuat}.describe()), "dqs4");
 }

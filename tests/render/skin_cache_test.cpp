@@ -68,7 +68,7 @@ double largestUlps(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>
   return worst / std::max(1e-30, magnitude * 0x1p-23);
 }
 
-// The same primitive deformed by the vertex shader (model.vert's variant, captured
+// The same primitive deformed by the vertex shader (scene.vert's variant, captured
 // with transform feedback), which every pass ran before the cache.
 std::vector<glm::vec3> vertexShaderPositions(ShaderVariants& variants, const CharacterInstance& instance,
                                              SkinMode mode, size_t n, size_t p) {

@@ -16,6 +16,7 @@
 #include "core/math.h"
 #include "gl/bindings.h"
 #include "gl/resources.h"
+#include "render/frame_block.h"
 #include "render/model_renderer.h"
 #include "render/render_target.h"
 
@@ -57,6 +58,14 @@ inline Palettes palettesOf(const Skin& skin, const ModelPose& pose) {
   return p;
 }
 
+// The frame block (common/frame.glsl) that every scene program reads, uploaded and
+// bound at its binding; keep the buffer while drawing.
+inline gl::Buffer bindFrameBlock(const FrameBlock& block = {}) {
+  gl::Buffer buffer = gl::Buffer::fromSpan(std::span<const FrameBlock>(&block, 1));
+  glBindBufferBase(GL_UNIFORM_BUFFER, gl::binding::kFrameBlock, buffer.id());
+  return buffer;
+}
+
 // What a capture draws with besides the primitive.
 struct CaptureInputs {
   std::span<const glm::mat4> palette;   // skinned LBS variants
@@ -86,8 +95,9 @@ std::vector<T> perSourceVertex(const GpuPrimitive& prim, const std::vector<T>& v
   return out;
 }
 
-// Runs `variant` over every vertex of `prim` and returns the captured `varying`
-// (one T per PrimitiveData vertex, in order: perSourceVertex).
+// Runs `variant` of the scene programs (scene.vert) over every vertex of `prim` and
+// returns the captured `varying` (one T per PrimitiveData vertex, in order:
+// perSourceVertex). The frame block's view-projection is the identity.
 template <typename T>
 std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim, const CaptureInputs& inputs,
                               const ShaderVariant& variant, const std::string& varying) {
@@ -98,7 +108,7 @@ std::vector<T> captureVarying(ShaderVariants& variants, const GpuPrimitive& prim
   p.use();
   p.set("u_model", inputs.model);
   p.set("u_normalMatrix", glm::mat3(glm::transpose(glm::inverse(glm::mat3(inputs.model)))));
-  p.set("u_viewProjection", glm::mat4(1.0f));
+  const gl::Buffer frame = bindFrameBlock();
   gl::Buffer skin;
   gl::Texture palette;
   if (variant.influences > 0) {
