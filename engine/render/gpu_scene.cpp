@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "render/scene_stats.h"
 #include "render/textures.h"
 #include "scene/shapes.h"
 
