@@ -29,12 +29,14 @@ brdf::BsdfMaterial scatteringOf(const HitMaterial& m) {
 }  // namespace
 
 Bsdf Bsdf::classic(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo) {
-  return Bsdf(brdf::bsdfAbout(scatteringOf(m), false, n, wo, true));
+  return Bsdf([&] { return brdf::bsdfAbout(scatteringOf(m), false, n, wo, true); });
 }
 
 Bsdf Bsdf::metallicRoughness(const HitMaterial& m, const glm::vec3& n, const glm::vec3& wo, bool entering) {
-  const brdf::Bsdf b = brdf::bsdfAbout(scatteringOf(m), true, n, wo, entering);
-  return Bsdf(brdf::bsdfViewed(b, n, m.atView(n, brdf::bsdfCosView(b))));
+  return Bsdf([&] {
+    const brdf::Bsdf b = brdf::bsdfAbout(scatteringOf(m), true, n, wo, entering);
+    return brdf::bsdfViewed(b, n, m.atView(n, brdf::bsdfCosView(b)));
+  });
 }
 
 }  // namespace engine::rt

@@ -45,7 +45,10 @@ class Bsdf {
   const glm::vec3& normal() const { return b_.frame.n; }
 
  private:
-  explicit Bsdf(const brdf::Bsdf& b) : b_(b) {}
+  // b_ made in place from what `make` returns (no copy of the text's Bsdf: a path
+  // makes one a bounce, and its copy showed in the course room's profile).
+  template <typename Make>
+  explicit Bsdf(Make&& make) : b_(make()) {}
   brdf::Bsdf b_;
 };
 

@@ -97,7 +97,7 @@ BRDF_INLINE float pastShare(float u, float p) {
 // viewer): the frame and, for the classic model, the mirror's share. A
 // metallic-roughness Bsdf is finished by bsdfViewed, with the view's terms at
 // N.V = bsdfCosView(b) (the caller looks up its sheen table for them).
-BRDF_INLINE Bsdf bsdfAbout(BsdfMaterial m, bool metallicRoughness, vec3 n, vec3 wo, bool entering) {
+BRDF_INLINE Bsdf bsdfAbout(BRDF_IN(BsdfMaterial) m, bool metallicRoughness, vec3 n, vec3 wo, bool entering) {
   Bsdf b;
   b.m = m;
   b.metallicRoughness = metallicRoughness;
