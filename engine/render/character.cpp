@@ -132,11 +132,10 @@ Status CharacterInstance::prepare(SkinMode mode) {
   return Ok{};
 }
 
-Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, SkinMode mode,
+Result<ModelFrame> CharacterInstance::frame(SkinMode mode,
                                            const std::function<void(const gl::Program&)>& setUniforms) {
   if (auto s = prepare(mode); !s) return s.error();
   ModelFrame frame;
-  frame.viewProjection = viewProjection;
   frame.cameraPosition = glm::dvec3(0.0);  // the root is camera-relative already
   frame.root = root_;
   frame.nodeWorlds = nodeWorlds_;
@@ -150,20 +149,20 @@ Result<ModelFrame> CharacterInstance::frame(const glm::mat4& viewProjection, Ski
   return frame;
 }
 
-Status CharacterInstance::draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+Status CharacterInstance::draw(ShaderVariants& variants, SkinMode mode,
                                const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly,
                                bool includeBlend) {
-  auto f = frame(viewProjection, mode, setUniforms);
+  auto f = frame(mode, setUniforms);
   if (!f) return f.error();
   f->depthOnly = depthOnly;
   f->includeBlend = includeBlend;
   return drawModel(variants, asset_->model, asset_->gpu, *f);
 }
 
-Status CharacterInstance::drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+Status CharacterInstance::drawPrimitive(ShaderVariants& variants, SkinMode mode,
                                         const std::function<void(const gl::Program&)>& setUniforms, int node,
                                         int primitive, const PrimitivePass& pass) {
-  auto f = frame(viewProjection, mode, setUniforms);
+  auto f = frame(mode, setUniforms);
   if (!f) return f.error();
   f->depthOnly = pass.depthOnly;
   f->nearSunOnly = pass.nearSunOnly;
@@ -185,10 +184,10 @@ std::vector<BlendPrimitive> CharacterInstance::blendPrimitives() const {
   return engine::blendPrimitives(asset_->model, asset_->gpu, nodeWorlds_);
 }
 
-Status CharacterInstance::drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+Status CharacterInstance::drawBlend(ShaderVariants& variants, SkinMode mode,
                                     const std::function<void(const gl::Program&)>& setUniforms,
                                     const BlendPrimitive& primitive, std::span<const IndirectDraw> indirect) {
-  auto f = frame(viewProjection, mode, setUniforms);
+  auto f = frame(mode, setUniforms);
   if (!f) return f.error();
   f->indirect = indirect;
   return drawBlendPrimitive(variants, asset_->model, asset_->gpu, *f, primitive);

@@ -69,13 +69,13 @@ class CharacterInstance {
   // Uploads the skin palettes (once per pose) and draws every primitive;
   // without `includeBlend` the BLEND ones are left for drawBlend.
   // `setUniforms` sets the program's lights and shadows.
-  Status draw(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+  Status draw(ShaderVariants& variants, SkinMode mode,
               const std::function<void(const gl::Program&)>& setUniforms, bool depthOnly = false,
               bool includeBlend = true);
   // The BLEND primitives and their distances from the camera of the last
   // place, for a scene to sort with those of other models.
   std::vector<BlendPrimitive> blendPrimitives() const;
-  Status drawBlend(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+  Status drawBlend(ShaderVariants& variants, SkinMode mode,
                    const std::function<void(const gl::Program&)>& setUniforms, const BlendPrimitive& primitive,
                    std::span<const IndirectDraw> indirect = {});
   // How drawPrimitive draws: ModelFrame's members of the same names (indirect:
@@ -87,7 +87,7 @@ class CharacterInstance {
     std::span<const IndirectDraw> indirect;
   };
   // One primitive, in whatever pass state the caller set (a scene's draw items).
-  Status drawPrimitive(ShaderVariants& variants, const glm::mat4& viewProjection, SkinMode mode,
+  Status drawPrimitive(ShaderVariants& variants, SkinMode mode,
                        const std::function<void(const gl::Program&)>& setUniforms, int node, int primitive,
                        const PrimitivePass& pass);
   // The u_model of each instance of node `node`'s primitives with `influences`
@@ -105,7 +105,7 @@ class CharacterInstance {
  private:
   Status uploadPalettes(SkinMode mode);
   void uploadMorphWeights();
-  Result<ModelFrame> frame(const glm::mat4& viewProjection, SkinMode mode,
+  Result<ModelFrame> frame(SkinMode mode,
                    const std::function<void(const gl::Program&)>& setUniforms);
 
   std::shared_ptr<const CharacterAsset> asset_;

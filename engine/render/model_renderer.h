@@ -138,7 +138,6 @@ ShaderVariant primitiveVariant(const ModelData& model, const NodeData& node, con
 
 // One frame's inputs for drawing a model.
 struct ModelFrame {
-  glm::mat4 viewProjection{1.0f};
   glm::dvec3 cameraPosition{0.0};
   // World matrix of every glTF node (node order).
   std::span<const glm::mat4> nodeWorlds;

@@ -297,7 +297,7 @@ Status SceneDraws::submit(const std::vector<DrawItem>& items, const PassInputs& 
       how.surface = ShaderVariant::Surface::Out;
       if (sources_.surfaces->stencil()) glStencilFunc(GL_ALWAYS, kFirstSurfaceStencil + item.surfaceGroup, 0xff);
     }
-    if (auto s = c.instance->drawPrimitive(*variants_, pass.viewProjection, skinModeOf(c.desc), set, item.node,
+    if (auto s = c.instance->drawPrimitive(*variants_, skinModeOf(c.desc), set, item.node,
                                            item.primitive, how);
         !s) {
       return s;

@@ -301,7 +301,7 @@ TEST_P(GpuMorph, CharacterDrawsTheMorphVariant) {
   ShaderVariants variants(test::shaderDir());
   const gl::Buffer frame = test::bindFrameBlock();
   glEnable(GL_CULL_FACE);
-  const Status drawn = instance.draw(variants, glm::mat4(1.0f), SkinMode::Linear, {});
+  const Status drawn = instance.draw(variants, SkinMode::Linear, {});
   glDisable(GL_CULL_FACE);
   ASSERT_TRUE(drawn.ok()) << drawn.error().message;
   std::vector<std::string> names;
