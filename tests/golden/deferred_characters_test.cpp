@@ -123,6 +123,6 @@ TEST_P(DeferredCharacters, WithinLevelsOfTheCharactersShadedWhereDrawn) {
   }
 }
 
-ENGINE_INSTANTIATE_GOLDEN_CASES(DeferredCharacters, kCharacterCases);
+ENGINE_INSTANTIATE_GOLDEN_CASES_EGL(DeferredCharacters, kCharacterCases);
 
 }  // namespace

@@ -83,6 +83,6 @@ TEST_P(DeferredTerrain, WithinALevelOfTheTerrainShadedWhereDrawn) {
   }
 }
 
-ENGINE_INSTANTIATE_GOLDEN_CASES(DeferredTerrain, kTerrainCases);
+ENGINE_INSTANTIATE_GOLDEN_CASES_EGL(DeferredTerrain, kTerrainCases);
 
 }  // namespace

@@ -80,14 +80,20 @@ inline void writeFailurePair(const std::string& stem, const std::string& nameA, 
 
 // A golden comparison over both backends and each case of a table (a param of
 // (backend, index into `cases`), each case with a `name`): GoldenScenes/Suite/egl_NAME.
-#define ENGINE_INSTANTIATE_GOLDEN_CASES(Suite, cases)                                           \
+#define ENGINE_INSTANTIATE_GOLDEN_CASES_ON(Suite, cases, ...)                                   \
   INSTANTIATE_TEST_SUITE_P(                                                                     \
       GoldenScenes, Suite,                                                                      \
-      ::testing::Combine(::testing::Values(::engine::Backend::Egl, ::engine::Backend::OsMesa),  \
-                         ::testing::Range(0, int(std::size(cases)))),                           \
+      ::testing::Combine(::testing::Values(__VA_ARGS__), ::testing::Range(0, int(std::size(cases)))), \
       [](const ::testing::TestParamInfo<std::tuple<::engine::Backend, int>>& p) {               \
         return std::string(::engine::backendName(std::get<0>(p.param))) + "_" +                 \
                cases[std::get<1>(p.param)].name;                                                \
       })
+#define ENGINE_INSTANTIATE_GOLDEN_CASES(Suite, cases) \
+  ENGINE_INSTANTIATE_GOLDEN_CASES_ON(Suite, cases, ::engine::Backend::Egl, ::engine::Backend::OsMesa)
+// EGL alone, for a table whose test compares two frames drawn in one context
+// (culled against unculled, deferred against forward): tests/support/gl_test.h's
+// ENGINE_INSTANTIATE_OFFSCREEN_EGL says why.
+#define ENGINE_INSTANTIATE_GOLDEN_CASES_EGL(Suite, cases) \
+  ENGINE_INSTANTIATE_GOLDEN_CASES_ON(Suite, cases, ::engine::Backend::Egl)
 
 }  // namespace engine::test

@@ -118,6 +118,6 @@ TEST_P(GpuCullingGolden, CulledImageIsTheUnculledOneBitForBit) {
   }
 }
 
-ENGINE_INSTANTIATE_GOLDEN_CASES(GpuCullingGolden, kCullingCases);
+ENGINE_INSTANTIATE_GOLDEN_CASES_EGL(GpuCullingGolden, kCullingCases);
 
 }  // namespace

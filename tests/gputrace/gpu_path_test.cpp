@@ -152,7 +152,7 @@ void expectAgreement(const rt::RtScene& scene, const char* what) {
 }
 
 class GpuPath : public GlTest {};
-ENGINE_INSTANTIATE_OFFSCREEN(GpuPath);
+ENGINE_INSTANTIATE_OFFSCREEN_EGL(GpuPath);
 
 // 160 x 90, 4 samples per pixel, up to 16 bounces: the room with its area light,
 // point light, sun, mirror, box and smooth patch on the black background in the

@@ -123,7 +123,7 @@ ImageAgreement compareImages(const rt::Framebuffer& cpu, const rt::Framebuffer& 
 }
 
 class GpuWhitted : public GlTest {};
-ENGINE_INSTANTIATE_OFFSCREEN(GpuWhitted);
+ENGINE_INSTANTIATE_OFFSCREEN_EGL(GpuWhitted);
 
 // The GPU's Whitted image of `scene` against the CPU's: the same ray counts (within
 // 0.1 % for shadow and mirror rays, which a last-bit difference may add or remove),

@@ -88,7 +88,7 @@ std::string directOutputScene(const char* shading, const char* output) {
 }  // namespace
 
 class DirectOutput : public GlTest {};
-ENGINE_INSTANTIATE_OFFSCREEN(DirectOutput);
+ENGINE_INSTANTIATE_OFFSCREEN_EGL(DirectOutput);
 
 TEST_P(DirectOutput, DiffersFromThePostPassByAtMostOneLevel) {
   for (const char* shading : {"classic", "pbr"}) {

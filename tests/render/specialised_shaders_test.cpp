@@ -121,7 +121,7 @@ Frame render(const SceneDesc& scene, const std::string& shaderDir) {
 }  // namespace
 
 class SpecialisedShaders : public GlTest {};
-ENGINE_INSTANTIATE_OFFSCREEN(SpecialisedShaders);
+ENGINE_INSTANTIATE_OFFSCREEN_EGL(SpecialisedShaders);
 
 TEST_P(SpecialisedShaders, DrawWhatTheirUniformsDraw) {
   const ShadersWithoutThem uncompiled;

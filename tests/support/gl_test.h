@@ -46,6 +46,16 @@ inline std::string backendParamName(const ::testing::TestParamInfo<Backend>& inf
                            ::testing::Values(::engine::Backend::Egl, ::engine::Backend::OsMesa), \
                            ::engine::test::backendParamName)
 
+// EGL alone, for a suite that compares two things drawn in one context (the GPU
+// tracers against the CPU's images, a program set against another, one output path
+// against another): which backend made the context does not enter the comparison,
+// and the backends' agreement is tested where it is the question
+// (cli.egl_osmesa_identical, every golden scene's osmesa instance). The OSMesa
+// instances of the six such suites took a third of the plain pass's test time.
+#define ENGINE_INSTANTIATE_OFFSCREEN_EGL(Suite)                                      \
+  INSTANTIATE_TEST_SUITE_P(Offscreen, Suite, ::testing::Values(::engine::Backend::Egl), \
+                           ::engine::test::backendParamName)
+
 inline std::string shaderDir() { return std::string(ENGINE_SOURCE_DIR) + "/shaders"; }
 
 // Runs a test compute shader that reads one Case per invocation from binding 0 and
