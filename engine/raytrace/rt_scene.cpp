@@ -32,11 +32,10 @@ RtMesh boxMesh(const PrimitiveDesc& box, int material, float uvScale) {
 RtScene::RtScene() { rebuildGradientSky(); }
 
 std::optional<glm::vec3> RtScene::sunDirection() const {
-  std::optional<glm::vec3> sun;
   for (const LightDesc& l : lights_) {
-    if (l.type == LightType::Sun) sun = glm::normalize(glm::vec3(l.direction));
+    if (l.type == LightType::Sun) return glm::normalize(glm::vec3(l.direction));
   }
-  return sun;
+  return std::nullopt;
 }
 
 void RtScene::rebuildGradientSky() {
@@ -64,11 +63,11 @@ void RtScene::setEnvironment(Environment environment) {
 }
 
 Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc, const SceneImages& images) {
-  return fromSceneDesc(desc, sceneFileMaterials(desc, images), images.sky);
+  return fromSceneDesc(desc, sceneFileMaterials(desc, images), SceneEnvironment::of(desc, images.sky));
 }
 
 Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc, std::span<const SceneMaterial> materials,
-                                       std::shared_ptr<const FloatImage> sky) {
+                                       const SceneEnvironment& environment) {
   if (materials.size() != desc.materials.size()) return makeError(desc.path + ": the material table is another scene's");
   RtScene scene;
   // The file's materials as they are: the table's constructor leaves what addMaterial
@@ -80,11 +79,11 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc, std::span<const Sc
     if (auto s = scene.materialTable_.setSceneMaterial(int(i), materials[i]); !s) return s.error();
   }
   scene.camera_ = desc.camera;
-  scene.lights_ = desc.lights;
-  scene.sky_ = desc.sky;
-  auto environment = Environment::create(desc.sky, scene.sunDirection(), std::move(sky));
-  if (!environment) return makeError(desc.path + ": /sky/image: " + environment.error().message);
-  scene.environment_ = std::move(environment).value();
+  scene.lights_ = environment.lights;
+  scene.sky_ = environment.sky;
+  auto sky = Environment::create(environment.sky, scene.sunDirection(), environment.skyImage);
+  if (!sky) return makeError(desc.path + ": /sky/image: " + sky.error().message);
+  scene.environment_ = std::move(sky).value();
   scene.ambientSky_ = ambientSkyColor(desc);
   scene.ambientGround_ = ambientGroundColor(desc);
   scene.render_ = desc.render;

@@ -33,6 +33,7 @@
 #include "raytrace/shapes.h"
 #include "raytrace/terrain_material.h"
 #include "raytrace/texture.h"
+#include "scene/environment.h"
 #include "scene/scene_images.h"
 
 namespace engine::rt {
@@ -43,10 +44,13 @@ class RtScene {
   // Spheres, planes, boxes (as 12 triangles each), lights, materials, camera, sky and
   // render settings. Models and terrain are the caller's to add as meshes.
   // The scene file's materials come from the scene layer's table (scene/materials.h,
-  // Scene::materials(): one per desc.materials), its sky image decoded (null: none).
+  // Scene::materials(): one per desc.materials), the lights and the sky from its
+  // environment (scene/environment.h, Scene::environment(): the models' lights
+  // included), not from desc.
   static Result<RtScene> fromSceneDesc(const SceneDesc& desc, std::span<const SceneMaterial> materials,
-                                       std::shared_ptr<const FloatImage> sky);
-  // The same, the table made from `images` (scene/scene_images.h) as Scene::load makes it.
+                                       const SceneEnvironment& environment);
+  // The same, the table and the environment made from `images` (scene/scene_images.h)
+  // as Scene::load makes them, for a scene without models.
   static Result<RtScene> fromSceneDesc(const SceneDesc& desc, const SceneImages& images);
 
   // The materials: RtMaterials (rt_materials.h).
@@ -96,10 +100,10 @@ class RtScene {
   const std::vector<RtTexture>& textures() const { return materialTable_.textures(); }
   const std::vector<RtTerrainMaterial>& terrains() const { return materialTable_.terrains(); }
 
-  // A sun also draws the gradient sky's disk, as the last sun did before.
+  // The first sun also draws the gradient sky's disk (SceneEnvironment::sun).
   void addLight(const LightDesc& light);
   void setCamera(const CameraDesc& camera) { camera_ = camera; }
-  // The sky's gradient (with the last sun light's disk) or background colour. An
+  // The sky's gradient (with the first sun light's disk) or background colour. An
   // image sky is not loaded here, as loading can fail: build it with
   // Environment::create and give it to setEnvironment.
   void setSky(const SkyDesc& sky);
@@ -181,8 +185,8 @@ class RtScene {
   std::size_t planeCount() const { return accel_.planeCount(); }
 
  private:
-  // The sun whose disk the gradient sky draws: the last sun light, as the
-  // integrator chose it before the environment existed.
+  // The sun whose disk the gradient sky draws: the first sun light, the one the
+  // rasterizer's sky draws (SceneEnvironment::sun).
   std::optional<glm::vec3> sunDirection() const;
   void rebuildGradientSky();
 

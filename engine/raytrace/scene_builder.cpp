@@ -159,7 +159,7 @@ Result<AnimatedRtScene> AnimatedRtScene::create(std::shared_ptr<Scene> source, i
                                                 double terrainErrorOverride) {
   SceneDesc desc = source->desc();
   if (camera) desc.camera = *camera;
-  auto scene = RtScene::fromSceneDesc(desc, source->materials(), source->images().sky);
+  auto scene = RtScene::fromSceneDesc(desc, source->materials(), source->environment());
   if (!scene) return scene.error();
   AnimatedRtScene out;
   out.scene_ = std::move(scene).value();

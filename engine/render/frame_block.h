@@ -5,7 +5,7 @@
 
 namespace engine {
 
-inline constexpr int kMaxPointLights = 4;  // MAX_POINT_LIGHTS in frame.glsl
+inline constexpr int kMaxPointLights = 8;  // MAX_POINT_LIGHTS in frame.glsl
 inline constexpr unsigned kFrameBlockBinding = 0;
 
 struct FrameBlock {

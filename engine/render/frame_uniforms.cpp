@@ -7,16 +7,24 @@
 
 namespace engine {
 
-CompiledLights compileLights(const SceneDesc& scene) {
-  CompiledLights lights;
-  for (int i = 0; i < int(scene.lights.size()); ++i) {
-    const LightDesc& l = scene.lights[size_t(i)];
-    if (l.type == LightType::Sun && lights.sun < 0) lights.sun = i;
-    // Area lights are drawn as a point at their centre; their soft shadow is the
-    // ray tracer's job (PCF only imitates it).
-    if (l.type != LightType::Sun && int(lights.points.size()) < kMaxPointLights) lights.points.push_back(i);
+CompiledLights compileLights(std::span<const LightDesc> lights) {
+  CompiledLights out;
+  std::vector<LightDesc> suns;
+  for (const LightDesc& l : lights) {
+    if (l.type != LightType::Sun) {
+      out.others.push_back(l);
+    } else if (!out.sun) {
+      out.sun = l;
+    } else {
+      suns.push_back(l);
+    }
   }
-  return lights;
+  out.others.insert(out.others.end(), suns.begin(), suns.end());
+  if (int(out.others.size()) > kMaxPointLights) {
+    out.dropped = int(out.others.size()) - kMaxPointLights;
+    out.others.resize(size_t(kMaxPointLights));
+  }
+  return out;
 }
 
 FrameUniforms::FrameUniforms(const SceneDesc& scene, CompiledLights lights, int pcfRadius, const SunShadowPass* sun,
@@ -33,17 +41,20 @@ void FrameUniforms::fill(const glm::dvec3& eye, const glm::mat4& viewProjection)
   FrameBlock& frame = block_;
   frame.viewProjection = viewProjection;
   frame.sunDirection = glm::vec4(0.0f);
-  if (lights_.sun >= 0) {
-    const LightDesc& sun = scene_.lights[size_t(lights_.sun)];
-    frame.sunDirection = glm::vec4(glm::vec3(sun.direction), 1.0f);
-    frame.sunColor = glm::vec4(sun.color * sun.intensity, 0.0f);
+  if (const auto& sun = lights_.sun) {
+    frame.sunDirection = glm::vec4(glm::vec3(sun->direction), 1.0f);
+    frame.sunColor = glm::vec4(sun->color * sun->intensity, 0.0f);
   }
   if (sun_) sun_->fill(frame);
-  frame.counts = glm::ivec4(int(lights_.points.size()), 0, 0, 0);
-  for (size_t i = 0; i < lights_.points.size(); ++i) {
-    const LightDesc& l = scene_.lights[size_t(lights_.points[i])];
-    frame.pointPosition[i] = glm::vec4(glm::vec3(l.position - eye), l.falloff ? 1.0f : 0.0f);
-    frame.pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows ? 1.0f : 0.0f);
+  frame.counts = glm::ivec4(int(lights_.others.size()), 0, 0, 0);
+  for (size_t i = 0; i < lights_.others.size(); ++i) {
+    const LightDesc& l = lights_.others[i];
+    // w: 0 a point without falloff, 1 with 1/d^2, 2 a direction toward a sun
+    // (common/frame.glsl).
+    frame.pointPosition[i] = l.type == LightType::Sun
+                                 ? glm::vec4(glm::vec3(l.direction), 2.0f)
+                                 : glm::vec4(glm::vec3(l.position - eye), l.falloff ? 1.0f : 0.0f);
+    frame.pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows && l.type != LightType::Sun ? 1.0f : 0.0f);
   }
   // Ambient from the sky: the zenith and ground colours, dimmed.
   frame.ambientSky = glm::vec4(ambientSkyColor(scene_), scene_.ambient);

@@ -3,6 +3,8 @@
 // scene program reads: the lights, the ambient, the fog and the shadow maps'
 // parameters, filled for each view the frame draws (the camera's, a reflection
 // probe's faces). Not part of the engine's interface.
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "asset/scene_desc.h"
@@ -16,13 +18,18 @@ class PointShadowPass;
 class SunShadowPass;
 
 // The lights the scene programs have compiled in (common/direct_light.glsl says
-// why their counts are): the first sun, and up to kMaxPointLights others, indices
-// into SceneDesc::lights.
+// why their counts are), from the scene's environment (scene/environment.h): the
+// sun (its first), with the shadow map; and up to kMaxPointLights others in the
+// frame block's light array: the point lights (the first with its cube shadow when
+// it asks for one), area lights as a point at their centre (their soft shadow is the
+// tracers' job), then any further sun as a directional light, unshadowed.
 struct CompiledLights {
-  int sun = -1;
-  std::vector<int> points;
+  std::optional<LightDesc> sun;
+  std::vector<LightDesc> others;
+  int dropped = 0;  // past kMaxPointLights: not drawn (--describe and a warning say so)
+  bool pointShadows() const { return !others.empty() && others[0].type != LightType::Sun && others[0].shadows; }
 };
-CompiledLights compileLights(const SceneDesc& scene);
+CompiledLights compileLights(std::span<const LightDesc> lights);
 
 class FrameUniforms {
  public:

@@ -220,7 +220,12 @@ std::string SceneRenderer::describe() const {
   out << "\nshading: " << (s.render.shading == Shading::Classic ? "classic" : "pbr");
   if (s.render.shading == Shading::Pbr) out << ", ambient " << ambientName(s.ambient) << s.sky->describeEnvironmentCost();
   const CompiledLights& lights = s.frame->lights();
-  out << "; lights compiled in: " << (lights.sun >= 0 ? "sun + " : "") << lights.points.size() << " point";
+  const auto directional = std::count_if(lights.others.begin(), lights.others.end(),
+                                         [](const LightDesc& l) { return l.type == LightType::Sun; });
+  out << "; lights compiled in: " << (lights.sun ? "sun + " : "") << lights.others.size() - size_t(directional)
+      << " point";
+  if (directional > 0) out << " + " << directional << " directional";
+  if (lights.dropped > 0) out << " (" << lights.dropped << " not drawn)";
   out << "\nvariants:";
   for (const auto& v : s.draws->variants().built()) out << " " << v.describe();
   if (const SkinPrograms* skinPrograms = s.gpu->skinPrograms()) {

@@ -2,9 +2,11 @@
 #include "render/scene_renderer_impl.h"
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/log.h"
 #include "render/render_target.h"
 #include "scene/terrain_mesh.h"
 
@@ -37,14 +39,19 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
                      " samples asked, this GL offers up to " + std::to_string(most));
   }
 
-  CompiledLights lights = compileLights(scene);
-  const LightDesc* sunLight = lights.sun >= 0 ? &scene.lights[size_t(lights.sun)] : nullptr;
+  // The environment's lights (the models' included), not the scene file's.
+  CompiledLights lights = compileLights(source->environment().lights);
+  if (lights.dropped > 0) {
+    logWarning(scene.path + ": " + std::to_string(lights.dropped) + " light(s) not drawn: the rasterizer draws a sun and " +
+               std::to_string(kMaxPointLights) + " other lights (the tracers draw every light)");
+  }
+  const std::optional<LightDesc> sunLight = lights.sun;
   const bool sunShadows = sunLight && sunLight->shadows;
-  const bool pointShadows = !lights.points.empty() && scene.lights[size_t(lights.points[0])].shadows;
+  const bool pointShadows = lights.pointShadows();
 
   // The lights' counts are compile-time (common/direct_light.glsl says why).
   std::vector<std::string> defines = {"SUN_LIGHT " + std::to_string(sunLight ? 1 : 0),
-                                      "POINT_LIGHTS " + std::to_string(lights.points.size())};
+                                      "POINT_LIGHTS " + std::to_string(lights.others.size())};
   if (render.shading == Shading::Classic) defines.push_back("CLASSIC 1");
   if (sunShadows) defines.push_back("SUN_SHADOWS 1");
   const bool sunFarShadows = sunShadows && scene.terrain.enabled;
@@ -55,7 +62,7 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
   if (scene.fog.enabled) defines.push_back("FOG 1");
   // What of a fragment's position the lighting reads beyond its direction: the
   // deferred characters' surface then keeps its distance (common/surface.glsl).
-  const bool surfacePosition = sunShadows || pointShadows || !lights.points.empty() || scene.fog.enabled;
+  const bool surfacePosition = sunShadows || pointShadows || !lights.others.empty() || scene.fog.enabled;
   if (surfacePosition) defines.push_back("SURFACE_POSITION 1");
   int iblSize = 0;
   if (render.shading == Shading::Pbr) {
@@ -98,7 +105,7 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
                                        std::make_unique<ShaderVariants>(shaderDir, defines),
                                        stats);
   // Programs are built in this order (their names order the draws' sort keys).
-  auto skyPass = SkyPass::create(shaderDir, scene, sunLight, gpu->skyImage(), display, stats);
+  auto skyPass = SkyPass::create(shaderDir, scene, sunLight ? &*sunLight : nullptr, gpu->skyImage(), display, stats);
   if (!skyPass) return skyPass.error();
   sky = std::move(skyPass).value();
   auto outputPass = OutputPass::create(shaderDir, render, directOutput, stats);
@@ -134,7 +141,7 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
     sun = std::move(made).value();
   }
   if (pointShadows) {
-    auto made = PointShadowPass::create(scene.lights[size_t(lights.points[0])].position, render.shadowMapSize,
+    auto made = PointShadowPass::create(lights.others[0].position, render.shadowMapSize,
                                         std::max(1.0, scene.camera.farPlane), *draws);
     if (!made) return made.error();
     point = std::move(made).value();

@@ -28,6 +28,9 @@ Result<std::shared_ptr<Scene>> Scene::load(const SceneDesc& desc,
   if (!images) return images.error();
   scene->images_ = std::move(images).value();
   scene->materials_ = sceneFileMaterials(desc, scene->images_);
+  scene->environment_ = SceneEnvironment::of(desc, scene->images_.sky);
+  for (const ModelInstance& instance : scene->instances_)
+    scene->environment_.addModelLights(scene->assetOf(instance).model, instance.world);
   if (auto s = scene->update(0.0); !s) return s.error();
   return scene;
 }

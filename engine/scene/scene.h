@@ -10,6 +10,7 @@
 
 #include "asset/scene_desc.h"
 #include "core/result.h"
+#include "scene/environment.h"
 #include "scene/materials.h"
 #include "scene/model_asset.h"
 #include "scene/scene_images.h"
@@ -64,6 +65,9 @@ class Scene {
   // The scene file's materials as both renderers shade them (scene/materials.h),
   // their textures in images(); a model's are its asset's (ModelAsset::materials).
   std::span<const SceneMaterial> materials() const { return materials_; }
+  // The lights (the file's, then each instance's KHR_lights_punctual) and the sky, as
+  // every renderer draws them (scene/environment.h).
+  const SceneEnvironment& environment() const { return environment_; }
   // Whether anything in the scene moves with time (today: whether it has models).
   bool animated() const { return !instances_.empty(); }
 
@@ -77,6 +81,7 @@ class Scene {
   std::unique_ptr<terrain::Terrain> terrain_;
   SceneImages images_;
   std::vector<SceneMaterial> materials_;
+  SceneEnvironment environment_;
   std::vector<Srt> locals_;  // scratch of update
   double time_ = 0.0;
   QuatInterpolation rotations_ = QuatInterpolation::Slerp;

@@ -9,7 +9,6 @@
 #include "asset/material_variants.h"
 #include "asset/model_lights.h"
 #include "core/log.h"
-#include "render/frame_block.h"
 #include "scene/scene.h"
 
 namespace viewer {
@@ -24,29 +23,16 @@ struct ViewerScene::Overlay {
 
 namespace {
 
-// The model's KHR_lights_punctual lights (asset/model_lights.h), at the origin as
-// the model is. The rasterizer draws the first kMaxPointLights point lights; the
-// others are named in a warning.
-std::vector<LightDesc> lightsOfModel(const ModelData& model) {
-  std::vector<LightDesc> lights = modelLights(model);
-  int points = 0;
-  for (const LightDesc& l : lights) points += l.type == LightType::Point;
-  if (points > kMaxPointLights)
-    logWarning(model.path + ": " + std::to_string(points) + " point lights; the rasterizer draws the first " +
-               std::to_string(kMaxPointLights) + " (the ray tracer all of them)");
-  return lights;
-}
-
 // The scene the viewer draws a model in: the sky (which lights it through the
 // IBL), a checker ground under the model's lowest point and the model at the
 // origin, lit by the model's own lights when it has any (as the Khronos Sample
-// Viewer does: the file's lights replace its default ones), else by a sun with
-// shadows, as the viewer always had it.
+// Viewer does: the file's lights replace its default ones; the scene's environment
+// places them, scene/environment.h), else by a sun with shadows, as the viewer
+// always had it.
 SceneDesc viewerScene(const ModelData& model, const glm::dvec3& lo, double radius, const ViewerSettings& settings) {
   SceneDesc scene;
   scene.path = model.path;
-  scene.lights = lightsOfModel(model);
-  if (scene.lights.empty()) {
+  if (modelLights(model).empty()) {
     LightDesc sun;
     sun.direction = glm::normalize(glm::dvec3(0.5, 0.8, 0.3));
     sun.color = glm::vec3(1.0f, 0.94f, 0.85f);

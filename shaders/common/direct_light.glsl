@@ -1,5 +1,6 @@
 // Direct light on a surface: the sun (through its shadow map under SUN_SHADOWS) and
-// the point lights (the first through its cube shadow under POINT_SHADOWS), with
+// the other lights: point lights (the first through its cube shadow under
+// POINT_SHADOWS) and further suns, unshadowed (render/frame_uniforms.h), with
 // common/shading.glsl's model. Needs common/frame.glsl, shading.glsl and shadows.glsl
 // included first. scene.frag and terrain.frag both use it, so that the ground is lit
 // exactly like the meshes standing on it. `shadowNormal` is the geometric normal:
@@ -31,13 +32,15 @@ vec3 shadeDirectLight(Surface s, vec3 shadowNormal) {
   }
 #endif
   for (int i = 0; i < POINT_LIGHTS; ++i) {
-    vec3 toLight = u_pointPosition[i].xyz - s.position;
+    // A further sun (w = 2) is a direction: no position, no fall-off.
+    bool directional = u_pointPosition[i].w > 1.5;
+    vec3 toLight = directional ? u_pointPosition[i].xyz : u_pointPosition[i].xyz - s.position;
     float d2 = dot(toLight, toLight);
     float visibility = 1.0;
 #ifdef POINT_SHADOWS
     if (i == 0 && u_pointColor[0].w > 0.0) visibility = pointShadow(s.position, shadowNormal);
 #endif
-    vec3 radiance = u_pointColor[i].rgb / (u_pointPosition[i].w > 0.0 ? max(d2, 1e-8) : 1.0);
+    vec3 radiance = u_pointColor[i].rgb / (u_pointPosition[i].w > 0.5 && !directional ? max(d2, 1e-8) : 1.0);
     color += shadeLight(s, toLight * inversesqrt(max(d2, 1e-30)), radiance, visibility);
   }
   return color;

@@ -4,13 +4,15 @@
 // Texture units and binding points are engine/gl/bindings.h's, which every program
 // receives as #defines (UNIT_BASE_COLOR, ...): one owner each, as a unit shared by
 // two sampler types is a draw-time GL error.
-#define MAX_POINT_LIGHTS 4
+#define MAX_POINT_LIGHTS 8
 layout(std140, binding = BLOCK_FRAME) uniform Frame {
   mat4 u_viewProjection;
   mat4 u_sunShadowMatrix;   // camera-relative world -> shadow map [0,1]^3
   vec4 u_sunDirection;      // toward the sun; w = 1 when there is a sun
   vec4 u_sunColor;          // colour * intensity
-  vec4 u_pointPosition[MAX_POINT_LIGHTS];  // xyz; w = 1: 1/d^2 fall-off
+  // The lights but the sun (render/frame_uniforms.h, CompiledLights::others):
+  vec4 u_pointPosition[MAX_POINT_LIGHTS];  // xyz: a position, w = 0 (no fall-off) or 1 (1/d^2); or
+                                           // a unit direction toward a further sun, w = 2
   vec4 u_pointColor[MAX_POINT_LIGHTS];     // colour * intensity; w = 1: casts shadows
   vec4 u_ambientSky;        // hemispheric ambient (PBR); w = classic ambient weight
   vec4 u_ambientGround;

@@ -85,8 +85,11 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"sample_instancing", SceneKind::Sample, 0.0, 0, 0, 0,
                               "SimpleInstancing/glTF-Binary/SimpleInstancing.glb"},
                              // KHR_lights_punctual: the lamp lit by its own five point lights
-                             // (the rasterizer draws four) instead of the viewer's sun; the
-                             // warm and cyan lights show on the floor.
+                             // instead of the viewer's sun; the warm and cyan lights show on
+                             // the floor. Remade 2026-12-07, when the rasterizer's light array
+                             // grew from four lights to eight: the fifth (180 cd, in front of
+                             // the lamp) now lights the stem's front and the near floor, as
+                             // the tracers always drew it.
                              {"sample_lights_lamp", SceneKind::Sample, 0.0, 0, 0, 0,
                               "LightsPunctualLamp/glTF/LightsPunctualLamp.gltf"}};
 

@@ -247,7 +247,7 @@ TEST(SceneMaterials, AnotherScenesTableIsRefused) {
   const std::vector<SceneMaterial> table = sceneFileMaterials(desc, *images);
   SceneDesc other = desc;
   other.materials.push_back(MaterialDesc{});
-  auto rt = rt::RtScene::fromSceneDesc(other, table, images->sky);
+  auto rt = rt::RtScene::fromSceneDesc(other, table, SceneEnvironment::of(other, images->sky));
   ASSERT_FALSE(rt.ok());
   EXPECT_NE(rt.error().message.find("materials.json"), std::string::npos) << rt.error().message;
 }

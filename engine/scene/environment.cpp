@@ -1,0 +1,33 @@
+#include "scene/environment.h"
+
+#include <utility>
+
+#include "asset/model_lights.h"
+
+namespace engine {
+
+SceneEnvironment SceneEnvironment::of(const SceneDesc& desc, std::shared_ptr<const FloatImage> skyImage) {
+  SceneEnvironment environment;
+  environment.lights = desc.lights;
+  environment.sky = desc.sky;
+  environment.skyImage = std::move(skyImage);
+  return environment;
+}
+
+void SceneEnvironment::addModelLights(const ModelData& model, const glm::dmat4& world) {
+  for (LightDesc& light : modelLights(model, world)) lights.push_back(std::move(light));
+}
+
+const LightDesc* SceneEnvironment::sun() const {
+  for (const LightDesc& l : lights)
+    if (l.type == LightType::Sun) return &l;
+  return nullptr;
+}
+
+std::optional<glm::vec3> SceneEnvironment::sunDirection() const {
+  const LightDesc* s = sun();
+  if (!s) return std::nullopt;
+  return glm::normalize(glm::vec3(s->direction));
+}
+
+}  // namespace engine
