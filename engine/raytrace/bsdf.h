@@ -1,12 +1,9 @@
 #pragma once
 // The path tracer's scattering at one hit: shaders/common/bsdf.glsl, the GPU path
-// tracer's text, compiled as C++ (core/bsdf.h), under the class and the optional
-// sample its callers use. What the models and their lobes are is said there: the
+// tracer's text, compiled as C++ (core/bsdf.h), under the class its callers use. What the models and their lobes are is said there: the
 // classic model made physical (Lambert, the course's highlight and a mirror) and
 // metallic-roughness (Lambert + GGX with glTF's layers: ior and specular, clear coat,
 // sheen, thin film, anisotropy, transmission through thin walls and into volumes).
-#include <optional>
-
 #include <glm/glm.hpp>
 
 #include "core/bsdf.h"
@@ -14,13 +11,15 @@
 
 namespace engine::rt {
 
-struct BsdfSample {
-  glm::vec3 wi{0.0f};      // world, unit
-  glm::vec3 weight{0.0f};  // f * |cos| / pdf: what the path's throughput is multiplied by
-  float pdf = 0.0f;        // of the lobe mixture; 0 for the mirror's delta
-  bool delta = false;      // a mirror direction: no light sample can find it
-  bool transmitted = false;  // through the surface (KHR_materials_transmission)
-};
+// A drawn direction (the shared text's): `drawn` false where nothing was (the
+// direction fell under the surface, or a zero pdf); else wi (world, unit), weight
+// (f |cos| / pdf, what the path's throughput is multiplied by), pdf (of the lobe
+// mixture; 0 for a delta), delta (a mirror or transmitted direction: no light sample
+// can find it) and transmitted (through the surface, KHR_materials_transmission).
+// The text's struct itself, not a copy in an optional: the copy, narrow stores read
+// back by wide loads, stalled store forwarding on every bounce (7 % of the course
+// room's path trace).
+using BsdfSample = brdf::BsdfSample;
 
 class Bsdf {
  public:
@@ -35,11 +34,7 @@ class Bsdf {
   // The density sample() draws wi with through its non-delta lobes (solid angle).
   float pdf(const glm::vec3& wi) const { return brdf::bsdfPdf(b_, wi); }
   // u: two uniform numbers for the direction, uLobe one for the choice of lobe.
-  std::optional<BsdfSample> sample(glm::vec2 u, float uLobe) const {
-    const brdf::BsdfSample s = brdf::bsdfSampleOf(b_, u, uLobe);
-    if (!s.drawn) return std::nullopt;
-    return BsdfSample{s.wi, s.weight, s.pdf, s.delta, s.transmitted};
-  }
+  BsdfSample sample(glm::vec2 u, float uLobe) const { return brdf::bsdfSampleOf(b_, u, uLobe); }
   // Whether any lobe is not a delta: only those gain from light samples.
   bool hasDiffuseOrGlossy() const { return b_.pMirror < 1.0f; }
   const glm::vec3& normal() const { return b_.frame.n; }

@@ -232,16 +232,16 @@ class PathTracer {
                                                                : Bsdf::classic(m, ns, wo);
     if (bsdf.hasDiffuseOrGlossy()) path.radiance += beta * directLight(*hit, bsdf, ng, rng, counters);
     const glm::vec2 u = rng.uniform2();
-    const std::optional<BsdfSample> s = bsdf.sample(u, rng.uniform());
+    const BsdfSample s = bsdf.sample(u, rng.uniform());
     // A direction under the geometric surface would leak light through it; one
     // transmitted must be under it.
-    if (!s || (glm::dot(s->wi, ng) <= 0.0f) != s->transmitted) return false;
+    if (!s.drawn || (glm::dot(s.wi, ng) <= 0.0f) != s.transmitted) return false;
     // In or out of a volume: its absorption applies along the next segment.
     if (m.transmission > 0.0f && m.thickness > 0.0f)
-      path.absorption = glm::dot(glm::dvec3(s->wi), glm::dvec3(hit->n)) < 0.0 ? volumeAbsorption(m) : glm::vec3(0.0f);
-    beta *= s->weight;
-    path.countEmitters = s->delta;
-    path.bsdfPdf = s->pdf;
+      path.absorption = glm::dot(glm::dvec3(s.wi), glm::dvec3(hit->n)) < 0.0 ? volumeAbsorption(m) : glm::vec3(0.0f);
+    beta *= s.weight;
+    path.countEmitters = s.delta;
+    path.bsdfPdf = s.pdf;
     if (path.depth + 1 >= settings_.rouletteDepth) {
       const float survive = std::min(1.0f, maxComponent(beta));
       if (!(survive > 0.0f) || rng.uniform() >= survive) return false;
@@ -251,7 +251,7 @@ class PathTracer {
     ++path.depth;
     // Member by member: the whole struct assigned was stored in narrow pieces and
     // read back in 16-byte loads, a store-forwarding stall on every bounce.
-    const Ray<T> next = hit->spawnRay(Vec3<T>(s->wi));
+    const Ray<T> next = hit->spawnRay(Vec3<T>(s.wi));
     ray.o = next.o;
     ray.d = next.d;
     ray.tMax = next.tMax;

@@ -183,26 +183,26 @@ TEST_P(GpuBsdf, TheShadersScatteringIsTheCpus) {
       const double limit = 1e-5 + 4.0 * double(moved[k]) / std::max(std::abs(double(cpuValue[k])), 1e-6);
       worstValue = std::max(worstValue, relative(cpuValue[k], gpuValue[k]) / limit);
     }
-    const std::optional<rt::BsdfSample> s = b.sample(u, c.u.z);
-    if (s.has_value() != (g.weight.w > 0.0f)) {
+    const rt::BsdfSample s = b.sample(u, c.u.z);
+    if (s.drawn != (g.weight.w > 0.0f)) {
       ++drawnDiffer;
       continue;
     }
-    if (!s) continue;
+    if (!s.drawn) continue;
     ++bothDrew;
-    ASSERT_EQ(s->delta, g.weight.w >= 2.0f) << "case " << i;
-    ASSERT_EQ(s->transmitted, g.weight.w == 3.0f) << "case " << i;
-    transmitted += s->transmitted ? 1 : 0;
+    ASSERT_EQ(s.delta, g.weight.w >= 2.0f) << "case " << i;
+    ASSERT_EQ(s.transmitted, g.weight.w == 3.0f) << "case " << i;
+    transmitted += s.transmitted ? 1 : 0;
     // The sample's pdf and weight get the same allowance for a last-bit move of wo.
     glm::vec4 sampleMoved(0.0f);
     for (const float e : {1.2e-7f, -1.2e-7f}) {
-      if (const std::optional<rt::BsdfSample> o = bsdfAt(nudged(wo, e)).sample(u, c.u.z)) {
-        sampleMoved = glm::max(sampleMoved, glm::abs(glm::vec4(o->weight, o->pdf) - glm::vec4(s->weight, s->pdf)));
+      if (const rt::BsdfSample o = bsdfAt(nudged(wo, e)).sample(u, c.u.z); o.drawn) {
+        sampleMoved = glm::max(sampleMoved, glm::abs(glm::vec4(o.weight, o.pdf) - glm::vec4(s.weight, s.pdf)));
       }
     }
-    const glm::vec4 cpuSample(s->weight, s->pdf), gpuSample(glm::vec3(g.weight), g.drawn.w);
+    const glm::vec4 cpuSample(s.weight, s.pdf), gpuSample(glm::vec3(g.weight), g.drawn.w);
     for (int k = 0; k < 4; ++k) {
-      if (k < 3) worstDirection = std::max(worstDirection, double(std::abs(s->wi[k] - g.drawn[k])));
+      if (k < 3) worstDirection = std::max(worstDirection, double(std::abs(s.wi[k] - g.drawn[k])));
       const double limit = 1e-3 + 4.0 * double(sampleMoved[k]) / std::max(std::abs(double(cpuSample[k])), 1e-6);
       worstSample = std::max(worstSample, relative(cpuSample[k], gpuSample[k]) / limit);
     }

@@ -117,8 +117,8 @@ void expectBsdfSamplesItsPdf(const rt::Bsdf& bsdf) {
   expectPasses(chi2::test(
       [&](glm::vec2 u, glm::vec3* w) {
         const auto s = bsdf.sample(u, uniform(lobes));
-        if (!s || s->delta) return false;
-        *w = s->wi;
+        if (!s.drawn || s.delta) return false;
+        *w = s.wi;
         return true;
       },
       [&](const glm::vec3& w) { return double(bsdf.pdf(w)); }));
@@ -244,7 +244,7 @@ double directionalAlbedo(const engine::rt::HitMaterial& m, float cosTheta, std::
   double sum = 0.0;
   constexpr int kSamples = 16384;
   for (int i = 0; i < kSamples; ++i) {
-    if (const auto s = bsdf.sample(glm::vec2(uniform(rng), uniform(rng)), uniform(rng))) sum += double(s->weight.x);
+    if (const auto s = bsdf.sample(glm::vec2(uniform(rng), uniform(rng)), uniform(rng)); s.drawn) sum += double(s.weight.x);
   }
   return sum / kSamples;
 }
@@ -365,7 +365,7 @@ AlbedoEstimate sampledAlbedo(const engine::rt::HitMaterial& m, float cosTheta, i
   double sum = 0.0, squares = 0.0;
   for (int i = 0; i < samples; ++i) {
     const auto s = bsdf.sample(glm::vec2(uniform(rng), uniform(rng)), uniform(rng));
-    const double w = s ? double(s->weight.x) : 0.0;
+    const double w = s.drawn ? double(s.weight.x) : 0.0;
     sum += w;
     squares += w * w;
   }
@@ -429,7 +429,7 @@ TEST(Energy, TransmissionNeitherAddsNorLosesLightInSmoothGlass) {
           constexpr int kSamples = 16384;
           for (int i = 0; i < kSamples; ++i) {
             const auto s = bsdf.sample(glm::vec2(uniform(rng), uniform(rng)), uniform(rng));
-            if (s) sum += double(s->weight.x);
+            if (s.drawn) sum += double(s.weight.x);
           }
           const double albedo = sum / kSamples;
           const std::string where = "thickness " + std::to_string(thickness) + (entering ? ", entering" : ", leaving") +
