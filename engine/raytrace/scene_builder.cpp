@@ -19,14 +19,18 @@ namespace engine::rt {
 namespace {
 
 // A model's materials from the scene layer's table (ModelAsset::materials,
-// scene/materials.h), which the rasterizer's uniforms read too.
+// scene/materials.h), which the rasterizer's uniforms read too, and after them glTF's
+// default material, for its primitives without one (as the rasterizer draws them).
 Result<std::vector<int>> addMaterials(const ModelAsset& asset, RtScene& scene) {
-  std::vector<int> materials;  // glTF material -> RtScene material
+  std::vector<int> materials;  // glTF material -> RtScene material; last: the default
   for (const SceneMaterial& m : asset.materials) {
     auto material = scene.addSceneMaterial(m);
     if (!material) return material.error();
     materials.push_back(*material);
   }
+  auto fallback = scene.addSceneMaterial(gltfDefaultMaterial());
+  if (!fallback) return fallback.error();
+  materials.push_back(*fallback);
   return materials;
 }
 
@@ -34,7 +38,7 @@ Result<std::vector<int>> addMaterials(const ModelAsset& asset, RtScene& scene) {
 // indices (a non-indexed primitive gets 0, 1, 2, ...); positions and normals sized.
 RtMesh staticMesh(const PrimitiveData& prim, std::span<const int> materials) {
   RtMesh mesh;
-  mesh.material = prim.material >= 0 ? materials[size_t(prim.material)] : 0;
+  mesh.material = prim.material >= 0 ? materials[size_t(prim.material)] : materials.back();
   mesh.positions.resize(prim.positions.size());
   if (!prim.normals.empty()) mesh.normals.resize(prim.normals.size());
   mesh.uvs = prim.uvs;

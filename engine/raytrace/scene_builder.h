@@ -68,7 +68,8 @@ class AnimatedRtScene {
   int instanceGroup(std::size_t i) const { return instances_[i].group; }
   const std::vector<RtMesh>& instanceMeshes(std::size_t i) const { return instances_[i].meshes; }
   // The RtScene material of each glTF material of the scene's asset `asset`
-  // (Scene::assets() order), made from its table (ModelAsset::materials).
+  // (Scene::assets() order), made from its table (ModelAsset::materials), and last
+  // glTF's default (gltfDefaultMaterial), which its primitives without one take.
   std::span<const int> assetMaterials(std::size_t asset) const { return materials_[asset]; }
 
   AnimatedRtScene(AnimatedRtScene&&) noexcept;

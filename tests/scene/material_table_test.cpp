@@ -154,9 +154,10 @@ void expectBothRenderersAgree(const SceneDesc& desc, int& layered) {
   for (size_t a = 0; a < scene->assets().size(); ++a) {
     const ModelAsset& asset = *scene->assets()[a];
     ASSERT_EQ(asset.materials.size(), asset.model.materials.size());
-    ASSERT_EQ(traced->assetMaterials(a).size(), asset.materials.size());
-    for (size_t k = 0; k < asset.materials.size(); ++k) {
-      const SceneMaterial& m = asset.materials[k];
+    // One more than the model has: glTF's default, for primitives without one.
+    ASSERT_EQ(traced->assetMaterials(a).size(), asset.materials.size() + 1);
+    for (size_t k = 0; k <= asset.materials.size(); ++k) {
+      const SceneMaterial& m = gltfMaterialOf(asset.materials, int(k));
       const int material = traced->assetMaterials(a)[k];
       const Uniforms u = gltfUniforms(m);
       const std::string what = asset.model.path + ": material " + std::to_string(k) + " " + m.surface.name;
@@ -215,6 +216,27 @@ TEST(SceneMaterials, GltfsDefaultMaterialIsWhiteAndFullyRough) {
   EXPECT_EQ(u.at("u_specular")[0], 0.0f);
   EXPECT_FALSE(m.doubleSided);
   EXPECT_EQ(&gltfMaterialOf(none, 3), &m) << "out of range: the default too";
+}
+
+// Khronos's Triangle has no material: the tracer gives it glTF's default, as the
+// rasterizer draws it (it took the scene's first material before).
+TEST(SceneMaterials, APrimitiveWithoutAMaterialIsTracedWithTheDefault) {
+  const std::string triangle = kMaterialSamples + "Triangle/glTF/Triangle.gltf";
+  if (!std::filesystem::exists(triangle)) GTEST_SKIP() << triangle << " absent";
+  SceneDesc desc = materialsScene();
+  desc.models.resize(1);
+  desc.models[0] = ModelDesc{};
+  desc.models[0].path = triangle;
+  auto scene = loadMaterialScene(desc);
+  ASSERT_TRUE(scene);
+  auto traced = rt::AnimatedRtScene::create(scene, 240);
+  ASSERT_TRUE(traced.ok()) << traced.error().message;
+  ASSERT_EQ(traced->instanceCount(), 1u);
+  ASSERT_EQ(traced->instanceMeshes(0).size(), 1u);
+  const int material = traced->instanceMeshes(0)[0].material;
+  EXPECT_EQ(material, traced->assetMaterials(0).back());
+  const SceneMaterial& fallback = gltfMaterialOf({}, -1);
+  expectSurfaceAgrees(gltfUniforms(fallback), traced->scene().baseMaterial(material), "Triangle's default");
 }
 
 // The table's images are the model's and the scene's own, decoded once: no copy.
