@@ -126,9 +126,8 @@ bool GpuCullPass::isOccluder(const DrawItem& item) const {
   const ModelData& model = c.instance->asset().model;
   const NodeData& node = model.nodes[size_t(item.node)];
   const PrimitiveData& data = model.meshes[size_t(node.mesh)].primitives[size_t(item.primitive)];
-  const MaterialData* material = data.material >= 0 ? &model.materials[size_t(data.material)] : nullptr;
   return !skinnedBy(node, data.influences, skinModeOf(c.desc)) && data.morphTargets == 0 &&
-         !(material && material->alphaMode != AlphaMode::Opaque);
+         c.instance->asset().gpu.material(data.material).alphaMode == AlphaMode::Opaque;
 }
 
 // The pyramid the main view's draws are culled against: the depth drawn so far

@@ -99,9 +99,9 @@ Status GpuScene::loadModels(const SceneDesc& scene, const GpuSceneOptions& optio
     for (const NodeData& node : model.nodes) {
       if (node.mesh < 0) continue;
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
-        const MaterialData* material = prim.material >= 0 ? &model.materials[size_t(prim.material)] : nullptr;
-        blends_ = blends_ || (material && material->alphaMode == AlphaMode::Blend);
-        refracts_ = refracts_ || (material && material->layers.transmissive());
+        const SceneMaterial& material = draw.instance->asset().gpu.material(prim.material);
+        blends_ = blends_ || material.blends();
+        refracts_ = refracts_ || material.transmissive();
       }
     }
     draw.world = instance.world;

@@ -15,10 +15,7 @@
 namespace engine {
 namespace {
 
-bool isBlend(const ModelData& model, int material) {
-  const MaterialData* m = materialOf(model, material);
-  return m && m->alphaMode == AlphaMode::Blend;
-}
+bool isBlend(const GpuModel& gpu, int material) { return gpu.material(material).blends(); }
 
 // The frame's weights for node `node`'s MORPH draw.
 Status bindNodeMorphTargets(const gl::Program& pr, const GpuPrimitive& prim, const ModelFrame& frame, size_t node) {
@@ -168,7 +165,7 @@ std::vector<BlendPrimitive> blendPrimitives(const ModelData& model, const GpuMod
     if (node.mesh < 0) continue;
     const auto& prims = gpu.meshes()[size_t(node.mesh)];
     for (size_t p = 0; p < prims.size(); ++p) {
-      if (!isBlend(model, prims[p].material)) continue;
+      if (!isBlend(gpu, prims[p].material)) continue;
       // A skinned primitive is placed by its joints, not its node; the node's
       // place is close enough to order whole primitives. EXT_mesh_gpu_instancing
       // instances of a BLEND primitive are sorted as one, at the node, and drawn
@@ -222,7 +219,7 @@ Status drawModel(ShaderVariants& variants, const ModelData& model, const GpuMode
     if (node.mesh < 0) continue;
     const auto& prims = gpu.meshes()[size_t(node.mesh)];
     for (size_t p = 0; p < prims.size(); ++p) {
-      if (isBlend(model, prims[p].material)) continue;
+      if (isBlend(gpu, prims[p].material)) continue;
       if (auto s = drawPrimitive(variants, model, gpu, frame, n, p); !s) return s;
     }
   }

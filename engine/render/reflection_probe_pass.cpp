@@ -17,7 +17,9 @@ constexpr double kProbeNear = 0.01;
 
 }  // namespace
 
-Result<std::unique_ptr<ReflectionProbePass>> ReflectionProbePass::create(const SceneDesc& scene, int size) {
+Result<std::unique_ptr<ReflectionProbePass>> ReflectionProbePass::create(const SceneDesc& scene,
+                                                                         std::span<const SceneMaterial> materials,
+                                                                         int size) {
   if (size <= 0) return std::unique_ptr<ReflectionProbePass>();
   auto pass = std::make_unique<ReflectionProbePass>();
   pass->size_ = size;
@@ -25,7 +27,7 @@ Result<std::unique_ptr<ReflectionProbePass>> ReflectionProbePass::create(const S
   pass->background_ = scene.sky.background;
   for (int i = 0; i < int(scene.primitives.size()) && int(pass->probes_.size()) < kMaxReflectionProbes; ++i) {
     const PrimitiveDesc& p = scene.primitives[size_t(i)];
-    if (p.type == PrimitiveType::Plane || scene.materials[size_t(p.material)].reflection <= 0.0f) continue;
+    if (p.type == PrimitiveType::Plane || materials[size_t(p.material)].surface.reflection <= 0.0f) continue;
     Probe probe;
     probe.shape = i;
     probe.center = p.type == PrimitiveType::Sphere ? p.center : (p.min + p.max) * 0.5;

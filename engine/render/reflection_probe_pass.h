@@ -3,6 +3,7 @@
 // rays: a cube map of the scene seen from each mirror shape's centre, which the
 // mirror's own draws then sample (SceneDraws). Not part of the engine's interface.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "core/result.h"
 #include "gl/resources.h"
 #include "render/scene_view.h"
+#include "scene/materials.h"
 
 namespace engine {
 
@@ -20,10 +22,11 @@ class WorldPass;
 
 class ReflectionProbePass {
  public:
-  // One probe of `size` texels a face per mirror sphere or box (material
-  // reflection > 0), up to four; null where there is none. Planes get none: a
+  // One probe of `size` texels a face per mirror sphere or box (its material in the
+  // scene's table, `materials`, has reflection > 0), up to four; null where there is none. Planes get none: a
   // plane mirror needs a planar reflection, which this renderer lacks.
-  static Result<std::unique_ptr<ReflectionProbePass>> create(const SceneDesc& scene, int size);
+  static Result<std::unique_ptr<ReflectionProbePass>> create(const SceneDesc& scene,
+                                                             std::span<const SceneMaterial> materials, int size);
 
   // The mirror shape of each probe, in order (GpuScene's ShapeDraw::probe).
   std::vector<int> shapes() const;

@@ -52,7 +52,7 @@ Status SceneDraws::buildVariants(bool shadows, bool farSun, std::unique_ptr<Char
       for (const PrimitiveData& prim : model.meshes[size_t(node.mesh)].primitives) {
         const ShaderVariant forward = primitiveVariant(model, node, prim, mode, false, cached);
         needed.push_back(forward);
-        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
+        const bool blend = c.instance->asset().gpu.material(prim.material).blends();
         if (surfaces && !blend && forward.deferrable()) {
           surfaces->addGroup(c.instance->asset(), prim.material, forward);
           surfacePasses.push_back(forward);
@@ -153,7 +153,7 @@ Status SceneDraws::collectCharacters(const glm::dvec4* planes, bool depthOnly, c
       const auto& prims = model.meshes[size_t(node.mesh)].primitives;
       for (int p = 0; p < int(prims.size()); ++p) {
         const PrimitiveData& prim = prims[size_t(p)];
-        const bool blend = prim.material >= 0 && model.materials[size_t(prim.material)].alphaMode == AlphaMode::Blend;
+        const bool blend = c.instance->asset().gpu.material(prim.material).blends();
         if (blend && depthOnly) continue;
         ShaderVariant variant = primitiveVariant(model, node, prim, mode, depthOnly, cached);
         variant.nearSunOnly = nearSunOnly;
@@ -166,7 +166,7 @@ Status SceneDraws::collectCharacters(const glm::dvec4* planes, bool depthOnly, c
         if (!program) return program.error();
         const GLuint id = (*program)->id();
         const bool transmissive =
-            !depthOnly && prim.material >= 0 && model.materials[size_t(prim.material)].layers.transmissive();
+            !depthOnly && c.instance->asset().gpu.material(prim.material).transmissive();
         lists.refracts = lists.refracts || transmissive;
         if (!blend) {
           const std::uint32_t material = std::uint32_t(scene_.materials.size()) + std::uint32_t(std::max(prim.material, 0));

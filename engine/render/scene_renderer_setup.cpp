@@ -79,7 +79,8 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
     render.toneMap = ToneMap::None;
   }
   auto probePass = ReflectionProbePass::create(
-      scene, options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe);
+      scene, source->materials(),
+      options.reflectionProbeOverride >= 0 ? options.reflectionProbeOverride : render.reflectionProbe);
   if (!probePass) return probePass.error();
   probes = std::move(probePass).value();
   if (probes) defines.push_back("REFLECTION_PROBES 1");
@@ -169,8 +170,8 @@ bool SceneRenderer::Impl::needsNoHdrTarget(const Scene& source) const {
   if (render.msaa > 1 || render.supersample > 1) return false;
   if (probes || debugView != DebugView::None) return false;
   for (const auto& asset : source.assets()) {
-    for (const MaterialData& m : asset->model.materials)
-      if (m.alphaMode == AlphaMode::Blend || m.layers.transmissive()) return false;
+    for (const SceneMaterial& m : asset->materials)
+      if (m.blends() || m.transmissive()) return false;
   }
   return true;
 }

@@ -53,6 +53,8 @@ struct SceneMaterial {
   // back of a one-sided material, as the rasterizer culls it.
   bool doubleSided = false;
   bool unlit = false;  // KHR_materials_unlit
+  bool blends() const { return alphaMode == AlphaMode::Blend; }
+  bool transmissive() const { return surface.layers.transmissive(); }
   float normalScale = 1.0f;
   float occlusionStrength = 1.0f;
   // The layered BRDF is needed (MaterialData::layered): layers away from their
