@@ -1,29 +1,36 @@
 #pragma once
-// The per-frame uniform block of shaders/common/frame.glsl (std140: vec4-aligned
-// members), bound at binding 0 for every scene program, the terrain's included.
+// The per-frame uniform block: shaders/common/frame.glsl's text, compiled as C++ (its
+// block becomes the struct the renderer fills and uploads), bound at binding 0 for
+// every scene program, the terrain's included. tests/render/frame_block_test.cpp
+// holds the GL's std140 offsets against this struct's.
 #include <glm/glm.hpp>
 
 namespace engine {
+namespace frametext {
+using glm::ivec4;
+using glm::mat4;
+using glm::vec4;
+// `layout(std140, binding = BLOCK_FRAME) uniform Frame {...};` reads as
+// `struct Frame {...};`.
+#define layout(...)
+#define uniform struct
+#include "common/frame.glsl"
+#undef uniform
+#undef layout
+}  // namespace frametext
 
-inline constexpr int kMaxPointLights = 8;  // MAX_POINT_LIGHTS in frame.glsl
+inline constexpr int kMaxPointLights = MAX_POINT_LIGHTS;
+#undef MAX_POINT_LIGHTS
 inline constexpr unsigned kFrameBlockBinding = 0;
 
-struct FrameBlock {
-  glm::mat4 viewProjection{1.0f};
-  glm::mat4 sunShadowMatrix{1.0f};
-  glm::vec4 sunDirection{0.0f};
-  glm::vec4 sunColor{0.0f};
-  glm::vec4 pointPosition[kMaxPointLights]{};
-  glm::vec4 pointColor[kMaxPointLights]{};
-  glm::vec4 ambientSky{0.0f};
-  glm::vec4 ambientGround{0.0f};
-  glm::vec4 fog{0.0f};
-  glm::vec4 shadowParams{0.0f};
-  glm::ivec4 counts{0};
-  glm::mat4 sunShadowMatrixFar{1.0f};
-  glm::vec4 sunFarParams{0.0f};
-  glm::vec4 shIrradiance[9]{};  // rgb: the environment's SH irradiance (render/ibl.h)
-  glm::vec4 iblParams{0.0f};    // x: the prefiltered chain's last level (roughness 1)
+// The text's block, its matrices the identity and the rest zero until filled.
+struct FrameBlock : frametext::Frame {
+  FrameBlock() : frametext::Frame{} {
+    u_viewProjection = glm::mat4(1.0f);
+    u_sunShadowMatrix = glm::mat4(1.0f);
+    u_sunShadowMatrixFar = glm::mat4(1.0f);
+  }
 };
+static_assert(sizeof(FrameBlock) == sizeof(frametext::Frame));
 
 }  // namespace engine

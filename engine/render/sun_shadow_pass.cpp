@@ -222,10 +222,10 @@ bool SunShadowPass::nearCovers(const glm::dvec3& lo, const glm::dvec3& hi) const
 }
 
 void SunShadowPass::fill(FrameBlock& frame) const {
-  frame.sunShadowMatrix = shadowMatrix_;
+  frame.u_sunShadowMatrix = shadowMatrix_;
   if (!far_) return;
-  frame.sunShadowMatrixFar = farShadowMatrix_;
-  frame.sunFarParams = farParams_;
+  frame.u_sunShadowMatrixFar = farShadowMatrix_;
+  frame.u_sunFarParams = farParams_;
 }
 
 std::string SunShadowPass::describe(const std::string& filter) const {

@@ -1,5 +1,9 @@
 // Per-frame data shared by every scene program (uniform block BLOCK_FRAME), filled
-// once per frame by engine/render/scene_renderer.cpp. Positions are camera-relative.
+// once per frame by engine/render/frame_uniforms.cpp. Positions are camera-relative.
+// C++ compiles this very block as its struct (engine/render/frame_block.h), so its
+// members are vec4, ivec4 and mat4 alone, whose std140 layout is C++'s: a float or
+// vec3 member would be laid out otherwise by the two. FrameBlockText.* compares the
+// GL's offsets with C++'s.
 //
 // Texture units and binding points are engine/gl/bindings.h's, which every program
 // receives as #defines (UNIT_BASE_COLOR, ...): one owner each, as a unit shared by

@@ -28,11 +28,11 @@ namespace {
 // The frame block the scene renderer fills: a sun, sky ambient and fog.
 gl::Buffer bindFrame(const glm::mat4& viewProjection) {
   FrameBlock frame;
-  frame.viewProjection = viewProjection;
-  frame.sunDirection = glm::vec4(glm::normalize(glm::vec3(0.5f, 0.8f, 0.3f)), 1.0f);
-  frame.sunColor = glm::vec4(1.3f, 1.22f, 1.1f, 0.0f);
-  frame.ambientSky = glm::vec4(0.22f, 0.28f, 0.38f, 0.3f);
-  frame.ambientGround = glm::vec4(0.1f, 0.09f, 0.07f, 0.0f);
+  frame.u_viewProjection = viewProjection;
+  frame.u_sunDirection = glm::vec4(glm::normalize(glm::vec3(0.5f, 0.8f, 0.3f)), 1.0f);
+  frame.u_sunColor = glm::vec4(1.3f, 1.22f, 1.1f, 0.0f);
+  frame.u_ambientSky = glm::vec4(0.22f, 0.28f, 0.38f, 0.3f);
+  frame.u_ambientGround = glm::vec4(0.1f, 0.09f, 0.07f, 0.0f);
   gl::Buffer ubo = gl::Buffer::create(sizeof(FrameBlock), &frame);
   glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBlockBinding, ubo.id());
   return ubo;
