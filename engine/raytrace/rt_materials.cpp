@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "core/layer_texels.h"
+
 namespace engine::rt {
 
 RtMaterials::RtMaterials() {
@@ -131,38 +133,47 @@ Status RtMaterials::setLayerTexture(int material, TextureSlot slot, RtTexture te
 }
 
 // glTF's layer textures at a hit, applied to `out`'s dielectric f0 and f90, coat,
-// transmission, thickness and sheen.
+// transmission, thickness, sheen, anisotropy and film by the tracers' one text
+// (core/layer_texels.h, the GPU's rt/material_at.glsl too).
 void RtMaterials::applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const {
   const auto& t = extras_[size_t(material)].layerTextures;
-  auto at = [&](TextureSlot slot) -> const RtTexture* {
-    const int i = t[size_t(slot) - kFirstLayerSlot];
-    return i >= 0 ? &textures_[size_t(i)] : nullptr;
-  };
   const MaterialLayers& layers = materials_[size_t(material)].layers;
-  const RtTexture* specular = at(TextureSlot::Specular);
-  const RtTexture* specularColor = at(TextureSlot::SpecularColor);
-  if (specular || specularColor) {
-    const float weight = layers.specular * (specular ? specular->sampleRgba(uv, footprint).a : 1.0f);
-    const glm::vec3 color = layers.specularColor * (specularColor ? specularColor->sample(uv, footprint) : glm::vec3(1.0f));
-    out.dielectricF0 = layers.dielectricF0(color, weight);
-    out.dielectricF90 = weight;
+  glm::vec4 texel[kTextureSlots - kFirstLayerSlot] = {};
+  bool present[kTextureSlots - kFirstLayerSlot] = {};
+  for (size_t k = 0; k < t.size(); ++k) {
+    // The coat's normal map (slot 6) is not read: the tracers read no normal maps.
+    present[k] = t[k] >= 0 && k + kFirstLayerSlot != size_t(TextureSlot::ClearcoatNormal);
+    if (present[k]) texel[k] = textures_[size_t(t[k])].sampleRgba(uv, footprint);
   }
-  if (const RtTexture* coat = at(TextureSlot::Clearcoat)) out.clearcoat *= coat->sample(uv, footprint).x;
-  if (const RtTexture* rough = at(TextureSlot::ClearcoatRoughness)) out.clearcoatRoughness *= rough->sample(uv, footprint).y;
-  if (const RtTexture* share = at(TextureSlot::Transmission)) out.transmission *= share->sample(uv, footprint).x;
-  if (const RtTexture* thick = at(TextureSlot::Thickness)) out.thickness *= thick->sample(uv, footprint).y;
-  if (const RtTexture* sheen = at(TextureSlot::SheenColor)) out.sheenColor *= sheen->sample(uv, footprint);
-  if (const RtTexture* rough = at(TextureSlot::SheenRoughness)) out.sheenRoughness *= rough->sampleRgba(uv, footprint).a;
-  if (const RtTexture* stretch = at(TextureSlot::Anisotropy)) {
-    const glm::vec3 texel = stretch->sample(uv, footprint);
-    out.anisotropyDirection = glm::vec2(texel) * 2.0f - 1.0f;
-    out.anisotropy *= texel.z;
+  brdf::LayerValues v;
+  v.specularColor = layers.specularColor;
+  v.specularWeight = layers.specular;
+  v.clearcoat = out.clearcoat;
+  v.clearcoatRoughness = out.clearcoatRoughness;
+  v.transmission = out.transmission;
+  v.thickness = out.thickness;
+  v.sheenColor = out.sheenColor;
+  v.sheenRoughness = out.sheenRoughness;
+  v.anisotropyDirection = out.anisotropyDirection;
+  v.anisotropy = out.anisotropy;
+  v.iridescence = out.iridescence;
+  v.iridescenceThickness = out.iridescenceThickness;
+  v = brdf::withLayerTexels(v, texel, present,
+                            glm::vec2(layers.iridescenceThicknessMin, layers.iridescenceThicknessMax));
+  if (present[0] || present[1]) {
+    out.dielectricF0 = brdf::layerF0(layers.reflectance(), v.specularColor, v.specularWeight);
+    out.dielectricF90 = v.specularWeight;
   }
-  if (const RtTexture* film = at(TextureSlot::Iridescence)) out.iridescence *= film->sample(uv, footprint).x;
-  if (const RtTexture* thick = at(TextureSlot::IridescenceThickness)) {
-    out.iridescenceThickness =
-        glm::mix(layers.iridescenceThicknessMin, layers.iridescenceThicknessMax, thick->sample(uv, footprint).y);
-  }
+  out.clearcoat = v.clearcoat;
+  out.clearcoatRoughness = v.clearcoatRoughness;
+  out.transmission = v.transmission;
+  out.thickness = v.thickness;
+  out.sheenColor = v.sheenColor;
+  out.sheenRoughness = v.sheenRoughness;
+  out.anisotropyDirection = v.anisotropyDirection;
+  out.anisotropy = v.anisotropy;
+  out.iridescence = v.iridescence;
+  out.iridescenceThickness = v.iridescenceThickness;
 }
 
 namespace {

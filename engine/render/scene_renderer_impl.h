@@ -28,8 +28,9 @@
 namespace engine {
 
 struct SceneRenderer::Impl {
-  // The scene layer's description of what is drawn (its lights included), and the
-  // settings it is drawn with after the options' overrides.
+  // The scene file's description of what is drawn (its lights are read from the
+  // scene's environment instead, scene/environment.h), and the settings it is drawn
+  // with after the options' overrides.
   SceneDesc scene;
   RenderDesc render;
   QuatInterpolation rotations = QuatInterpolation::Slerp;  // how the scene's poses interpolate

@@ -9,6 +9,7 @@
 // layer slots, the terrain's five.
 #define RT_MOST_READS 20
 
+#include "common/layer_texels.glsl"
 #include "common/terrain_layers.glsl"
 
 // RtTerrainMaterial::sample into the material from its five reads (grass near and
@@ -56,30 +57,37 @@ void rtOrientAnisotropy(inout RtMaterial m, Surface s) {
   }
 }
 
-// RtScene::applyLayerTextures: `read[k]` is the texel of layer slot k
-// (TextureSlot::Specular + k), or -1. KHR_materials_specular's weight (alpha) and
-// colour tint the dielectric's f0 as MaterialLayers::dielectricF0 does, in double.
+// RtMaterials::applyLayerTextures, by the tracers' one text (common/layer_texels.glsl):
+// `read[k]` is the texel of layer slot k (TextureSlot::Specular + k), or -1.
 void rtApplyLayerTextures(inout RtMaterial m, vec4 texel[RT_MOST_READS], int read[12]) {
-  if (read[0] >= 0 || read[1] >= 0) {
-    precise float weight = m.specularLayer.w * (read[0] >= 0 ? texel[read[0]].a : 1.0);
-    precise vec3 color = m.specularLayer.xyz * (read[1] >= 0 ? texel[read[1]].xyz : vec3(1.0));
-    precise dvec3 f0 = min(dvec3(m.reflectance.x) * dvec3(color), dvec3(1.0)) * double(weight);
-    m.dielectric = vec4(vec3(f0), weight);
+  vec4 layerTexel[LAYER_SLOTS];
+  bool present[LAYER_SLOTS];
+  for (int k = 0; k < LAYER_SLOTS; ++k) {
+    present[k] = read[k] >= 0 && k != 6;  // the coat's normal map: the tracers read no normal maps
+    layerTexel[k] = read[k] >= 0 ? texel[read[k]] : vec4(0.0);
   }
-  if (read[2] >= 0) m.coatSheen.x = m.coatSheen.x * texel[read[2]].x;                  // clearcoat
-  if (read[3] >= 0) m.coatSheen.y = m.coatSheen.y * texel[read[3]].y;                  // its roughness
-  if (read[4] >= 0) m.transmission.x = m.transmission.x * texel[read[4]].x;            // transmission
-  if (read[5] >= 0) m.transmission.z = m.transmission.z * texel[read[5]].y;            // thickness
-  if (read[7] >= 0) m.sheenColorFilmIor.xyz = m.sheenColorFilmIor.xyz * texel[read[7]].xyz;  // sheen colour
-  if (read[8] >= 0) m.coatSheen.z = m.coatSheen.z * texel[read[8]].a;                  // its roughness
-  if (read[9] >= 0) {  // anisotropy: the direction in RG, the strength in B
-    vec3 stretch = texel[read[9]].xyz;
-    precise vec2 direction = stretch.xy * 2.0 - 1.0;
-    m.anisotropy.zw = direction;
-    m.anisotropy.x = m.anisotropy.x * stretch.z;
-  }
-  if (read[10] >= 0) m.coatSheen.w = m.coatSheen.w * texel[read[10]].x;                // iridescence
-  if (read[11] >= 0) m.film.x = mixAsGlm(m.filmRange.x, m.filmRange.y, texel[read[11]].y);  // its thickness
+  LayerValues v;
+  v.specularColor = m.specularLayer.xyz;
+  v.specularWeight = m.specularLayer.w;
+  v.clearcoat = m.coatSheen.x;
+  v.clearcoatRoughness = m.coatSheen.y;
+  v.transmission = m.transmission.x;
+  v.thickness = m.transmission.z;
+  v.sheenColor = m.sheenColorFilmIor.xyz;
+  v.sheenRoughness = m.coatSheen.z;
+  v.anisotropyDirection = m.anisotropy.zw;
+  v.anisotropy = m.anisotropy.x;
+  v.iridescence = m.coatSheen.w;
+  v.iridescenceThickness = m.film.x;
+  v = withLayerTexels(v, layerTexel, present, m.filmRange.xy);
+  if (present[0] || present[1]) m.dielectric = vec4(layerF0(m.reflectance.x, v.specularColor, v.specularWeight), v.specularWeight);
+  m.coatSheen = vec4(v.clearcoat, v.clearcoatRoughness, v.sheenRoughness, v.iridescence);
+  m.transmission.x = v.transmission;
+  m.transmission.z = v.thickness;
+  m.sheenColorFilmIor.xyz = v.sheenColor;
+  m.anisotropy.zw = v.anisotropyDirection;
+  m.anisotropy.x = v.anisotropy;
+  m.film.x = v.iridescenceThickness;
 }
 
 // The material at the hit (the unflipped shading normal's y for the terrain), built

@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -16,6 +19,7 @@
 
 #include "../support/gl_test.h"
 #include "../support/random_draws.h"
+#include "core/layer_texels.h"
 #include "core/sampling.h"
 #include "core/sky.h"
 #include "core/view_layers.h"
@@ -351,6 +355,81 @@ TEST_P(TerrainLayersText, GlslAndCppAgree) {
               cases.size(), mixed, differ, worst);
   EXPECT_GT(mixed, int(cases.size()) / 10);
   EXPECT_LE(worst, 16.0);
+}
+
+struct LayerTexelsCase {
+  glm::dvec4 reflectance;  // x
+  glm::vec4 texel[LAYER_SLOTS];
+  glm::vec4 specular, coat, sheen, anisotropy, film, pad;  // as layer_texels_eval.comp's
+};
+static_assert(sizeof(LayerTexelsCase) == 320, "std430's layout of layer_texels_eval.comp's Case");
+struct LayerTexelsResult {
+  glm::vec4 specular, coat, sheen, anisotropy, film, f0;
+};
+
+class LayerTexelsText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(LayerTexelsText);
+
+// 65536 random materials and texels, each slot present in half the cases (the
+// present set as bits). Every operation is a product, an exact one (2x - 1), glm's
+// mix as rt/math.glsl writes it, or a double one: the two compiles must give the
+// same bits.
+TEST_P(LayerTexelsText, GlslAndCppAgreeBitForBit) {
+  std::mt19937 rng(20261207);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::uniform_int_distribution<std::uint32_t> slots(0, (1u << LAYER_SLOTS) - 1u);
+  std::vector<LayerTexelsCase> cases(1 << 16);
+  for (LayerTexelsCase& c : cases) {
+    const double ior = 1.0 + 3.0 * double(unit(rng));
+    c.reflectance = glm::dvec4(((ior - 1.0) / (ior + 1.0)) * ((ior - 1.0) / (ior + 1.0)), 0.0, 0.0, 0.0);
+    for (glm::vec4& t : c.texel) t = glm::vec4(test::draw3(unit, rng), unit(rng));
+    c.specular = glm::vec4(test::draw3(unit, rng) * 8.0f, unit(rng));  // some tints past f0 = 1
+    c.coat = glm::vec4(unit(rng), unit(rng), unit(rng), 10.0f * unit(rng));
+    c.sheen = glm::vec4(test::draw3(unit, rng), unit(rng));
+    c.anisotropy = glm::vec4(unit(rng) * 2.0f - 1.0f, unit(rng) * 2.0f - 1.0f, unit(rng), unit(rng));
+    c.film = glm::vec4(1000.0f * unit(rng), 100.0f * unit(rng), 100.0f + 900.0f * unit(rng),
+                       std::bit_cast<float>(slots(rng)));
+  }
+  const std::vector<LayerTexelsResult> gpu = test::runCases<LayerTexelsResult>("test/layer_texels_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  int differ = 0, clipped = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const LayerTexelsCase& c = cases[i];
+    brdf::LayerValues v;
+    v.specularColor = glm::vec3(c.specular);
+    v.specularWeight = c.specular.w;
+    v.clearcoat = c.coat.x;
+    v.clearcoatRoughness = c.coat.y;
+    v.transmission = c.coat.z;
+    v.thickness = c.coat.w;
+    v.sheenColor = glm::vec3(c.sheen);
+    v.sheenRoughness = c.sheen.w;
+    v.anisotropyDirection = glm::vec2(c.anisotropy);
+    v.anisotropy = c.anisotropy.z;
+    v.iridescence = c.anisotropy.w;
+    v.iridescenceThickness = c.film.x;
+    bool present[LAYER_SLOTS];
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(c.film.w);
+    for (int k = 0; k < LAYER_SLOTS; ++k) present[k] = (bits & (1u << k)) != 0u;
+    glm::vec4 texel[LAYER_SLOTS];
+    std::copy(std::begin(c.texel), std::end(c.texel), texel);
+    v = brdf::withLayerTexels(v, texel, present, glm::vec2(c.film.y, c.film.z));
+    const glm::vec3 f0 = brdf::layerF0(c.reflectance.x, v.specularColor, v.specularWeight);
+    clipped += glm::any(glm::greaterThan(glm::dvec3(c.reflectance.x) * glm::dvec3(v.specularColor), glm::dvec3(1.0)))
+                   ? 1 : 0;
+    const LayerTexelsResult cpu{glm::vec4(v.specularColor, v.specularWeight),
+                                glm::vec4(v.clearcoat, v.clearcoatRoughness, v.transmission, v.thickness),
+                                glm::vec4(v.sheenColor, v.sheenRoughness),
+                                glm::vec4(v.anisotropyDirection, v.anisotropy, v.iridescence),
+                                glm::vec4(v.iridescenceThickness, 0.0f, 0.0f, 0.0f), glm::vec4(f0, 0.0f)};
+    const bool same = cpu.specular == gpu[i].specular && cpu.coat == gpu[i].coat && cpu.sheen == gpu[i].sheen &&
+                      cpu.anisotropy == gpu[i].anisotropy && cpu.film == gpu[i].film && cpu.f0 == gpu[i].f0;
+    differ += same ? 0 : 1;
+  }
+  std::printf("layer texels: %zu cases (%d with f0 clipped at 1), %d not the same bits\n", cases.size(), clipped,
+              differ);
+  EXPECT_GT(clipped, 0);
+  EXPECT_EQ(differ, 0);
 }
 
 }  // namespace

@@ -1,0 +1,61 @@
+// glTF's layer textures at a tracer's hit, written once: the CPU tracers
+// (raytrace/rt_materials.cpp, through core/layer_texels.h) and the GPU tracers
+// (rt/material_at.glsl) apply a hit's layer texels with this text.
+// tests/core/shading_texts_test.cpp runs it on the GPU's compiler against the C++
+// build, case by case. The rasterizer samples the same channels in
+// common/material.glsl, where its samplers are.
+//
+// In the subset of the two languages that common/sampling.glsl keeps to, after
+// common/brdf.glsl; mixAsGlm is glm's mix.
+
+// The 12 layer slots, TextureSlot's order from TextureSlot::Specular
+// (asset/model_data.h); slot 6, the coat's normal map, is read where normals are.
+#define LAYER_SLOTS 12
+
+// A hit's layer values, the material's factors before its texels and the hit's
+// after them.
+struct LayerValues {
+  vec3 specularColor;  // KHR_materials_specular's colour and weight: what tint the
+  float specularWeight;  // dielectric's f0 (layerF0) and are its f90
+  float clearcoat, clearcoatRoughness;
+  float transmission, thickness;
+  vec3 sheenColor;
+  float sheenRoughness;
+  vec2 anisotropyDirection;  // in the tangent frame: +x, or its texture's RG
+  float anisotropy;          // the stretch's strength
+  float iridescence, iridescenceThickness;
+};
+
+// Each present slot's texel applied, each from the channel glTF reads it in: the
+// specular weight from A, its colour from RGB; the coat from R, its roughness from
+// G; transmission from R, the volume's thickness from G; the sheen's colour from
+// RGB, its roughness from A; the anisotropy's direction from RG (as [-1, 1]), its
+// strength times B; the film from R, its thickness from G between `filmRange`'s
+// two ends (nm).
+BRDF_INLINE LayerValues withLayerTexels(LayerValues v, vec4 texel[LAYER_SLOTS], bool present[LAYER_SLOTS],
+                                        vec2 filmRange) {
+  if (present[0]) v.specularWeight = v.specularWeight * texel[0].w;
+  if (present[1]) v.specularColor = v.specularColor * vec3(texel[1].x, texel[1].y, texel[1].z);
+  if (present[2]) v.clearcoat = v.clearcoat * texel[2].x;
+  if (present[3]) v.clearcoatRoughness = v.clearcoatRoughness * texel[3].y;
+  if (present[4]) v.transmission = v.transmission * texel[4].x;
+  if (present[5]) v.thickness = v.thickness * texel[5].y;
+  if (present[7]) v.sheenColor = v.sheenColor * vec3(texel[7].x, texel[7].y, texel[7].z);
+  if (present[8]) v.sheenRoughness = v.sheenRoughness * texel[8].w;
+  if (present[9]) {
+    precise vec2 direction = vec2(texel[9].x, texel[9].y) * 2.0f - 1.0f;
+    v.anisotropyDirection = direction;
+    v.anisotropy = v.anisotropy * texel[9].z;
+  }
+  if (present[10]) v.iridescence = v.iridescence * texel[10].x;
+  if (present[11]) v.iridescenceThickness = mixAsGlm(filmRange.x, filmRange.y, texel[11].y);
+  return v;
+}
+
+// The dielectric's f0 tinted by KHR_materials_specular (MaterialLayers::dielectricF0):
+// ((ior - 1) / (ior + 1))^2 (`reflectance`, in double) times the colour, at most 1,
+// times the weight, in double.
+BRDF_INLINE vec3 layerF0(double reflectance, vec3 color, float weight) {
+  precise dvec3 f0 = min(dvec3(reflectance) * dvec3(color), dvec3(1.0)) * double(weight);
+  return vec3(f0);
+}
