@@ -176,37 +176,6 @@ void RtMaterials::applyLayerTextures(int material, const HitUv& uv, float footpr
   out.iridescenceThickness = v.iridescenceThickness;
 }
 
-namespace {
-
-// KHR_materials_anisotropy's stretch in world space: the tangent frame of the
-// triangle's uv gradient (the tangent MikkTSpace builds, flat across the triangle and
-// following the posed mesh; the rasterizer interpolates the file's or the loader's
-// tangents instead), the material's direction in it turned by its rotation
-// (brdf.glsl's anisotropyDirection, as the rasterizer turns it).
-void orientAnisotropy(HitMaterial& m, const glm::vec3& ns, const glm::vec3& dpdu, const glm::vec3& dpdv) {
-  glm::vec3 t = dpdu - ns * glm::dot(ns, dpdu);
-  const float len = glm::length(t);
-  const glm::vec2 d = brdf::anisotropyDirection(m.anisotropyDirection, m.anisotropyRotation);
-  if (len > 0.0f && std::isfinite(len)) {
-    t /= len;
-    // glTF's bitangent points up the image, against dP/dv (uv's v runs down it; its
-    // normal maps are +Y up): the files' TANGENT handedness says the same
-    // (RasterVsRaytrace.GltfAnisotropyAgrees turns on it).
-    const glm::vec3 across = glm::cross(ns, t);
-    const glm::vec3 b = glm::dot(across, dpdv) < 0.0f ? across : -across;
-    const glm::vec3 stretched = t * d.x + b * d.y;
-    const float slen = glm::length(stretched);
-    if (slen > 1e-6f) {
-      m.anisotropyT = stretched / slen;
-      m.anisotropy = std::clamp(m.anisotropy, 0.0f, 1.0f);
-      return;
-    }
-  }
-  m.anisotropy = 0.0f;  // nothing to orient it by
-}
-
-}  // namespace
-
 Status RtMaterials::setEmissiveTexture(int material, RtTexture texture) {
   return attachTexture(material, &MaterialExtras::emissiveTexture, std::move(texture));
 }
@@ -255,7 +224,13 @@ HitMaterial RtMaterials::materialAt(int material, const HitUv& uv, float footpri
     out.emission *= textures_[size_t(emissive)].sample(uv, footprint);
   }
   if (extras_[size_t(material)].hasLayerTextures) applyLayerTextures(material, uv, footprint, out);
-  if (out.anisotropy > 0.0f) orientAnisotropy(out, ns, dpdu, dpdv);
+  if (out.anisotropy > 0.0f) {
+    // The stretch in world space (core/layer_texels.h, the GPU's text too).
+    const glm::vec4 a =
+        brdf::orientedAnisotropy(out.anisotropyDirection, out.anisotropyRotation, out.anisotropy, ns, dpdu, dpdv);
+    out.anisotropyT = glm::vec3(a);
+    out.anisotropy = a.w;
+  }
   if (const int terrain = extras_[size_t(material)].terrain; terrain >= 0) {
     const TerrainLayerSample layers = terrains_[size_t(terrain)].sample(uv.uv0, footprint, y, ns.y);
     out.albedo *= layers.albedo;

@@ -59,3 +59,30 @@ BRDF_INLINE vec3 layerF0(double reflectance, vec3 color, float weight) {
   precise dvec3 f0 = min(dvec3(reflectance) * dvec3(color), dvec3(1.0)) * double(weight);
   return vec3(f0);
 }
+
+// KHR_materials_anisotropy's stretch at a hit, in world space: the tangent frame of
+// the triangle's uv gradient dpdu, dpdv (the tangent MikkTSpace builds, flat across
+// the triangle and following the posed mesh; the rasterizer interpolates the file's
+// or the loader's tangents instead), the material's direction in it turned by its
+// rotation (brdf.glsl's anisotropyDirection, as the rasterizer turns it). xyz the
+// unit direction, w the strength clamped to [0, 1]; all 0 where the gradient gives
+// nothing to orient it by. glTF's bitangent points up the image, against dP/dv (uv's
+// v runs down it; its normal maps are +Y up): the files' TANGENT handedness says the
+// same (RasterVsRaytrace.GltfAnisotropyAgrees turns on it).
+BRDF_INLINE vec4 orientedAnisotropy(vec2 direction, float rotation, float strength, vec3 ns, vec3 dpdu, vec3 dpdv) {
+  precise vec3 t = dpdu - ns * rtDot(ns, dpdu);
+  float len = sqrt(rtDot(t, t));
+  vec2 d = anisotropyDirection(direction, rotation);
+  if (len > 0.0f && !isinf(len) && !isnan(len)) {
+    vec3 tangent = t / len;
+    vec3 across = rtCross(ns, tangent);
+    vec3 b = rtDot(across, dpdv) < 0.0f ? across : -across;
+    precise vec3 stretched = tangent * d.x + b * d.y;
+    float slen = sqrt(rtDot(stretched, stretched));
+    if (slen > 1e-6f) {
+      vec3 unit = stretched / slen;
+      return vec4(unit.x, unit.y, unit.z, clamp(strength, 0.0f, 1.0f));
+    }
+  }
+  return vec4(0.0f);
+}

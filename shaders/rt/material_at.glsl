@@ -35,28 +35,6 @@ float rtFootprint(inout float coneWidth, float coneSpread, Surface s, vec3 v, fl
   return footprint;
 }
 
-// orientAnisotropy (rt_scene.cpp): the stretch's direction in the world from the
-// triangle's uv gradient, the material's direction (m.anisotropy.zw: +x, or its
-// texture's) turned by its rotation; written to m.anisotropy as xyz the direction, w
-// the strength (0 where there is nothing to orient it by).
-void rtOrientAnisotropy(inout RtMaterial m, Surface s) {
-  float strength = m.anisotropy.x;
-  vec2 d = anisotropyDirection(m.anisotropy.zw, m.anisotropy.y);
-  vec3 ns = s.ns;
-  precise vec3 t = s.dpdu - ns * rtDot(ns, s.dpdu);
-  float len = sqrt(rtDot(t, t));
-  m.anisotropy = vec4(0.0);
-  if (len > 0.0 && !isinf(len) && !isnan(len)) {
-    t = t / len;
-    // glTF's bitangent points up the image, against dP/dv.
-    vec3 across = rtCross(ns, t);
-    vec3 b = rtDot(across, s.dpdv) < 0.0 ? across : -across;
-    precise vec3 stretched = t * d.x + b * d.y;
-    float slen = sqrt(rtDot(stretched, stretched));
-    if (slen > 1e-6) m.anisotropy = vec4(stretched / slen, clamp(strength, 0.0, 1.0));
-  }
-}
-
 // RtMaterials::applyLayerTextures, by the tracers' one text (common/layer_texels.glsl):
 // `read[k]` is the texel of layer slot k (TextureSlot::Specular + k), or -1.
 void rtApplyLayerTextures(inout RtMaterial m, vec4 texel[RT_MOST_READS], int read[12]) {
@@ -145,11 +123,10 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
   rtApplyLayerTextures(m, texel, layerRead);
   if (t.w >= 0) rtApplyTerrain(m, texel, reads, double(s.p.y), s.ns.y);
 #endif
-  if (m.anisotropy.x > 0.0) {
-    rtOrientAnisotropy(m, s);
-  } else {
-    m.anisotropy = vec4(0.0);
-  }
+  // The stretch in world space (common/layer_texels.glsl, the CPU's text too).
+  m.anisotropy = m.anisotropy.x > 0.0
+                     ? orientedAnisotropy(m.anisotropy.zw, m.anisotropy.y, m.anisotropy.x, s.ns, s.dpdu, s.dpdv)
+                     : vec4(0.0);
   return m;
 }
 
