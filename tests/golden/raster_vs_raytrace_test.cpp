@@ -16,6 +16,7 @@
 #include "core/image.h"
 #include "raytrace/scene_builder.h"
 #include "raytrace/tone_map.h"
+#include "../support/traced.h"
 #include "rasterized.h"
 #include "scene_game.h"
 
@@ -53,18 +54,8 @@ std::vector<bool> mirrorMask(const SceneDesc& scene) {
 
 Result<SceneDesc> cornell() { return loadSceneFile(std::string(ENGINE_SOURCE_DIR) + "/assets/scenes/cornell.json"); }
 
-rt::RenderSettings pixelCentres(int width, int height) {
-  rt::RenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.samplesPerPixel = 1;  // pixel centres, as the rasterizer samples
-  return settings;
-}
-
 Image rayTraced(const SceneDesc& scene, int width = kWidth, int height = kHeight, double time = 0.0) {
-  auto traced = rt::raytraceScene(scene, time, pixelCentres(width, height));
-  EXPECT_TRUE(traced.ok()) << traced.error().message;
-  return traced.ok() ? traced->image : Image{};
+  return test::tracedAtPixelCentres(scene, width, height, time);
 }
 
 // `scene` through the real renderer, offscreen (EGL); empty on failure. `probeSize`
@@ -168,7 +159,7 @@ DemoImages renderDemo(int width, int height) {
     // glTF textures off too: a fresh scene whose glTF materials keep only the factor
     // would need the builder's insides; the characters are a small share of the frame,
     // so the plain image differs from the textured one by the ground, crates and fog.
-    out.plain = rt::toImage(rt::Integrator(*built, pixelCentres(width, height)).render().image, built->render());
+    out.plain = rt::toImage(rt::Integrator(*built, test::pixelCentres(width, height)).render().image, built->render());
   }
 
   out.raster = rasterized(*scene, -1, width, height, 1.0);

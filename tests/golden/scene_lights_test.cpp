@@ -13,6 +13,7 @@
 #include "asset/scene_file.h"
 #include "core/image.h"
 #include "raytrace/scene_builder.h"
+#include "../support/traced.h"
 #include "rasterized.h"
 
 namespace engine {
@@ -21,13 +22,7 @@ namespace {
 constexpr int kLightsWidth = 256, kLightsHeight = 192;
 
 Image tracedAtPixelCentres(const SceneDesc& scene) {
-  rt::RenderSettings settings;
-  settings.width = kLightsWidth;
-  settings.height = kLightsHeight;
-  settings.samplesPerPixel = 1;  // pixel centres, as the rasterizer samples
-  auto traced = rt::raytraceScene(scene, 0.0, settings);
-  EXPECT_TRUE(traced.ok()) << traced.error().message;
-  return traced.ok() ? traced->image : Image{};
+  return test::tracedAtPixelCentres(scene, kLightsWidth, kLightsHeight);
 }
 
 Image rasterizedAt(const SceneDesc& scene) {

@@ -10,6 +10,7 @@
 
 #include "../support/gl_test.h"
 #include "../support/radiance_file.h"
+#include "../support/traced.h"
 #include "asset/scene_file.h"
 #include "core/image.h"
 #include "raytrace/scene_builder.h"
@@ -82,15 +83,7 @@ Image rasterized(const SceneDesc& scene) {
   return target->readPixels();
 }
 
-Image traced(const SceneDesc& scene) {
-  rt::RenderSettings settings;
-  settings.width = kWidth;
-  settings.height = kHeight;
-  settings.samplesPerPixel = 1;  // pixel centres, as the rasterizer samples
-  auto run = rt::raytraceScene(scene, 0.0, settings);
-  EXPECT_TRUE(run.ok()) << run.error().message;
-  return run.ok() ? run->image : Image{};
-}
+Image traced(const SceneDesc& scene) { return test::tracedAtPixelCentres(scene, kWidth, kHeight); }
 
 }  // namespace
 
