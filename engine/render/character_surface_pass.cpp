@@ -7,32 +7,10 @@
 #include "render/gpu_scene.h"
 #include "render/pass_state.h"
 #include "render/scene_draws.h"
-#include "render/scene_renderer.h"
+#include "render/scene_stats.h"
 #include "render/screen_rect.h"
 
 namespace engine {
-
-void CharacterSurfacePass::addGroup(const CharacterAsset& asset, int material, const ShaderVariant& forward) {
-  if (groupOf(asset, material, forward) < 0) groups_.push_back({&asset, material, forward.shadingFromSurface()});
-}
-
-int CharacterSurfacePass::groupOf(const CharacterAsset& asset, int material, const ShaderVariant& forward) const {
-  const ShaderVariant shading = forward.shadingFromSurface();
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
-    const Group& group = groups_[g];
-    if (group.asset == &asset && group.material == material && group.shading == shading) return int(g);
-  }
-  return -1;
-}
-
-bool CharacterSurfacePass::finishGroups(const std::vector<ShaderVariant>& surfaceVariants,
-                                        std::vector<ShaderVariant>& variants) {
-  if (groups_.size() > kMaxSurfaceGroups) groups_.clear();
-  if (groups_.empty()) return false;
-  variants.insert(variants.end(), surfaceVariants.begin(), surfaceVariants.end());
-  for (const Group& g : groups_) variants.push_back(g.shading);
-  return true;
-}
 
 void CharacterSurfacePass::attach(gl::Framebuffer& target, int width, int height) {
   surface_ = gl::Texture::create2D(GL_RGBA32UI, width, height, 1);
@@ -90,7 +68,7 @@ Status CharacterSurfacePass::shade(const View& view, const std::vector<DrawItem>
   Status status = Ok{};
   for (std::size_t g = 0; g < groups_.size() && status; ++g) {
     if (!drawn[g]) continue;
-    const Group& group = groups_[g];
+    const SurfaceGroups::Group& group = groups_.groups()[g];
     if (stencilled) glStencilFunc(GL_EQUAL, kFirstSurfaceStencil + int(g), 0xff);
     status = shadeModelSurface(draws_.variants(), group.asset->model, group.asset->gpu, group.material, group.shading,
                                [this](const gl::Program& p) { draws_.setUniforms(p); }, inverseViewProjection);

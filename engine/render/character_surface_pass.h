@@ -14,12 +14,12 @@
 #include "core/result.h"
 #include "gl/resources.h"
 #include "render/scene_view.h"
+#include "render/surface_groups.h"
 
 namespace engine {
 
 class GpuScene;
 class SceneDraws;
-struct CharacterAsset;
 struct SceneStats;
 
 class CharacterSurfacePass {
@@ -28,21 +28,13 @@ class CharacterSurfacePass {
   // keeps each pixel's distance. `terrainStencil`: the deferred terrain marks its
   // pixels in the same stencil.
   CharacterSurfacePass(bool position, bool terrainStencil, const GpuScene& gpu, SceneDraws& draws, SceneStats* stats)
-      : position_(position), terrainStencil_(terrainStencil), gpu_(gpu), draws_(draws), stats_(stats) {}
+      : position_(position), groups_(terrainStencil), gpu_(gpu), draws_(draws), stats_(stats) {}
 
-  // At load: the primitives of `asset` with `material`, whose forward variant is
-  // `forward`, are shaded from the surface by one pass.
-  void addGroup(const CharacterAsset& asset, int material, const ShaderVariant& forward);
-  int groupOf(const CharacterAsset& asset, int material, const ShaderVariant& forward) const;  // -1: none
-  // Once every group is added: whether the pass has work, and a stencil value for
-  // each group (else the characters are shaded where drawn). Appends the programs
-  // it draws with to `variants` (the surface variants of the primitives it takes
-  // are `surfaceVariants`).
-  bool finishGroups(const std::vector<ShaderVariant>& surfaceVariants, std::vector<ShaderVariant>& variants);
-  // Which pixels a group holds: its stencil value where groups share the frame with
-  // each other or the terrain's surface; else any depth drawn before the other
-  // opaque draws (the surfaces come first).
-  bool stencil() const { return terrainStencil_ || groups_.size() > 1; }
+  // The groups SceneDraws fills at load (SceneDraws::buildVariants) and collects
+  // the characters' surface by.
+  SurfaceGroups& groups() { return groups_; }
+  const SurfaceGroups& groups() const { return groups_; }
+  bool stencil() const { return groups_.stencil(); }
   bool position() const { return position_; }
   // The surface's targets, attached to the frame's framebuffer of width x height.
   void attach(gl::Framebuffer& target, int width, int height);
@@ -55,18 +47,13 @@ class CharacterSurfacePass {
   std::string describe() const;
 
  private:
-  struct Group {
-    const CharacterAsset* asset = nullptr;
-    int material = -1;
-    ShaderVariant shading;  // ShaderVariant::shadingFromSurface of its primitives
-  };
   Status shade(const View& view, const std::vector<DrawItem>& items);
 
-  bool position_, terrainStencil_;
+  bool position_;
+  SurfaceGroups groups_;
   const GpuScene& gpu_;
   SceneDraws& draws_;
   SceneStats* stats_;
-  std::vector<Group> groups_;  // each with its stencil value, in order
   gl::Texture surface_, distance_;
   gl::VertexArray emptyVao_ = gl::VertexArray::create();
 };

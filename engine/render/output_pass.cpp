@@ -5,7 +5,7 @@
 #include "core/srgb_curve.h"
 #include "gl/bindings.h"
 #include "render/pass_state.h"
-#include "render/scene_renderer.h"
+#include "render/scene_stats.h"
 
 namespace engine {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "core/result.h"
 #include "gl/resources.h"
-#include "render/scene_renderer.h"
+#include "render/scene_stats.h"
 
 namespace engine {
 

@@ -5,13 +5,10 @@
 #include <span>
 
 #include "gl/bindings.h"
-#include "render/character_surface_pass.h"
 #include "render/gpu_scene.h"
 #include "render/material_uniforms.h"
-#include "render/point_shadow_pass.h"
-#include "render/reflection_probe_pass.h"
-#include "render/scene_renderer.h"
-#include "render/sun_shadow_pass.h"
+#include "render/scene_stats.h"
+#include "render/surface_groups.h"
 #include "scene/scene.h"
 
 namespace engine {
@@ -37,7 +34,7 @@ SceneDraws::SceneDraws(GpuScene& gpu, const SceneDesc& scene, std::unique_ptr<Sh
                        SceneStats* stats)
     : gpu_(gpu), scene_(scene), variants_(std::move(variants)), stats_(stats) {}
 
-Status SceneDraws::buildVariants(bool shadows, bool farSun, std::unique_ptr<CharacterSurfacePass>& surfaces) {
+Status SceneDraws::buildVariants(bool shadows, bool farSun, SurfaceGroups* surfaces) {
   std::vector<ShaderVariant> needed, surfacePasses;
   for (const ShapeDraw& s : gpu_.shapes())
     needed.push_back({0, SkinMode::Linear, gpu_.materialTexture(s.material).id() != 0, false});
@@ -54,7 +51,7 @@ Status SceneDraws::buildVariants(bool shadows, bool farSun, std::unique_ptr<Char
         needed.push_back(forward);
         const bool blend = c.instance->asset().gpu.material(prim.material).blends();
         if (surfaces && !blend && forward.deferrable()) {
-          surfaces->addGroup(c.instance->asset(), prim.material, forward);
+          surfaces->add(c.instance->asset(), prim.material, forward);
           surfacePasses.push_back(forward);
           surfacePasses.back().surface = ShaderVariant::Surface::Out;
         }
@@ -63,7 +60,7 @@ Status SceneDraws::buildVariants(bool shadows, bool farSun, std::unique_ptr<Char
     }
   }
   if (shadows && !gpu_.shapes().empty()) needed.push_back({0, SkinMode::Linear, false, true});
-  if (surfaces && !surfaces->finishGroups(surfacePasses, needed)) surfaces.reset();
+  if (surfaces) surfaces->finish(surfacePasses, needed);
   // Each colour program also without the far sun map, for draws the near map
   // covers (ShaderVariant::nearSunOnly; which ones depends on the camera).
   for (std::size_t i = 0, n = needed.size(); i < n && farSun; ++i) {
@@ -80,8 +77,7 @@ Status SceneDraws::buildVariants(bool shadows, bool farSun, std::unique_ptr<Char
 }
 
 void SceneDraws::setUniforms(const gl::Program& program) const {
-  if (sources_.sun) sources_.sun->setUniforms(program);
-  if (sources_.point) sources_.point->setUniforms(program);
+  if (sources_.shadowUniforms) sources_.shadowUniforms(program);
 }
 
 // A shape's program: textured where its material has a texture, matte where it has
@@ -95,7 +91,7 @@ ShaderVariant SceneDraws::shapeVariant(const ShapeDraw& shape, bool depthOnly, b
 }
 
 bool SceneDraws::nearSunCovers(const glm::dvec3& lo, const glm::dvec3& hi) const {
-  return sources_.sun && sources_.sun->nearCovers(lo, hi);
+  return sources_.nearSunCovers && sources_.nearSunCovers(lo, hi);
 }
 
 // The near sun map covers the character's placed bounding sphere.
@@ -132,7 +128,7 @@ Status SceneDraws::collectShapes(const glm::dvec4* planes, bool depthOnly, int s
 // of their bounds (whole primitives, so intersecting panes can still be out of
 // order). Shadow passes take no BLEND primitive: a tinted pane in a depth map
 // would be an opaque sheet.
-Status SceneDraws::collectCharacters(const glm::dvec4* planes, bool depthOnly, const CharacterSurfacePass* surfaces,
+Status SceneDraws::collectCharacters(const glm::dvec4* planes, bool depthOnly, const SurfaceGroups* surfaces,
                                      DrawLists& lists) {
   for (int index = 0; index < int(gpu_.characters().size()); ++index) {
     const CharacterDraw& c = gpu_.characters()[size_t(index)];
@@ -195,7 +191,7 @@ Result<DrawLists> SceneDraws::collect(const glm::dvec4* planes, bool depthOnly, 
   const auto start = std::chrono::steady_clock::now();
   DrawLists lists;
   if (auto s = collectShapes(planes, depthOnly, skipShape, lists); !s) return s.error();
-  const CharacterSurfacePass* grouping = surfaces ? sources_.surfaces : nullptr;
+  const SurfaceGroups* grouping = surfaces ? sources_.surfaces : nullptr;
   if (auto s = collectCharacters(planes, depthOnly, grouping, lists); !s) return s.error();
   sortDrawItems(lists.opaque);
   sortDrawItems(lists.surface);
@@ -218,10 +214,10 @@ void SceneDraws::drawShape(const ShapeDraw& s, const gl::Program& p, const PassI
   } else {
     forEachSurfaceUniform(m, [&](const char* name, const auto& value) { p.set(name, value); });
     if (gpu_.materialTexture(s.material).id() != 0) gpu_.materialTexture(s.material).bind(gl::binding::kBaseColor);
-    if (sources_.probes) {
+    if (sources_.probeCube) {
       const bool probed = pass.useProbes && s.probe >= 0;
       p.set("u_hasProbe", probed ? 1 : 0);
-      if (probed) sources_.probes->cube(s.probe).bind(gl::binding::kReflectionProbe);
+      if (probed) sources_.probeCube(s.probe).bind(gl::binding::kReflectionProbe);
     }
   }
   // Two-sided: no culling for this draw, and the pass's setting put back (the

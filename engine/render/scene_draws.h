@@ -4,33 +4,36 @@
 // their submission in the pass state the caller set. Every pass draws through it;
 // it owns the scene programs' shader variants, all built at load. Not part of the
 // engine's interface.
+#include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "asset/scene_desc.h"
 #include "core/result.h"
+#include "gl/resources.h"
 #include "render/model_renderer.h"
 #include "render/scene_view.h"
 
 namespace engine {
 
-class CharacterSurfacePass;
 class GpuScene;
-class PointShadowPass;
-class ReflectionProbePass;
-class SunShadowPass;
+class SurfaceGroups;
 struct SceneStats;
 struct ShapeDraw;
 struct CharacterDraw;
 
-// The passes whose results the draws of other passes read, where the scene has
-// them: the shadow maps every lit program samples, the probes' cubes that mirrors
-// show, the deferred characters' groups.
+// What the draws read of other passes' results, where the scene has them (each
+// empty otherwise): the shadow maps' uniforms every lit program samples (the sun's,
+// then the point light's), whether the near sun map covers a box, the probes' cubes
+// that mirrors show, the deferred characters' groups. Functions the renderer binds
+// to its passes, not the passes: each pass draws through SceneDraws, which
+// therefore includes none of them.
 struct DrawSources {
-  const SunShadowPass* sun = nullptr;
-  const PointShadowPass* point = nullptr;
-  const ReflectionProbePass* probes = nullptr;
-  const CharacterSurfacePass* surfaces = nullptr;
+  std::function<void(const gl::Program&)> shadowUniforms;
+  std::function<bool(const glm::dvec3& lo, const glm::dvec3& hi)> nearSunCovers;
+  std::function<const gl::Texture&(int probe)> probeCube;
+  const SurfaceGroups* surfaces = nullptr;
 };
 
 class SceneDraws {
@@ -41,11 +44,11 @@ class SceneDraws {
   // Everything the scene will draw, built now, so that the first frame costs no
   // compile and --describe can list exactly what exists: with depth-only variants
   // where `shadows` are cast, without the far sun map where it is `farSun`. The
-  // deferrable character primitives are grouped in `surfaces`, which is dropped
-  // where it is left without work (CharacterSurfacePass::finishGroups).
-  Status buildVariants(bool shadows, bool farSun, std::unique_ptr<CharacterSurfacePass>& surfaces);
+  // deferrable character primitives are grouped in `surfaces` (left empty where
+  // there is no work for the deferred pass: SurfaceGroups::finish).
+  Status buildVariants(bool shadows, bool farSun, SurfaceGroups* surfaces);
   // Once every pass is made.
-  void link(const DrawSources& sources) { sources_ = sources; }
+  void link(DrawSources sources) { sources_ = std::move(sources); }
   ShaderVariants& variants() { return *variants_; }
   const ShaderVariants& variants() const { return *variants_; }
 
@@ -63,7 +66,7 @@ class SceneDraws {
  private:
   Status collectShapes(const glm::dvec4* planes, bool depthOnly, int skipShape, DrawLists& lists);
   // `surfaces`: the deferred characters' groups, where this view defers them.
-  Status collectCharacters(const glm::dvec4* planes, bool depthOnly, const CharacterSurfacePass* surfaces,
+  Status collectCharacters(const glm::dvec4* planes, bool depthOnly, const SurfaceGroups* surfaces,
                            DrawLists& lists);
   ShaderVariant shapeVariant(const ShapeDraw& shape, bool depthOnly, bool nearSunOnly) const;
   bool nearSunCovers(const glm::dvec3& lo, const glm::dvec3& hi) const;

@@ -65,6 +65,8 @@ struct SceneRenderer::Impl {
   Status init(std::shared_ptr<Scene> source, const SceneRenderOptions& options, std::shared_ptr<GpuScene> shared);
   // Whether the frame can skip the HDR target and the post pass (OutputPass::direct).
   bool needsNoHdrTarget(const Scene& source) const;
+  // What the draws read of the passes made (SceneDraws::link).
+  DrawSources drawSources() const;
   // The frame's depth has a stencil where a deferred surface marks its pixels.
   GLenum depthFormat() const;
   Status renderFrame(const Camera& camera, int width, int height);

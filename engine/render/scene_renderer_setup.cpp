@@ -147,14 +147,36 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
     if (!made) return made.error();
     point = std::move(made).value();
   }
-  if (auto s = draws->buildVariants(sunShadows || pointShadows, sunFarShadows, surfaces); !s) return s;
-  draws->link({sun.get(), point.get(), probes.get(), surfaces.get()});
+  if (auto s = draws->buildVariants(sunShadows || pointShadows, sunFarShadows, surfaces ? &surfaces->groups() : nullptr);
+      !s) {
+    return s;
+  }
+  if (surfaces && surfaces->groups().empty()) surfaces.reset();  // no work for it (SurfaceGroups::finish)
+  draws->link(drawSources());
   frame = std::make_unique<FrameUniforms>(scene, std::move(lights), pcfRadius, sun.get(), point.get(),
                                           sky->environment());
   if (gpu->refracts()) transmission = std::make_unique<TransmissionPass>();
   world = std::make_unique<WorldPass>(*draws, *sky, *output, terrain.get(), surfaces.get(), transmission.get(),
                                       culling.get());
   return Ok{};
+}
+
+DrawSources SceneRenderer::Impl::drawSources() const {
+  DrawSources sources;
+  if (sun || point) {
+    sources.shadowUniforms = [sun = sun.get(), point = point.get()](const gl::Program& program) {
+      if (sun) sun->setUniforms(program);
+      if (point) point->setUniforms(program);
+    };
+  }
+  if (sun) {
+    sources.nearSunCovers = [sun = sun.get()](const glm::dvec3& lo, const glm::dvec3& hi) {
+      return sun->nearCovers(lo, hi);
+    };
+  }
+  if (probes) sources.probeCube = [probes = probes.get()](int probe) -> const gl::Texture& { return probes->cube(probe); };
+  sources.surfaces = surfaces ? &surfaces->groups() : nullptr;
+  return sources;
 }
 
 // Whether the frame can skip the HDR target and the post pass (issue 14: a scene

@@ -10,7 +10,7 @@
 #include "asset/scene_file.h"
 #include "gl/bindings.h"
 #include "render/pass_state.h"
-#include "render/scene_renderer.h"
+#include "render/scene_stats.h"
 
 namespace engine {
 

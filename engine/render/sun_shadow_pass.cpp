@@ -10,7 +10,7 @@
 #include "render/gpu_scene.h"
 #include "render/pass_state.h"
 #include "render/scene_draws.h"
-#include "render/scene_renderer.h"
+#include "render/scene_stats.h"
 #include "render/sun_coverage.h"
 #include "render/terrain_pass.h"
 
