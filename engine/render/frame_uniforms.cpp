@@ -52,8 +52,8 @@ void FrameUniforms::fill(const glm::dvec3& eye, const glm::mat4& viewProjection)
     // w: 0 a point without falloff, 1 with 1/d^2, 2 a direction toward a sun
     // (common/frame.glsl).
     frame.u_pointPosition[i] = l.type == LightType::Sun
-                                 ? glm::vec4(glm::vec3(l.direction), 2.0f)
-                                 : glm::vec4(glm::vec3(l.position - eye), l.falloff ? 1.0f : 0.0f);
+                                   ? glm::vec4(glm::vec3(l.direction), 2.0f)
+                                   : glm::vec4(glm::vec3(l.position - eye), l.falloff ? 1.0f : 0.0f);
     frame.u_pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows && l.type != LightType::Sun ? 1.0f : 0.0f);
   }
   // Ambient from the sky: the zenith and ground colours, dimmed.
@@ -64,7 +64,7 @@ void FrameUniforms::fill(const glm::dvec3& eye, const glm::mat4& viewProjection)
   // value it has always had there.
   const double pointFar = point_ ? point_->farPlane() : 50.0;
   frame.u_shadowParams = glm::vec4(sun_ ? 1.0f / float(sun_->size()) : 0.0f, float(pcfRadius_), float(pointFar),
-                                 point_ ? 2.0f / float(point_->size()) : 0.0f);
+                                   point_ ? 2.0f / float(point_->size()) : 0.0f);
   if (environment_) {
     for (int i = 0; i < 9; ++i) frame.u_shIrradiance[i] = glm::vec4(environment_->sh().coefficients[size_t(i)], 0.0f);
     frame.u_iblParams = glm::vec4(float(environment_->maxLevel()), 0.0f, 0.0f, 0.0f);
