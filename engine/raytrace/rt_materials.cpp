@@ -5,7 +5,6 @@
 #include <string>
 #include <utility>
 
-#include "core/layer_texels.h"
 
 namespace engine::rt {
 
@@ -90,9 +89,27 @@ Status RtMaterials::setMaterialTexture(int material, RtTexture texture) {
 }
 
 glm::vec3 RtMaterials::baseColor(int material, const HitUv& uv, float footprint) const {
-  const glm::vec3 color = materials_[size_t(material)].color * glm::vec3(uv.color);
-  const int texture = extras_[size_t(material)].texture;
-  return texture < 0 ? color : color * textures_[size_t(texture)].sample(uv, footprint);
+  return baseAt(material, uv, footprint).albedo;
+}
+
+// The base colour, metallic-roughness and emissive texels at a hit, applied by the
+// tracers' one text (core/layer_texels.h).
+brdf::BaseValues RtMaterials::baseAt(int material, const HitUv& uv, float footprint) const {
+  const MaterialDesc& m = materials_[size_t(material)];
+  const MaterialExtras& e = extras_[size_t(material)];
+  const int slots[3] = {e.texture, e.metallicRoughnessTexture, e.emissiveTexture};
+  glm::vec4 texel[3] = {};
+  bool present[3] = {};
+  for (int k = 0; k < 3; ++k) {
+    present[k] = slots[k] >= 0;
+    if (present[k]) texel[k] = textures_[size_t(slots[k])].sampleRgba(uv, footprint);
+  }
+  brdf::BaseValues v;
+  v.albedo = m.color;
+  v.metallic = m.metallic;
+  v.roughness = m.roughness;
+  v.emission = m.emission;
+  return brdf::withBaseTexels(v, glm::vec3(uv.color), texel, present);
 }
 
 Status RtMaterials::setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff) {
@@ -214,15 +231,11 @@ HitMaterial RtMaterials::baseMaterial(int material) const {
 HitMaterial RtMaterials::materialAt(int material, const HitUv& uv, float footprint, double y, const glm::vec3& ns,
                                 const glm::vec3& dpdu, const glm::vec3& dpdv) const {
   HitMaterial out = baseMaterial(material);
-  out.albedo = baseColor(material, uv, footprint);
-  if (const int mr = extras_[size_t(material)].metallicRoughnessTexture; mr >= 0) {
-    const glm::vec3 t = textures_[size_t(mr)].sample(uv, footprint);
-    out.roughness *= t.y;
-    out.metallic *= t.z;
-  }
-  if (const int emissive = extras_[size_t(material)].emissiveTexture; emissive >= 0) {
-    out.emission *= textures_[size_t(emissive)].sample(uv, footprint);
-  }
+  const brdf::BaseValues base = baseAt(material, uv, footprint);
+  out.albedo = base.albedo;
+  out.metallic = base.metallic;
+  out.roughness = base.roughness;
+  out.emission = base.emission;
   if (extras_[size_t(material)].hasLayerTextures) applyLayerTextures(material, uv, footprint, out);
   if (out.anisotropy > 0.0f) {
     // The stretch in world space (core/layer_texels.h, the GPU's text too).

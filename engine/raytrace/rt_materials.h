@@ -13,6 +13,7 @@
 #include "asset/model_data.h"
 #include "asset/scene_desc.h"
 #include "core/brdf.h"
+#include "core/layer_texels.h"
 #include "core/result.h"
 #include "core/sheen_table.h"
 #include "core/view_layers.h"
@@ -196,6 +197,7 @@ class RtMaterials {
 
  private:
   Status attachTexture(int material, int MaterialExtras::*slot, RtTexture texture);
+  brdf::BaseValues baseAt(int material, const HitUv& uv, float footprint) const;
   void applyLayerTextures(int material, const HitUv& uv, float footprint, HitMaterial& out) const;
 
   std::vector<MaterialDesc> materials_;

@@ -1,12 +1,36 @@
-// glTF's layer textures at a tracer's hit, written once: the CPU tracers
+// glTF's textures at a tracer's hit, written once: the base colour, metallic-
+// roughness and emissive texels, the layers' and the anisotropy's orientation. The CPU tracers
 // (raytrace/rt_materials.cpp, through core/layer_texels.h) and the GPU tracers
-// (rt/material_at.glsl) apply a hit's layer texels with this text.
+// (rt/material_at.glsl) make a hit's material with this text; each fetches the
+// texels its own way.
 // tests/core/shading_texts_test.cpp runs it on the GPU's compiler against the C++
 // build, case by case. The rasterizer samples the same channels in
 // common/material.glsl, where its samplers are.
 //
 // In the subset of the two languages that common/sampling.glsl keeps to, after
 // common/brdf.glsl; mixAsGlm is glm's mix.
+
+// A hit's base values: the material's factors before its texels, the hit's after.
+struct BaseValues {
+  vec3 albedo;
+  float metallic, roughness;
+  vec3 emission;
+};
+
+// glTF's base colour times COLOR_0 (`vertexColor`) and times its texel's RGB; the
+// roughness times the metallic-roughness texel's G, the metallic times its B; the
+// emission times its texel's RGB. `texel` and `present`: base colour,
+// metallic-roughness, emissive.
+BRDF_INLINE BaseValues withBaseTexels(BaseValues v, vec3 vertexColor, vec4 texel[3], bool present[3]) {
+  v.albedo = v.albedo * vertexColor;
+  if (present[0]) v.albedo = v.albedo * vec3(texel[0].x, texel[0].y, texel[0].z);
+  if (present[1]) {
+    v.roughness = v.roughness * texel[1].y;
+    v.metallic = v.metallic * texel[1].z;
+  }
+  if (present[2]) v.emission = v.emission * vec3(texel[2].x, texel[2].y, texel[2].z);
+  return v;
+}
 
 // The 12 layer slots, TextureSlot's order from TextureSlot::Specular
 // (asset/model_data.h); slot 6, the coat's normal map, is read where normals are.

@@ -74,7 +74,8 @@ void rtApplyLayerTextures(inout RtMaterial m, vec4 texel[RT_MOST_READS], int rea
 // and a sampler for each read made a kernel take 12 s to compile.
 RtMaterial rtMaterialAt(Surface s, float footprint) {
   RtMaterial m = rtMaterials[s.material];
-  m.colorAmbient.xyz = m.colorAmbient.xyz * s.color.xyz;  // baseColor: the colour times COLOR_0
+  vec4 baseTexel[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
+  bool basePresent[3] = bool[3](false, false, false);
 #ifdef RT_TEXTURES
   ivec4 t = m.textures;
   int texture[RT_MOST_READS];
@@ -113,13 +114,24 @@ RtMaterial rtMaterialAt(Surface s, float footprint) {
     texel[k] = rtSampleTexture(texture[k], uv[k], k < reads ? s.uv1 : uv[k], width[k]);
   }
   int next = 0;
-  if (t.x >= 0) m.colorAmbient.xyz = m.colorAmbient.xyz * texel[next++].xyz;
-  if (t.y >= 0) {
-    vec3 mr = texel[next++].xyz;
-    m.metallicRoughnessUnlit.y = m.metallicRoughnessUnlit.y * mr.y;
-    m.metallicRoughnessUnlit.x = m.metallicRoughnessUnlit.x * mr.z;
+  for (int k = 0; k < 3; ++k) {
+    basePresent[k] = t[k] >= 0;
+    if (basePresent[k]) baseTexel[k] = texel[next++];
   }
-  if (t.z >= 0) m.emission.xyz = m.emission.xyz * texel[next++].xyz;
+#endif
+  // The base colour (times COLOR_0), metallic-roughness and emissive texels, by the
+  // tracers' one text (common/layer_texels.glsl).
+  BaseValues base;
+  base.albedo = m.colorAmbient.xyz;
+  base.metallic = m.metallicRoughnessUnlit.x;
+  base.roughness = m.metallicRoughnessUnlit.y;
+  base.emission = m.emission.xyz;
+  base = withBaseTexels(base, s.color.xyz, baseTexel, basePresent);
+  m.colorAmbient.xyz = base.albedo;
+  m.metallicRoughnessUnlit.x = base.metallic;
+  m.metallicRoughnessUnlit.y = base.roughness;
+  m.emission.xyz = base.emission;
+#ifdef RT_TEXTURES
   rtApplyLayerTextures(m, texel, layerRead);
   if (t.w >= 0) rtApplyTerrain(m, texel, reads, double(s.p.y), s.ns.y);
 #endif
