@@ -88,10 +88,6 @@ Status RtMaterials::setMaterialTexture(int material, RtTexture texture) {
   return attachTexture(material, &MaterialExtras::texture, std::move(texture));
 }
 
-glm::vec3 RtMaterials::baseColor(int material, const HitUv& uv, float footprint) const {
-  return baseAt(material, uv, footprint).albedo;
-}
-
 // The base colour, metallic-roughness and emissive texels at a hit, applied by the
 // tracers' one text (core/layer_texels.h).
 brdf::BaseValues RtMaterials::baseAt(int material, const HitUv& uv, float footprint) const {

@@ -137,9 +137,6 @@ class RtMaterials {
   // A base colour texture that multiplies `material`'s colour (the rasterizer's
   // baseColorFactor * texture(uv)); the material's meshes need uvs to show it.
   Status setMaterialTexture(int material, RtTexture texture);
-  // The material's colour times its texture at the hit's uv, linear RGB; `footprint`
-  // as RtTexture::sample takes it.
-  glm::vec3 baseColor(int material, const HitUv& uv, float footprint = 0.0f) const;
   // glTF's alpha: `factor` times the base colour texture's alpha. MASK removes the
   // surface where that is below `cutoff`; BLEND makes it that opaque.
   Status setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff);

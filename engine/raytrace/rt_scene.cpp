@@ -31,12 +31,7 @@ RtMesh boxMesh(const PrimitiveDesc& box, int material, float uvScale) {
 
 RtScene::RtScene() { rebuildGradientSky(); }
 
-std::optional<glm::vec3> RtScene::sunDirection() const {
-  for (const LightDesc& l : lights_) {
-    if (l.type == LightType::Sun) return glm::normalize(glm::vec3(l.direction));
-  }
-  return std::nullopt;
-}
+std::optional<glm::vec3> RtScene::sunDirection() const { return sunDirectionOf(lights_); }
 
 void RtScene::rebuildGradientSky() {
   SkyDesc gradient = sky_;

@@ -60,9 +60,6 @@ class RtScene {
   Status setMaterialTexture(int material, RtTexture texture) {
     return materialTable_.setMaterialTexture(material, std::move(texture));
   }
-  glm::vec3 baseColor(int material, const HitUv& uv, float footprint = 0.0f) const {
-    return materialTable_.baseColor(material, uv, footprint);
-  }
   Status setMaterialAlpha(int material, AlphaMode mode, float factor, float cutoff) {
     return materialTable_.setMaterialAlpha(material, mode, factor, cutoff);
   }

@@ -18,16 +18,20 @@ void SceneEnvironment::addModelLights(const ModelData& model, const glm::dmat4& 
   for (LightDesc& light : modelLights(model, world)) lights.push_back(std::move(light));
 }
 
-const LightDesc* SceneEnvironment::sun() const {
+const LightDesc* firstSun(std::span<const LightDesc> lights) {
   for (const LightDesc& l : lights)
     if (l.type == LightType::Sun) return &l;
   return nullptr;
 }
 
-std::optional<glm::vec3> SceneEnvironment::sunDirection() const {
-  const LightDesc* s = sun();
+std::optional<glm::vec3> sunDirectionOf(std::span<const LightDesc> lights) {
+  const LightDesc* s = firstSun(lights);
   if (!s) return std::nullopt;
   return glm::normalize(glm::vec3(s->direction));
 }
+
+const LightDesc* SceneEnvironment::sun() const { return firstSun(lights); }
+
+std::optional<glm::vec3> SceneEnvironment::sunDirection() const { return sunDirectionOf(lights); }
 
 }  // namespace engine

@@ -15,6 +15,7 @@
 // (asset/model_lights.h says why).
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,6 +25,12 @@
 #include "core/linear_image.h"
 
 namespace engine {
+
+// The first light of type Sun in `lights`, or null; and its unit direction toward it.
+// The sun of a scene (SceneEnvironment::sun) and of a tracer's scene
+// (RtScene::sunDirection) alike.
+const LightDesc* firstSun(std::span<const LightDesc> lights);
+std::optional<glm::vec3> sunDirectionOf(std::span<const LightDesc> lights);
 
 struct SceneEnvironment {
   std::vector<LightDesc> lights;
