@@ -290,10 +290,15 @@ Result<PunctualLightData> Converter::convertLight(const tinygltf::Light& src, co
   if (!std::isfinite(src.range) || src.range < 0.0) return error(where + ": range must be a finite number >= 0");
   light.range = float(src.range);
   if (light.type == PunctualType::Spot) {
-    light.innerConeAngle = float(src.spot.innerConeAngle);
-    light.outerConeAngle = float(src.spot.outerConeAngle);
-    // The engine's lights have no cone: the light reaches every direction.
-    warn(where + ": a spot light; drawn as a point light, without its cone");
+    const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
+    // glTF asks for inner < outer; equal cones are a sharp edge, which every renderer
+    // draws (common/spot_cone.glsl), so they are taken. pi/2 as a float (what an
+    // exporter working in float writes) is a hair above pi/2, and is taken as pi/2.
+    constexpr double kHalfPi = 1.5707963267948966;
+    if (!(inner >= 0.0 && inner <= outer && outer <= kHalfPi + 1e-6))
+      return error(where + ": spot.innerConeAngle and spot.outerConeAngle must be 0 <= inner <= outer <= pi/2");
+    light.innerConeAngle = float(std::min(inner, kHalfPi));
+    light.outerConeAngle = float(std::min(outer, kHalfPi));
   }
   return light;
 }

@@ -295,8 +295,8 @@ struct CameraData {
 };
 
 // A KHR_lights_punctual light, as the file gives it; its node places it (at the
-// node's origin, shining along the node's -Z). Spot lights keep their cone here
-// though the engine draws them as point lights (asset/model_lights.h).
+// node's origin, shining along the node's -Z), a spot light with its cones
+// (asset/model_lights.h makes them scene lights).
 enum class PunctualType { Directional, Point, Spot };
 struct PunctualLightData {
   std::string name;

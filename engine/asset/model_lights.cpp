@@ -20,16 +20,19 @@ LightDesc sceneLight(const PunctualLightData& light, const glm::dmat4& world) {
   out.color = light.color;
   out.intensity = light.intensity;
   out.shadows = false;
+  // glTF's lights shine along the node's -Z: toward the light is its +Z. A node
+  // scaled to nothing has no direction: straight down, as a noon sun.
+  const glm::dvec3 toLight(world * glm::dvec4(0.0, 0.0, 1.0, 0.0));
+  out.direction = glm::length(toLight) > 1e-12 ? glm::normalize(toLight) : glm::dvec3(0.0, 1.0, 0.0);
   if (light.type == PunctualType::Directional) {
     out.type = LightType::Sun;
-    const glm::dvec3 toLight(world * glm::dvec4(0.0, 0.0, 1.0, 0.0));
-    // A node scaled to nothing has no direction: straight down, as a noon sun.
-    out.direction = glm::length(toLight) > 1e-12 ? glm::normalize(toLight) : glm::dvec3(0.0, 1.0, 0.0);
-  } else {
-    out.type = LightType::Point;
-    out.position = glm::dvec3(world[3]);
-    out.falloff = true;
+    return out;
   }
+  out.type = light.type == PunctualType::Spot ? LightType::Spot : LightType::Point;
+  out.position = glm::dvec3(world[3]);
+  out.falloff = true;
+  out.innerConeDegrees = float(glm::degrees(double(light.innerConeAngle)));
+  out.outerConeDegrees = float(glm::degrees(double(light.outerConeAngle)));
   return out;
 }
 

@@ -13,8 +13,9 @@ namespace engine {
 
 // Every light placed by a node of the default scene, in the order of the nodes:
 // directional -> Sun (toward the light: the node's +Z; glTF lights shine along -Z),
-// point and spot -> Point at the node's origin with 1/d^2 falloff (a spot's cone is
-// not modelled; the loader warned). `root` places the model in the scene.
+// point -> Point and spot -> Spot at the node's origin with 1/d^2 falloff, a spot
+// with its cones (its direction the node's +Z too). `root` places the model in the
+// scene.
 //
 // Units: glTF gives directional intensity in lux and point/spot intensity in
 // candela. The engine's sun of intensity I lights a surface facing it with

@@ -28,15 +28,18 @@ struct CameraDesc {
   glm::dvec3 right() const;
 };
 
-enum class LightType { Sun, Point, Area };
+enum class LightType { Sun, Point, Area, Spot };
 
 struct LightDesc {
   LightType type = LightType::Sun;
-  glm::dvec3 direction{0.0, 1.0, 0.0};  // Sun: toward the light, normalised
-  glm::dvec3 position{0.0};             // Point and Area (the centre)
+  // Sun: toward the light, normalised. Spot: the cone's axis turned toward the light
+  // (the way it shines, reversed), normalised, so that for both it is the direction
+  // toward the light from what it lights.
+  glm::dvec3 direction{0.0, 1.0, 0.0};
+  glm::dvec3 position{0.0};  // Point, Spot and Area (the centre)
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
-  bool falloff = false;     // Point: 1/d^2 when true, none when false (the course)
+  bool falloff = false;     // Point and Spot: 1/d^2 when true, none when false (the course)
   bool shadows = true;
   // Sun: the disk's angular diameter in degrees. 0 is a delta direction (sharp shadows);
   // the path tracer samples a wider sun as a cone of that size (soft shadows), which the
@@ -44,6 +47,11 @@ struct LightDesc {
   float angleDegrees = 0.0f;
   glm::dvec3 edgeU{1.0, 0.0, 0.0};  // Area: the two edge vectors, full length
   glm::dvec3 edgeV{0.0, 0.0, 1.0};
+  // Spot: the half-angles of the cone of full light and of the cone beyond which
+  // there is none, in degrees (0 <= inner <= outer <= 90; glTF's defaults). Between
+  // them the light fades (shaders/common/spot_cone.glsl).
+  float innerConeDegrees = 0.0f;
+  float outerConeDegrees = 45.0f;
 };
 
 // The classic model of the course, and glTF's metallic-roughness.

@@ -167,11 +167,33 @@ Status readCamera(const Node& n, CameraDesc& c) {
   return Ok{};
 }
 
+// A spot's file direction is the way it shines (straight down by default); the
+// scene keeps the way toward the light (LightDesc::direction).
+Status readSpotCone(const Node& n, LightDesc& l) {
+  if (l.type != LightType::Spot) {
+    for (const char* key : {"inner_cone", "outer_cone"}) {
+      if (n.has(key)) return n.at(key).error("only a spot light has a cone");
+    }
+    return Ok{};
+  }
+  if (n.has("direction")) l.direction = -l.direction;
+  TRY(readFloat(n, "outer_cone", l.outerConeDegrees, 0.0, 90.0));
+  TRY(readFloat(n, "inner_cone", l.innerConeDegrees, 0.0, 90.0));
+  if (l.innerConeDegrees > l.outerConeDegrees) {
+    return n.at(n.has("inner_cone") ? "inner_cone" : "outer_cone").error("the inner cone must not be wider than the outer one");
+  }
+  return Ok{};
+}
+
 Status readLight(const Node& n, LightDesc& l) {
-  TRY(n.expectObject({"type", "direction", "position", "color", "intensity", "falloff", "shadows", "u", "v", "angle"}));
-  if (!n.has("type")) return n.error("missing \"type\" (sun, point or area)");
-  TRY(readEnum(n, "type", l.type, std::map<std::string, LightType>{{"sun", LightType::Sun}, {"point", LightType::Point}, {"area", LightType::Area}}));
+  TRY(n.expectObject({"type", "direction", "position", "color", "intensity", "falloff", "shadows", "u", "v", "angle",
+                       "inner_cone", "outer_cone"}));
+  if (!n.has("type")) return n.error("missing \"type\" (sun, point, spot or area)");
+  TRY(readEnum(n, "type", l.type,
+               std::map<std::string, LightType>{
+                   {"sun", LightType::Sun}, {"point", LightType::Point}, {"spot", LightType::Spot}, {"area", LightType::Area}}));
   TRY(readDirection(n, "direction", l.direction));
+  TRY(readSpotCone(n, l));
   TRY(readVec3(n, "position", l.position));
   TRY(readVec3(n, "color", l.color));
   TRY(readFloat(n, "intensity", l.intensity, 0.0, 1e9));

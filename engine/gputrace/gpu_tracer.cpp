@@ -13,6 +13,7 @@
 #include "gputrace/gpu_textures.h"
 #include "raytrace/ray_cone.h"
 #include "raytrace/tile_render.h"
+#include "scene/environment.h"
 
 namespace engine::gpurt {
 namespace {
@@ -27,15 +28,18 @@ std::string floatDefine(const char* name, float value) {
 struct GpuLight {
   glm::ivec4 typeShadowsFalloff;
   glm::vec4 position, direction, radiance, edgeU, edgeV;
+  glm::vec4 cone;  // the cone's axis toward the light; w: the outer cosine, and position.w the inner
 };
 
 std::vector<GpuLight> lightsOf(const rt::RtScene& scene) {
   std::vector<GpuLight> out;
   for (const LightDesc& l : scene.lights()) {
-    const int type = l.type == LightType::Sun ? 0 : l.type == LightType::Point ? 1 : 2;
-    out.push_back(GpuLight{glm::ivec4(type, l.shadows ? 1 : 0, l.falloff ? 1 : 0, 0), glm::vec4(glm::vec3(l.position), 0.0f),
-                           glm::vec4(glm::vec3(l.direction), 0.0f), glm::vec4(l.color * l.intensity, 0.0f),
-                           glm::vec4(glm::vec3(l.edgeU), 0.0f), glm::vec4(glm::vec3(l.edgeV), 0.0f)});
+    const int type = l.type == LightType::Sun ? 0 : l.type == LightType::Area ? 2 : 1;
+    const LightCone cone = lightCone(l);
+    out.push_back(GpuLight{glm::ivec4(type, l.shadows ? 1 : 0, l.falloff ? 1 : 0, 0),
+                           glm::vec4(glm::vec3(l.position), cone.cosInner), glm::vec4(glm::vec3(l.direction), 0.0f),
+                           glm::vec4(l.color * l.intensity, 0.0f), glm::vec4(glm::vec3(l.edgeU), 0.0f),
+                           glm::vec4(glm::vec3(l.edgeV), 0.0f), glm::vec4(cone.axisToLight, cone.cosOuter)});
   }
   return out;
 }

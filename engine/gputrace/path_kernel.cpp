@@ -25,7 +25,7 @@ struct GpuPathLight {
   glm::vec4 directionCosMax;  // direction; w: cosMax
   glm::vec4 radiance;
   glm::vec4 normal;
-  glm::vec4 unused;  // std430 aligns a dvec4 to 32 bytes
+  glm::vec4 cone;  // cosOuter, cosInner (also what std430's 32-byte dvec4 alignment asks)
   glm::dvec4 position, edgeU, edgeV;
 };
 static_assert(sizeof(GpuPathLight) == 192 && offsetof(GpuPathLight, position) == 96);
@@ -33,10 +33,10 @@ static_assert(sizeof(GpuPathLight) == 192 && offsetof(GpuPathLight, position) ==
 std::vector<GpuPathLight> pathLightsOf(const rt::PathLights& lights) {
   std::vector<GpuPathLight> out;
   for (const rt::PathLight& l : lights.lights) {
-    const int type = l.type == LightType::Sun ? 0 : l.type == LightType::Point ? 1 : 2;
+    const int type = l.type == LightType::Sun ? 0 : l.type == LightType::Area ? 2 : 1;
     out.push_back(GpuPathLight{glm::ivec4(type, l.shadows ? 1 : 0, l.falloff ? 1 : 0, 0), glm::vec4(l.power, l.area),
                                glm::vec4(l.direction, l.cosMax), glm::vec4(l.radiance, 0.0f), glm::vec4(l.normal, 0.0f),
-                               glm::vec4(0.0f), glm::dvec4(l.position, 0.0), glm::dvec4(l.edgeU, 0.0),
+                               glm::vec4(l.cosOuter, l.cosInner, 0.0f, 0.0f), glm::dvec4(l.position, 0.0), glm::dvec4(l.edgeU, 0.0),
                                glm::dvec4(l.edgeV, 0.0)});
   }
   return out;

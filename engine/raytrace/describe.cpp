@@ -29,15 +29,17 @@ std::string groupsOf(const RtScene& scene) {
 }
 
 std::string lightsOf(const RtScene& scene) {
-  int sun = 0, point = 0, area = 0, shadowed = 0;
+  int sun = 0, point = 0, spot = 0, area = 0, shadowed = 0;
   for (const LightDesc& l : scene.lights()) {
     sun += l.type == LightType::Sun ? 1 : 0;
     point += l.type == LightType::Point ? 1 : 0;
+    spot += l.type == LightType::Spot ? 1 : 0;
     area += l.type == LightType::Area ? 1 : 0;
     shadowed += l.shadows ? 1 : 0;
   }
-  char text[128];
-  std::snprintf(text, sizeof(text), "lights: %d sun, %d point, %d area (%d casting shadows)", sun, point, area, shadowed);
+  char text[160];
+  std::snprintf(text, sizeof(text), "lights: %d sun, %d point, %s%d area (%d casting shadows)", sun, point,
+                spot > 0 ? (std::to_string(spot) + " spot, ").c_str() : "", area, shadowed);
   return text;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "raytrace/environment.h"
+#include "scene/environment.h"
 
 namespace engine::rt {
 namespace {
@@ -19,6 +20,9 @@ PathLight pathLightOf(const LightDesc& l) {
   p.shadows = l.shadows;
   p.falloff = l.falloff;
   p.direction = glm::normalize(glm::vec3(l.direction));
+  const LightCone cone = lightCone(l);
+  p.cosOuter = cone.cosOuter;
+  p.cosInner = cone.cosInner;
   if (l.type == LightType::Sun && l.angleDegrees > 0.0f) {
     const float half = glm::radians(l.angleDegrees) * 0.5f;
     p.cosMax = std::cos(half);

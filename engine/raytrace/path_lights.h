@@ -45,10 +45,14 @@ struct PathLight {
   bool shadows = true;
   bool falloff = false;
   // Sun: unit direction toward it; a cone when cosMax < 1, with radiance `radiance`.
+  // Spot: its axis toward it.
   glm::vec3 direction{0.0f, 1.0f, 0.0f};
   float cosMax = 1.0f;
+  // Point and spot: the cone's cosines (scene/environment.h's LightCone; a point's
+  // holds every direction).
+  float cosOuter = -3.0f, cosInner = -2.0f;
   glm::vec3 radiance{0.0f};
-  // Point and area: the position (area: the centre), edges, unit normal and area.
+  // Point, spot and area: the position (area: the centre), edges, unit normal and area.
   glm::dvec3 position{0.0}, edgeU{0.0}, edgeV{0.0};
   glm::vec3 normal{0.0f, -1.0f, 0.0f};
   float area = 0.0f;

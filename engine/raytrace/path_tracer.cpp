@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/spot_cone.h"
 #include "raytrace/bsdf.h"
 #include "raytrace/camera.h"
 #include "raytrace/camera_lanes.h"
@@ -363,14 +364,17 @@ class PathTracer {
           ls.value = l.power * kPi;
         }
         return true;
-      case LightType::Point: {
+      case LightType::Point:
+      case LightType::Spot: {
         ls.toPoint = true;
         ls.target = Vec3<T>(l.position);
         const Vec3<T> toLight = ls.target - si.p;
         const T d2 = glm::dot(toLight, toLight);
         if (!(d2 > T(0))) return false;
         ls.wi = glm::vec3(dividedBy(toLight, std::sqrt(d2)));
-        ls.value = l.power * (kPi / (l.falloff ? float(d2) : 1.0f));
+        // A point's cone holds every direction: its weight is exactly 1.
+        ls.value = l.power * (kPi / (l.falloff ? float(d2) : 1.0f)) *
+                   spottext::spotAttenuation(glm::dot(ls.wi, l.direction), l.cosOuter, l.cosInner);
         return true;
       }
       case LightType::Area: {

@@ -23,6 +23,9 @@ const char* WhittedPackets::unsupported(const RtScene& scene, const RenderSettin
   if (scene.render().shading != Shading::Classic) return "PBR shading";
   if (scene.hasTransparency() || scene.hasSingleSided()) return "transparent or single-sided materials";
   if (scene.hasTextures()) return "textures";
+  for (const LightDesc& light : scene.lights()) {
+    if (light.type == LightType::Spot) return "a spot light";
+  }
   for (int m = 0; m < int(scene.materials().size()); ++m) {
     if (scene.extras(m).unlit) return "an unlit material";
   }

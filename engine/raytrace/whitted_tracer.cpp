@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/brdf.h"
+#include "core/spot_cone.h"
 #include "raytrace/avx2_region.h"
 #include "raytrace/camera.h"
 #include "raytrace/camera_lanes.h"
@@ -15,6 +16,7 @@
 #include "raytrace/rt_scene.h"
 #include "raytrace/tile_render.h"
 #include "raytrace/whitted_packets.h"
+#include "scene/environment.h"
 
 namespace engine::rt {
 namespace {
@@ -208,12 +210,20 @@ class Tracer {
         if (light.shadows) ls.visibility = scene_.transmittance<T>(si.spawnRay(ls.wi), nullptr, counters.shadow);
         break;
       }
-      case LightType::Point: {
+      case LightType::Point:
+      case LightType::Spot: {
         const Vec3<T> target(light.position);
         const Vec3<T> toLight = target - si.p;
         const T dist2 = glm::dot(toLight, toLight);
         ls.wi = toLight / std::sqrt(dist2);
         if (light.falloff) ls.radiance /= float(dist2);
+        if (light.type == LightType::Spot) {
+          const LightCone cone = lightCone(light);
+          const float share =
+              spottext::spotAttenuation(glm::dot(glm::vec3(ls.wi), cone.axisToLight), cone.cosOuter, cone.cosInner);
+          ls.radiance *= share;
+          if (share == 0.0f) break;  // outside the cone: no shadow ray
+        }
         // The light is a point, not geometry: stop at it (tMax 1 on d = target - o).
         if (light.shadows) ls.visibility = scene_.transmittance(si.spawnRayTo(target, T(1)), &target, counters.shadow);
         break;

@@ -1,9 +1,12 @@
 #include "render/frame_uniforms.h"
 
+#include <algorithm>
+
 #include "gl/bindings.h"
 #include "render/ibl.h"
 #include "render/point_shadow_pass.h"
 #include "render/sun_shadow_pass.h"
+#include "scene/environment.h"
 
 namespace engine {
 
@@ -25,6 +28,10 @@ CompiledLights compileLights(std::span<const LightDesc> lights) {
     out.others.resize(size_t(kMaxPointLights));
   }
   return out;
+}
+
+bool CompiledLights::spots() const {
+  return std::any_of(others.begin(), others.end(), [](const LightDesc& l) { return l.type == LightType::Spot; });
 }
 
 FrameUniforms::FrameUniforms(const SceneDesc& scene, CompiledLights lights, int pcfRadius, const SunShadowPass* sun,
@@ -55,6 +62,9 @@ void FrameUniforms::fill(const glm::dvec3& eye, const glm::mat4& viewProjection)
                                    ? glm::vec4(glm::vec3(l.direction), 2.0f)
                                    : glm::vec4(glm::vec3(l.position - eye), l.falloff ? 1.0f : 0.0f);
     frame.u_pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows && l.type != LightType::Sun ? 1.0f : 0.0f);
+    const LightCone cone = lightCone(l);
+    frame.u_pointAxis[i] = glm::vec4(cone.axisToLight, cone.cosOuter);
+    frame.u_pointInner[i] = glm::vec4(cone.cosInner, 0.0f, 0.0f, 0.0f);
   }
   // Ambient from the sky: the zenith and ground colours, dimmed.
   frame.u_ambientSky = glm::vec4(ambientSkyColor(scene_), scene_.ambient);

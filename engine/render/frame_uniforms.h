@@ -20,14 +20,15 @@ class SunShadowPass;
 // The lights the scene programs have compiled in (common/direct_light.glsl says
 // why their counts are), from the scene's environment (scene/environment.h): the
 // sun (its first), with the shadow map; and up to kMaxPointLights others in the
-// frame block's light array: the point lights (the first with its cube shadow when
-// it asks for one), area lights as a point at their centre (their soft shadow is the
+// frame block's light array: the point lights and spots (the first with its cube
+// shadow when it asks for one), area lights as a point at their centre (their soft shadow is the
 // tracers' job), then any further sun as a directional light, unshadowed.
 struct CompiledLights {
   std::optional<LightDesc> sun;
   std::vector<LightDesc> others;
   int dropped = 0;  // past kMaxPointLights: not drawn (--describe and a warning say so)
   bool pointShadows() const { return !others.empty() && others[0].type != LightType::Sun && others[0].shadows; }
+  bool spots() const;  // whether a light drawn has a cone (SPOT_LIGHTS)
 };
 CompiledLights compileLights(std::span<const LightDesc> lights);
 

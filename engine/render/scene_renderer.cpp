@@ -220,10 +220,14 @@ std::string SceneRenderer::describe() const {
   out << "\nshading: " << (s.render.shading == Shading::Classic ? "classic" : "pbr");
   if (s.render.shading == Shading::Pbr) out << ", ambient " << ambientName(s.ambient) << s.sky->describeEnvironmentCost();
   const CompiledLights& lights = s.frame->lights();
-  const auto directional = std::count_if(lights.others.begin(), lights.others.end(),
-                                         [](const LightDesc& l) { return l.type == LightType::Sun; });
-  out << "; lights compiled in: " << (lights.sun ? "sun + " : "") << lights.others.size() - size_t(directional)
+  const auto count = [&lights](LightType type) {
+    return size_t(std::count_if(lights.others.begin(), lights.others.end(),
+                                [type](const LightDesc& l) { return l.type == type; }));
+  };
+  const size_t directional = count(LightType::Sun), spots = count(LightType::Spot);
+  out << "; lights compiled in: " << (lights.sun ? "sun + " : "") << lights.others.size() - directional - spots
       << " point";
+  if (spots > 0) out << " + " << spots << " spot";
   if (directional > 0) out << " + " << directional << " directional";
   if (lights.dropped > 0) out << " (" << lights.dropped << " not drawn)";
   out << "\nvariants:";

@@ -57,6 +57,7 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
   const bool sunFarShadows = sunShadows && scene.terrain.enabled;
   if (sunFarShadows) defines.push_back("SUN_FAR_SHADOWS 1");
   if (pointShadows) defines.push_back("POINT_SHADOWS 1");
+  if (lights.spots()) defines.push_back("SPOT_LIGHTS 1");
   // The PCF kernel too, so that its loops unroll (common/shadows.glsl).
   if (sunShadows || pointShadows) defines.push_back("PCF_RADIUS " + std::to_string(pcfRadius));
   if (scene.fog.enabled) defines.push_back("FOG 1");

@@ -1,5 +1,6 @@
 #include "scene/environment.h"
 
+#include <cmath>
 #include <utility>
 
 #include "asset/model_lights.h"
@@ -28,6 +29,15 @@ std::optional<glm::vec3> sunDirectionOf(std::span<const LightDesc> lights) {
   const LightDesc* s = firstSun(lights);
   if (!s) return std::nullopt;
   return glm::normalize(glm::vec3(s->direction));
+}
+
+LightCone lightCone(const LightDesc& light) {
+  if (light.type != LightType::Spot) return LightCone{};
+  LightCone cone;
+  cone.axisToLight = glm::normalize(glm::vec3(light.direction));
+  cone.cosOuter = float(std::cos(glm::radians(double(light.outerConeDegrees))));
+  cone.cosInner = float(std::cos(glm::radians(double(light.innerConeDegrees))));
+  return cone;
 }
 
 const LightDesc* SceneEnvironment::sun() const { return firstSun(lights); }

@@ -8,7 +8,8 @@
 //
 // Engine units, one for every renderer: a sun of colour c and intensity I gives a
 // surface facing it the irradiance c I; a point light gives c I / d^2 at distance d
-// with falloff, c I everywhere without it (the course's); an area light emits the
+// with falloff, c I everywhere without it (the course's), and a spot the same within
+// its inner cone, fading to none at its outer cone; an area light emits the
 // radiance c I from each point of its front face; the sky's colours, and its image
 // times its intensity, are radiance. glTF's lux (directional) and candela (point,
 // spot) are taken as they are: 1 lux is one sun unit, 1 cd one point unit
@@ -31,6 +32,16 @@ namespace engine {
 // (RtScene::sunDirection) alike.
 const LightDesc* firstSun(std::span<const LightDesc> lights);
 std::optional<glm::vec3> sunDirectionOf(std::span<const LightDesc> lights);
+
+// A light's cone as every renderer weighs its light (common/spot_cone.glsl's
+// spotAttenuation, with the cosine between `axisToLight` and the direction toward the
+// light): a spot's axis turned toward it and the cosines of its half-angles; for
+// every other light a cone that holds every direction, whose weight is exactly 1.
+struct LightCone {
+  glm::vec3 axisToLight{0.0f, 1.0f, 0.0f};
+  float cosOuter = -3.0f, cosInner = -2.0f;
+};
+LightCone lightCone(const LightDesc& light);
 
 struct SceneEnvironment {
   std::vector<LightDesc> lights;

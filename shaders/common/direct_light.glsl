@@ -1,5 +1,5 @@
 // Direct light on a surface: the sun (through its shadow map under SUN_SHADOWS) and
-// the other lights: point lights (the first through its cube shadow under
+// the other lights: point lights and spots (the first through its cube shadow under
 // POINT_SHADOWS) and further suns, unshadowed (render/frame_uniforms.h), with
 // common/shading.glsl's model. Needs common/frame.glsl, shading.glsl and shadows.glsl
 // included first. scene.frag and terrain.frag both use it, so that the ground is lit
@@ -14,8 +14,13 @@
 // no iteration: with the count a uniform, a scene without point lights shaded one,
 // BRDF and all, for every fragment. A program built without these (a test's) takes
 // the counts from the frame block.
+// SPOT_LIGHTS, where a light has a cone, weighs each light by its cone
+// (common/spot_cone.glsl); a scene without spots does not pay for it.
 #ifndef SUN_LIGHT
 #define SUN_LIGHT 1
+#endif
+#ifdef SPOT_LIGHTS
+#include "common/spot_cone.glsl"
 #endif
 #ifndef POINT_LIGHTS
 #define POINT_LIGHTS u_counts.x
@@ -41,7 +46,11 @@ vec3 shadeDirectLight(Surface s, vec3 shadowNormal) {
     if (i == 0 && u_pointColor[0].w > 0.0) visibility = pointShadow(s.position, shadowNormal);
 #endif
     vec3 radiance = u_pointColor[i].rgb / (u_pointPosition[i].w > 0.5 && !directional ? max(d2, 1e-8) : 1.0);
-    color += shadeLight(s, toLight * inversesqrt(max(d2, 1e-30)), radiance, visibility);
+    vec3 l = toLight * inversesqrt(max(d2, 1e-30));
+#ifdef SPOT_LIGHTS
+    radiance *= spotAttenuation(dot(l, u_pointAxis[i].xyz), u_pointAxis[i].w, u_pointInner[i].x);
+#endif
+    color += shadeLight(s, l, radiance, visibility);
   }
   return color;
 }

@@ -18,6 +18,11 @@ layout(std140, binding = BLOCK_FRAME) uniform Frame {
   vec4 u_pointPosition[MAX_POINT_LIGHTS];  // xyz: a position, w = 0 (no fall-off) or 1 (1/d^2); or
                                            // a unit direction toward a further sun, w = 2
   vec4 u_pointColor[MAX_POINT_LIGHTS];     // colour * intensity; w = 1: casts shadows
+  // Each light's cone (scene/environment.h's LightCone): xyz the axis toward the
+  // light, w the cosine of the outer half-angle; and x the cosine of the inner one.
+  // Read under SPOT_LIGHTS alone (common/direct_light.glsl).
+  vec4 u_pointAxis[MAX_POINT_LIGHTS];
+  vec4 u_pointInner[MAX_POINT_LIGHTS];
   vec4 u_ambientSky;        // hemispheric ambient (PBR); w = classic ambient weight
   vec4 u_ambientGround;
   vec4 u_fog;               // rgb colour, w = density (0 = none)

@@ -24,6 +24,7 @@
 #include "rt/environment_light.glsl"
 #include "rt/view_layers.glsl"
 #include "rt/bsdf.glsl"
+#include "common/spot_cone.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -31,12 +32,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 // PathLight, std430 (engine/gputrace/path_kernel.cpp's GpuPathLight).
 struct PtLight {
-  ivec4 typeShadowsFalloff;  // type (0 sun, 1 point, 2 area), shadows, falloff
+  ivec4 typeShadowsFalloff;  // type (0 sun, 1 point or spot, 2 area), shadows, falloff
   vec4 powerArea;            // colour * intensity; w: an area light's area
-  vec4 directionCosMax;      // sun: unit, toward it; w: the cone's cos (1: a delta)
+  vec4 directionCosMax;      // sun: unit, toward it; w: the cone's cos (1: a delta);
+                             // spot: its axis toward it
   vec4 radiance;             // a cone sun's radiance
   vec4 normal;               // area: the unit normal of the side it emits from
-  vec4 unused;
+  vec4 cone;                 // point and spot: x, y the cosines of the outer and inner cones
   dvec4 position;            // point; area: the centre
   dvec4 edgeU, edgeV;
 };
@@ -105,7 +107,9 @@ bool sampleLight(Surface s, PtLight l, vec2 u, out LightSample ls) {
   precise vec3 wi = toLight / sqrt(d2);
   ls.wi = wi;
   if (type == 1) {
-    ls.value = l.powerArea.xyz * (BRDF_PI / (l.typeShadowsFalloff.z != 0 ? d2 : 1.0));
+    // A point's cone holds every direction: its weight is exactly 1.
+    ls.value = l.powerArea.xyz * (BRDF_PI / (l.typeShadowsFalloff.z != 0 ? d2 : 1.0)) *
+               spotAttenuation(rtDot(ls.wi, l.directionCosMax.xyz), l.cone.x, l.cone.y);
     return true;
   }
   float cosLight = -rtDot(ls.wi, l.normal.xyz);

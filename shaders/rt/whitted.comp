@@ -23,16 +23,18 @@ layout(std430, binding = BUFFER_RT_ENVIRONMENT) readonly buffer RtEnvironment { 
 const float rtEnv[1] = float[1](0.0);
 #endif
 #include "rt/view_layers.glsl"
+#include "common/spot_cone.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 struct RtLight {
-  ivec4 typeShadowsFalloff;  // type (0 sun, 1 point, 2 area), shadows, falloff
-  vec4 position;             // point and area (the centre)
+  ivec4 typeShadowsFalloff;  // type (0 sun, 1 point or spot, 2 area), shadows, falloff
+  vec4 position;             // point, spot and area (the centre); w: the inner cone's cosine
   vec4 direction;            // sun: toward the light
   vec4 radiance;             // colour * intensity
   vec4 edgeU;
   vec4 edgeV;
+  vec4 cone;                 // point and spot: the axis toward the light; w: the outer cone's cosine
 };
 
 layout(std430, binding = BUFFER_RT_LIGHTS) readonly buffer RtLights { RtLight rtLights[]; };
@@ -85,6 +87,14 @@ vec3 sampleLight(Surface s, RtLight light, inout Pcg32 rng, out vec3 wi, out flo
     precise float dist2 = rtDot(toLight, toLight);
     wi = toLight / sqrt(dist2);
     if (light.typeShadowsFalloff.z != 0) radiance /= dist2;
+    // A point's cone holds every direction: its share is exactly 1. Outside a spot's
+    // cone no shadow ray is traced (Tracer::sampleLight).
+    float share = spotAttenuation(rtDot(wi, light.cone.xyz), light.cone.w, light.position.w);
+    radiance *= share;
+    if (share == 0.0) {
+      visibility = 1.0;
+      return radiance;
+    }
   } else {
     wi = rtNormalize(light.position.xyz - s.p);
   }

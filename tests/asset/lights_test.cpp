@@ -2,7 +2,7 @@
 // them; modelLights turns them into scene lights at their nodes' world transforms
 // (LightsPunctualLamp from ../shared/gltf-samples, and small models written here),
 // intensities as glTF gives them (lux, candela; see asset/model_lights.h). Bad
-// lights are errors naming the file and the light or node; spot lights a warning.
+// lights are errors naming the file and the light or node.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -92,15 +92,53 @@ TEST(PunctualLights, APointLightIsPlacedByTheWholeChainAndTheRoot) {
   EXPECT_LT(glm::distance(lights[0].position, glm::dvec3(0.0, 2.0, 9.0)), 1e-6);
 }
 
-TEST(PunctualLights, ASpotLightIsAPointLightWithAWarningNamingIt) {
-  auto model = lightsModel(json::array({{{"type", "spot"}, {"name", "torch"}, {"spot", {{"outerConeAngle", 0.5}}}}}),
-                           json::array({lightNode(0)}), "spot.gltf");
+// Turned -90 degrees about x, the spot shines straight down: its direction toward
+// the light is up, and its cones are kept (degrees), without a warning.
+TEST(PunctualLights, ASpotLightKeepsItsConesAndShinesAlongItsNodesMinusZ) {
+  json node = lightNode(0);
+  node["rotation"] = {-0.7071068, 0.0, 0.0, 0.7071068};
+  node["translation"] = {1, 3, 0};
+  auto model = lightsModel(
+      json::array({{{"type", "spot"}, {"name", "torch"}, {"intensity", 40}, {"spot", {{"innerConeAngle", 0.25}, {"outerConeAngle", 0.5}}}}}),
+      json::array({node}), "spot.gltf");
   ASSERT_TRUE(model.ok()) << model.error().message;
-  ASSERT_EQ(model->warnings.size(), 1u);
-  EXPECT_EQ(model->warnings[0], "spot.gltf: light 0 (\"torch\"): a spot light; drawn as a point light, without its cone");
+  EXPECT_TRUE(model->warnings.empty());
   const auto lights = modelLights(*model);
   ASSERT_EQ(lights.size(), 1u);
-  EXPECT_EQ(lights[0].type, LightType::Point);
+  EXPECT_EQ(lights[0].type, LightType::Spot);
+  EXPECT_TRUE(lights[0].falloff);
+  EXPECT_FLOAT_EQ(lights[0].intensity, 40.0f);  // candela, as it is
+  EXPECT_LT(glm::distance(lights[0].position, glm::dvec3(1.0, 3.0, 0.0)), 1e-6);
+  EXPECT_LT(glm::distance(lights[0].direction, glm::dvec3(0.0, 1.0, 0.0)), 1e-6);
+  EXPECT_NEAR(lights[0].innerConeDegrees, 0.25 * 180.0 / 3.14159265358979, 1e-4);
+  EXPECT_NEAR(lights[0].outerConeDegrees, 0.5 * 180.0 / 3.14159265358979, 1e-4);
+}
+
+// glTF's defaults: inner 0, outer pi/4; pi/2 as a float (a hair above pi/2) is taken.
+TEST(PunctualLights, ASpotsDefaultConesAndAFloatsHalfPi) {
+  auto model = lightsModel(json::array({{{"type", "spot"}, {"spot", json::object()}},
+                                        {{"type", "spot"}, {"spot", {{"outerConeAngle", 1.5707963705062866}}}}}),
+                           json::array({lightNode(0), lightNode(1)}));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const auto lights = modelLights(*model);
+  ASSERT_EQ(lights.size(), 2u);
+  EXPECT_EQ(lights[0].innerConeDegrees, 0.0f);
+  EXPECT_NEAR(lights[0].outerConeDegrees, 45.0f, 1e-4);
+  EXPECT_NEAR(lights[1].outerConeDegrees, 90.0f, 1e-4);
+}
+
+// Cones the extension does not allow: an error naming the file and the light, for
+// each way of breaking 0 <= inner <= outer <= pi/2.
+TEST(PunctualLights, ASpotsBadConesNameTheFileAndLight) {
+  for (const json& cones : {json{{"innerConeAngle", 0.6}, {"outerConeAngle", 0.5}}, json{{"outerConeAngle", 1.6}},
+                            json{{"innerConeAngle", -0.1}}, json{{"outerConeAngle", -0.2}}}) {
+    SCOPED_TRACE(cones.dump());
+    auto model = lightsModel(json::array({{{"type", "spot"}, {"name", "torch"}, {"spot", cones}}}), json::array({lightNode(0)}),
+                             "cone.gltf");
+    ASSERT_FALSE(model.ok());
+    EXPECT_EQ(model.error().message, "cone.gltf: light 0 (\"torch\"): spot.innerConeAngle and spot.outerConeAngle must be "
+                                     "0 <= inner <= outer <= pi/2");
+  }
 }
 
 TEST(PunctualLights, ALightThatDoesNotExistNamesTheFileAndNode) {

@@ -53,12 +53,41 @@ TEST(SceneFile, ErrorsNameFilePathAndExpectation) {
   EXPECT_EQ(errorOf(R"({"models": [{"path": "a.glb"}, {"path": "b.glb", "speed": "fast"}]})"),
             "s.json: /models/1/speed: expected a number");
   EXPECT_EQ(errorOf(R"({"lights": [{"type": "laser"}]})"),
-            "s.json: /lights/0/type: \"laser\" is not one of: area, point, sun");
+            "s.json: /lights/0/type: \"laser\" is not one of: area, point, spot, sun");
   EXPECT_EQ(errorOf(R"({"primitives": [{"type": "sphere", "material": "gold"}]})"),
             "s.json: /primitives/0/material: no material \"gold\" in /materials");
   EXPECT_EQ(errorOf(R"({"render": {"pcf_kernel": 4}})"), "s.json: /render/pcf_kernel: expected an odd kernel width");
   EXPECT_EQ(errorOf(R"({"primitives": [{"type": "sphere", "radius": -1}]})"),
             "s.json: /primitives/0/radius: expected a number in [1e-09, 1e+12], got -1");
+}
+
+// A spot's file direction is the way it shines, kept as the way toward the light
+// (LightDesc::direction), straight down by default; its cones in degrees, glTF's
+// defaults where unset; and the cones' bad cases name the key.
+TEST(SceneFile, ASpotShinesAlongItsDirectionWithinItsCones) {
+  auto scene = parseScene(R"({"lights": [
+      {"type": "spot", "position": [0, 4, 0], "direction": [0, 0, -2], "inner_cone": 10, "outer_cone": 25},
+      {"type": "spot", "position": [1, 3, 0]}]})",
+                          "s.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  ASSERT_EQ(scene->lights.size(), 2u);
+  const LightDesc& aimed = scene->lights[0];
+  EXPECT_EQ(aimed.type, LightType::Spot);
+  EXPECT_EQ(aimed.direction, glm::dvec3(0.0, 0.0, 1.0));
+  EXPECT_EQ(aimed.innerConeDegrees, 10.0f);
+  EXPECT_EQ(aimed.outerConeDegrees, 25.0f);
+  const LightDesc& plain = scene->lights[1];
+  EXPECT_EQ(plain.direction, glm::dvec3(0.0, 1.0, 0.0));
+  EXPECT_EQ(plain.innerConeDegrees, 0.0f);
+  EXPECT_EQ(plain.outerConeDegrees, 45.0f);
+  EXPECT_EQ(errorOf(R"({"lights": [{"type": "spot", "inner_cone": 30, "outer_cone": 20}]})"),
+            "s.json: /lights/0/inner_cone: the inner cone must not be wider than the outer one");
+  EXPECT_EQ(errorOf(R"({"lights": [{"type": "spot", "inner_cone": 50}]})"),
+            "s.json: /lights/0/inner_cone: the inner cone must not be wider than the outer one");
+  EXPECT_EQ(errorOf(R"({"lights": [{"type": "spot", "outer_cone": 91}]})"),
+            "s.json: /lights/0/outer_cone: expected a number in [0, 90], got 91");
+  EXPECT_EQ(errorOf(R"({"lights": [{"type": "sun", "inner_cone": 5}]})"),
+            "s.json: /lights/0/inner_cone: only a spot light has a cone");
 }
 
 // render.ambient: unset falls back by the sky (IBL under one); a name not known

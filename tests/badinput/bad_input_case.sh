@@ -83,6 +83,7 @@ case "$CASE" in
   bad_clearcoat) model bad_clearcoat.glb 2 "bad_clearcoat\.glb: material 0 \(\"paint\"\): KHR_materials_clearcoat: clearcoatFactor must be a number in \[0, 1\]" ;;
   bad_anisotropy) model bad_anisotropy.glb 2 "bad_anisotropy\.glb: material 0 \(\"brushed\"\): KHR_materials_anisotropy: anisotropyStrength must be a number in \[0, 1\]" ;;
   bad_iridescence) model bad_iridescence.glb 2 "bad_iridescence\.glb: material 0 \(\"soap\"\): KHR_materials_iridescence: iridescenceIor must be a number in \[1, 1e\+06\]" ;;
+  bad_spot_cone) model bad_spot_cone.glb 2 "bad_spot_cone\.glb: light 0 \(\"torch\"\): spot\.innerConeAngle and spot\.outerConeAngle must be 0 <= inner <= outer <= pi/2" ;;
   bad_sheen) model bad_sheen.glb 2 "bad_sheen\.glb: material 0 \(\"velvet\"\): KHR_materials_sheen: sheenRoughnessFactor must be a number in \[0, 1\]" ;;
   bad_volume) model bad_volume.glb 2 "bad_volume\.glb: material 0 \(\"glass\"\): KHR_materials_volume: attenuationColor must be three numbers in \[0, 1\]" ;;
   bad_texture_settings) model bad_texture_settings.glb 0 "warning: bad_texture_settings\.glb: material 0 \(\"tiles\"\): baseColorTexture 0: TEXCOORD_2 is not supported" ;;
@@ -93,6 +94,8 @@ case "$CASE" in
   scene_models_number) scene scene_models_number.json "scene_models_number\.json: /models: expected an array" ;;
   scene_model_path_number) scene scene_model_path_number.json "scene_model_path_number\.json: /models/0/path: expected a string" ;;
   scene_light_type) scene scene_light_type.json "scene_light_type\.json: /lights/0/type: expected one of" ;;
+  scene_spot_cone_inverted) scene scene_spot_cone_inverted.json "scene_spot_cone_inverted\.json: /lights/0/inner_cone: the inner cone must not be wider than the outer one" ;;
+  scene_point_cone) scene scene_point_cone.json "scene_point_cone\.json: /lights/0/outer_cone: only a spot light has a cone" ;;
   scene_position_null) scene scene_position_null.json "scene_position_null\.json: /camera/position/1: expected a (finite )?number" ;;
   scene_msaa_string) scene scene_msaa_string.json "scene_msaa_string\.json: /render/msaa: expected an integer" ;;
   scene_skinning_unknown) scene scene_skinning_unknown.json "scene_skinning_unknown\.json: /render/skinning: \"gpu\" is not one of: auto, compute, vertex" ;;

@@ -1,5 +1,6 @@
 // The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl,
-// common/view_layers.glsl, common/sky.glsl and common/terrain_layers.glsl run by the
+// common/view_layers.glsl, common/sky.glsl, common/spot_cone.glsl and
+// common/terrain_layers.glsl run by the
 // GPU's GLSL compiler in a compute shader (test/*_eval.comp) and by the C++ build of
 // the same text (core/sampling.h, core/view_layers.h, core/sky.h,
 // terrain/materials.h: what the CPU tracers call) over
@@ -22,6 +23,7 @@
 #include "core/layer_texels.h"
 #include "core/sampling.h"
 #include "core/sky.h"
+#include "core/spot_cone.h"
 #include "core/view_layers.h"
 #include "terrain/materials.h"
 
@@ -296,6 +298,49 @@ TEST_P(SkyText, GlslAndCppAgree) {
               cases.size(), ring, differ, worst);
   EXPECT_GT(ring, int(cases.size()) / 20);
   EXPECT_LE(worst, 4.0);
+}
+
+class SpotConeText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(SpotConeText);
+
+// 65536 cases: random cones (a tenth with the two cones one, a tenth a point light's
+// cone below -1), cosines drawn across [-1, 1] and, for half of them, within or on
+// the cones' edges, where the ramp starts and ends. Limit: the same bits. The text is
+// comparisons, a subtraction, a division and a product, each IEEE's on both sides.
+TEST_P(SpotConeText, GlslAndCppAgree) {
+  std::mt19937 rng(20261207);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<glm::vec4> cases;
+  int ramp = 0, edges = 0;
+  for (int i = 0; i < (1 << 16); ++i) {
+    float outer = std::cos(1.5707964f * unit(rng)), inner = std::cos(std::acos(outer) * unit(rng));
+    if (i % 10 == 0) inner = outer;
+    if (i % 10 == 1) outer = -3.0f, inner = -2.0f;
+    float c = 2.0f * unit(rng) - 1.0f;
+    if (i % 2) c = outer + (inner - outer) * unit(rng);
+    if (i % 8 == 3) c = i % 16 == 3 ? outer : inner, ++edges;
+    if (i % 8 == 5) c = std::nextafter(i % 16 == 5 ? outer : inner, 2.0f), ++edges;
+    ramp += c > outer && c < inner ? 1 : 0;
+    cases.push_back(glm::vec4(c, outer, inner, 0.0f));
+  }
+  const std::vector<glm::vec4> gpu = test::runCases<glm::vec4>("test/spot_cone_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const glm::vec4& c = cases[i];
+    const float cpu = spottext::spotAttenuation(c.x, c.y, c.z);
+    if (std::bit_cast<std::uint32_t>(cpu) != std::bit_cast<std::uint32_t>(gpu[i].x) && differ++ < 5)
+      ADD_FAILURE() << "cos " << c.x << " outer " << c.y << " inner " << c.z << ": C++ " << cpu << ", GLSL " << gpu[i].x;
+    EXPECT_TRUE(cpu >= 0.0f && cpu <= 1.0f);
+  }
+  std::printf("spot cone: %zu cases (%d on the ramp, %d on an edge), %d not the same bits\n", cases.size(), ramp, edges,
+              differ);
+  EXPECT_GT(ramp, int(cases.size()) / 4);
+  EXPECT_EQ(differ, 0);
+  // A point light's cone weighs every direction by exactly 1; outside the outer cone 0.
+  for (float c : {-1.0f, -0.5f, 0.0f, 1.0f}) EXPECT_EQ(spottext::spotAttenuation(c, -3.0f, -2.0f), 1.0f);
+  EXPECT_EQ(spottext::spotAttenuation(0.5f, 0.5f, 0.9f), 0.0f);
+  EXPECT_EQ(spottext::spotAttenuation(0.75f, 0.5f, 1.0f), 0.25f);
 }
 
 struct TerrainLayersCase {

@@ -190,6 +190,14 @@ TEST_P(GpuPath, RendersTheCpusImageOfTexturedSurfaces) {
   expectAgreement(room, "textured room, pbr, image sky");
 }
 
+// Spot lights (common/spot_cone.glsl): pbrRoom with test::addSpots's soft and sharp
+// cones, judged as the room above.
+TEST_P(GpuPath, RendersTheCpusImageOfSpotLights) {
+  rt::RtScene scene = test::pbrRoom();
+  test::addSpots(scene);
+  expectAgreement(scene, "pbr room under spots");
+}
+
 TEST_P(GpuPath, RendersTheCpusImageOfTheShippedTexturedScenes) {
   for (const char* file : {"materials.json", "terrain.json"}) expectAgreement(test::shippedScene(file).scene(), file);
 }

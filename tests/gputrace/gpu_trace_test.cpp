@@ -191,6 +191,15 @@ TEST_P(GpuWhitted, RendersTheCpusImageOfTheRoom) {
   });
 }
 
+// Spot lights (common/spot_cone.glsl): the room with test::addSpots's soft and sharp
+// cones, in both shadings, with the limits above. Outside a cone no shadow ray is
+// traced, on either side.
+TEST_P(GpuWhitted, RendersTheCpusImageOfSpotLights) {
+  rt::RtScene scene = test::roomWithMeshes();
+  test::addSpots(scene);
+  expectCpusImages(scene, whittedSettings(), "the room under spots", [](rt::RtScene& pbr) { pbr.setSky(SkyDesc{}); });
+}
+
 // Textures sampled as the CPU samples them (support/rt_textured.h: every wrap mode,
 // a transformed second uv set, mipmaps picked by the ray cone through a mirror,
 // base colour, emissive and metallic-roughness maps, MASK and BLEND from a texture's

@@ -31,6 +31,8 @@ const std::map<std::string, std::size_t>& cppOffsets() {
       {"u_sunColor", offsetof(Frame, u_sunColor)},
       {"u_pointPosition[0]", offsetof(Frame, u_pointPosition)},
       {"u_pointColor[0]", offsetof(Frame, u_pointColor)},
+      {"u_pointAxis[0]", offsetof(Frame, u_pointAxis)},
+      {"u_pointInner[0]", offsetof(Frame, u_pointInner)},
       {"u_ambientSky", offsetof(Frame, u_ambientSky)},
       {"u_ambientGround", offsetof(Frame, u_ambientGround)},
       {"u_fog", offsetof(Frame, u_fog)},

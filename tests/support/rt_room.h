@@ -106,6 +106,31 @@ inline rt::RtScene pbrRoom(float sunIntensity = 1.5f, const std::function<void(S
   return scene;
 }
 
+// Two spots added to a room: one shining down on the floor before the spheres with a
+// soft edge (cones of 15 and 35 degrees, 1/d^2, shadows), and one on the left sphere
+// with a sharp one (both cones 20 degrees, no falloff, no shadows).
+inline void addSpots(rt::RtScene& scene) {
+  LightDesc soft;
+  soft.type = LightType::Spot;
+  soft.position = {0.8, 2.9, 1.2};
+  soft.direction = glm::normalize(soft.position - glm::dvec3(0.3, 0.0, 2.2));
+  soft.innerConeDegrees = 15.0f;
+  soft.outerConeDegrees = 35.0f;
+  soft.falloff = true;
+  soft.intensity = 6.0f;
+  soft.color = {1.0f, 0.85f, 0.6f};
+  scene.addLight(soft);
+  LightDesc sharp;
+  sharp.type = LightType::Spot;
+  sharp.position = {-1.9, 2.6, 1.5};
+  sharp.direction = glm::normalize(sharp.position - glm::dvec3(-1.2, 0.7, 3.0));
+  sharp.innerConeDegrees = sharp.outerConeDegrees = 20.0f;
+  sharp.intensity = 0.7f;
+  sharp.color = {0.5f, 0.7f, 1.0f};
+  sharp.shadows = false;
+  scene.addLight(sharp);
+}
+
 // pbrRoom's materials with glTF's layers: a clear coat (smooth over the rough metal,
 // and half a coat over the red wall), a sheen under red's coat, a thin film on the
 // white walls and the mirror, and the blue sphere and box a tinted, absorbing volume.

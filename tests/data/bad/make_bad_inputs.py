@@ -259,6 +259,14 @@ def main(out):
         m.doc["meshes"][0]["primitives"][0]["material"] = 0
     case("bad_iridescence.glb", bad_iridescence)
 
+    # KHR_lights_punctual: a spot whose inner cone is wider than its outer one.
+    def bad_spot_cone(m):
+        m.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+        m.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+            {"type": "spot", "name": "torch", "spot": {"innerConeAngle": 0.8, "outerConeAngle": 0.4}}]}}
+        m.doc["nodes"][0].setdefault("extensions", {})["KHR_lights_punctual"] = {"light": 0}
+    case("bad_spot_cone.glb", bad_spot_cone)
+
     # Compressed geometry cut short. Draco: a stream with a whole header (magic,
     # version 2.2, a triangle mesh, edgebreaker) and nothing after it. Meshopt: the
     # positions as a vertex stream of 3 x 12 bytes whose data stops after the
@@ -306,6 +314,9 @@ def main(out):
     write("scene_models_number.json", json.dumps({"models": 5}))
     write("scene_model_path_number.json", json.dumps({"models": [{"path": 3}]}))
     write("scene_light_type.json", json.dumps({"lights": [{"type": 7}]}))
+    write("scene_spot_cone_inverted.json", json.dumps({"lights": [
+        {"type": "spot", "position": [0, 3, 0], "inner_cone": 40, "outer_cone": 30}]}))
+    write("scene_point_cone.json", json.dumps({"lights": [{"type": "point", "outer_cone": 30}]}))
     write("scene_position_null.json", json.dumps({"camera": {"position": [1, None, 3]}}))
     write("scene_msaa_string.json", json.dumps({"render": {"msaa": "four"}}))
     write("scene_skinning_unknown.json", json.dumps({"render": {"skinning": "gpu"}}))
