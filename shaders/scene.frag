@@ -121,7 +121,7 @@ void main() {
   g_clearcoatNormal = materialClearcoatNormal(normalize(v_normal), v_tangent, v_uv) * side;
 #endif
 #ifdef ANISOTROPY
-  materialAnisotropy(normalize(v_normal), geometric, v_tangent, v_uv);
+  materialAnisotropy(normalize(v_normal), geometric, v_tangent);
 #endif
 #endif
   vec3 toEye = normalize(-v_position);

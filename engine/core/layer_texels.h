@@ -19,4 +19,5 @@ using glm::vec4;
 #include "common/layer_texels.glsl"
 #undef precise
 #undef BRDF_INLINE
+#undef LAYER_MIX
 }  // namespace engine::brdf

@@ -4,11 +4,17 @@
 // (rt/material_at.glsl) make a hit's material with this text; each fetches the
 // texels its own way.
 // tests/core/shading_texts_test.cpp runs it on the GPU's compiler against the C++
-// build, case by case. The rasterizer samples the same channels in
-// common/material.glsl, where its samplers are.
+// build, case by case. The rasterizer applies its layer texels with this text too
+// (common/material.glsl's materialLayers).
 //
 // In the subset of the two languages that common/sampling.glsl keeps to, after
 // common/brdf.glsl; mixAsGlm is glm's mix.
+
+// The film's thickness between its range's ends: glm's mix (mixAsGlm) in the
+// tracers; the rasterizer takes GLSL's, which its goldens were made with.
+#ifndef LAYER_MIX
+#define LAYER_MIX mixAsGlm
+#endif
 
 // A hit's base values: the material's factors before its texels, the hit's after.
 struct BaseValues {
@@ -72,7 +78,7 @@ BRDF_INLINE LayerValues withLayerTexels(LayerValues v, vec4 texel[LAYER_SLOTS], 
     v.anisotropy = v.anisotropy * texel[9].z;
   }
   if (present[10]) v.iridescence = v.iridescence * texel[10].x;
-  if (present[11]) v.iridescenceThickness = mixAsGlm(filmRange.x, filmRange.y, texel[11].y);
+  if (present[11]) v.iridescenceThickness = LAYER_MIX(filmRange.x, filmRange.y, texel[11].y);
   return v;
 }
 

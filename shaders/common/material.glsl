@@ -226,48 +226,89 @@ uniform int u_layerTextures;  // bit (slot - SLOT_SPECULAR): the slot has a text
 bool hasLayerTexture(int slot) { return (u_layerTextures & (1 << (slot - SLOT_SPECULAR))) != 0; }
 #endif
 
-void materialLayers(vec2 uv) {
-  float weight = u_specularWeight;
-  vec3 color = u_specularColor;
-  g_clearcoat = u_clearcoat;
-  g_clearcoatRoughness = u_clearcoatRoughness;
-  g_transmission = u_transmission;
-  g_thickness = u_thickness;
-#ifdef SHEEN
-  g_sheenColor = u_sheenColor;
-  g_sheenRoughness = u_sheenRoughness;
-#endif
-#ifdef IRIDESCENCE
-  g_iridescence = u_iridescence;
-  g_iridescenceThickness = u_iridescenceThickness.y;
-#endif
+// The film's thickness between its range's two ends is GLSL's mix here (the
+// goldens were made with it), glm's in the tracers (common/layer_texels.glsl).
+#define LAYER_MIX mix
+#include "rt/math.glsl"
+#include "common/layer_texels.glsl"
+
 #ifdef LAYER_TEXTURES
-  if (hasLayerTexture(SLOT_SPECULAR)) weight *= texture(u_specularTexture, materialUv(SLOT_SPECULAR, uv)).a;
-  if (hasLayerTexture(SLOT_SPECULAR_COLOR))
-    color *= texture(u_specularColorTexture, materialUv(SLOT_SPECULAR_COLOR, uv)).rgb;
-  if (hasLayerTexture(SLOT_CLEARCOAT)) g_clearcoat *= texture(u_clearcoatTexture, materialUv(SLOT_CLEARCOAT, uv)).r;
-  if (hasLayerTexture(SLOT_CLEARCOAT_ROUGHNESS))
-    g_clearcoatRoughness *= texture(u_clearcoatRoughnessTexture, materialUv(SLOT_CLEARCOAT_ROUGHNESS, uv)).g;
-  if (hasLayerTexture(SLOT_TRANSMISSION))
-    g_transmission *= texture(u_transmissionTexture, materialUv(SLOT_TRANSMISSION, uv)).r;
-  if (hasLayerTexture(SLOT_THICKNESS)) g_thickness *= texture(u_thicknessTexture, materialUv(SLOT_THICKNESS, uv)).g;
+// Slot `slot`'s texel at uv where the material has a texture there.
+void layerTexel(int slot, sampler2D tex, vec2 uv, inout vec4 texel[LAYER_SLOTS], inout bool present[LAYER_SLOTS]) {
+  int k = slot - SLOT_SPECULAR;
+  present[k] = hasLayerTexture(slot);
+  if (present[k]) texel[k] = texture(tex, materialUv(slot, uv));
+}
+#endif
+
+#ifdef ANISOTROPY
+// The stretch's direction in the tangent frame and its strength, as materialLayers
+// found them, for materialAnisotropy.
+vec2 g_layerAnisotropyDirection;
+float g_layerAnisotropy;
+#endif
+
+// The layers' factors times their texels, each from the channel glTF reads it in:
+// the tracers' text (common/layer_texels.glsl's withLayerTexels), fetched here.
+void materialLayers(vec2 uv) {
+  LayerValues v;
+  v.specularColor = u_specularColor;
+  v.specularWeight = u_specularWeight;
+  v.clearcoat = u_clearcoat;
+  v.clearcoatRoughness = u_clearcoatRoughness;
+  v.transmission = u_transmission;
+  v.thickness = u_thickness;
+  v.sheenColor = u_sheenColor;
+  v.sheenRoughness = u_sheenRoughness;
+  v.anisotropyDirection = vec2(1.0, 0.0);
+  v.anisotropy = u_anisotropy;
+  v.iridescence = u_iridescence;
+  v.iridescenceThickness = u_iridescenceThickness.y;
+  vec4 texel[LAYER_SLOTS];
+  bool present[LAYER_SLOTS];
+  for (int k = 0; k < LAYER_SLOTS; ++k) {
+    texel[k] = vec4(0.0);
+    present[k] = false;
+  }
+#ifdef LAYER_TEXTURES
+  layerTexel(SLOT_SPECULAR, u_specularTexture, uv, texel, present);
+  layerTexel(SLOT_SPECULAR_COLOR, u_specularColorTexture, uv, texel, present);
+  layerTexel(SLOT_CLEARCOAT, u_clearcoatTexture, uv, texel, present);
+  layerTexel(SLOT_CLEARCOAT_ROUGHNESS, u_clearcoatRoughnessTexture, uv, texel, present);
+  layerTexel(SLOT_TRANSMISSION, u_transmissionTexture, uv, texel, present);
+  layerTexel(SLOT_THICKNESS, u_thicknessTexture, uv, texel, present);
 #ifdef SHEEN
-  if (hasLayerTexture(SLOT_SHEEN_COLOR))
-    g_sheenColor *= texture(u_sheenColorTexture, materialUv(SLOT_SHEEN_COLOR, uv)).rgb;
-  if (hasLayerTexture(SLOT_SHEEN_ROUGHNESS))
-    g_sheenRoughness *= texture(u_sheenRoughnessTexture, materialUv(SLOT_SHEEN_ROUGHNESS, uv)).a;
+  layerTexel(SLOT_SHEEN_COLOR, u_sheenColorTexture, uv, texel, present);
+  layerTexel(SLOT_SHEEN_ROUGHNESS, u_sheenRoughnessTexture, uv, texel, present);
+#endif
+#ifdef ANISOTROPY
+  layerTexel(SLOT_ANISOTROPY, u_anisotropyTexture, uv, texel, present);
 #endif
 #ifdef IRIDESCENCE
-  if (hasLayerTexture(SLOT_IRIDESCENCE))
-    g_iridescence *= texture(u_iridescenceTexture, materialUv(SLOT_IRIDESCENCE, uv)).r;
-  if (hasLayerTexture(SLOT_IRIDESCENCE_THICKNESS)) {
-    float g = texture(u_iridescenceThicknessTexture, materialUv(SLOT_IRIDESCENCE_THICKNESS, uv)).g;
-    g_iridescenceThickness = mix(u_iridescenceThickness.x, u_iridescenceThickness.y, g);
-  }
+  layerTexel(SLOT_IRIDESCENCE, u_iridescenceTexture, uv, texel, present);
+  layerTexel(SLOT_IRIDESCENCE_THICKNESS, u_iridescenceThicknessTexture, uv, texel, present);
 #endif
 #endif
-  g_dielectricF0 = min(vec3(u_iorF0) * color, vec3(1.0)) * weight;
-  g_dielectricF90 = weight;
+  v = withLayerTexels(v, texel, present, u_iridescenceThickness);
+  g_clearcoat = v.clearcoat;
+  g_clearcoatRoughness = v.clearcoatRoughness;
+  g_transmission = v.transmission;
+  g_thickness = v.thickness;
+#ifdef SHEEN
+  g_sheenColor = v.sheenColor;
+  g_sheenRoughness = v.sheenRoughness;
+#endif
+#ifdef IRIDESCENCE
+  g_iridescence = v.iridescence;
+  g_iridescenceThickness = v.iridescenceThickness;
+#endif
+#ifdef ANISOTROPY
+  g_layerAnisotropyDirection = v.anisotropyDirection;
+  g_layerAnisotropy = v.anisotropy;
+#endif
+  // In float, from the float reflectance (the tracers' layerF0 works in double).
+  g_dielectricF0 = min(vec3(u_iorF0) * v.specularColor, vec3(1.0)) * v.specularWeight;
+  g_dielectricF90 = v.specularWeight;
 }
 #endif
 
@@ -278,23 +319,15 @@ void materialLayers(vec2 uv) {
 // anisotropyDirection), and its strength, into common/shading.glsl's g_ values. The
 // direction across it is taken about the geometric normal `ng`, as the Sample
 // Viewer does.
-void materialAnisotropy(vec3 n, vec3 ng, vec4 tangent, vec2 uv) {
+void materialAnisotropy(vec3 n, vec3 ng, vec4 tangent) {
   vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
   float len = length(t);
   g_anisotropy = 0.0;
   if (!(len > 1e-6)) return;
   t /= len;
   vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
-  vec2 direction = vec2(1.0, 0.0);
-  float strength = u_anisotropy;
-#ifdef LAYER_TEXTURES
-  if (hasLayerTexture(SLOT_ANISOTROPY)) {
-    vec3 texel = texture(u_anisotropyTexture, materialUv(SLOT_ANISOTROPY, uv)).rgb;
-    direction = texel.rg * 2.0 - 1.0;
-    strength *= texel.b;
-  }
-#endif
-  direction = anisotropyDirection(direction, u_anisotropyRotation);
+  float strength = g_layerAnisotropy;
+  vec2 direction = anisotropyDirection(g_layerAnisotropyDirection, u_anisotropyRotation);
   vec3 stretched = t * direction.x + b * direction.y;
   float slen = length(stretched);
   if (!(slen > 1e-6)) return;
