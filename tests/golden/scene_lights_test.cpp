@@ -38,12 +38,9 @@ double meanLevel(const Image& image) {
 
 // A grey sphere on a grey floor, classic shading without shadows (the tracer's hard
 // shadows and the rasterizer's map differ at their edges, which is not what is
-// tested here), lit by a white sun from above-front and, with `second`, a red one
-// from the right.
-Result<SceneDesc> twoSuns(bool second) {
-  std::string lights = R"({"type": "sun", "direction": [0, 1, 1], "color": [1, 1, 1], "intensity": 0.6, "shadows": false})";
-  if (second) lights += R"(, {"type": "sun", "direction": [1, 0.5, 0], "color": [1, 0.2, 0.1], "intensity": 0.8, "shadows": false})";
-  return parseScene(R"({"camera": {"position": [0, 1.5, 5], "target": [0, 0.6, 0], "fovy": 45},
+// tested here), lit by `lights` (a JSON array's items) and seen from `eye`.
+Result<SceneDesc> greySphereOnAFloor(const std::string& lights, const std::string& eye, const std::string& name) {
+  return parseScene(R"({"camera": {"position": )" + eye + R"(, "target": [0, 0.6, 0], "fovy": 45},
     "lights": [)" + lights + R"(],
     "materials": {"grey": {"color": [0.7, 0.7, 0.7], "specular": 0.3, "shininess": 24}},
     "primitives": [{"type": "sphere", "center": [0, 0.8, 0], "radius": 0.8, "material": "grey"},
@@ -51,73 +48,52 @@ Result<SceneDesc> twoSuns(bool second) {
     "sky": {"enabled": false, "background": [0.05, 0.05, 0.05]},
     "ambient": 0.1,
     "render": {"shading": "classic", "msaa": 1}})",
-                    "two_suns.json");
+                    name);
 }
 
-// Measured (EGL, llvmpipe, 2026-12-07): the two renderers' two-sun frames differ by
-// a mean of 0.008 levels (PSNR 56.9 dB); the red sun moves the rasterized frame by a
-// mean of 8.1 levels. Limits: 1 level of agreement, at least 4 of the second sun.
-TEST(RasterVsRaytrace, ASecondSunLightsBothRenderersAlike) {
-  auto one = twoSuns(false);
-  auto two = twoSuns(true);
-  ASSERT_TRUE(one.ok()) << one.error().message;
-  ASSERT_TRUE(two.ok()) << two.error().message;
-  const Image raster = rasterizedAt(*two);
-  const Image traced = tracedAtPixelCentres(*two);
-  const Image rasterOneSun = rasterizedAt(*one);
-  ASSERT_FALSE(raster.empty() || traced.empty() || rasterOneSun.empty());
+// The rasterizer's frame of `lit` within 1 level (mean) of the Whitted tracer's, and
+// at least 4 levels from its frame of `without` (the lights under test removed).
+void expectBothRenderersLitAlike(Result<SceneDesc> lit, Result<SceneDesc> without, const char* what) {
+  ASSERT_TRUE(lit.ok()) << lit.error().message;
+  ASSERT_TRUE(without.ok()) << without.error().message;
+  const Image raster = rasterizedAt(*lit);
+  const Image traced = tracedAtPixelCentres(*lit);
+  const Image rasterWithout = rasterizedAt(*without);
+  ASSERT_FALSE(raster.empty() || traced.empty() || rasterWithout.empty());
   auto agree = compareImages(raster, traced, 16);
-  auto moved = compareImages(raster, rasterOneSun, 16);
+  auto moved = compareImages(raster, rasterWithout, 16);
   ASSERT_TRUE(agree.ok() && moved.ok());
-  std::printf("two suns: raster vs traced mean %.3f, PSNR %.2f dB; the second sun moves the raster by %.3f\n",
+  std::printf("%s: raster vs traced mean %.3f, PSNR %.2f dB; the lights move the raster by %.3f\n", what,
               agree->meanAbs, agree->psnr, moved->meanAbs);
   EXPECT_LT(agree->meanAbs, 1.0);
   EXPECT_GT(moved->meanAbs, 4.0);
+  if (::testing::Test::HasFailure() || std::getenv("ENGINE_WRITE_DIFFS")) {
+    (void)writePng(std::string("scene_lights_") + what + "_traced.png", traced);
+    (void)writePng(std::string("scene_lights_") + what + "_raster.png", raster);
+  }
 }
 
-// Two spots from a scene file over a grey floor and sphere, classic shading without
-// shadows: a warm one straight down with a soft edge (cones 15 and 35 degrees), a
-// blue one aimed at the sphere from the left with a sharp one (20 and 20); or
-// (`spots` false) none, the ambient alone.
-Result<SceneDesc> spotsOnAFloor(bool spots) {
-  const std::string lights = spots ? R"({"type": "spot", "position": [0.6, 3, 0.8], "direction": [-0.2, -1, -0.3],
+// A white sun from above-front and a red one from the right. Measured (EGL,
+// llvmpipe, 2026-12-07): the two renderers' frames differ by a mean of 0.008 levels
+// (PSNR 56.9 dB); the red sun moves the rasterized frame by a mean of 8.1 levels.
+TEST(RasterVsRaytrace, ASecondSunLightsBothRenderersAlike) {
+  const std::string white = R"({"type": "sun", "direction": [0, 1, 1], "color": [1, 1, 1], "intensity": 0.6, "shadows": false})";
+  const std::string red = R"({"type": "sun", "direction": [1, 0.5, 0], "color": [1, 0.2, 0.1], "intensity": 0.8, "shadows": false})";
+  expectBothRenderersLitAlike(greySphereOnAFloor(white + ", " + red, "[0, 1.5, 5]", "two_suns.json"),
+                              greySphereOnAFloor(white, "[0, 1.5, 5]", "one_sun.json"), "two_suns");
+}
+
+// A warm spot straight down with a soft edge (cones 15 and 35 degrees, 1/d^2) and a
+// blue one aimed past the sphere from the left with a sharp one (20 and 20).
+// Measured (EGL, llvmpipe, 2026-12-07): the frames differ by a mean of 0.003 levels
+// (PSNR 69.2 dB); the spots move the rasterized frame by a mean of 26.8 levels.
+TEST(RasterVsRaytrace, SpotLightsLightBothRenderersAlike) {
+  const std::string spots = R"({"type": "spot", "position": [0.6, 3, 0.8], "direction": [-0.2, -1, -0.3],
         "inner_cone": 15, "outer_cone": 35, "falloff": true, "intensity": 9, "color": [1, 0.85, 0.6], "shadows": false},
       {"type": "spot", "position": [-3, 1.5, 0.5], "direction": [1, -0.25, -0.2], "inner_cone": 20, "outer_cone": 20,
-        "intensity": 0.8, "color": [0.5, 0.7, 1], "shadows": false})"
-                                   : "";
-  return parseScene(R"({"camera": {"position": [0, 2.5, 5], "target": [0, 0.3, 0], "fovy": 45},
-    "lights": [)" + lights + R"(],
-    "materials": {"grey": {"color": [0.7, 0.7, 0.7], "specular": 0.3, "shininess": 24}},
-    "primitives": [{"type": "sphere", "center": [0, 0.8, 0], "radius": 0.8, "material": "grey"},
-                   {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "extent": 20, "material": "grey"}],
-    "sky": {"enabled": false, "background": [0.05, 0.05, 0.05]},
-    "ambient": 0.1,
-    "render": {"shading": "classic", "msaa": 1}})",
-                    "spots.json");
-}
-
-// Measured (EGL, llvmpipe, 2026-12-07): see the printed line. Limits: 1 level of
-// agreement, as the two suns above; the spots add at least 4 levels to the frame.
-TEST(RasterVsRaytrace, SpotLightsLightBothRenderersAlike) {
-  auto lit = spotsOnAFloor(true);
-  auto unlit = spotsOnAFloor(false);
-  ASSERT_TRUE(lit.ok()) << lit.error().message;
-  ASSERT_TRUE(unlit.ok()) << unlit.error().message;
-  const Image raster = rasterizedAt(*lit);
-  const Image traced = tracedAtPixelCentres(*lit);
-  const Image rasterUnlit = rasterizedAt(*unlit);
-  ASSERT_FALSE(raster.empty() || traced.empty() || rasterUnlit.empty());
-  auto agree = compareImages(raster, traced, 16);
-  auto moved = compareImages(raster, rasterUnlit, 16);
-  ASSERT_TRUE(agree.ok() && moved.ok());
-  std::printf("spots: raster vs traced mean %.3f, PSNR %.2f dB; the spots move the raster by %.3f\n", agree->meanAbs,
-              agree->psnr, moved->meanAbs);
-  EXPECT_LT(agree->meanAbs, 1.0);
-  EXPECT_GT(moved->meanAbs, 4.0);
-  if (::testing::Test::HasFailure() || std::getenv("ENGINE_WRITE_DIFFS")) {
-    (void)writePng("scene_lights_spots_traced.png", traced);
-    (void)writePng("scene_lights_spots_raster.png", raster);
-  }
+        "intensity": 0.8, "color": [0.5, 0.7, 1], "shadows": false})";
+  expectBothRenderersLitAlike(greySphereOnAFloor(spots, "[0, 2.5, 5]", "spots.json"),
+                              greySphereOnAFloor("", "[0, 2.5, 5]", "no_spots.json"), "spots");
 }
 
 const std::string kLamp =
