@@ -1,6 +1,6 @@
 // The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl,
-// common/view_layers.glsl, common/sky.glsl, common/spot_cone.glsl and
-// common/terrain_layers.glsl run by the
+// common/view_layers.glsl, common/sky.glsl, common/spot_cone.glsl, common/phase.glsl
+// and common/terrain_layers.glsl run by the
 // GPU's GLSL compiler in a compute shader (test/*_eval.comp) and by the C++ build of
 // the same text (core/sampling.h, core/view_layers.h, core/sky.h,
 // terrain/materials.h: what the CPU tracers call) over
@@ -22,6 +22,7 @@
 #include "../support/random_draws.h"
 #include "core/layer_texels.h"
 #include "core/sampling.h"
+#include "core/phase.h"
 #include "core/sky.h"
 #include "core/spot_cone.h"
 #include "core/view_layers.h"
@@ -341,6 +342,60 @@ TEST_P(SpotConeText, GlslAndCppAgree) {
   for (float c : {-1.0f, -0.5f, 0.0f, 1.0f}) EXPECT_EQ(spottext::spotAttenuation(c, -3.0f, -2.0f), 1.0f);
   EXPECT_EQ(spottext::spotAttenuation(0.5f, 0.5f, 0.9f), 0.0f);
   EXPECT_EQ(spottext::spotAttenuation(0.75f, 0.5f, 1.0f), 0.25f);
+}
+
+struct PhaseResult {
+  glm::vec4 values, henyeyGreenstein, rayleigh;
+};
+
+class PhaseText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(PhaseText);
+
+// 65536 cases: random cosines (a tenth at +-1), asymmetries g across (-0.999, 0.999)
+// (a tenth below the uniform switch, 1e-3), uniform numbers (a tenth at 0 or just
+// under 1). Limits: the densities within 4 ulps of the larger of value and 1 (a
+// division and a root each, IEEE's on both sides: measured the same bits); the
+// sampled cosines within 16 ulps of 1 (Rayleigh's goes through GLSL's pow, the
+// driver's, not libm's); the sampled directions within 1e-6 radians of each other
+// beyond what their cosines' difference explains (near the poles a cosine's last bit
+// moves sin theta = sqrt(1 - cos^2) by many of its own ulps; the azimuth's cos and
+// sin are the driver's too).
+TEST_P(PhaseText, GlslAndCppAgree) {
+  std::mt19937 rng(20261208);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<glm::vec4> cases;
+  for (int i = 0; i < (1 << 16); ++i) {
+    float c = 2.0f * unit(rng) - 1.0f, g = 1.998f * unit(rng) - 0.999f, u = unit(rng), v = unit(rng);
+    if (i % 10 == 1) c = i % 20 == 1 ? 1.0f : -1.0f;
+    if (i % 10 == 2) g = 2e-3f * unit(rng) - 1e-3f;
+    if (i % 10 == 3) u = i % 20 == 3 ? 0.0f : 0.99999994f;
+    cases.push_back(glm::vec4(c, g, u, v));
+  }
+  const std::vector<PhaseResult> gpu = test::runCases<PhaseResult>("test/phase_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  double worstDensity = 0.0, worstCosine = 0.0, worstAngle = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const glm::vec4& c = cases[i];
+    const glm::vec2 u(c.z, c.w);
+    const glm::vec4 values(brdf::phaseHenyeyGreenstein(c.x, c.y), brdf::phaseRayleigh(c.x),
+                           brdf::sampleHenyeyGreensteinCosine(c.z, c.y), brdf::sampleRayleighCosine(c.z));
+    const glm::vec3 hg = brdf::samplePhaseHenyeyGreenstein(u, c.y), ray = brdf::samplePhaseRayleigh(u);
+    for (int k = 0; k < 2; ++k) worstDensity = std::max(worstDensity, ulpsApart(values[k], gpu[i].values[k], 1.0f));
+    for (int k = 2; k < 4; ++k) worstCosine = std::max(worstCosine, ulpsApart(values[k], gpu[i].values[k], 1.0f));
+    // What the two cosines' difference explains: sin theta = sqrt(1 - cos^2) moves by
+    // at most sqrt(2 |difference|).
+    const glm::vec3 gpuHg(gpu[i].henyeyGreenstein), gpuRay(gpu[i].rayleigh);
+    const double hgExplained = std::sqrt(2.0 * std::abs(double(hg.z) - double(gpuHg.z)));
+    const double rayExplained = std::sqrt(2.0 * std::abs(double(ray.z) - double(gpuRay.z)));
+    worstAngle = std::max({worstAngle, double(glm::length(hg - gpuHg)) - hgExplained,
+                           double(glm::length(ray - gpuRay)) - rayExplained});
+  }
+  std::printf("phase: %zu cases, densities within %.3g ulps, sampled cosines within %.3g ulps of 1, directions within "
+              "%.3g radians beyond what their cosines explain\n",
+              cases.size(), worstDensity, worstCosine, worstAngle);
+  EXPECT_LE(worstDensity, 4.0);
+  EXPECT_LE(worstCosine, 16.0);
+  EXPECT_LE(worstAngle, 1e-6);
 }
 
 struct TerrainLayersCase {
