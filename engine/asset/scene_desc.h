@@ -119,10 +119,20 @@ struct SkyDesc {
   float rotationDegrees = 0.0f;
 };
 
+enum class FogModel { Exponential, Volumetric };
+
+// Exponential: the colour blended in by exp(-density * distance) at the first hit, in
+// every renderer. Volumetric: a homogeneous medium filling the scene, scattering and
+// absorbing per metre (RGB) with Henyey-Greenstein's anisotropy, which the CPU path
+// tracer renders as the truth (raytrace/medium.h); the rasterizer and the Whitted
+// tracer draw its exponential stand-in, `density` the mean extinction.
 struct FogDesc {
   bool enabled = false;
   float density = 0.02f;
   glm::vec3 color{0.6f, 0.7f, 0.85f};
+  FogModel model = FogModel::Exponential;
+  glm::vec3 scattering{0.0f}, absorption{0.0f};
+  float anisotropy = 0.0f;
 };
 
 enum class Shading { Classic, Pbr };

@@ -208,6 +208,37 @@ Status readLight(const Node& n, LightDesc& l) {
   return Ok{};
 }
 
+// Scattering and absorption per metre: each component finite, in [0, 1e6].
+Status readCoefficients(const Node& parent, const char* key, glm::vec3& out) {
+  TRY(readVec3(parent, key, out));
+  for (int i = 0; i < 3; ++i) {
+    if (out[i] < 0.0f || out[i] > 1e6f) return parent.at(key).at(size_t(i)).error("expected a number in [0, 1e6] per metre");
+  }
+  return Ok{};
+}
+
+Status readFog(const Node& fog, FogDesc& out) {
+  TRY(fog.expectObject({"density", "color", "model", "scattering", "absorption", "anisotropy"}));
+  out.enabled = true;
+  TRY(readEnum(fog, "model", out.model,
+               std::map<std::string, FogModel>{{"exponential", FogModel::Exponential}, {"volumetric", FogModel::Volumetric}}));
+  TRY(readVec3(fog, "color", out.color));
+  if (out.model == FogModel::Exponential) {
+    for (const char* key : {"scattering", "absorption", "anisotropy"}) {
+      if (fog.has(key)) return fog.at(key).error("only a volumetric fog (\"model\": \"volumetric\") has it");
+    }
+    return readFloat(fog, "density", out.density, 0.0, 100.0);
+  }
+  if (fog.has("density")) return fog.at("density").error("a volumetric fog takes scattering and absorption instead");
+  out.scattering = glm::vec3(0.02f);
+  TRY(readCoefficients(fog, "scattering", out.scattering));
+  TRY(readCoefficients(fog, "absorption", out.absorption));
+  TRY(readFloat(fog, "anisotropy", out.anisotropy, -0.999, 0.999));
+  const glm::vec3 extinction = out.scattering + out.absorption;
+  out.density = (extinction.x + extinction.y + extinction.z) / 3.0f;  // the stand-in's
+  return Ok{};
+}
+
 Status readMaterial(const Node& n, MaterialDesc& m) {
   TRY(n.expectObject({"color", "ambient", "diffuse", "specular", "shininess", "reflection", "metallic", "roughness", "texture", "texture_scale", "emission"}));
   TRY(readVec3(n, "color", m.color));
@@ -455,13 +486,7 @@ Result<SceneDesc> parseScene(const std::string& text, const std::string& name) {
   TRY(readArray(root, "models", scene.models,
                 [&](const Node& n, ModelDesc& m) { return readModel(n, m, folder); }));
   if (root.has("sky")) TRY(readSky(root.at("sky"), scene.sky, folder));
-  if (root.has("fog")) {
-    const Node fog = root.at("fog");
-    TRY(fog.expectObject({"density", "color"}));
-    scene.fog.enabled = true;
-    TRY(readFloat(fog, "density", scene.fog.density, 0.0, 100.0));
-    TRY(readVec3(fog, "color", scene.fog.color));
-  }
+  if (root.has("fog")) TRY(readFog(root.at("fog"), scene.fog));
   if (root.has("terrain")) TRY(readTerrain(root.at("terrain"), scene.terrain, folder));
   if (root.has("render")) TRY(readRender(root.at("render"), scene.render));
   TRY(readFloat(root, "ambient", scene.ambient, 0.0, 1.0));

@@ -92,6 +92,8 @@ std::vector<std::string> traceDefines(const rt::GpuSceneLayout& layout, const rt
 std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& settings) {
   if (settings.precision != rt::Precision::Float) return "double precision is not supported";
   if (!rt::fitsGpuTextures(scene)) return "textures of more than 32768 texels a side are not supported";
+  if (settings.method == rt::Method::Path && scene.fog().enabled && scene.fog().model == FogModel::Volumetric)
+    return "a volumetric fog is not supported (the CPU path tracer renders it)";
   // Both integrators draw every layer glTF has, with its textures.
   return {};
 }

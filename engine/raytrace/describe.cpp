@@ -43,6 +43,19 @@ std::string lightsOf(const RtScene& scene) {
   return text;
 }
 
+// The fog as this integrator draws it: a volumetric fog is a medium to the path
+// tracer, its exponential stand-in to the Whitted tracer.
+std::string fogOf(const FogDesc& fog, const RenderSettings& settings) {
+  if (!fog.enabled) return "";
+  if (fog.model == FogModel::Exponential || settings.method != Method::Path) return ", fog (exponential)";
+  char text[160];
+  const glm::vec3 e = fog.scattering + fog.absorption;
+  std::snprintf(text, sizeof(text), ", fog: a homogeneous medium (extinction %g %g %g /m, albedo %g %g %g, g %g)", e.x,
+                e.y, e.z, e.x > 0.0f ? fog.scattering.x / e.x : 0.0f, e.y > 0.0f ? fog.scattering.y / e.y : 0.0f,
+                e.z > 0.0f ? fog.scattering.z / e.z : 0.0f, fog.anisotropy);
+  return text;
+}
+
 std::string environmentOf(const Environment& environment) {
   if (const FloatImage* image = environment.image()) {
     return "environment: image " + std::to_string(image->width) + "x" + std::to_string(image->height);
@@ -93,7 +106,7 @@ std::string describe(const RtScene& scene, const RenderSettings& s) {
                 scene.materials().size(), textured, layered, scene.textures().size(),
                 scene.render().shading == Shading::Pbr ? "pbr" : "classic");
   out += line;
-  out += environmentOf(scene.environment()) + (scene.fog().enabled ? ", fog\n" : "\n");
+  out += environmentOf(scene.environment()) + fogOf(scene.fog(), s) + "\n";
   return out;
 }
 

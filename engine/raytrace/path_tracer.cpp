@@ -6,10 +6,12 @@
 #include <utility>
 #include <vector>
 
+#include "core/phase.h"
 #include "core/spot_cone.h"
 #include "raytrace/bsdf.h"
 #include "raytrace/camera.h"
 #include "raytrace/camera_lanes.h"
+#include "raytrace/medium.h"
 #include "raytrace/path_lights.h"
 #include "raytrace/ray_cone.h"
 #include "raytrace/rng.h"
@@ -50,6 +52,7 @@ class PathTracer {
   PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
       : scene_(scene), env_(lights.environment), lights_(lights.lights), coneSun_(lights.coneSun), settings_(settings),
         camera_(scene.camera(), settings.width, settings.height), cameraPosition_(scene.camera().position),
+        medium_(Medium::of(scene.fog())),
         pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height,
                                      settings.totalSamples > 0 ? settings.totalSamples : settings.samplesPerPixel)) {}
 
@@ -95,7 +98,7 @@ class PathTracer {
       glm::vec3 sum(0.0f);
       for (int s = 0; s < spp; ++s) {
         const Path& p = paths[std::size_t(x - x0) * std::size_t(spp) + std::size_t(s)];
-        sum += finite(p.firstHit < 0.0f ? p.radiance : scene_.fogged(p.radiance, p.firstHit));
+        sum += finite(p.firstHit < 0.0f || medium_ ? p.radiance : scene_.fogged(p.radiance, p.firstHit));
       }
       out[x - x0] = sum / float(spp);
     }
@@ -199,7 +202,16 @@ class PathTracer {
     const T tHit = hit ? hit->t : ray.tMax;
     if (path.absorption != glm::vec3(0.0f))
       beta *= glm::exp(-path.absorption * float(double(tHit) * glm::length(glm::dvec3(ray.d))));
-    path.radiance += beta * emittersAlong(ray, d, tHit, !hit, path.countEmitters, path.bsdfPdf, path.depth == 0);
+    // In a medium the ray may scatter before it gets there (medium.h).
+    Medium::Flight flight;
+    if (medium_) {
+      flight = medium_->fly(double(tHit) * glm::length(glm::dvec3(ray.d)), rng.uniform(), rng.uniform());
+    }
+    const T tEnd = flight.scattered ? T(flight.distance / glm::length(glm::dvec3(ray.d))) : tHit;
+    path.radiance += beta * emittersAlong(ray, d, tEnd, !hit && !flight.scattered, path.countEmitters, path.bsdfPdf,
+                                          path.depth == 0, flight.weight);
+    if (medium_) beta *= flight.weight;
+    if (flight.scattered) return scatter(path, ray(tEnd), d, counters);
     if (!hit) return false;
     const float footprint = footprintAt(path.cone, *hit, v, float(hit->t * glm::length(ray.d)));
     // MASK's cut-away parts and single-sided faces seen from behind are not there;
@@ -243,19 +255,23 @@ class PathTracer {
     beta *= s.weight;
     path.countEmitters = s.delta;
     path.bsdfPdf = s.pdf;
+    return continuePath(path, hit->spawnRay(Vec3<T>(s.wi)), counters);
+  }
+
+  // Russian roulette past its depth, then the next ray: false when the path ends.
+  bool continuePath(Path& path, const Ray<T>& next, RayCounters& counters) const {
     if (path.depth + 1 >= settings_.rouletteDepth) {
-      const float survive = std::min(1.0f, maxComponent(beta));
-      if (!(survive > 0.0f) || rng.uniform() >= survive) return false;
-      beta /= survive;
+      const float survive = std::min(1.0f, maxComponent(path.beta));
+      if (!(survive > 0.0f) || path.rng.uniform() >= survive) return false;
+      path.beta /= survive;
     }
     ++counters.reflection;
     ++path.depth;
     // Member by member: the whole struct assigned was stored in narrow pieces and
     // read back in 16-byte loads, a store-forwarding stall on every bounce.
-    const Ray<T> next = hit->spawnRay(Vec3<T>(s.wi));
-    ray.o = next.o;
-    ray.d = next.d;
-    ray.tMax = next.tMax;
+    path.ray.o = next.o;
+    path.ray.d = next.d;
+    path.ray.tMax = next.tMax;
     return true;
   }
 
@@ -275,29 +291,33 @@ class PathTracer {
   // against the light samples that could have found them, unless nothing sampled
   // them (countEmitters: camera rays and mirrors).
   glm::vec3 emittersAlong(const Ray<T>& ray, const glm::vec3& d, T tHit, bool escaped, bool countEmitters,
-                          float bsdfPdf, bool cameraRay) const {
+                          float bsdfPdf, bool cameraRay, const glm::vec3& escapeWeight) const {
     glm::vec3 sum(0.0f);
     for (const PathLight& l : lights_) {
       if (l.type != LightType::Area) continue;
       float lightPdf = 0.0f;
-      if (!hitsArea(l, ray, d, tHit, &lightPdf)) continue;
-      sum += l.power * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, lightPdf));
+      double distance = 0.0;
+      if (!hitsArea(l, ray, d, tHit, &lightPdf, &distance)) continue;
+      const glm::vec3 light = l.power * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, lightPdf));
+      // In a medium, what reaches the ray's start of the light it crosses.
+      sum += medium_ ? light * medium_->transmittance(distance) : light;
     }
     if (!escaped) return sum;
+    // What arrives from beyond, times what the medium's flight let through (1 without).
     for (const PathLight& l : lights_) {
       if (l.type != LightType::Sun || l.cosMax >= 1.0f || glm::dot(d, l.direction) < l.cosMax) continue;
-      sum += l.radiance * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, uniformConePdf(l.cosMax)));
+      sum += l.radiance * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, uniformConePdf(l.cosMax))) * escapeWeight;
     }
     // The camera sees the sky's sun disk as the rasterizer draws it; light paths find
     // the sun through its light alone.
-    if (cameraRay) return sum + scene_.environment().radiance(d, !coneSun_);
+    if (cameraRay) return sum + scene_.environment().radiance(d, !coneSun_) * escapeWeight;
     if (env_.black()) return sum;
-    return sum + env_.radiance(d) * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, env_.pdf(d)));
+    return sum + env_.radiance(d) * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, env_.pdf(d))) * escapeWeight;
   }
 
   // Whether the ray crosses the rectangle's emitting side before tHit; its
-  // solid-angle density as a light sample there.
-  bool hitsArea(const PathLight& l, const Ray<T>& ray, const glm::vec3& d, T tHit, float* pdf) const {
+  // solid-angle density as a light sample there, and its distance.
+  bool hitsArea(const PathLight& l, const Ray<T>& ray, const glm::vec3& d, T tHit, float* pdf, double* distance) const {
     if (l.area <= 0.0f) return false;
     const float cosLight = -glm::dot(d, l.normal);
     if (cosLight <= 0.0f) return false;
@@ -308,8 +328,8 @@ class PathTracer {
     const double a = glm::dot(q, l.edgeU) / glm::dot(l.edgeU, l.edgeU);
     const double b = glm::dot(q, l.edgeV) / glm::dot(l.edgeV, l.edgeV);
     if (std::abs(a) > 0.5 || std::abs(b) > 0.5) return false;
-    const double distance = t * glm::length(dir);
-    *pdf = float(distance * distance / (double(l.area) * double(cosLight)));
+    *distance = t * glm::length(dir);
+    *pdf = float(*distance * *distance / (double(l.area) * double(cosLight)));
     return true;
   }
 
@@ -340,11 +360,65 @@ class PathTracer {
     if (glm::dot(ls.wi, ng) <= 0.0f) return glm::vec3(0.0f);
     const glm::vec3 f = bsdf.f(ls.wi);
     if (f == glm::vec3(0.0f) || ls.value == glm::vec3(0.0f)) return glm::vec3(0.0f);
+    const glm::vec3 through = mediumAlong(si.p, ls);
+    if (through == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const float visible = shadows ? transmittance(si, ls, counters) : 1.0f;
     if (visible <= 0.0f) return glm::vec3(0.0f);
     const float cosine = std::max(glm::dot(bsdf.normal(), ls.wi), 0.0f);
     const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, bsdf.pdf(ls.wi)) : 1.0f;
-    return f * ls.value * (cosine * weight * visible);
+    const glm::vec3 c = f * ls.value * (cosine * weight * visible);
+    return medium_ ? c * through : c;
+  }
+
+  // What the medium lets through from `from` to the light sample's end (all of it
+  // without a medium; to a direction, what is left at infinity).
+  glm::vec3 mediumAlong(const Vec3<T>& from, const LightSample<T>& ls) const {
+    if (!medium_) return glm::vec3(1.0f);
+    return medium_->transmittance(ls.toPoint ? glm::length(glm::dvec3(ls.target) - glm::dvec3(from))
+                                             : std::numeric_limits<double>::infinity());
+  }
+
+  // A scattering in the medium at p of a ray travelling along d: next-event
+  // estimation through the medium weighed by the phase function (MIS against it),
+  // then the phase function's own direction, a bounce like a surface's.
+  bool scatter(Path& path, const Vec3<T>& p, const glm::vec3& d, RayCounters& counters) const {
+    if (path.depth > settings_.maxDepth) return false;
+    SurfaceInteraction<T> at;  // no surface: no normal, no error bound to leave by
+    at.p = p;
+    at.n = Vec3<T>(0);
+    const float g = medium_->anisotropy;
+    glm::vec3 sum(0.0f);
+    for (const PathLight& l : lights_) {
+      const glm::vec2 u = path.rng.uniform2();
+      LightSample<T> ls;
+      if (sampleLight(at, l, u, ls)) sum += shadeInMedium(at, ls, l.shadows, d, counters);
+    }
+    if (!env_.black()) {
+      const glm::vec2 u = path.rng.uniform2();
+      LightSample<T> ls;
+      ls.wi = env_.sample(u, &ls.pdf);
+      if (ls.pdf > 0.0f) {
+        ls.value = env_.radiance(ls.wi) / ls.pdf;
+        sum += shadeInMedium(at, ls, true, d, counters);
+      }
+    }
+    path.radiance += path.beta * sum;
+    const glm::vec3 wi = Frame(d).toWorld(brdf::samplePhaseHenyeyGreenstein(path.rng.uniform2(), g));
+    path.countEmitters = false;
+    path.bsdfPdf = brdf::phaseHenyeyGreenstein(glm::dot(d, wi), g);  // the phase is its own density
+    return continuePath(path, Ray<T>{p, Vec3<T>(wi)}, counters);
+  }
+
+  glm::vec3 shadeInMedium(const SurfaceInteraction<T>& at, const LightSample<T>& ls, bool shadows, const glm::vec3& d,
+                          RayCounters& counters) const {
+    if (ls.value == glm::vec3(0.0f)) return glm::vec3(0.0f);
+    const glm::vec3 through = mediumAlong(at.p, ls);
+    if (through == glm::vec3(0.0f)) return glm::vec3(0.0f);
+    const float visible = shadows ? transmittance(at, ls, counters) : 1.0f;
+    if (visible <= 0.0f) return glm::vec3(0.0f);
+    const float phase = brdf::phaseHenyeyGreenstein(glm::dot(d, ls.wi), medium_->anisotropy);
+    const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, phase) : 1.0f;
+    return ls.value * through * (phase * weight * visible);
   }
 
   float transmittance(const SurfaceInteraction<T>& si, const LightSample<T>& ls, RayCounters& counters) const {
@@ -402,6 +476,7 @@ class PathTracer {
   const RenderSettings& settings_;
   PinholeCamera camera_;
   glm::dvec3 cameraPosition_;
+  std::optional<Medium> medium_;  // a volumetric fog: the truth of what the others blend in
   float pixelSpread_ = 0.0f;
   // One per thread: a tracer serves one span at a time on each (renderTiles).
   static thread_local Batch batch_;

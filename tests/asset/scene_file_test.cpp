@@ -90,6 +90,38 @@ TEST(SceneFile, ASpotShinesAlongItsDirectionWithinItsCones) {
             "s.json: /lights/0/inner_cone: only a spot light has a cone");
 }
 
+// fog.model volumetric: a medium with scattering and absorption per metre and an
+// anisotropy, whose exponential stand-in's density is the mean extinction; the
+// exponential fog keeps its keys; each bad case names its key.
+TEST(SceneFile, AVolumetricFogIsAMediumWithAStandIn) {
+  auto scene = parseScene(R"({"fog": {"model": "volumetric", "scattering": [0.1, 0.2, 0.3], "absorption": [0.3, 0, 0.3],
+                                      "anisotropy": 0.7, "color": [0.5, 0.5, 0.5]}})",
+                          "s.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_TRUE(scene->fog.enabled);
+  EXPECT_EQ(scene->fog.model, FogModel::Volumetric);
+  EXPECT_EQ(scene->fog.scattering, glm::vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(scene->fog.absorption, glm::vec3(0.3f, 0.0f, 0.3f));
+  EXPECT_FLOAT_EQ(scene->fog.anisotropy, 0.7f);
+  EXPECT_FLOAT_EQ(scene->fog.density, 0.4f);
+  auto plain = parseScene(R"({"fog": {"density": 0.05}})", "s.json");
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ(plain->fog.model, FogModel::Exponential);
+  EXPECT_FLOAT_EQ(plain->fog.density, 0.05f);
+  EXPECT_EQ(errorOf(R"({"fog": {"model": "volumetric", "scattering": [0.1, -0.2, 0.3]}})"),
+            "s.json: /fog/scattering/1: expected a number in [0, 1e6] per metre");
+  EXPECT_EQ(errorOf(R"({"fog": {"model": "volumetric", "absorption": [0.1, 1e300, 0.3]}})"),
+            "s.json: /fog/absorption/1: expected a number within +-1e12");
+  EXPECT_EQ(errorOf(R"({"fog": {"model": "volumetric", "anisotropy": 1}})"),
+            "s.json: /fog/anisotropy: expected a number in [-0.999, 0.999], got 1");
+  EXPECT_EQ(errorOf(R"({"fog": {"model": "volumetric", "density": 0.1}})"),
+            "s.json: /fog/density: a volumetric fog takes scattering and absorption instead");
+  EXPECT_EQ(errorOf(R"({"fog": {"scattering": [0.1, 0.1, 0.1]}})"),
+            "s.json: /fog/scattering: only a volumetric fog (\"model\": \"volumetric\") has it");
+  EXPECT_EQ(errorOf(R"({"fog": {"model": "cloudy"}})"),
+            "s.json: /fog/model: \"cloudy\" is not one of: exponential, volumetric");
+}
+
 // render.ambient: unset falls back by the sky (IBL under one); a name not known
 // is an error naming the choices.
 TEST(SceneFile, AmbientChoice) {

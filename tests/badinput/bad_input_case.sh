@@ -95,6 +95,8 @@ case "$CASE" in
   scene_model_path_number) scene scene_model_path_number.json "scene_model_path_number\.json: /models/0/path: expected a string" ;;
   scene_light_type) scene scene_light_type.json "scene_light_type\.json: /lights/0/type: expected one of" ;;
   scene_spot_cone_inverted) scene scene_spot_cone_inverted.json "scene_spot_cone_inverted\.json: /lights/0/inner_cone: the inner cone must not be wider than the outer one" ;;
+  scene_fog_negative_scattering) scene scene_fog_negative_scattering.json "scene_fog_negative_scattering\.json: /fog/scattering/1: expected a number in \[0, 1e6\] per metre" ;;
+  scene_fog_anisotropy_one) scene scene_fog_anisotropy_one.json "scene_fog_anisotropy_one\.json: /fog/anisotropy: expected a number in \[-0\.999, 0\.999\], got 1" ;;
   scene_point_cone) scene scene_point_cone.json "scene_point_cone\.json: /lights/0/outer_cone: only a spot light has a cone" ;;
   scene_position_null) scene scene_position_null.json "scene_position_null\.json: /camera/position/1: expected a (finite )?number" ;;
   scene_msaa_string) scene scene_msaa_string.json "scene_msaa_string\.json: /render/msaa: expected an integer" ;;

@@ -316,6 +316,8 @@ def main(out):
     write("scene_light_type.json", json.dumps({"lights": [{"type": 7}]}))
     write("scene_spot_cone_inverted.json", json.dumps({"lights": [
         {"type": "spot", "position": [0, 3, 0], "inner_cone": 40, "outer_cone": 30}]}))
+    write("scene_fog_negative_scattering.json", json.dumps({"fog": {"model": "volumetric", "scattering": [0.1, -1, 0.1]}}))
+    write("scene_fog_anisotropy_one.json", json.dumps({"fog": {"model": "volumetric", "anisotropy": 1.0}}))
     write("scene_point_cone.json", json.dumps({"lights": [{"type": "point", "outer_cone": 30}]}))
     write("scene_position_null.json", json.dumps({"camera": {"position": [1, None, 3]}}))
     write("scene_msaa_string.json", json.dumps({"render": {"msaa": "four"}}))
