@@ -280,6 +280,23 @@ Result<double> structuralSimilarity(const Image& a, const Image& b, const PixelM
   return sum / double(mask ? mask->count : x.size());
 }
 
+Result<PixelMask> maskFromImage(const Image& image, int width, int height, const std::string& name) {
+  if (image.width != width || image.height != height)
+    return makeError(name + ": the mask is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " pixels, the images " + std::to_string(width) + "x" + std::to_string(height));
+  PixelMask mask;
+  mask.width = width;
+  mask.height = height;
+  mask.selected.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (std::size_t i = 0; i < mask.selected.size(); ++i) {
+    const std::uint8_t* p = &image.pixels[i * 4];
+    mask.selected[i] = (p[0] | p[1] | p[2]) != 0;
+    mask.count += mask.selected[i];
+  }
+  if (mask.count == 0) return makeError(name + ": the mask selects no pixel (every pixel is black)");
+  return mask;
+}
+
 Image diffImage(const Image& a, const Image& b) {
   Image out(std::min(a.width, b.width), std::min(a.height, b.height));
   for (int y = 0; y < out.height; ++y) {

@@ -93,6 +93,11 @@ Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold = 
 // With a mask, the mean over the pixels it selects (each window still sees its
 // neighbours outside the mask).
 Result<double> structuralSimilarity(const Image& a, const Image& b, const PixelMask* mask = nullptr);
+// The mask of an image: a pixel is selected where any of its RGB channels is
+// non-zero (alpha is ignored, as in every comparison). Errors name `name`: a size
+// other than width x height, a mask that selects no pixel (every figure would be
+// 0 / 0).
+Result<PixelMask> maskFromImage(const Image& image, int width, int height, const std::string& name);
 // A visual diff: black where equal, brighter where different (x4 gain).
 Image diffImage(const Image& a, const Image& b);
 

@@ -11,8 +11,6 @@
 
 namespace engine {
 
-struct Image;
-
 struct PixelMask {
   int width = 0;
   int height = 0;
@@ -20,10 +18,7 @@ struct PixelMask {
   std::size_t count = 0;               // pixels selected
 };
 
-// A pixel is selected where any of the mask image's RGB channels is non-zero (alpha
-// is ignored, as in every comparison). Errors name `name`: a size other than
-// width x height, a mask that selects no pixel (every figure would be 0 / 0).
-Result<PixelMask> maskFromImage(const Image& image, int width, int height, const std::string& name);
+// core/image.h's maskFromImage makes one from a picture.
 
 // Whether pixel i counts: every pixel without a mask.
 inline bool counts(const PixelMask* mask, std::size_t i) { return !mask || mask->selected[i] != 0; }
