@@ -6,7 +6,6 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <optional>
 #include <string>
 
@@ -158,11 +157,11 @@ int main(int argc, char** argv) {
   app.add_option("--max-flip", o.maxFlip, "Largest mean FLIP allowed (implies --flip)");
   app.add_option("--ppd", o.ppd, "FLIP's pixels per degree of the viewer (default 67.02: 0.7 m from a 0.7 m wide "
                                  "3840-pixel monitor)")
-      ->check(CLI::PositiveNumber);
-  const std::map<std::string, ToneMapper> toneMappers{
-      {"aces", ToneMapper::Aces}, {"reinhard", ToneMapper::Reinhard}, {"hable", ToneMapper::Hable}};
-  app.add_option("--tone-mapper", o.toneMapper, "HDR-FLIP's tone map: aces (default), reinhard, hable")
-      ->transform(CLI::CheckedTransformer(toneMappers, CLI::ignore_case));
+      ->check(CLI::Range(0.01f, 1000.0f));
+  std::string toneMapper = "aces";
+  app.add_option("--tone-mapper", toneMapper, "HDR-FLIP's tone map")
+      ->check(CLI::IsMember({"aces", "reinhard", "hable"}))
+      ->capture_default_str();
   app.add_option("--mask", o.maskPath,
                  "Count only the pixels where this PNG (same size) is not black, in every figure; FLIP's filters "
                  "still see the neighbours");
@@ -175,6 +174,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "imgdiff: %s (see --help)\n", e.what());
     return 2;
   }
+  o.toneMapper = toneMapper == "reinhard" ? ToneMapper::Reinhard
+                 : toneMapper == "hable"  ? ToneMapper::Hable
+                                          : ToneMapper::Aces;
   const bool radianceA = isRadiance(o.a), radianceB = isRadiance(o.b);
   if (radianceA != radianceB) {
     const std::string& other = radianceA ? o.b : o.a;
