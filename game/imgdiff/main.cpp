@@ -69,24 +69,41 @@ std::string sizeMismatch(const Options& o, int width, int height, int otherWidth
          o.b + " " + std::to_string(otherWidth) + "x" + std::to_string(otherHeight);
 }
 
+// The two images, of one size, and the mask for that size: what every comparison
+// starts from. `read` is readPng or readLinearImage.
+template <typename Picture>
+struct Inputs {
+  Picture a, b;
+  std::optional<PixelMask> mask;
+  const PixelMask* maskOrNull() const { return mask ? &*mask : nullptr; }
+};
+
+template <typename Picture>
+Result<Inputs<Picture>> readInputs(const Options& o, Result<Picture> (*read)(const std::string&)) {
+  auto a = read(o.a);
+  if (!a) return a.error();
+  auto b = read(o.b);
+  if (!b) return b.error();
+  if (a->width != b->width || a->height != b->height)
+    return makeError(sizeMismatch(o, a->width, a->height, b->width, b->height));
+  auto mask = readMask(o, a->width, a->height);
+  if (!mask) return mask.error();
+  return Inputs<Picture>{std::move(*a), std::move(*b), std::move(*mask)};
+}
+
 int comparePngs(const Options& o) {
-  auto imageA = readPng(o.a);
-  if (!imageA) return fail(imageA.error().message);
-  auto imageB = readPng(o.b);
-  if (!imageB) return fail(imageB.error().message);
-  if (imageA->width != imageB->width || imageA->height != imageB->height)
-    return fail(sizeMismatch(o, imageA->width, imageA->height, imageB->width, imageB->height));
-  auto mask = readMask(o, imageA->width, imageA->height);
-  if (!mask) return fail(mask.error().message);
-  const PixelMask* m = *mask ? &**mask : nullptr;
-  auto d = compareImages(*imageA, *imageB, o.threshold, m);
+  auto in = readInputs<Image>(o, readPng);
+  if (!in) return fail(in.error().message);
+  const Image &imageA = in->a, &imageB = in->b;
+  const PixelMask* m = in->maskOrNull();
+  auto d = compareImages(imageA, imageB, o.threshold, m);
   if (!d) return fail(d.error().message);
-  auto ssim = structuralSimilarity(*imageA, *imageB, m);
+  auto ssim = structuralSimilarity(imageA, imageB, m);
   if (!ssim) return fail(ssim.error().message);
   std::optional<FlipMap> flipMap;
   std::optional<double> flipMeanValue;
   if (o.wantsFlip()) {
-    auto map = ldrFlip(*imageA, *imageB, o.ppd);
+    auto map = ldrFlip(imageA, imageB, o.ppd);
     if (!map) return fail(map.error().message);
     auto mean = flipMean(*map, m);
     if (!mean) return fail(mean.error().message);
@@ -95,9 +112,9 @@ int comparePngs(const Options& o) {
   }
   const std::string flipText = flipMeanValue ? " flip " + std::to_string(*flipMeanValue) : "";
   std::printf("max_abs %d mean_abs %.4f psnr %.2f over_%d %.4f%% ssim %.4f%s%s\n", d->maxAbs, d->meanAbs, d->psnr,
-              o.threshold, d->shareOver * 100.0, *ssim, flipText.c_str(), maskText(*mask).c_str());
+              o.threshold, d->shareOver * 100.0, *ssim, flipText.c_str(), maskText(in->mask).c_str());
   if (!o.diffPath.empty()) {
-    if (auto s = writePng(o.diffPath, diffImage(*imageA, *imageB)); !s) return fail(s.error().message);
+    if (auto s = writePng(o.diffPath, diffImage(imageA, imageB)); !s) return fail(s.error().message);
   }
   if (flipMap && !writeFlipMap(o, *flipMap)) return 2;
   bool over = false;
@@ -114,23 +131,17 @@ int compareRadiance(const Options& o) {
   if (!o.wantsFlip()) return fail(o.a + ": Radiance .hdr images are compared by HDR-FLIP only; add --flip");
   if (!o.diffPath.empty() || o.maxMean || o.maxAbs || o.minPsnr)
     return fail("--diff, --max-mean, --max-abs and --min-psnr are for PNG images, not Radiance .hdr");
-  auto imageA = readLinearImage(o.a);
-  if (!imageA) return fail(imageA.error().message);
-  auto imageB = readLinearImage(o.b);
-  if (!imageB) return fail(imageB.error().message);
-  if (imageA->width != imageB->width || imageA->height != imageB->height)
-    return fail(sizeMismatch(o, imageA->width, imageA->height, imageB->width, imageB->height));
-  auto mask = readMask(o, imageA->width, imageA->height);
-  if (!mask) return fail(mask.error().message);
+  auto in = readInputs<FloatImage>(o, readLinearImage);
+  if (!in) return fail(in.error().message);
   HdrFlipOptions options;
   options.ppd = o.ppd;
   options.toneMapper = o.toneMapper;
-  auto result = hdrFlip(*imageA, *imageB, options);
+  auto result = hdrFlip(in->a, in->b, options);
   if (!result) return fail(result.error().message);
-  auto mean = flipMean(result->map, *mask ? &**mask : nullptr);
+  auto mean = flipMean(result->map, in->maskOrNull());
   if (!mean) return fail(mean.error().message);
   const ExposureRange& e = result->exposures;
-  std::printf("hdr_flip %.6f exposures %.4f %.4f %d%s\n", *mean, e.start, e.stop, e.count, maskText(*mask).c_str());
+  std::printf("hdr_flip %.6f exposures %.4f %.4f %d%s\n", *mean, e.start, e.stop, e.count, maskText(in->mask).c_str());
   if (!writeFlipMap(o, result->map)) return 2;
   const bool over = o.maxFlip && *mean > *o.maxFlip;
   if (over) std::printf("over the limit\n");
