@@ -182,18 +182,21 @@ Status writePng(const std::string& path, const Image& image) {
   return Ok{};
 }
 
-Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold) {
+Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold, const PixelMask* mask) {
   if (a.width != b.width || a.height != b.height) {
     return makeError("images differ in size: " + std::to_string(a.width) + "x" +
                      std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" +
                      std::to_string(b.height));
   }
+  if (auto s = checkMaskSize(mask, a.width, a.height); !s) return s.error();
   ImageDiff d;
   d.threshold = threshold;
   double sumAbs = 0.0, sumSq = 0.0;
   size_t over = 0;
-  const size_t count = static_cast<size_t>(a.width) * a.height;
-  for (size_t i = 0; i < count; ++i) {
+  const size_t pixels = static_cast<size_t>(a.width) * a.height;
+  const size_t count = mask ? mask->count : pixels;
+  for (size_t i = 0; i < pixels; ++i) {
+    if (!counts(mask, i)) continue;
     int pixelMax = 0;
     for (int c = 0; c < 3; ++c) {
       const int diff = std::abs(int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]));
@@ -253,9 +256,10 @@ std::vector<double> luma(const Image& image) {
 
 }  // namespace
 
-Result<double> structuralSimilarity(const Image& a, const Image& b) {
+Result<double> structuralSimilarity(const Image& a, const Image& b, const PixelMask* mask) {
   if (a.width != b.width || a.height != b.height) return makeError("images differ in size");
   if (a.empty()) return makeError("empty images");
+  if (auto s = checkMaskSize(mask, a.width, a.height); !s) return s.error();
   const int w = a.width, h = a.height;
   const std::vector<double> x = luma(a), y = luma(b);
   std::vector<double> xx(x.size()), yy(x.size()), xy(x.size());
@@ -269,10 +273,28 @@ Result<double> structuralSimilarity(const Image& a, const Image& b) {
   constexpr double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
   double sum = 0.0;
   for (size_t i = 0; i < x.size(); ++i) {
+    if (!counts(mask, i)) continue;
     const double vx = sxx[i] - mx[i] * mx[i], vy = syy[i] - my[i] * my[i], cov = sxy[i] - mx[i] * my[i];
     sum += ((2 * mx[i] * my[i] + c1) * (2 * cov + c2)) / ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
   }
-  return sum / double(x.size());
+  return sum / double(mask ? mask->count : x.size());
+}
+
+Result<PixelMask> maskFromImage(const Image& image, int width, int height, const std::string& name) {
+  if (image.width != width || image.height != height)
+    return makeError(name + ": the mask is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " pixels, the images " + std::to_string(width) + "x" + std::to_string(height));
+  PixelMask mask;
+  mask.width = width;
+  mask.height = height;
+  mask.selected.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (std::size_t i = 0; i < mask.selected.size(); ++i) {
+    const std::uint8_t* p = &image.pixels[i * 4];
+    mask.selected[i] = (p[0] | p[1] | p[2]) != 0;
+    mask.count += mask.selected[i];
+  }
+  if (mask.count == 0) return makeError(name + ": the mask selects no pixel (every pixel is black)");
+  return mask;
 }
 
 Image diffImage(const Image& a, const Image& b) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pixel_mask.h"
 #include "core/result.h"
 
 namespace engine {
@@ -82,12 +83,21 @@ struct ImageDiff {
   int threshold = 0;
 };
 
-Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold = 8);
+// With a mask, every figure is over the pixels it selects alone.
+Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold = 8,
+                                const PixelMask* mask = nullptr);
 // The structural similarity of the two images' luma (Wang et al. 2004: an 11 x 11
 // Gaussian window of sigma 1.5, K1 = 0.01, K2 = 0.03, L = 255), the mean over the
 // image: 1 for equal images, lower as structure differs. The trade table's
 // perceptual column: PSNR weighs a bright noisy pixel like a lost edge, SSIM does not.
-Result<double> structuralSimilarity(const Image& a, const Image& b);
+// With a mask, the mean over the pixels it selects (each window still sees its
+// neighbours outside the mask).
+Result<double> structuralSimilarity(const Image& a, const Image& b, const PixelMask* mask = nullptr);
+// The mask of an image: a pixel is selected where any of its RGB channels is
+// non-zero (alpha is ignored, as in every comparison). Errors name `name`: a size
+// other than width x height, a mask that selects no pixel (every figure would be
+// 0 / 0).
+Result<PixelMask> maskFromImage(const Image& image, int width, int height, const std::string& name);
 // A visual diff: black where equal, brighter where different (x4 gain).
 Image diffImage(const Image& a, const Image& b);
 

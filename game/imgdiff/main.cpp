@@ -1,25 +1,181 @@
-// imgdiff A.png B.png: compares two images (max and mean absolute difference over
-// RGB, PSNR, share of pixels over a threshold) and exits 1 when over a limit.
+// imgdiff A B: compares two images and exits 1 when over a limit, 2 on bad input.
+// Two PNGs: max and mean absolute difference over RGB, PSNR, share of pixels over a
+// threshold, SSIM, and with --flip the mean LDR-FLIP. Two Radiance .hdr files: the
+// mean HDR-FLIP (--flip), the only figure that reads light beyond [0, 1]. --mask
+// restricts every figure to the pixels a mask image selects.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <string>
 
+#include "core/flip.h"
 #include "core/image.h"
+#include "core/linear_image.h"
+#include "core/pixel_mask.h"
 
-int main(int argc, char** argv) {
-  CLI::App app{"Compare two PNG images; exit 1 when a limit is exceeded, 2 on bad input.", "imgdiff"};
-  std::string a, b, diffPath;
-  std::optional<double> maxMean, minPsnr;
+namespace {
+
+using namespace engine;
+
+struct Options {
+  std::string a, b, diffPath, flipMapPath, maskPath;
+  std::optional<double> maxMean, minPsnr, maxFlip;
   std::optional<int> maxAbs;
   int threshold = 8;
-  app.add_option("A", a, "First image")->required();
-  app.add_option("B", b, "Second image")->required();
-  app.add_option("--max-mean", maxMean, "Largest mean absolute difference allowed (0..255)");
-  app.add_option("--max-abs", maxAbs, "Largest single channel difference allowed (0..255)");
-  app.add_option("--min-psnr", minPsnr, "Smallest PSNR allowed, dB");
-  app.add_option("--threshold", threshold, "Channel difference counted as 'over'")->capture_default_str();
-  app.add_option("--diff", diffPath, "Write a difference image (x4 gain) here");
+  bool flip = false;
+  float ppd = kFlipDefaultPpd;
+  ToneMapper toneMapper = ToneMapper::Aces;
+
+  bool wantsFlip() const { return flip || maxFlip || !flipMapPath.empty(); }
+};
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "imgdiff: %s\n", message.c_str());
+  return 2;
+}
+
+bool isRadiance(const std::string& path) {
+  auto info = readHdrOrPngInfo(path);
+  return info && info->format == ImageFormat::Hdr;
+}
+
+// The mask of --mask for images of this size, or none.
+Result<std::optional<PixelMask>> readMask(const Options& o, int width, int height) {
+  if (o.maskPath.empty()) return std::optional<PixelMask>();
+  auto image = readPng(o.maskPath);
+  if (!image) return image.error();
+  auto mask = maskFromImage(*image, width, height, o.maskPath);
+  if (!mask) return mask.error();
+  return std::optional<PixelMask>(std::move(*mask));
+}
+
+std::string maskText(const std::optional<PixelMask>& mask) {
+  return mask ? " mask_pixels " + std::to_string(mask->count) : "";
+}
+
+// Writes the map of --flip-map, if asked; false (after saying why) on failure.
+bool writeFlipMap(const Options& o, const FlipMap& map) {
+  if (o.flipMapPath.empty()) return true;
+  if (auto s = writePng(o.flipMapPath, flipMapImage(map)); !s) {
+    fail(s.error().message);
+    return false;
+  }
+  return true;
+}
+
+std::string sizeMismatch(const Options& o, int width, int height, int otherWidth, int otherHeight) {
+  return "images differ in size: " + o.a + " is " + std::to_string(width) + "x" + std::to_string(height) + ", " +
+         o.b + " " + std::to_string(otherWidth) + "x" + std::to_string(otherHeight);
+}
+
+// The two images, of one size, and the mask for that size: what every comparison
+// starts from. `read` is readPng or readLinearImage.
+template <typename Picture>
+struct Inputs {
+  Picture a, b;
+  std::optional<PixelMask> mask;
+  const PixelMask* maskOrNull() const { return mask ? &*mask : nullptr; }
+};
+
+template <typename Picture>
+Result<Inputs<Picture>> readInputs(const Options& o, Result<Picture> (*read)(const std::string&)) {
+  auto a = read(o.a);
+  if (!a) return a.error();
+  auto b = read(o.b);
+  if (!b) return b.error();
+  if (a->width != b->width || a->height != b->height)
+    return makeError(sizeMismatch(o, a->width, a->height, b->width, b->height));
+  auto mask = readMask(o, a->width, a->height);
+  if (!mask) return mask.error();
+  return Inputs<Picture>{std::move(*a), std::move(*b), std::move(*mask)};
+}
+
+int comparePngs(const Options& o) {
+  auto in = readInputs<Image>(o, readPng);
+  if (!in) return fail(in.error().message);
+  const Image &imageA = in->a, &imageB = in->b;
+  const PixelMask* m = in->maskOrNull();
+  auto d = compareImages(imageA, imageB, o.threshold, m);
+  if (!d) return fail(d.error().message);
+  auto ssim = structuralSimilarity(imageA, imageB, m);
+  if (!ssim) return fail(ssim.error().message);
+  std::optional<FlipMap> flipMap;
+  std::optional<double> flipMeanValue;
+  if (o.wantsFlip()) {
+    auto map = ldrFlip(imageA, imageB, o.ppd);
+    if (!map) return fail(map.error().message);
+    auto mean = flipMean(*map, m);
+    if (!mean) return fail(mean.error().message);
+    flipMap = std::move(*map);
+    flipMeanValue = *mean;
+  }
+  const std::string flipText = flipMeanValue ? " flip " + std::to_string(*flipMeanValue) : "";
+  std::printf("max_abs %d mean_abs %.4f psnr %.2f over_%d %.4f%% ssim %.4f%s%s\n", d->maxAbs, d->meanAbs, d->psnr,
+              o.threshold, d->shareOver * 100.0, *ssim, flipText.c_str(), maskText(in->mask).c_str());
+  if (!o.diffPath.empty()) {
+    if (auto s = writePng(o.diffPath, diffImage(imageA, imageB)); !s) return fail(s.error().message);
+  }
+  if (flipMap && !writeFlipMap(o, *flipMap)) return 2;
+  bool over = false;
+  if (o.maxMean && d->meanAbs > *o.maxMean) over = true;
+  if (o.maxAbs && d->maxAbs > *o.maxAbs) over = true;
+  if (o.minPsnr && d->psnr < *o.minPsnr) over = true;
+  if (o.maxFlip && *flipMeanValue > *o.maxFlip) over = true;
+  if (over) std::printf("over the limit\n");
+  return over ? 1 : 0;
+}
+
+// Two .hdr files: HDR-FLIP alone (the 8-bit figures would clip what makes them HDR).
+int compareRadiance(const Options& o) {
+  if (!o.wantsFlip()) return fail(o.a + ": Radiance .hdr images are compared by HDR-FLIP only; add --flip");
+  if (!o.diffPath.empty() || o.maxMean || o.maxAbs || o.minPsnr)
+    return fail("--diff, --max-mean, --max-abs and --min-psnr are for PNG images, not Radiance .hdr");
+  auto in = readInputs<FloatImage>(o, readLinearImage);
+  if (!in) return fail(in.error().message);
+  HdrFlipOptions options;
+  options.ppd = o.ppd;
+  options.toneMapper = o.toneMapper;
+  auto result = hdrFlip(in->a, in->b, options);
+  if (!result) return fail(result.error().message);
+  auto mean = flipMean(result->map, in->maskOrNull());
+  if (!mean) return fail(mean.error().message);
+  const ExposureRange& e = result->exposures;
+  std::printf("hdr_flip %.6f exposures %.4f %.4f %d%s\n", *mean, e.start, e.stop, e.count, maskText(in->mask).c_str());
+  if (!writeFlipMap(o, result->map)) return 2;
+  const bool over = o.maxFlip && *mean > *o.maxFlip;
+  if (over) std::printf("over the limit\n");
+  return over ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Compare two images (PNG, or Radiance .hdr with --flip); exit 1 when a limit is exceeded, 2 on bad "
+               "input.",
+               "imgdiff"};
+  Options o;
+  app.add_option("A", o.a, "First image (the reference, for FLIP)")->required();
+  app.add_option("B", o.b, "Second image")->required();
+  app.add_option("--max-mean", o.maxMean, "Largest mean absolute difference allowed (0..255)");
+  app.add_option("--max-abs", o.maxAbs, "Largest single channel difference allowed (0..255)");
+  app.add_option("--min-psnr", o.minPsnr, "Smallest PSNR allowed, dB");
+  app.add_option("--threshold", o.threshold, "Channel difference counted as 'over'")->capture_default_str();
+  app.add_option("--diff", o.diffPath, "Write a difference image (x4 gain) here");
+  app.add_flag("--flip", o.flip,
+               "Also print the mean FLIP (LDR-FLIP of PNGs, HDR-FLIP of .hdr files), in [0, 1], 0 when equal");
+  app.add_option("--flip-map", o.flipMapPath, "Write FLIP's per-pixel error here as a grey PNG (implies --flip)");
+  app.add_option("--max-flip", o.maxFlip, "Largest mean FLIP allowed (implies --flip)");
+  app.add_option("--ppd", o.ppd, "FLIP's pixels per degree of the viewer (default 67.02: 0.7 m from a 0.7 m wide "
+                                 "3840-pixel monitor)")
+      ->check(CLI::Range(0.01f, 1000.0f));
+  std::string toneMapper = "aces";
+  app.add_option("--tone-mapper", toneMapper, "HDR-FLIP's tone map")
+      ->check(CLI::IsMember({"aces", "reinhard", "hable"}))
+      ->capture_default_str();
+  app.add_option("--mask", o.maskPath,
+                 "Count only the pixels where this PNG (same size) is not black, in every figure; FLIP's filters "
+                 "still see the neighbours");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -29,25 +185,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "imgdiff: %s (see --help)\n", e.what());
     return 2;
   }
-  auto imageA = engine::readPng(a);
-  if (!imageA) return std::fprintf(stderr, "imgdiff: %s\n", imageA.error().message.c_str()), 2;
-  auto imageB = engine::readPng(b);
-  if (!imageB) return std::fprintf(stderr, "imgdiff: %s\n", imageB.error().message.c_str()), 2;
-  auto d = engine::compareImages(*imageA, *imageB, threshold);
-  if (!d) return std::fprintf(stderr, "imgdiff: %s\n", d.error().message.c_str()), 2;
-  auto ssim = engine::structuralSimilarity(*imageA, *imageB);
-  if (!ssim) return std::fprintf(stderr, "imgdiff: %s\n", ssim.error().message.c_str()), 2;
-  std::printf("max_abs %d mean_abs %.4f psnr %.2f over_%d %.4f%% ssim %.4f\n", d->maxAbs, d->meanAbs, d->psnr,
-              threshold, d->shareOver * 100.0, *ssim);
-  if (!diffPath.empty()) {
-    if (auto s = engine::writePng(diffPath, engine::diffImage(*imageA, *imageB)); !s) {
-      return std::fprintf(stderr, "imgdiff: %s\n", s.error().message.c_str()), 2;
-    }
+  o.toneMapper = toneMapper == "reinhard" ? ToneMapper::Reinhard
+                 : toneMapper == "hable"  ? ToneMapper::Hable
+                                          : ToneMapper::Aces;
+  const bool radianceA = isRadiance(o.a), radianceB = isRadiance(o.b);
+  if (radianceA != radianceB) {
+    const std::string& other = radianceA ? o.b : o.a;
+    if (auto info = readHdrOrPngInfo(other); !info) return fail(info.error().message);
+    return fail((radianceA ? o.a : o.b) + " is a Radiance .hdr and " + other +
+                " is not; compare two PNGs or two .hdr files");
   }
-  bool over = false;
-  if (maxMean && d->meanAbs > *maxMean) over = true;
-  if (maxAbs && d->maxAbs > *maxAbs) over = true;
-  if (minPsnr && d->psnr < *minPsnr) over = true;
-  if (over) std::printf("over the limit\n");
-  return over ? 1 : 0;
+  return radianceA ? compareRadiance(o) : comparePngs(o);
 }

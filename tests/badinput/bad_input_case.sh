@@ -90,6 +90,16 @@ case "$CASE" in
   # The same images given to a program that needs them are errors.
   zero_size_png) expect 2 "zero_size\.png: image is 0x0 pixels; each side must be in \[1, 16384\]" -- "$BIN/imgdiff" zero_size.png zero_size.png ;;
   huge_claim_png) expect 2 "huge_claim\.png: image is 20000x20000 pixels; each side must be in \[1, 16384\]" -- "$BIN/imgdiff" huge_claim.png huge_claim.png ;;
+  # imgdiff's mask and size checks come before anything is written.
+  mask_size_png|mask_black_png|size_mismatch_png)
+    case "$CASE" in
+      mask_size_png) args=(mask_pair.png mask_pair.png --mask mask_small.png); pattern="mask_small\.png: the mask is 2x2 pixels, the images 4x4" ;;
+      mask_black_png) args=(mask_pair.png mask_pair.png --mask mask_black.png); pattern="mask_black\.png: the mask selects no pixel" ;;
+      size_mismatch_png) args=(mask_pair.png other_size.png); pattern="images differ in size: mask_pair\.png is 4x4, other_size\.png 4x3" ;;
+    esac
+    rm -f "$WORK/$CASE/diff.png" "$WORK/$CASE/flip.png"
+    expect 2 "$pattern" -- "$BIN/imgdiff" "${args[@]}" --flip --diff "$WORK/$CASE/diff.png" --flip-map "$WORK/$CASE/flip.png"
+    [ ! -e "$WORK/$CASE/diff.png" ] && [ ! -e "$WORK/$CASE/flip.png" ] || { echo "FAIL: an image was written"; exit 1; } ;;
   scene_fovy_string) scene scene_fovy_string.json "scene_fovy_string\.json: /camera/fovy: expected a number" ;;
   scene_models_number) scene scene_models_number.json "scene_models_number\.json: /models: expected an array" ;;
   scene_model_path_number) scene scene_model_path_number.json "scene_model_path_number\.json: /models/0/path: expected a string" ;;

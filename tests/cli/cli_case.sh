@@ -360,6 +360,10 @@ PY
     expect 0 "psnr inf" -- "$BIN/imgdiff" t0.png t0.png --max-mean 0
     expect 1 "over the limit" -- "$BIN/imgdiff" t0.png t2.png --max-mean 0.01 --diff d.png
     [ -s d.png ] || { echo "FAIL: no diff image"; exit 1; }
+    # FLIP on the same line, its map, a limit on it.
+    expect 0 "psnr inf .* ssim 1\.0000 flip 0\.000000$" -- "$BIN/imgdiff" t0.png t0.png --flip
+    expect 1 "flip 0\.[0-9]{6}" -- "$BIN/imgdiff" t0.png t2.png --max-flip 0.001 --flip-map f.png
+    [ -s f.png ] || { echo "FAIL: no FLIP map"; exit 1; }
     expect 2 "missing\.png" -- "$BIN/imgdiff" t0.png missing.png ;;
   describe_demo)
     # The default scene needs every pass: sun shadows, sky, terrain, fog, skinning.

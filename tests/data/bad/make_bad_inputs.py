@@ -190,6 +190,13 @@ def main(out):
     write("zero_size.png", png(0, 0))
     write("huge_claim.png", png(20000, 20000))
 
+    # imgdiff's masks (--mask): one of the wrong size and one that selects nothing,
+    # for a 4x4 pair; and a second image of another size.
+    write("mask_pair.png", png(4, 4, [b"\x80\x40\x20\xff" * 4] * 4))
+    write("mask_small.png", png(2, 2, [b"\xff" * 8] * 2))
+    write("mask_black.png", png(4, 4, [b"\x00\x00\x00\xff" * 4] * 4))
+    write("other_size.png", png(4, 3, [b"\x80\x40\x20\xff" * 4] * 3))
+
     def with_image(data):
         def edit(m):
             off = len(m.bin)
