@@ -7,13 +7,13 @@
 
 #include <cmath>
 #include <cstdio>
-#include <functional>
 
 #include "core/phase.h"
 #include "raytrace/describe.h"
 #include "raytrace/integrator.h"
 #include "raytrace/medium.h"
 #include "raytrace/rng.h"
+#include "../support/quadrature.h"
 #include "test_scenes.h"
 
 namespace {
@@ -28,22 +28,6 @@ engine::FogDesc volumetric(glm::vec3 scattering, glm::vec3 absorption, float g =
   fog.absorption = absorption;
   fog.anisotropy = g;
   return fog;
-}
-
-rt::RenderSettings pathSettings(int w, int h, int spp, int maxDepth = 64) {
-  rt::RenderSettings s;
-  s.method = rt::Method::Path;
-  s.width = w;
-  s.height = h;
-  s.samplesPerPixel = spp;
-  s.maxDepth = maxDepth;
-  return s;
-}
-
-glm::dvec3 meanOf(const rt::Framebuffer& image) {
-  glm::dvec3 sum(0.0);
-  for (const glm::vec3& p : image.pixels) sum += glm::dvec3(p);
-  return sum / double(image.pixels.size());
 }
 
 // The volumetric white furnace: inside a closed black sphere that emits 1, a medium
@@ -95,20 +79,6 @@ TEST(Medium, AbsorptionIsBeerLambertPerChannel) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c] / expected[c], 1.0, 0.01) << "channel " << c;
 }
 
-// Adaptive Simpson over [a, b] to `tolerance`.
-double integrate(const std::function<double(double)>& f, double a, double b, double tolerance, int depth = 40) {
-  const double m = 0.5 * (a + b), fa = f(a), fm = f(m), fb = f(b);
-  const std::function<double(double, double, double, double, double, double, double, int)> step =
-      [&](double a0, double b0, double f0, double fmid, double f1, double whole, double tol, int d) {
-        const double mid = 0.5 * (a0 + b0), l = 0.5 * (a0 + mid), r = 0.5 * (mid + b0);
-        const double fl = f(l), fr = f(r);
-        const double left = (mid - a0) / 6.0 * (f0 + 4.0 * fl + fmid), right = (b0 - mid) / 6.0 * (fmid + 4.0 * fr + f1);
-        if (d <= 0 || std::abs(left + right - whole) <= 15.0 * tol) return left + right + (left + right - whole) / 15.0;
-        return step(a0, mid, f0, fl, fmid, left, 0.5 * tol, d - 1) + step(mid, b0, fmid, fr, f1, right, 0.5 * tol, d - 1);
-      };
-  return step(a, b, fa, fm, fb, (b - a) / 6.0 * (fa + 4.0 * fm + fb), tolerance, depth);
-}
-
 // Single scattering (one bounce at most: maxDepth 0) of a point light of intensity I
 // with 1/d^2 falloff, 1 m off a ray through a medium of scattering 0.3 and absorption
 // 0.1 per metre, g = 0.5, seen by a camera on the ray: the radiance along it is the
@@ -137,7 +107,7 @@ TEST(Medium, SingleScatteringOfAPointLightIsItsIntegral) {
     const double phase = double(engine::brdf::phaseHenyeyGreenstein(float(glm::dot(in, out)), g));
     return double(sigmaS) * std::exp(-sigmaT * t) * phase * kPi * double(light.intensity) * std::exp(-sigmaT * r) / (r * r);
   };
-  const double truth = integrate(integrand, 0.0, 200.0, 1e-8);
+  const double truth = engine::test::integrate(integrand, 0.0, 200.0, 1e-8);
   rt::Integrator integrator(scene, pathSettings(1, 1, 1, 0));
   const int n = 400000;
   double sum = 0.0, squares = 0.0;

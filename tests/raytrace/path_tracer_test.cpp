@@ -14,22 +14,6 @@
 
 namespace {
 
-rt::RenderSettings pathSettings(int w, int h, int spp, int maxDepth = 64) {
-  rt::RenderSettings s;
-  s.method = rt::Method::Path;
-  s.width = w;
-  s.height = h;
-  s.samplesPerPixel = spp;
-  s.maxDepth = maxDepth;
-  return s;
-}
-
-glm::dvec3 meanOf(const rt::Framebuffer& image) {
-  glm::dvec3 sum(0.0);
-  for (const glm::vec3& p : image.pixels) sum += glm::dvec3(p);
-  return sum / double(image.pixels.size());
-}
-
 // pbrt's white furnace: inside a closed diffuse sphere of albedo 0.5 that emits 0.5,
 // radiance is 0.5 + 0.5 (0.5 + 0.5 (...)) = 1 everywhere. Every bounce, Russian
 // roulette and the emission of surfaces reached by BSDF samples must be right.

@@ -11,6 +11,7 @@
 
 #include "chi_square.h"
 #include "core/phase.h"
+#include "../support/quadrature.h"
 
 namespace brdf = engine::brdf;
 
@@ -46,24 +47,12 @@ TEST(ChiSquare, Rayleigh) {
       [](const glm::vec3& w) { return double(brdf::phaseRayleigh(w.z)); }));
 }
 
-// 2 pi times the integral over cos theta in [-1, 1] of f(mu), by adaptive Simpson
-// (each interval halved until its two halves agree to 1e-9):
+// 2 pi times the integral over cos theta in [-1, 1] of f(mu), adaptive to 1e-9:
 // Henyey-Greenstein's peak at g = 0.99 is 1e-4 wide in mu, which a uniform grid
 // misses.
 template <typename F>
-double simpson(F f, double a, double b, double fa, double fm, double fb, double whole, double tolerance, int depth) {
-  const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
-  const double flm = f(lm), frm = f(rm);
-  const double left = (m - a) / 6.0 * (fa + 4.0 * flm + fm), right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
-  if (depth <= 0 || std::abs(left + right - whole) <= 15.0 * tolerance) return left + right + (left + right - whole) / 15.0;
-  return simpson(f, a, m, fa, flm, fm, left, 0.5 * tolerance, depth - 1) +
-         simpson(f, m, b, fm, frm, fb, right, 0.5 * tolerance, depth - 1);
-}
-
-template <typename F>
 double overTheSphere(F f) {
-  const double fa = f(-1.0), fm = f(0.0), fb = f(1.0);
-  return 2.0 * 3.14159265358979323846 * simpson(f, -1.0, 1.0, fa, fm, fb, 2.0 / 6.0 * (fa + 4.0 * fm + fb), 1e-9, 30);
+  return 2.0 * 3.14159265358979323846 * engine::test::integrate(f, -1.0, 1.0, 1e-9);
 }
 
 // Limits: 1e-5 for the integrals and the mean cosine, the rounding of a density

@@ -67,3 +67,21 @@ inline rt::RtScene sceneFile(const std::string& name) {
   EXPECT_TRUE(scene) << scene.error().message;
   return std::move(*scene);
 }
+
+// The path tracer's settings for a w x h image of spp samples a pixel.
+inline rt::RenderSettings pathSettings(int w, int h, int spp, int maxDepth = 64) {
+  rt::RenderSettings s;
+  s.method = rt::Method::Path;
+  s.width = w;
+  s.height = h;
+  s.samplesPerPixel = spp;
+  s.maxDepth = maxDepth;
+  return s;
+}
+
+// An image's mean colour, in double.
+inline glm::dvec3 meanOf(const rt::Framebuffer& image) {
+  glm::dvec3 sum(0.0);
+  for (const glm::vec3& p : image.pixels) sum += glm::dvec3(p);
+  return sum / double(image.pixels.size());
+}
