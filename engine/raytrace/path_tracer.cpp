@@ -212,8 +212,8 @@ class PathTracer {
     const T tEnd = flight.scattered ? T(flight.distance / glm::length(glm::dvec3(ray.d))) : tHit;
     path.radiance += beta * emittersAlong(ray, d, tEnd, !hit && !flight.scattered, path.countEmitters, path.bsdfPdf,
                                           path.depth == 0, flight.weight);
-    if constexpr (kMedium) beta *= flight.weight;
     if constexpr (kMedium) {
+      beta *= flight.weight;
       if (flight.scattered) return scatter(path, ray(tEnd), d, counters);
     }
     if (!hit) return false;
@@ -345,14 +345,21 @@ class PathTracer {
   // with its shadow ray, weighed by MIS against the BSDF sample that could find it.
   glm::vec3 directLight(const SurfaceInteraction<T>& si, const Bsdf& bsdf, const glm::vec3& ng, Pcg32& rng,
                         RayCounters& counters) const {
+    return sampleEveryLight(si, rng, [&](const LightSample<T>& ls, bool shadows) {
+      return kMedium ? shadeThroughMedium(si, ls, shadows, bsdf, ng, counters) : shade(si, ls, shadows, bsdf, ng, counters);
+    });
+  }
+
+  // One sample of every light and of the environment from `at`, in that order from
+  // `rng`, each given to shadeSample(sample, its light casts shadows); their sum. A
+  // surface's and a medium's next-event estimation both.
+  template <typename ShadeSample>
+  glm::vec3 sampleEveryLight(const SurfaceInteraction<T>& at, Pcg32& rng, ShadeSample&& shadeSample) const {
     glm::vec3 sum(0.0f);
     for (const PathLight& l : lights_) {
       const glm::vec2 u = rng.uniform2();
       LightSample<T> ls;
-      if (sampleLight(si, l, u, ls)) {
-        sum += kMedium ? shadeThroughMedium(si, ls, l.shadows, bsdf, ng, counters)
-                       : shade(si, ls, l.shadows, bsdf, ng, counters);
-      }
+      if (sampleLight(at, l, u, ls)) sum += shadeSample(ls, l.shadows);
     }
     if (!env_.black()) {
       const glm::vec2 u = rng.uniform2();
@@ -360,7 +367,7 @@ class PathTracer {
       ls.wi = env_.sample(u, &ls.pdf);
       if (ls.pdf > 0.0f) {
         ls.value = env_.radiance(ls.wi) / ls.pdf;
-        sum += kMedium ? shadeThroughMedium(si, ls, true, bsdf, ng, counters) : shade(si, ls, true, bsdf, ng, counters);
+        sum += shadeSample(ls, true);
       }
     }
     return sum;
@@ -394,7 +401,7 @@ class PathTracer {
   // What the medium lets through from `from` to the light sample's end (all of it
   // without a medium; to a direction, what is left at infinity).
   glm::vec3 mediumAlong(const Vec3<T>& from, const LightSample<T>& ls) const {
-    if (!kMedium) return glm::vec3(1.0f);
+    if constexpr (!kMedium) return glm::vec3(1.0f);
     return medium_->transmittance(ls.toPoint ? glm::length(glm::dvec3(ls.target) - glm::dvec3(from))
                                              : std::numeric_limits<double>::infinity());
   }
@@ -409,22 +416,9 @@ class PathTracer {
     at.p = p;
     at.n = Vec3<T>(0);
     const float g = medium_->anisotropy;
-    glm::vec3 sum(0.0f);
-    for (const PathLight& l : lights_) {
-      const glm::vec2 u = path.rng.uniform2();
-      LightSample<T> ls;
-      if (sampleLight(at, l, u, ls)) sum += shadeInMedium(at, ls, l.shadows, d, counters);
-    }
-    if (!env_.black()) {
-      const glm::vec2 u = path.rng.uniform2();
-      LightSample<T> ls;
-      ls.wi = env_.sample(u, &ls.pdf);
-      if (ls.pdf > 0.0f) {
-        ls.value = env_.radiance(ls.wi) / ls.pdf;
-        sum += shadeInMedium(at, ls, true, d, counters);
-      }
-    }
-    path.radiance += path.beta * sum;
+    path.radiance += path.beta * sampleEveryLight(at, path.rng, [&](const LightSample<T>& ls, bool shadows) {
+      return shadeInMedium(at, ls, shadows, d, counters);
+    });
     const glm::vec3 wi = Frame(d).toWorld(brdf::samplePhaseHenyeyGreenstein(path.rng.uniform2(), g));
     path.countEmitters = false;
     path.bsdfPdf = brdf::phaseHenyeyGreenstein(glm::dot(d, wi), g);  // the phase is its own density

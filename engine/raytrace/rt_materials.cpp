@@ -47,6 +47,14 @@ RtTexture slotTexture(const SceneMaterial& m, TextureSlot slot) {
 // metallic-roughness ones: every layer's but the coat's normal map.
 bool tracedLayerSlot(int slot) { return slot >= kFirstLayerSlot && TextureSlot(slot) != TextureSlot::ClearcoatNormal; }
 
+// The texel of textures[index] at uv (in `texel`), and whether there is one: an index
+// below 0 is no texture. What the base and the layer texels both read by.
+bool texelAt(const std::vector<RtTexture>& textures, int index, const HitUv& uv, float footprint, glm::vec4& texel) {
+  if (index < 0) return false;
+  texel = textures[size_t(index)].sampleRgba(uv, footprint);
+  return true;
+}
+
 }  // namespace
 
 Status RtMaterials::setSceneMaterial(int material, const SceneMaterial& from) {
@@ -96,10 +104,7 @@ brdf::BaseValues RtMaterials::baseAt(int material, const HitUv& uv, float footpr
   const int slots[3] = {e.texture, e.metallicRoughnessTexture, e.emissiveTexture};
   glm::vec4 texel[3] = {};
   bool present[3] = {};
-  for (int k = 0; k < 3; ++k) {
-    present[k] = slots[k] >= 0;
-    if (present[k]) texel[k] = textures_[size_t(slots[k])].sampleRgba(uv, footprint);
-  }
+  for (int k = 0; k < 3; ++k) present[k] = texelAt(textures_, slots[k], uv, footprint, texel[k]);
   brdf::BaseValues v;
   v.albedo = m.color;
   v.metallic = m.metallic;
@@ -155,8 +160,7 @@ void RtMaterials::applyLayerTextures(int material, const HitUv& uv, float footpr
   bool present[kTextureSlots - kFirstLayerSlot] = {};
   for (size_t k = 0; k < t.size(); ++k) {
     // The coat's normal map (slot 6) is not read: the tracers read no normal maps.
-    present[k] = t[k] >= 0 && k + kFirstLayerSlot != size_t(TextureSlot::ClearcoatNormal);
-    if (present[k]) texel[k] = textures_[size_t(t[k])].sampleRgba(uv, footprint);
+    present[k] = k + kFirstLayerSlot != size_t(TextureSlot::ClearcoatNormal) && texelAt(textures_, t[k], uv, footprint, texel[k]);
   }
   brdf::LayerValues v;
   v.specularColor = layers.specularColor;

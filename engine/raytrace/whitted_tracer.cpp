@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "core/brdf.h"
 #include "core/spot_cone.h"
@@ -36,7 +37,9 @@ class Tracer {
   Tracer(const RtScene& scene, const RenderSettings& settings)
       : scene_(scene), settings_(settings), camera_(scene.camera(), settings.width, settings.height),
         strata_(settings.samplesPerPixel),
-        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {}
+        pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height, settings.samplesPerPixel)) {
+    for (const LightDesc& light : scene.lights()) cones_.push_back(lightCone(light));
+  }
 
   glm::vec3 renderPixel(int x, int y, RayCounters& counters) const {
     Pcg32 rng = Pcg32::forPixel(settings_.seed, x, y);
@@ -161,8 +164,8 @@ class Tracer {
   glm::vec3 shadeClassic(const SurfaceInteraction<T>& si, const HitMaterial& m, const Vec3<T>& n, const Vec3<T>& v,
                          Pcg32& rng, RayCounters& counters) const {
     glm::vec3 color = m.albedo * m.ambient;
-    for (const LightDesc& light : scene_.lights()) {
-      const LightSample<T> ls = sampleLight(si, light, rng, counters);
+    for (std::size_t i = 0; i < scene_.lights().size(); ++i) {
+      const LightSample<T> ls = sampleLight(si, scene_.lights()[i], cones_[i], rng, counters);
       if (ls.visibility <= 0.0f) continue;
       color += ls.radiance * ls.visibility *
                brdf::classicReflected(glm::vec3(n), -glm::vec3(v), glm::vec3(ls.wi), m.albedo, m.diffuse, m.specular,
@@ -180,8 +183,8 @@ class Tracer {
     const float nDotV = glm::max(glm::dot(nf, toEye), 1e-4f);
     const ViewLayers view = m.atView(nf, nDotV);
     glm::vec3 color(0.0f);
-    for (const LightDesc& light : scene_.lights()) {
-      const LightSample<T> ls = sampleLight(si, light, rng, counters);
+    for (std::size_t i = 0; i < scene_.lights().size(); ++i) {
+      const LightSample<T> ls = sampleLight(si, scene_.lights()[i], cones_[i], rng, counters);
       const glm::vec3 l(ls.wi);
       const float nDotL = glm::dot(nf, l);
       if (nDotL <= 0.0f || ls.visibility <= 0.0f) continue;
@@ -200,7 +203,7 @@ class Tracer {
                                                           m.iridescence);
   }
 
-  LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, Pcg32& rng,
+  LightSample<T> sampleLight(const SurfaceInteraction<T>& si, const LightDesc& light, const LightCone& cone, Pcg32& rng,
                              RayCounters& counters) const {
     LightSample<T> ls;
     ls.radiance = light.color * light.intensity;
@@ -218,7 +221,6 @@ class Tracer {
         ls.wi = toLight / std::sqrt(dist2);
         if (light.falloff) ls.radiance /= float(dist2);
         if (light.type == LightType::Spot) {
-          const LightCone cone = lightCone(light);
           const float share =
               spottext::spotAttenuation(glm::dot(glm::vec3(ls.wi), cone.axisToLight), cone.cosOuter, cone.cosInner);
           ls.radiance *= share;
@@ -264,6 +266,7 @@ class Tracer {
   PinholeCamera camera_;
   PixelStrata strata_;
   float pixelSpread_ = 0.0f;
+  std::vector<LightCone> cones_;  // each light's, made once (scene/environment.h)
 };
 
 // Up to eight pixels of a row side by side, a lane each, their samples in step and in

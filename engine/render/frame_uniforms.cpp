@@ -6,7 +6,6 @@
 #include "render/ibl.h"
 #include "render/point_shadow_pass.h"
 #include "render/sun_shadow_pass.h"
-#include "scene/environment.h"
 
 namespace engine {
 
@@ -27,6 +26,7 @@ CompiledLights compileLights(std::span<const LightDesc> lights) {
     out.dropped = int(out.others.size()) - kMaxPointLights;
     out.others.resize(size_t(kMaxPointLights));
   }
+  for (const LightDesc& l : out.others) out.cones.push_back(lightCone(l));
   return out;
 }
 
@@ -62,7 +62,7 @@ void FrameUniforms::fill(const glm::dvec3& eye, const glm::mat4& viewProjection)
                                    ? glm::vec4(glm::vec3(l.direction), 2.0f)
                                    : glm::vec4(glm::vec3(l.position - eye), l.falloff ? 1.0f : 0.0f);
     frame.u_pointColor[i] = glm::vec4(l.color * l.intensity, l.shadows && l.type != LightType::Sun ? 1.0f : 0.0f);
-    const LightCone cone = lightCone(l);
+    const LightCone& cone = lights_.cones[i];
     frame.u_pointAxis[i] = glm::vec4(cone.axisToLight, cone.cosOuter);
     frame.u_pointInner[i] = glm::vec4(cone.cosInner, 0.0f, 0.0f, 0.0f);
   }

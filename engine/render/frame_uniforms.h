@@ -10,6 +10,7 @@
 #include "asset/scene_desc.h"
 #include "gl/resources.h"
 #include "render/frame_block.h"
+#include "scene/environment.h"
 
 namespace engine {
 
@@ -26,6 +27,7 @@ class SunShadowPass;
 struct CompiledLights {
   std::optional<LightDesc> sun;
   std::vector<LightDesc> others;
+  std::vector<LightCone> cones;  // others' cones, made once (scene/environment.h)
   int dropped = 0;  // past kMaxPointLights: not drawn (--describe and a warning say so)
   bool pointShadows() const { return !others.empty() && others[0].type != LightType::Sun && others[0].shadows; }
   bool spots() const;  // whether a light drawn has a cone (SPOT_LIGHTS)
