@@ -126,11 +126,43 @@ enum class FogModel { Exponential, Volumetric };
 // absorbing per metre (RGB) with Henyey-Greenstein's anisotropy, which the CPU path
 // tracer renders as the truth (raytrace/medium.h); the rasterizer and the Whitted
 // tracer draw its exponential stand-in, `density` the mean extinction.
+// A volumetric fog with a height falloff is an exponential height fog: its
+// coefficients are those at y = 0, times exp(-heightFalloff * y) elsewhere.
 struct FogDesc {
   bool enabled = false;
   float density = 0.02f;
   glm::vec3 color{0.6f, 0.7f, 0.85f};
   FogModel model = FogModel::Exponential;
+  glm::vec3 scattering{0.0f}, absorption{0.0f};
+  float anisotropy = 0.0f;
+  float heightFalloff = 0.0f;  // per metre; 0: homogeneous
+};
+
+// A planet's atmosphere under the scene (Hillaire 2020's model, Earth's coefficients
+// by default, per metre): the planet's surface passes through y = 0 with its centre
+// straight below the origin, and its air thins with the altitude, Rayleigh's and
+// Mie's exponentially, ozone's as a tent. Present, it is the sky in every renderer:
+// the path tracer renders it as a medium, the rasterizer from its tables.
+struct AtmosphereDesc {
+  bool enabled = false;
+  double planetRadius = 6360e3;
+  double thickness = 100e3;  // to the top of the air
+  glm::vec3 rayleighScattering{5.802e-6f, 13.558e-6f, 33.1e-6f};
+  float rayleighScaleHeight = 8000.0f;
+  glm::vec3 mieScattering{3.996e-6f};
+  glm::vec3 mieAbsorption{0.444e-6f};
+  float mieScaleHeight = 1200.0f;
+  float mieAnisotropy = 0.8f;  // Henyey-Greenstein's g
+  glm::vec3 ozoneAbsorption{0.650e-6f, 1.881e-6f, 0.085e-6f};
+  float ozoneCenter = 25000.0f;  // the tent's peak, metres above the ground
+  float ozoneHalfWidth = 15000.0f;
+  glm::vec3 groundAlbedo{0.3f};
+};
+
+// A bounded medium: an axis-aligned box of homogeneous fog (a room's haze, a patch of
+// mist), coefficients per metre as a volumetric fog's.
+struct MediumDesc {
+  glm::dvec3 min{0.0}, max{0.0};
   glm::vec3 scattering{0.0f}, absorption{0.0f};
   float anisotropy = 0.0f;
 };
@@ -201,6 +233,8 @@ struct SceneDesc {
   std::vector<ModelDesc> models;
   SkyDesc sky;
   FogDesc fog;
+  AtmosphereDesc atmosphere;
+  std::vector<MediumDesc> media;
   TerrainDesc terrain;
   RenderDesc render;
   float ambient = 0.1f;  // classic shading's ambient term when a material has none

@@ -1,4 +1,5 @@
 #include "asset/scene_file.h"
+#include "asset/scene_file_node.h"
 
 #include "core/linear_image.h"
 
@@ -12,137 +13,7 @@
 
 namespace engine {
 namespace {
-using nlohmann::json;
-
-// A JSON value with the file name and its path, for messages, and the keys it
-// may hold, so that unknown keys are reported.
-class Node {
- public:
-  Node(const json& value, std::string file, std::string path)
-      : value_(value), file_(std::move(file)), path_(std::move(path)) {}
-
-  Error error(const std::string& what) const {
-    return makeError(file_ + ": " + (path_.empty() ? "/" : path_) + ": " + what);
-  }
-  bool has(const char* key) const { return value_.is_object() && value_.contains(key); }
-  Node at(const char* key) const { return Node(value_.at(key), file_, path_ + "/" + key); }
-  Node at(size_t i) const { return Node(value_.at(i), file_, path_ + "/" + std::to_string(i)); }
-  const json& value() const { return value_; }
-  const std::string& file() const { return file_; }
-
-  Status expectObject(std::initializer_list<const char*> allowed) const {
-    if (!value_.is_object()) return error("expected an object");
-    std::set<std::string> keys(allowed.begin(), allowed.end());
-    for (const auto& item : value_.items()) {
-      if (!keys.count(item.key())) {
-        std::string list;
-        for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
-        return Node(item.value(), file_, path_ + "/" + item.key()).error("unknown key; expected one of: " + list);
-      }
-    }
-    return Ok{};
-  }
-  Result<size_t> arraySize() const {
-    if (!value_.is_array()) return error("expected an array");
-    return value_.size();
-  }
-
- private:
-  const json& value_;
-  std::string file_;
-  std::string path_;
-};
-
-#define TRY(expr)                        \
-  do {                                   \
-    if (auto s_ = (expr); !s_) return s_.error(); \
-  } while (0)
-
-Status readNumber(const Node& parent, const char* key, double& out, double lo, double hi) {
-  if (!parent.has(key)) return Ok{};
-  const Node n = parent.at(key);
-  if (!n.value().is_number()) return n.error("expected a number");
-  const double v = n.value().get<double>();
-  if (!std::isfinite(v) || v < lo || v > hi) {
-    std::ostringstream ss;
-    ss << "expected a number in [" << lo << ", " << hi << "], got " << v;
-    return n.error(ss.str());
-  }
-  out = v;
-  return Ok{};
-}
-
-Status readFloat(const Node& parent, const char* key, float& out, double lo, double hi) {
-  double v = out;
-  TRY(readNumber(parent, key, v, lo, hi));
-  out = float(v);
-  return Ok{};
-}
-
-Status readInt(const Node& parent, const char* key, int& out, int lo, int hi) {
-  if (!parent.has(key)) return Ok{};
-  const Node n = parent.at(key);
-  if (!n.value().is_number_integer()) return n.error("expected an integer");
-  const auto v = n.value().get<long long>();
-  if (v < lo || v > hi) return n.error("expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  out = int(v);
-  return Ok{};
-}
-
-Status readBool(const Node& parent, const char* key, bool& out) {
-  if (!parent.has(key)) return Ok{};
-  const Node n = parent.at(key);
-  if (!n.value().is_boolean()) return n.error("expected true or false");
-  out = n.value().get<bool>();
-  return Ok{};
-}
-
-Status readString(const Node& parent, const char* key, std::string& out) {
-  if (!parent.has(key)) return Ok{};
-  const Node n = parent.at(key);
-  if (!n.value().is_string()) return n.error("expected a string");
-  out = n.value().get<std::string>();
-  return Ok{};
-}
-
-template <typename Vec>
-Status readVec3(const Node& parent, const char* key, Vec& out) {
-  if (!parent.has(key)) return Ok{};
-  const Node n = parent.at(key);
-  if (!n.value().is_array() || n.value().size() != 3) return n.error("expected an array of 3 numbers");
-  for (size_t i = 0; i < 3; ++i) {
-    const Node c = n.at(i);
-    if (!c.value().is_number() || !std::isfinite(c.value().get<double>())) return c.error("expected a finite number");
-    // Coordinates beyond 1e12 m are no scene (the solar system fits in 1e13): sums
-    // and differences of such values would overflow to infinity and NaN.
-    if (std::abs(c.value().get<double>()) > 1e12) return c.error("expected a number within +-1e12");
-    out[int(i)] = typename Vec::value_type(c.value().get<double>());
-  }
-  return Ok{};
-}
-
-template <typename Vec>
-Status readDirection(const Node& parent, const char* key, Vec& out) {
-  TRY(readVec3(parent, key, out));
-  if (parent.has(key)) {
-    if (glm::length(glm::dvec3(out)) == 0.0) return parent.at(key).error("a direction must not be zero");
-    out = glm::normalize(out);
-  }
-  return Ok{};
-}
-
-template <typename Enum>
-Status readEnum(const Node& parent, const char* key, Enum& out, const std::map<std::string, Enum>& names) {
-  if (!parent.has(key)) return Ok{};
-  const Node n = parent.at(key);
-  std::string list;
-  for (const auto& [name, value] : names) list += (list.empty() ? "" : ", ") + name;
-  if (!n.value().is_string()) return n.error("expected one of: " + list);
-  auto it = names.find(n.value().get<std::string>());
-  if (it == names.end()) return n.error("\"" + n.value().get<std::string>() + "\" is not one of: " + list);
-  out = it->second;
-  return Ok{};
-}
+using namespace scenefile;
 
 Status readCamera(const Node& n, CameraDesc& c) {
   TRY(n.expectObject({"position", "target", "direction", "up", "fovy", "near", "far", "handedness"}));
@@ -205,37 +76,6 @@ Status readLight(const Node& n, LightDesc& l) {
   if (l.type == LightType::Area && glm::length(glm::cross(l.edgeU, l.edgeV)) == 0.0) {
     return n.error("an area light needs two edges u and v that span a rectangle");
   }
-  return Ok{};
-}
-
-// Scattering and absorption per metre: each component finite, in [0, 1e6].
-Status readCoefficients(const Node& parent, const char* key, glm::vec3& out) {
-  TRY(readVec3(parent, key, out));
-  for (int i = 0; i < 3; ++i) {
-    if (out[i] < 0.0f || out[i] > 1e6f) return parent.at(key).at(size_t(i)).error("expected a number in [0, 1e6] per metre");
-  }
-  return Ok{};
-}
-
-Status readFog(const Node& fog, FogDesc& out) {
-  TRY(fog.expectObject({"density", "color", "model", "scattering", "absorption", "anisotropy"}));
-  out.enabled = true;
-  TRY(readEnum(fog, "model", out.model,
-               std::map<std::string, FogModel>{{"exponential", FogModel::Exponential}, {"volumetric", FogModel::Volumetric}}));
-  TRY(readVec3(fog, "color", out.color));
-  if (out.model == FogModel::Exponential) {
-    for (const char* key : {"scattering", "absorption", "anisotropy"}) {
-      if (fog.has(key)) return fog.at(key).error("only a volumetric fog (\"model\": \"volumetric\") has it");
-    }
-    return readFloat(fog, "density", out.density, 0.0, 100.0);
-  }
-  if (fog.has("density")) return fog.at("density").error("a volumetric fog takes scattering and absorption instead");
-  out.scattering = glm::vec3(0.02f);
-  TRY(readCoefficients(fog, "scattering", out.scattering));
-  TRY(readCoefficients(fog, "absorption", out.absorption));
-  TRY(readFloat(fog, "anisotropy", out.anisotropy, -0.999, 0.999));
-  const glm::vec3 extinction = out.scattering + out.absorption;
-  out.density = (extinction.x + extinction.y + extinction.z) / 3.0f;  // the stand-in's
   return Ok{};
 }
 
@@ -450,10 +290,16 @@ glm::dvec3 CameraDesc::right() const {
 }
 
 Result<SceneDesc> parseScene(const std::string& text, const std::string& name) {
-  const json j = json::parse(text, nullptr, false);
-  if (j.is_discarded()) return makeError(name + ": not valid JSON");
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    // Its line and column, or the number too large for a double (1e999: no JSON
+    // number is infinite, so a non-finite coefficient ends here).
+    return makeError(name + ": not valid JSON: " + e.what());
+  }
   const Node root(j, name, "");
-  TRY(root.expectObject({"camera", "lights", "materials", "primitives", "models", "sky", "fog", "terrain", "render", "ambient", "comment"}));
+  TRY(root.expectObject({"camera", "lights", "materials", "primitives", "models", "sky", "fog", "atmosphere", "media", "terrain", "render", "ambient", "comment"}));
   SceneDesc scene;
   scene.path = name;
   const auto folder = std::filesystem::path(name).parent_path();
@@ -487,6 +333,8 @@ Result<SceneDesc> parseScene(const std::string& text, const std::string& name) {
                 [&](const Node& n, ModelDesc& m) { return readModel(n, m, folder); }));
   if (root.has("sky")) TRY(readSky(root.at("sky"), scene.sky, folder));
   if (root.has("fog")) TRY(readFog(root.at("fog"), scene.fog));
+  if (root.has("atmosphere")) TRY(readAtmosphere(root.at("atmosphere"), scene.atmosphere));
+  TRY(readArray(root, "media", scene.media, readMedium));
   if (root.has("terrain")) TRY(readTerrain(root.at("terrain"), scene.terrain, folder));
   if (root.has("render")) TRY(readRender(root.at("render"), scene.render));
   TRY(readFloat(root, "ambient", scene.ambient, 0.0, 1.0));

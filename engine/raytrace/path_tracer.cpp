@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "core/phase.h"
-#include "core/spot_cone.h"
 #include "raytrace/bsdf.h"
 #include "raytrace/camera.h"
 #include "raytrace/camera_lanes.h"
-#include "raytrace/medium.h"
+#include "raytrace/media.h"
+#include "raytrace/light_sample.h"
 #include "raytrace/path_lights.h"
 #include "raytrace/ray_cone.h"
 #include "raytrace/rng.h"
@@ -24,29 +24,11 @@ namespace {
 
 float maxComponent(const glm::vec3& c) { return std::max({c.x, c.y, c.z}); }
 
-// A direction toward a light with what arrives along it: `value` is the radiance
-// divided by the sample's pdf, or for a delta light the radiance-equivalent that
-// f * cos * value is its contribution (pi I, pi I / d^2).
-// The shadow ray is made only once the BSDF says the sample matters: toward `target`
-// (a point or area light), or along wi to infinity.
-template <typename T>
-struct LightSample {
-  glm::vec3 wi{0.0f};
-  glm::vec3 value{0.0f};
-  float pdf = 0.0f;  // solid angle; 0 for a delta
-  bool toPoint = false;
-  Vec3<T> target{0};
-
-  Ray<T> shadowRay(const SurfaceInteraction<T>& si) const {
-    return toPoint ? si.spawnRayTo(target, T(1)) : si.spawnRay(Vec3<T>(wi));
-  }
-};
-
 // Cut-away and transparent surfaces a ray may pass before it gives up: a forest of
 // alpha-tested leaves is deep, but not this deep.
 constexpr int kMaxPassThrough = 64;
 
-// kMedium: the scene has a medium (a volumetric fog). A tracer of its own, so that
+// kMedium: the scene has media (raytrace/media.h). A tracer of its own, so that
 // scenes without one run the code they ran before media, not its tests: with them
 // the room took 4 % longer.
 template <typename T, bool kMedium>
@@ -56,7 +38,8 @@ class PathTracer {
   PathTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings)
       : scene_(scene), env_(lights.environment), lights_(lights.lights), coneSun_(lights.coneSun), settings_(settings),
         camera_(scene.camera(), settings.width, settings.height), cameraPosition_(scene.camera().position),
-        medium_(Medium::of(scene.fog())),
+        media_(Media::of(scene.fog(), scene.atmosphere(), scene.media())),
+        space_(media_ && media_->hasPlanet()),
         pixelSpread_(pixelConeSpread(scene.camera().fovyDegrees, settings.height,
                                      settings.totalSamples > 0 ? settings.totalSamples : settings.samplesPerPixel)) {}
 
@@ -130,6 +113,8 @@ class PathTracer {
     int passes = 0;              // through cut-away or transparent surfaces
     int depth = 0;
     float firstHit = -1.0f;  // the distance to the first surface the path scatters at; -1 none
+    int channel = -1;        // in tracked media, the colour channel the path carries (media.h)
+    int scatterings = 0;     // in media
   };
   // A span's paths and their nearest hits, kept between calls so that no bounce
   // allocates.
@@ -206,32 +191,51 @@ class PathTracer {
     const T tHit = hit ? hit->t : ray.tMax;
     if (path.absorption != glm::vec3(0.0f))
       beta *= glm::exp(-path.absorption * float(double(tHit) * glm::length(glm::dvec3(ray.d))));
-    // In a medium the ray may scatter before it gets there (medium.h).
+    if constexpr (kMedium) {
+      if (media_->tracked()) return bounceInMedia(path, hit, v, counters);
+    }
+    // In a homogeneous fog the ray may scatter before it gets there (medium.h).
     Medium::Flight flight;
-    if constexpr (kMedium) flight = medium_->fly(double(tHit) * glm::length(glm::dvec3(ray.d)), rng.uniform(), rng.uniform());
+    if constexpr (kMedium) flight = media_->homogeneous()->fly(double(tHit) * glm::length(glm::dvec3(ray.d)), rng.uniform(), rng.uniform());
     const T tEnd = flight.scattered ? T(flight.distance / glm::length(glm::dvec3(ray.d))) : tHit;
-    path.radiance += beta * emittersAlong(ray, d, tEnd, !hit && !flight.scattered, path.countEmitters, path.bsdfPdf,
-                                          path.depth == 0, flight.weight);
+    path.radiance += beta * emittersAlong(ray, d, tEnd, !hit && !flight.scattered, path, flight.weight);
     if constexpr (kMedium) {
       beta *= flight.weight;
-      if (flight.scattered) return scatter(path, ray(tEnd), d, counters);
+      if (flight.scattered) return scatter(path, ray(tEnd), d, Phase{media_->homogeneous()->anisotropy, false}, counters);
     }
     if (!hit) return false;
-    const float footprint = footprintAt(path.cone, *hit, v, float(hit->t * glm::length(ray.d)));
+    return surface(path, *hit, v, counters);
+  }
+
+  // The surface the path's ray found: cut away, passed through, or shaded.
+  [[gnu::always_inline]] bool surface(Path& path, const SurfaceInteraction<T>& hit, const Vec3<T>& v, RayCounters& counters) const {
+    Ray<T>& ray = path.ray;
+    Pcg32& rng = path.rng;
+    const float footprint = footprintAt(path.cone, hit, v, float(hit.t * glm::length(ray.d)));
     // MASK's cut-away parts and single-sided faces seen from behind are not there;
     // BLEND stops a share alpha of the paths (stochastic transparency). Either way
     // the ray goes on unbent, no bounce.
     if (const float opacity =
-            scene_.surfaceOpacity(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, glm::dot(hit->n, v) > T(0));
+            scene_.surfaceOpacity(hit.material, HitUv(hit.uv, hit.uv1, hit.color), footprint, glm::dot(hit.n, v) > T(0));
         opacity < 1.0f && (opacity <= 0.0f || rng.uniform() >= opacity)) {
       if (++path.passes > kMaxPassThrough) return false;
-      ray = Ray<T>{hit->spawnRay(ray.d).o, ray.d, ray.tMax - hit->t};
+      ray = Ray<T>{hit.spawnRay(ray.d).o, ray.d, ray.tMax - hit.t};
       return true;
     }
     const HitMaterial m =
-        scene_.materialAt(hit->material, HitUv(hit->uv, hit->uv1, hit->color), footprint, double(hit->p.y),
-                          glm::vec3(hit->ns), hit->dpdu, hit->dpdv);
-    if (path.firstHit < 0.0f) path.firstHit = float(glm::length(glm::dvec3(hit->p) - cameraPosition_));
+        scene_.materialAt(hit.material, HitUv(hit.uv, hit.uv1, hit.color), footprint, double(hit.p.y),
+                          glm::vec3(hit.ns), hit.dpdu, hit.dpdv);
+    if (path.firstHit < 0.0f) path.firstHit = float(glm::length(glm::dvec3(hit.p) - cameraPosition_));
+    const bool pbr = scene_.render().shading == Shading::Pbr;
+    return shade(path, hit, m, pbr, v, counters);
+  }
+
+  // A vertex on a surface of material m: what it emits, its light, its bounce.
+  [[gnu::always_inline]] bool shade(Path& path, const SurfaceInteraction<T>& hit, const HitMaterial& m, bool pbr, const Vec3<T>& v,
+             RayCounters& counters) const {
+    Pcg32& rng = path.rng;
+    glm::vec3& beta = path.beta;
+    const glm::vec3 d(v);
     path.radiance += beta * m.emission;
     if (m.unlit) {
       path.radiance += beta * m.albedo;  // KHR_materials_unlit: its colour, and no bounce
@@ -241,13 +245,12 @@ class PathTracer {
     // found it still had to be traced, for the lights MIS shares with it.
     if (path.depth > settings_.maxDepth) return false;
     // Two-sided surfaces: both normals turned to the side the ray came from.
-    const bool back = glm::dot(hit->n, v) > T(0);
-    const glm::vec3 ng = glm::vec3(back ? -hit->n : hit->n);
-    const glm::vec3 ns = glm::vec3(back ? -hit->ns : hit->ns);
+    const bool back = glm::dot(hit.n, v) > T(0);
+    const glm::vec3 ng = glm::vec3(back ? -hit.n : hit.n);
+    const glm::vec3 ns = glm::vec3(back ? -hit.ns : hit.ns);
     const glm::vec3 wo = -d;
-    const Bsdf bsdf = scene_.render().shading == Shading::Pbr ? Bsdf::metallicRoughness(m, ns, wo, !back)
-                                                               : Bsdf::classic(m, ns, wo);
-    if (bsdf.hasDiffuseOrGlossy()) path.radiance += beta * directLight(*hit, bsdf, ng, rng, counters);
+    const Bsdf bsdf = pbr ? Bsdf::metallicRoughness(m, ns, wo, !back) : Bsdf::classic(m, ns, wo);
+    if (bsdf.hasDiffuseOrGlossy()) path.radiance += beta * directLight(hit, bsdf, ng, path, counters);
     const glm::vec2 u = rng.uniform2();
     const BsdfSample s = bsdf.sample(u, rng.uniform());
     // A direction under the geometric surface would leak light through it; one
@@ -255,11 +258,11 @@ class PathTracer {
     if (!s.drawn || (glm::dot(s.wi, ng) <= 0.0f) != s.transmitted) return false;
     // In or out of a volume: its absorption applies along the next segment.
     if (m.transmission > 0.0f && m.thickness > 0.0f)
-      path.absorption = glm::dot(glm::dvec3(s.wi), glm::dvec3(hit->n)) < 0.0 ? volumeAbsorption(m) : glm::vec3(0.0f);
+      path.absorption = glm::dot(glm::dvec3(s.wi), glm::dvec3(hit.n)) < 0.0 ? volumeAbsorption(m) : glm::vec3(0.0f);
     beta *= s.weight;
     path.countEmitters = s.delta;
     path.bsdfPdf = s.pdf;
-    return continuePath(path, hit->spawnRay(Vec3<T>(s.wi)), counters);
+    return continuePath(path, hit.spawnRay(Vec3<T>(s.wi)), counters);
   }
 
   // Russian roulette past its depth, then the next ray: false when the path ends.
@@ -293,9 +296,13 @@ class PathTracer {
   // What the ray meets on its way to tHit that no surface is: the area lights it
   // passes through, and, when it escapes, the environment and a cone sun. Weighed
   // against the light samples that could have found them, unless nothing sampled
-  // them (countEmitters: camera rays and mirrors).
-  glm::vec3 emittersAlong(const Ray<T>& ray, const glm::vec3& d, T tHit, bool escaped, bool countEmitters,
-                          float bsdfPdf, bool cameraRay, const glm::vec3& escapeWeight) const {
+  // them (countEmitters: camera rays and mirrors). In a medium, `escapeWeight` is
+  // what the flight that got past them weighs (medium.h); an area light at s
+  // weighs what reaching s does.
+  glm::vec3 emittersAlong(const Ray<T>& ray, const glm::vec3& d, T tHit, bool escaped, const Path& path,
+                          const glm::vec3& escapeWeight) const {
+    const bool countEmitters = path.countEmitters;
+    const float bsdfPdf = path.bsdfPdf;
     glm::vec3 sum(0.0f);
     for (const PathLight& l : lights_) {
       if (l.type != LightType::Area) continue;
@@ -303,9 +310,8 @@ class PathTracer {
       double distance = 0.0;
       if (!hitsArea(l, ray, d, tHit, &lightPdf, &distance)) continue;
       const glm::vec3 light = l.power * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, lightPdf));
-      // In a medium, what reaches the ray's start of the light it crosses.
       if constexpr (kMedium) {
-        sum += light * medium_->transmittance(distance);
+        sum += light * reachedWeight(distance);
       } else {
         sum += light;
       }
@@ -316,37 +322,33 @@ class PathTracer {
       if (l.type != LightType::Sun || l.cosMax >= 1.0f || glm::dot(d, l.direction) < l.cosMax) continue;
       sum += l.radiance * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, uniformConePdf(l.cosMax))) * escapeWeight;
     }
+    // Beyond a planet's air is black space: its sun is a light.
+    if (space_) return sum;
     // The camera sees the sky's sun disk as the rasterizer draws it; light paths find
     // the sun through its light alone.
-    if (cameraRay) return sum + scene_.environment().radiance(d, !coneSun_) * escapeWeight;
+    if (path.depth == 0) return sum + scene_.environment().radiance(d, !coneSun_) * escapeWeight;
     if (env_.black()) return sum;
     return sum + env_.radiance(d) * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, env_.pdf(d))) * escapeWeight;
   }
 
-  // Whether the ray crosses the rectangle's emitting side before tHit; its
-  // solid-angle density as a light sample there, and its distance.
-  bool hitsArea(const PathLight& l, const Ray<T>& ray, const glm::vec3& d, T tHit, float* pdf, double* distance) const {
-    if (l.area <= 0.0f) return false;
-    const float cosLight = -glm::dot(d, l.normal);
-    if (cosLight <= 0.0f) return false;
-    const glm::dvec3 o(ray.o), dir(ray.d), n(l.normal);
-    const double t = glm::dot(l.position - o, n) / glm::dot(dir, n);
-    if (!(t > 0.0) || t >= double(tHit)) return false;
-    const glm::dvec3 q = o + t * dir - l.position;
-    const double a = glm::dot(q, l.edgeU) / glm::dot(l.edgeU, l.edgeU);
-    const double b = glm::dot(q, l.edgeV) / glm::dot(l.edgeV, l.edgeV);
-    if (std::abs(a) > 0.5 || std::abs(b) > 0.5) return false;
-    *distance = t * glm::length(dir);
-    *pdf = float(*distance * *distance / (double(l.area) * double(cosLight)));
-    return true;
+  // What a flight that got `distance` metres on weighs: in a homogeneous fog, the
+  // transmittance over the chance of getting there (Medium::fly drew the distance by
+  // one channel's extinction, weighed over the three); tracked media leave the
+  // getting there to chance alone.
+  glm::vec3 reachedWeight(double distance) const {
+    if (!media_->homogeneous()) return glm::vec3(1.0f);
+    const glm::vec3 tr = media_->homogeneous()->transmittance(distance);
+    const float mean = (tr.x + tr.y + tr.z) / 3.0f;
+    return mean > 0.0f ? tr / mean : glm::vec3(0.0f);
   }
 
   // Next-event estimation: one sample of every light and of the environment, each
   // with its shadow ray, weighed by MIS against the BSDF sample that could find it.
-  glm::vec3 directLight(const SurfaceInteraction<T>& si, const Bsdf& bsdf, const glm::vec3& ng, Pcg32& rng,
+  glm::vec3 directLight(const SurfaceInteraction<T>& si, const Bsdf& bsdf, const glm::vec3& ng, Path& path,
                         RayCounters& counters) const {
-    return sampleEveryLight(si, rng, [&](const LightSample<T>& ls, bool shadows) {
-      return kMedium ? shadeThroughMedium(si, ls, shadows, bsdf, ng, counters) : shade(si, ls, shadows, bsdf, ng, counters);
+    return sampleEveryLight(si, path.rng, [&](const LightSample<T>& ls, bool shadows) {
+      return kMedium ? shadeThroughMedium(si, ls, shadows, bsdf, ng, path, counters)
+                     : shadeLight(si, ls, shadows, bsdf, ng, counters);
     });
   }
 
@@ -375,7 +377,7 @@ class PathTracer {
 
   // Inlined, as it always was before shadeThroughMedium called it too (3 % of the
   // room's time went to the call).
-  [[gnu::always_inline]] glm::vec3 shade(const SurfaceInteraction<T>& si, const LightSample<T>& ls, bool shadows,
+  [[gnu::always_inline]] glm::vec3 shadeLight(const SurfaceInteraction<T>& si, const LightSample<T>& ls, bool shadows,
                                          const Bsdf& bsdf, const glm::vec3& ng, RayCounters& counters) const {
     if (glm::dot(ls.wi, ng) <= 0.0f) return glm::vec3(0.0f);
     const glm::vec3 f = bsdf.f(ls.wi);
@@ -391,98 +393,114 @@ class PathTracer {
   // that is nothing). Kept apart and out of line: shade grown by it was no longer
   // inlined, which slowed scenes without a medium by 3 %.
   [[gnu::noinline]] glm::vec3 shadeThroughMedium(const SurfaceInteraction<T>& si, const LightSample<T>& ls,
-                                                 bool shadows, const Bsdf& bsdf, const glm::vec3& ng,
+                                                 bool shadows, const Bsdf& bsdf, const glm::vec3& ng, Path& path,
                                                  RayCounters& counters) const {
-    const glm::vec3 through = mediumAlong(si.p, ls);
-    if (through == glm::vec3(0.0f)) return glm::vec3(0.0f);
-    return shade(si, ls, shadows, bsdf, ng, counters) * through;
+    const glm::vec3 lit = shadeLight(si, ls, shadows, bsdf, ng, counters);
+    if (lit == glm::vec3(0.0f)) return lit;
+    return lit * mediumAlong(si.p, ls, path);
   }
 
-  // What the medium lets through from `from` to the light sample's end (all of it
-  // without a medium; to a direction, what is left at infinity).
-  glm::vec3 mediumAlong(const Vec3<T>& from, const LightSample<T>& ls) const {
+  // What the media let through from `from` to the light sample's end (all of it
+  // without media; to a direction, what is left at infinity).
+  glm::vec3 mediumAlong(const Vec3<T>& from, const LightSample<T>& ls, Path& path) const {
     if constexpr (!kMedium) return glm::vec3(1.0f);
-    return medium_->transmittance(ls.toPoint ? glm::length(glm::dvec3(ls.target) - glm::dvec3(from))
-                                             : std::numeric_limits<double>::infinity());
+    const double distance = ls.toPoint ? glm::length(glm::dvec3(ls.target) - glm::dvec3(from))
+                                       : std::numeric_limits<double>::infinity();
+    if (media_->homogeneous()) return media_->homogeneous()->transmittance(distance);
+    const glm::dvec3 dir = ls.toPoint ? (glm::dvec3(ls.target) - glm::dvec3(from)) / distance : glm::dvec3(ls.wi);
+    return glm::vec3(media_->transmittance(glm::dvec3(from), dir, distance, path.channel, path.rng));
   }
 
-  // A scattering in the medium at p of a ray travelling along d: next-event
-  // estimation through the medium weighed by the phase function (MIS against it),
+  // bounce() in tracked media (media.h): the path carries one colour channel, drawn
+  // at its start; delta tracking finds where its ray collides before the surface, if
+  // it does, or the planet's ground where a ray that met no surface comes down.
+  [[gnu::noinline]] bool bounceInMedia(Path& path, const std::optional<SurfaceInteraction<T>>& hit, const Vec3<T>& v,
+                                       RayCounters& counters) const {
+    if (path.channel < 0) {
+      path.channel = std::min(2, int(path.rng.uniform() * 3.0f));
+      glm::vec3 only(0.0f);
+      only[path.channel] = 3.0f;
+      path.beta *= only;
+    }
+    const Ray<T>& ray = path.ray;
+    const glm::vec3 d(v);
+    const double length = glm::length(glm::dvec3(ray.d));
+    // Without a surface the ray goes on through the air, to space or the ground.
+    const double maxDistance =
+        hit ? double(hit->t) * length : (space_ ? std::numeric_limits<double>::infinity() : double(ray.tMax) * length);
+    const Media::Flight f = media_->track(glm::dvec3(ray.o), glm::dvec3(v), maxDistance, path.channel, path.rng);
+    const bool through = f.event == Media::Event::Through;
+    const T tEnd = through ? (hit ? hit->t : ray.tMax) : T(f.distance / length);
+    path.radiance += path.beta * emittersAlong(ray, d, tEnd, !hit && through, path, glm::vec3(1.0f));
+    switch (f.event) {
+      case Media::Event::Absorbed:
+        return false;
+      case Media::Event::Scattered:
+        path.beta *= f.weight;
+        return scatter(path, ray(tEnd), d, f.phase, counters);
+      case Media::Event::Ground:
+        return ground(path, glm::dvec3(ray.o) + f.distance * glm::dvec3(v), f.groundNormal, v, counters);
+      case Media::Event::Through:
+        break;
+    }
+    return hit && surface(path, *hit, v, counters);
+  }
+
+  // The planet's ground under its air, where a ray that met no surface of the scene
+  // comes down: a Lambertian surface of the atmosphere's ground albedo.
+  bool ground(Path& path, const glm::dvec3& p, const glm::dvec3& n, const Vec3<T>& v, RayCounters& counters) const {
+    SurfaceInteraction<T> si;
+    si.p = Vec3<T>(p);
+    si.n = si.ns = Vec3<T>(n);
+    // Kilometres away, rounded to T: room to leave it by.
+    si.pError = Vec3<T>(glm::abs(p) * (64.0 * double(std::numeric_limits<T>::epsilon())) + 1e-6);
+    HitMaterial m;
+    m.albedo = media_->groundAlbedo();
+    m.ambient = 0.0f, m.diffuse = 1.0f, m.specular = 0.0f, m.reflection = 0.0f;
+    return shade(path, si, m, false, v, counters);
+  }
+
+  // A scattering in a medium at p of a ray travelling along d: next-event
+  // estimation through the media weighed by the phase function (MIS against it),
   // then the phase function's own direction, a bounce like a surface's.
   // Kept out of line: inlined into bounce, it slowed scenes without a medium by 6 %.
-  [[gnu::noinline]] bool scatter(Path& path, const Vec3<T>& p, const glm::vec3& d, RayCounters& counters) const {
+  [[gnu::noinline]] bool scatter(Path& path, const Vec3<T>& p, const glm::vec3& d, Phase phase,
+                                 RayCounters& counters) const {
     if (path.depth > settings_.maxDepth) return false;
+    if (settings_.mediumScatterings >= 0 && path.scatterings >= settings_.mediumScatterings) return false;
+    ++path.scatterings;
     SurfaceInteraction<T> at;  // no surface: no normal, no error bound to leave by
     at.p = p;
     at.n = Vec3<T>(0);
-    const float g = medium_->anisotropy;
     path.radiance += path.beta * sampleEveryLight(at, path.rng, [&](const LightSample<T>& ls, bool shadows) {
-      return shadeInMedium(at, ls, shadows, d, counters);
+      return shadeInMedium(at, ls, shadows, d, phase, path, counters);
     });
-    const glm::vec3 wi = Frame(d).toWorld(brdf::samplePhaseHenyeyGreenstein(path.rng.uniform2(), g));
+    const glm::vec2 u = path.rng.uniform2();
+    const glm::vec3 wi =
+        Frame(d).toWorld(phase.rayleigh ? brdf::samplePhaseRayleigh(u) : brdf::samplePhaseHenyeyGreenstein(u, phase.g));
     path.countEmitters = false;
-    path.bsdfPdf = brdf::phaseHenyeyGreenstein(glm::dot(d, wi), g);  // the phase is its own density
+    path.bsdfPdf = phaseValue(phase, glm::dot(d, wi));  // the phase is its own density
     return continuePath(path, Ray<T>{p, Vec3<T>(wi)}, counters);
   }
 
+  static float phaseValue(Phase phase, float cosine) {
+    return phase.rayleigh ? brdf::phaseRayleigh(cosine) : brdf::phaseHenyeyGreenstein(cosine, phase.g);
+  }
+
   glm::vec3 shadeInMedium(const SurfaceInteraction<T>& at, const LightSample<T>& ls, bool shadows, const glm::vec3& d,
-                          RayCounters& counters) const {
+                          Phase phase, Path& path, RayCounters& counters) const {
     if (ls.value == glm::vec3(0.0f)) return glm::vec3(0.0f);
-    const glm::vec3 through = mediumAlong(at.p, ls);
-    if (through == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const float visible = shadows ? transmittance(at, ls, counters) : 1.0f;
     if (visible <= 0.0f) return glm::vec3(0.0f);
-    const float phase = brdf::phaseHenyeyGreenstein(glm::dot(d, ls.wi), medium_->anisotropy);
-    const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, phase) : 1.0f;
-    return ls.value * through * (phase * weight * visible);
+    const glm::vec3 through = mediumAlong(at.p, ls, path);
+    if (through == glm::vec3(0.0f)) return glm::vec3(0.0f);
+    const float density = phaseValue(phase, glm::dot(d, ls.wi));
+    const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, density) : 1.0f;
+    return ls.value * through * (density * weight * visible);
   }
 
   float transmittance(const SurfaceInteraction<T>& si, const LightSample<T>& ls, RayCounters& counters) const {
     return scene_.transmittance(ls.shadowRay(si), ls.toPoint ? &ls.target : nullptr, counters.shadow);
-  }
-
-  // False when the light cannot reach the point (behind an area light, at the light).
-  bool sampleLight(const SurfaceInteraction<T>& si, const PathLight& l, glm::vec2 u, LightSample<T>& ls) const {
-    switch (l.type) {
-      case LightType::Sun:
-        if (l.cosMax < 1.0f) {
-          ls.wi = Frame(l.direction).toWorld(sampleUniformCone(u, l.cosMax));
-          ls.pdf = uniformConePdf(l.cosMax);
-          ls.value = l.radiance / ls.pdf;
-        } else {
-          ls.wi = l.direction;
-          ls.value = l.power * kPi;
-        }
-        return true;
-      case LightType::Point:
-      case LightType::Spot: {
-        ls.toPoint = true;
-        ls.target = Vec3<T>(l.position);
-        const Vec3<T> toLight = ls.target - si.p;
-        const T d2 = glm::dot(toLight, toLight);
-        if (!(d2 > T(0))) return false;
-        ls.wi = glm::vec3(dividedBy(toLight, std::sqrt(d2)));
-        // A point's cone holds every direction: its weight is exactly 1.
-        ls.value = l.power * (kPi / (l.falloff ? float(d2) : 1.0f)) *
-                   spottext::spotAttenuation(glm::dot(ls.wi, l.direction), l.cosOuter, l.cosInner);
-        return true;
-      }
-      case LightType::Area: {
-        if (l.area <= 0.0f) return false;
-        ls.toPoint = true;
-        ls.target = Vec3<T>(l.position + (double(u.x) - 0.5) * l.edgeU + (double(u.y) - 0.5) * l.edgeV);
-        const Vec3<T> toLight = ls.target - si.p;
-        const T d2 = glm::dot(toLight, toLight);
-        if (!(d2 > T(0))) return false;
-        ls.wi = glm::vec3(dividedBy(toLight, std::sqrt(d2)));
-        const float cosLight = -glm::dot(ls.wi, l.normal);
-        if (cosLight <= 0.0f) return false;
-        ls.pdf = float(d2) / (l.area * cosLight);
-        ls.value = l.power / ls.pdf;
-        return true;
-      }
-    }
-    return false;
   }
 
   const RtScene& scene_;
@@ -492,7 +510,8 @@ class PathTracer {
   const RenderSettings& settings_;
   PinholeCamera camera_;
   glm::dvec3 cameraPosition_;
-  std::optional<Medium> medium_;  // a volumetric fog: the truth of what the others blend in
+  std::optional<Media> media_;  // fog, air, boxes: the truth of what the others blend in
+  bool space_ = false;          // beyond the media is black space (a planet's air)
   float pixelSpread_ = 0.0f;
   // One per thread: a tracer serves one span at a time on each (renderTiles).
   static thread_local Batch batch_;
@@ -504,7 +523,7 @@ thread_local typename PathTracer<T, kMedium>::Batch PathTracer<T, kMedium>::batc
 // Calls f with the tracer for the settings' precision and the scene's medium.
 template <typename F>
 auto withTracer(const RtScene& scene, const PathLights& lights, const RenderSettings& settings, F&& f) {
-  const bool medium = Medium::of(scene.fog()).has_value();
+  const bool medium = Media::of(scene.fog(), scene.atmosphere(), scene.media()).has_value();
   if (settings.precision == Precision::Double) {
     return medium ? f(PathTracer<double, true>(scene, lights, settings)) : f(PathTracer<double, false>(scene, lights, settings));
   }

@@ -51,6 +51,9 @@ struct RenderSettings {
   int shadowSamples = 4;    // an area light gets N x N stratified jittered shadow rays
   int maxDepth = 5;         // bounces after the primary hit (Whitted: mirror and transmitted rays; path: 0 is direct light only)
   int rouletteDepth = 3;    // path: Russian roulette from this bounce on
+  // Path: scatterings in media a path may take (1: single scattering, the light a
+  // medium scatters once toward the camera; -1 as many as it meets).
+  int mediumScatterings = -1;
   std::uint64_t seed = 1;
   Precision precision = Precision::Float;
   int threads = 0;          // 0: TBB's default (every core); N: at most N workers

@@ -83,6 +83,8 @@ Result<RtScene> RtScene::fromSceneDesc(const SceneDesc& desc, std::span<const Sc
   scene.ambientGround_ = ambientGroundColor(desc);
   scene.render_ = desc.render;
   scene.fog_ = desc.fog;
+  scene.atmosphere_ = desc.atmosphere;
+  scene.media_ = desc.media;
   const int materialCount = int(scene.materials().size());
   for (std::size_t i = 0; i < desc.primitives.size(); ++i) {
     const PrimitiveDesc& p = desc.primitives[i];

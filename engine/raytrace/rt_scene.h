@@ -108,6 +108,8 @@ class RtScene {
   void setEnvironment(Environment environment);
   void setRender(const RenderDesc& render) { render_ = render; }
   void setFog(const FogDesc& fog) { fog_ = fog; }
+  void setAtmosphere(const AtmosphereDesc& atmosphere) { atmosphere_ = atmosphere; }
+  void setMedia(std::vector<MediumDesc> media) { media_ = std::move(media); }
 
   // The shapes and meshes and the queries over them: RtAccel (rt_accel.h).
   void addSphere(const glm::dvec3& center, double radius, int material) { accel_.addSphere(center, radius, material); }
@@ -160,6 +162,9 @@ class RtScene {
   glm::vec3 ambientGround() const { return ambientGround_; }
   const RenderDesc& render() const { return render_; }
   const FogDesc& fog() const { return fog_; }
+  // The planet's atmosphere and the bounded media: the path tracer's (raytrace/media.h).
+  const AtmosphereDesc& atmosphere() const { return atmosphere_; }
+  const std::vector<MediumDesc>& media() const { return media_; }
   // The rasterizer's distance fog (shaders/scene.frag, common/fog.glsl) on a colour the
   // camera sees at `distance`: mix(fog colour, colour, exp(-density * distance)). It
   // is the scene's look, not a medium: no light scatters in it, in either tracer.
@@ -199,6 +204,8 @@ class RtScene {
   glm::vec3 ambientGround_{0.1f};
   RenderDesc render_;
   FogDesc fog_;
+  AtmosphereDesc atmosphere_;
+  std::vector<MediumDesc> media_;
 };
 
 }  // namespace engine::rt

@@ -45,7 +45,7 @@ TEST(SceneFile, CornellRoomIsTheCourseRoom) {
 }
 
 TEST(SceneFile, ErrorsNameFilePathAndExpectation) {
-  EXPECT_EQ(errorOf("{"), "s.json: not valid JSON");
+  EXPECT_EQ(errorOf("{").rfind("s.json: not valid JSON: ", 0), 0u) << errorOf("{");
   EXPECT_EQ(errorOf("[]"), "s.json: /: expected an object");
   EXPECT_EQ(errorOf(R"({"camera": {"fovy": "wide"}})"), "s.json: /camera/fovy: expected a number");
   EXPECT_EQ(errorOf(R"({"camera": {"position": [1, 2]}})"),
@@ -120,6 +120,46 @@ TEST(SceneFile, AVolumetricFogIsAMediumWithAStandIn) {
             "s.json: /fog/scattering: only a volumetric fog (\"model\": \"volumetric\") has it");
   EXPECT_EQ(errorOf(R"({"fog": {"model": "cloudy"}})"),
             "s.json: /fog/model: \"cloudy\" is not one of: exponential, volumetric");
+}
+
+// The media: a height fog's falloff, the atmosphere's layers over Earth's defaults,
+// boxes of fog; each bad case names its key.
+TEST(SceneFile, MediaAreAHeightFogTheAirAndBoxes) {
+  auto scene = parseScene(R"({"fog": {"model": "volumetric", "height_falloff": 0.01},
+    "atmosphere": {"planet_radius": 3.4e6, "rayleigh": {"scale_height": 11000},
+                   "mie": {"scattering": [1e-5, 2e-5, 3e-5], "anisotropy": 0.7}, "ozone": {"absorption": [0, 0, 0]},
+                   "ground_albedo": [0.2, 0.1, 0.05]},
+    "media": [{"type": "box", "min": [-1, 0, -1], "max": [1, 2, 1], "scattering": [0.5, 0.5, 0.5], "anisotropy": 0.3}]})",
+                          "s.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_FLOAT_EQ(scene->fog.heightFalloff, 0.01f);
+  const AtmosphereDesc& a = scene->atmosphere;
+  EXPECT_TRUE(a.enabled);
+  EXPECT_EQ(a.planetRadius, 3.4e6);
+  EXPECT_EQ(a.thickness, 100e3);
+  EXPECT_FLOAT_EQ(a.rayleighScaleHeight, 11000.0f);
+  EXPECT_EQ(a.rayleighScattering, AtmosphereDesc{}.rayleighScattering);
+  EXPECT_EQ(a.mieScattering, glm::vec3(1e-5f, 2e-5f, 3e-5f));
+  EXPECT_FLOAT_EQ(a.mieAnisotropy, 0.7f);
+  EXPECT_EQ(a.ozoneAbsorption, glm::vec3(0.0f));
+  EXPECT_EQ(a.groundAlbedo, glm::vec3(0.2f, 0.1f, 0.05f));
+  ASSERT_EQ(scene->media.size(), 1u);
+  EXPECT_EQ(scene->media[0].max, glm::dvec3(1, 2, 1));
+  EXPECT_FLOAT_EQ(scene->media[0].anisotropy, 0.3f);
+  EXPECT_FALSE(parseScene("{}", "s.json")->atmosphere.enabled);
+  EXPECT_EQ(errorOf(R"({"fog": {"height_falloff": 0.1}})"),
+            "s.json: /fog/height_falloff: only a volumetric fog (\"model\": \"volumetric\") has it");
+  EXPECT_EQ(errorOf(R"({"atmosphere": {"planet_radius": 0}})"),
+            "s.json: /atmosphere/planet_radius: expected a number in [1000, 1e+09], got 0");
+  EXPECT_EQ(errorOf(R"({"atmosphere": {"mie": {"scale_height": 0}}})"),
+            "s.json: /atmosphere/mie/scale_height: expected a number in [1, 1e+06], got 0");
+  EXPECT_EQ(errorOf(R"({"atmosphere": {"ozone": {"width": 3}}})").rfind("s.json: /atmosphere/ozone/width: unknown key", 0), 0u);
+  EXPECT_EQ(errorOf(R"({"atmosphere": {"ground_albedo": [0.5, 1.5, 0.5]}})"),
+            "s.json: /atmosphere/ground_albedo/1: expected an albedo in [0, 1]");
+  EXPECT_EQ(errorOf(R"({"media": [{"type": "sphere"}]})"), "s.json: /media/0/type: \"sphere\" is not one of: box");
+  EXPECT_EQ(errorOf(R"({"media": [{"type": "box", "min": [0, 0, 0]}]})"), "s.json: /media/0: a box medium needs \"max\"");
+  EXPECT_EQ(errorOf(R"({"media": [{"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "anisotropy": -1}]})"),
+            "s.json: /media/0/anisotropy: expected a number in [-0.999, 0.999], got -1");
 }
 
 // render.ambient: unset falls back by the sky (IBL under one); a name not known

@@ -107,6 +107,12 @@ case "$CASE" in
   scene_spot_cone_inverted) scene scene_spot_cone_inverted.json "scene_spot_cone_inverted\.json: /lights/0/inner_cone: the inner cone must not be wider than the outer one" ;;
   scene_fog_negative_scattering) scene scene_fog_negative_scattering.json "scene_fog_negative_scattering\.json: /fog/scattering/1: expected a number in \[0, 1e6\] per metre" ;;
   scene_fog_anisotropy_one) scene scene_fog_anisotropy_one.json "scene_fog_anisotropy_one\.json: /fog/anisotropy: expected a number in \[-0\.999, 0\.999\], got 1" ;;
+  scene_fog_height_falloff_negative) scene scene_fog_height_falloff_negative.json "scene_fog_height_falloff_negative\.json: /fog/height_falloff: expected a number in \[0, 1\], got -0\.01" ;;
+  scene_atmosphere_radius_zero) scene scene_atmosphere_radius_zero.json "scene_atmosphere_radius_zero\.json: /atmosphere/planet_radius: expected a number in \[1000, 1e\+09\], got 0" ;;
+  scene_atmosphere_mie_infinite) scene scene_atmosphere_mie_infinite.json "scene_atmosphere_mie_infinite\.json: not valid JSON: .*number overflow parsing '1e999'" ;;
+  scene_atmosphere_mie_anisotropy_one) scene scene_atmosphere_mie_anisotropy_one.json "scene_atmosphere_mie_anisotropy_one\.json: /atmosphere/mie/anisotropy: expected a number in \[-0\.999, 0\.999\], got 1" ;;
+  scene_medium_box_inverted) scene scene_medium_box_inverted.json "scene_medium_box_inverted\.json: /media/0/max/1: a box's max must be greater than its min" ;;
+  scene_medium_negative_absorption) scene scene_medium_negative_absorption.json "scene_medium_negative_absorption\.json: /media/0/absorption/2: expected a number in \[0, 1e6\] per metre" ;;
   scene_point_cone) scene scene_point_cone.json "scene_point_cone\.json: /lights/0/outer_cone: only a spot light has a cone" ;;
   scene_position_null) scene scene_position_null.json "scene_position_null\.json: /camera/position/1: expected a (finite )?number" ;;
   scene_msaa_string) scene scene_msaa_string.json "scene_msaa_string\.json: /render/msaa: expected an integer" ;;

@@ -1,5 +1,6 @@
 // The tracers' texts beside the BRDF, two compilers each: common/sampling.glsl,
-// common/view_layers.glsl, common/sky.glsl, common/spot_cone.glsl, common/phase.glsl
+// common/view_layers.glsl, common/sky.glsl, common/spot_cone.glsl, common/phase.glsl,
+// common/atmosphere.glsl
 // and common/terrain_layers.glsl run by the
 // GPU's GLSL compiler in a compute shader (test/*_eval.comp) and by the C++ build of
 // the same text (core/sampling.h, core/view_layers.h, core/sky.h,
@@ -20,6 +21,7 @@
 
 #include "../support/gl_test.h"
 #include "../support/random_draws.h"
+#include "core/atmosphere.h"
 #include "core/layer_texels.h"
 #include "core/sampling.h"
 #include "core/phase.h"
@@ -342,6 +344,72 @@ TEST_P(SpotConeText, GlslAndCppAgree) {
   for (float c : {-1.0f, -0.5f, 0.0f, 1.0f}) EXPECT_EQ(spottext::spotAttenuation(c, -3.0f, -2.0f), 1.0f);
   EXPECT_EQ(spottext::spotAttenuation(0.5f, 0.5f, 0.9f), 0.0f);
   EXPECT_EQ(spottext::spotAttenuation(0.75f, 0.5f, 1.0f), 0.25f);
+}
+
+struct AtmosphereCase {
+  glm::vec4 heights, layers;
+};
+struct AtmosphereResult {
+  glm::vec4 densities, extinction, bound, floorDensities, limb;
+};
+
+class AtmosphereText : public GlTest {};
+ENGINE_INSTANTIATE_OFFSCREEN(AtmosphereText);
+
+// 65536 cases: altitudes from 1 km under the ground to 120 km (past the air's top),
+// ranges of them (a tenth around the ozone tent's peak and edges), scale heights
+// and tents around Earth's, sun radii across [0, 1]. Limits, relative to the larger
+// of the value and 1e-30, in ulps per unit of the largest exponent |h / H| the case
+// takes (plus one): GLSL's exp is the driver's, exp2 of x log2(e), whose rounding of
+// the product moves the result by |x| ulps (measured: 59 ulps at x = 150, within 1
+// per unit everywhere): the densities within 2, the extinction, a sum of three such
+// products, within 4; the limb's pow within 16 ulps of 1 (the driver's pow).
+TEST_P(AtmosphereText, GlslAndCppAgree) {
+  std::mt19937 rng(20261210);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<AtmosphereCase> cases;
+  for (int i = 0; i < (1 << 16); ++i) {
+    const glm::vec4 layers(8000.0f * (0.5f + unit(rng)), 1200.0f * (0.5f + unit(rng)), 25000.0f * (0.8f + 0.4f * unit(rng)),
+                           15000.0f * (0.8f + 0.4f * unit(rng)));
+    float lo = 121000.0f * unit(rng) - 1000.0f, hi = lo + 20000.0f * unit(rng);
+    if (i % 10 == 1) lo = layers.z - layers.w * unit(rng), hi = layers.z + layers.w * unit(rng);
+    if (i % 10 == 2) lo = layers.z - layers.w, hi = lo;
+    cases.push_back({glm::vec4(121000.0f * unit(rng) - 1000.0f, lo, hi, unit(rng)), layers});
+  }
+  const std::vector<AtmosphereResult> gpu = test::runCases<AtmosphereResult>("test/atmosphere_eval.comp", cases);
+  ASSERT_EQ(gpu.size(), cases.size());
+  double worstDensity = 0.0, worstExtinction = 0.0, worstLimb = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const AtmosphereCase& c = cases[i];
+    atmospheretext::Atmosphere a = atmospheretext::atmosphereOf(AtmosphereDesc{});
+    a.rayleighScaleHeight = c.layers.x;
+    a.mieScaleHeight = c.layers.y;
+    a.ozoneCenter = c.layers.z;
+    a.ozoneHalfWidth = c.layers.w;
+    const glm::vec3 d = atmospheretext::atmosphereDensities(a, c.heights.x);
+    const glm::vec3 e = atmospheretext::atmosphereExtinction(a, d);
+    const glm::vec3 bound = atmospheretext::atmosphereDensityBound(a, c.heights.y, c.heights.z);
+    const glm::vec3 floorDensities = atmospheretext::atmosphereDensityFloor(a, c.heights.y, c.heights.z);
+    const glm::vec3 limb = atmospheretext::sunLimbDarkening(c.heights.w);
+    const double exponent =
+        1.0 + double(std::max({std::abs(c.heights.x), std::abs(c.heights.y), std::abs(c.heights.z)})) /
+                  double(std::min(c.layers.x, c.layers.y));
+    const auto apart = [&](float cpu, float glsl) {
+      return ulpsApart(cpu, glsl, std::max(std::abs(cpu), 1e-30f)) / exponent;
+    };
+    for (int k = 0; k < 3; ++k) {
+      worstDensity = std::max({worstDensity, apart(d[k], gpu[i].densities[k]), apart(bound[k], gpu[i].bound[k]),
+                               apart(floorDensities[k], gpu[i].floorDensities[k])});
+      worstExtinction = std::max(worstExtinction, apart(e[k], gpu[i].extinction[k]));
+      worstLimb = std::max(worstLimb, ulpsApart(limb[k], gpu[i].limb[k], 1.0f));
+    }
+  }
+  std::printf("atmosphere: %zu cases, densities within %.3g ulps a unit of exponent, extinction %.3g, limb within "
+              "%.3g ulps of 1\n",
+              cases.size(), worstDensity, worstExtinction, worstLimb);
+  EXPECT_LE(worstDensity, 2.0);
+  EXPECT_LE(worstExtinction, 4.0);
+  EXPECT_LE(worstLimb, 16.0);
 }
 
 struct PhaseResult {

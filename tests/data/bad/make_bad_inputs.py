@@ -325,6 +325,14 @@ def main(out):
         {"type": "spot", "position": [0, 3, 0], "inner_cone": 40, "outer_cone": 30}]}))
     write("scene_fog_negative_scattering.json", json.dumps({"fog": {"model": "volumetric", "scattering": [0.1, -1, 0.1]}}))
     write("scene_fog_anisotropy_one.json", json.dumps({"fog": {"model": "volumetric", "anisotropy": 1.0}}))
+    write("scene_fog_height_falloff_negative.json", json.dumps({"fog": {"model": "volumetric", "height_falloff": -0.01}}))
+    write("scene_atmosphere_radius_zero.json", json.dumps({"atmosphere": {"planet_radius": 0}}))
+    write("scene_atmosphere_mie_infinite.json", '{"atmosphere": {"mie": {"scattering": [1e-6, 1e999, 1e-6]}}}')
+    write("scene_atmosphere_mie_anisotropy_one.json", json.dumps({"atmosphere": {"mie": {"anisotropy": 1.0}}}))
+    write("scene_medium_box_inverted.json", json.dumps({"media": [
+        {"type": "box", "min": [0, 0, 0], "max": [1, -1, 1], "scattering": [0.1, 0.1, 0.1]}]}))
+    write("scene_medium_negative_absorption.json", json.dumps({"media": [
+        {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "absorption": [0.1, 0.1, -0.1]}]}))
     write("scene_point_cone.json", json.dumps({"lights": [{"type": "point", "outer_cone": 30}]}))
     write("scene_position_null.json", json.dumps({"camera": {"position": [1, None, 3]}}))
     write("scene_msaa_string.json", json.dumps({"render": {"msaa": "four"}}))
