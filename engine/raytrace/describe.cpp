@@ -48,12 +48,37 @@ std::string lightsOf(const RtScene& scene) {
 std::string fogOf(const FogDesc& fog, const RenderSettings& settings) {
   if (!fog.enabled) return "";
   if (fog.model == FogModel::Exponential || settings.method != Method::Path) return ", fog (exponential)";
-  char text[160];
+  char text[200];
   const glm::vec3 e = fog.scattering + fog.absorption;
-  std::snprintf(text, sizeof(text), ", fog: a homogeneous medium (extinction %g %g %g /m, albedo %g %g %g, g %g)", e.x,
-                e.y, e.z, e.x > 0.0f ? fog.scattering.x / e.x : 0.0f, e.y > 0.0f ? fog.scattering.y / e.y : 0.0f,
-                e.z > 0.0f ? fog.scattering.z / e.z : 0.0f, fog.anisotropy);
-  return text;
+  std::snprintf(text, sizeof(text), ", fog: a %s medium (extinction %g %g %g /m%s, albedo %g %g %g, g %g)",
+                fog.heightFalloff > 0.0f ? "height" : "homogeneous", e.x, e.y, e.z,
+                fog.heightFalloff > 0.0f ? " at y = 0" : "", e.x > 0.0f ? fog.scattering.x / e.x : 0.0f,
+                e.y > 0.0f ? fog.scattering.y / e.y : 0.0f, e.z > 0.0f ? fog.scattering.z / e.z : 0.0f, fog.anisotropy);
+  std::string out = text;
+  if (fog.heightFalloff > 0.0f) {
+    std::snprintf(text, sizeof(text), ", thinning e-fold every %g m", 1.0 / double(fog.heightFalloff));
+    out.insert(out.size() - 1, text);
+  }
+  return out;
+}
+
+// The atmosphere and the boxes of fog: media to the path tracer, not drawn by the
+// Whitted tracer.
+std::string mediaOf(const RtScene& scene, const RenderSettings& settings) {
+  const AtmosphereDesc& air = scene.atmosphere();
+  const std::size_t boxes = scene.media().size();
+  if (!air.enabled && boxes == 0) return "";
+  if (settings.method != Method::Path) return ", atmosphere and boxes of fog not drawn";
+  std::string out;
+  char text[200];
+  if (air.enabled) {
+    std::snprintf(text, sizeof(text), ", atmosphere: a planet of radius %g km under %g km of air (Rayleigh, Mie, ozone)",
+                  air.planetRadius / 1e3, air.thickness / 1e3);
+    out += text;
+  }
+  if (boxes > 0) out += ", " + std::to_string(boxes) + (boxes == 1 ? " box" : " boxes") + " of fog";
+  if (settings.mediumScatterings >= 0) out += ", " + std::to_string(settings.mediumScatterings) + " scattering(s) at most";
+  return out;
 }
 
 std::string environmentOf(const Environment& environment) {
@@ -106,7 +131,7 @@ std::string describe(const RtScene& scene, const RenderSettings& s) {
                 scene.materials().size(), textured, layered, scene.textures().size(),
                 scene.render().shading == Shading::Pbr ? "pbr" : "classic");
   out += line;
-  out += environmentOf(scene.environment()) + fogOf(scene.fog(), s) + "\n";
+  out += environmentOf(scene.environment()) + fogOf(scene.fog(), s) + mediaOf(scene, s) + "\n";
   return out;
 }
 

@@ -15,9 +15,17 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kFogCeilingDepth = 20.72;
 
 // A piece of ray spans about one scale height of altitude at the rate the ray rises
-// or sinks where the piece starts; rays nearer level than this take pieces of 50
-// scale heights.
-constexpr double kLevel = 0.02;
+// or sinks where the piece starts; rays nearer level than this take pieces of 20
+// scale heights (a level ray's altitude grows by another half of one in them).
+constexpr double kLevel = 0.05;
+
+// Gauss-Legendre's eight nodes on [-1, 1] (the positive half) and their weights:
+// exact for polynomials of degree 15.
+constexpr double kNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+constexpr double kWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+
+double mean(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
+double largest(const glm::vec3& v) { return double(std::max({v.x, v.y, v.z})); }
 
 // The parameter interval of the ray o + t d inside the box (empty: lo >= hi).
 void slab(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi, double* t0,
@@ -56,13 +64,6 @@ bool sphereRoots(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& cen
 
 }  // namespace
 
-// One ray being tracked: where it starts, its direction, its channel and where it ends.
-struct Media::Walk {
-  glm::dvec3 o, d;
-  int channel;
-  double end;
-};
-
 std::optional<Media> Media::of(const FogDesc& fog, const AtmosphereDesc& atmosphere,
                                const std::vector<MediumDesc>& boxes) {
   Media m;
@@ -86,14 +87,15 @@ std::optional<Media> Media::of(const FogDesc& fog, const AtmosphereDesc& atmosph
 double Media::altitude(const glm::dvec3& p) const { return glm::length(p - air_->center) - air_->bottom; }
 
 template <typename F>
-void Media::eachScatterer(const glm::dvec3& p, int c, F&& f) const {
+void Media::eachMedium(const glm::dvec3& p, F&& f) const {
   if (fog_) {
-    const double factor = fog_->falloff > 0.0 ? (p.y < fog_->ceiling ? std::exp(-fog_->falloff * p.y) : 0.0) : 1.0;
-    if (f(float(fog_->extinction[c] * factor), float(fog_->scattering[c] * factor), Phase{fog_->g, false})) return;
+    const float factor =
+        fog_->falloff > 0.0 ? (p.y < fog_->ceiling ? float(std::exp(-fog_->falloff * p.y)) : 0.0f) : 1.0f;
+    f(fog_->extinction * factor, fog_->scattering * factor, Phase{fog_->g, false});
   }
   for (const Box& b : boxes_) {
     if (glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max))) {
-      if (f(b.extinction[c], b.scattering[c], Phase{b.g, false})) return;
+      f(b.extinction, b.scattering, Phase{b.g, false});
     }
   }
   if (air_ && glm::length(p - air_->center) < air_->top) {
@@ -101,35 +103,43 @@ void Media::eachScatterer(const glm::dvec3& p, int c, F&& f) const {
     const glm::vec3 density = atmospheretext::atmosphereDensities(a, float(altitude(p)));
     const glm::vec3 extinction = atmospheretext::atmosphereExtinction(a, density);
     // Rayleigh's extinction is its scattering; Mie's and ozone's absorption go with Mie.
-    const float rayleigh = a.rayleighScattering[c] * density.x;
-    if (f(rayleigh, rayleigh, Phase{0.0f, true})) return;
-    f(extinction[c] - rayleigh, a.mieScattering[c] * density.y, Phase{a.mieAnisotropy, false});
+    const glm::vec3 rayleigh = a.rayleighScattering * density.x;
+    f(rayleigh, rayleigh, Phase{0.0f, true});
+    f(extinction - rayleigh, a.mieScattering * density.y, Phase{a.mieAnisotropy, false});
   }
 }
 
-float Media::airAt(const glm::dvec3& p, int channel) const {
-  if (glm::length(p - air_->center) >= air_->top) return 0.0f;
-  const atmospheretext::Atmosphere& a = air_->text;
-  return atmospheretext::atmosphereExtinction(a, atmospheretext::atmosphereDensities(a, float(altitude(p))))[channel];
-}
-
-Media::Coefficients Media::at(const glm::dvec3& p, int channel) const {
+Media::Coefficients Media::at(const glm::dvec3& p) const {
   Coefficients sum;
-  eachScatterer(p, channel, [&](float extinction, float scattering, Phase) {
+  eachMedium(p, [&](const glm::vec3& extinction, const glm::vec3& scattering, Phase) {
     sum.extinction += extinction;
     sum.scattering += scattering;
-    return false;
   });
   return sum;
 }
 
-Phase Media::phaseAt(const glm::dvec3& p, int channel, float u) const {
-  float left = u * at(p, channel).scattering;
+glm::vec3 Media::airExtinction(const glm::dvec3& p) const {
+  if (glm::length(p - air_->center) >= air_->top) return glm::vec3(0.0f);
+  const atmospheretext::Atmosphere& a = air_->text;
+  return atmospheretext::atmosphereExtinction(a, atmospheretext::atmosphereDensities(a, float(altitude(p))));
+}
+
+// The medium that scatters at p, drawn by u in proportion to the media's scattering
+// (their channels' mean); its scattering over the chance of drawing it.
+Phase Media::phaseAt(const glm::dvec3& p, float u, glm::vec3* scattering) const {
+  const Coefficients all = at(p);
+  const float total = (all.scattering.x + all.scattering.y + all.scattering.z) / 3.0f;
+  float left = u * total;
   Phase chosen;
-  eachScatterer(p, channel, [&](float, float scattering, Phase phase) {
-    if (scattering > 0.0f) chosen = phase;
-    left -= scattering;
-    return left < 0.0f;
+  *scattering = glm::vec3(0.0f);
+  bool done = false;
+  eachMedium(p, [&](const glm::vec3&, const glm::vec3& s, Phase phase) {
+    const float share = (s.x + s.y + s.z) / 3.0f;
+    if (done || !(share > 0.0f)) return;
+    chosen = phase;
+    *scattering = s * (total / share);
+    left -= share;
+    done = left < 0.0f;
   });
   return chosen;
 }
@@ -143,204 +153,197 @@ std::optional<double> Media::groundHit(const glm::dvec3& o, const glm::dvec3& d)
   return tNear;
 }
 
-// Where tracking along o + t d ends: maxDistance or the ground, whichever is nearer.
+// Where a ray along o + t d ends: maxDistance or the ground, whichever is nearer.
 double Media::end(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, bool* ground) const {
   const std::optional<double> g = groundHit(o, d);
   *ground = g && *g < maxDistance;
   return *ground ? *g : maxDistance;
 }
 
-double Media::pieceEnd(double t, const Walk& w) const {
-  double end = w.end;
+// The end of the piece of o + t d from t on (at most `end`) over which every
+// medium's extinction is smooth: boxes' faces, a height fog's ceiling, the air's top
+// and the ozone tent's kinks bound it; a height fog and the air pace it (a scale
+// height of altitude, at the rate the ray rises there). Infinity where nothing does:
+// only a homogeneous fog lies ahead.
+double Media::pieceEnd(const glm::dvec3& o, const glm::dvec3& d, double t, double end) const {
+  const auto boundary = [&](double at) {
+    if (at > t) end = std::min(end, at);
+  };
   for (const Box& b : boxes_) {
     double t0 = 0.0, t1 = 0.0;
-    slab(w.o, w.d, b.min, b.max, &t0, &t1);
-    if (t0 >= t1) continue;
-    if (t0 > t) {
-      end = std::min(end, t0);
-    } else if (t1 > t) {
-      end = std::min(end, t1);
-    }
+    slab(o, d, b.min, b.max, &t0, &t1);
+    if (t0 < t1) boundary(t0), boundary(t1);
   }
-  const glm::dvec3 p = w.o + t * w.d;
+  const glm::dvec3 p = o + t * d;
   double scale = kInfinity, rise = 0.0;
   if (fog_ && fog_->falloff > 0.0) {
-    if (w.d.y != 0.0) {
-      const double ceiling = (fog_->ceiling - w.o.y) / w.d.y;
-      if (ceiling > t) end = std::min(end, ceiling);
-    }
-    // Above its ceiling the fog is not there: no pace to keep.
-    if (p.y < fog_->ceiling) {
-      scale = 1.0 / fog_->falloff;
-      rise = std::abs(w.d.y);
-    }
+    if (d.y != 0.0) boundary((fog_->ceiling - o.y) / d.y);
+    if (p.y < fog_->ceiling) scale = 1.0 / fog_->falloff, rise = std::abs(d.y);
   }
   if (air_) {
-    // The top of the air is a boundary; beyond it the air is not there.
-    double tNear = 0.0, tFar = 0.0;
-    if (sphereRoots(w.o, w.d, air_->center, air_->top, &tNear, &tFar)) {
-      if (tNear > t) {
-        end = std::min(end, tNear);
-      } else if (tFar > t) {
-        end = std::min(end, tFar);
-      }
-    }
     const atmospheretext::Atmosphere& a = air_->text;
-    // The layer that holds most of this channel's extinction sets the pace.
-    const double air = a.rayleighScattering[w.channel] >= a.mieScattering[w.channel] + a.mieAbsorption[w.channel]
-                           ? a.rayleighScaleHeight
-                           : a.mieScaleHeight;
-    if (glm::length(p - air_->center) < air_->top && air < scale) {
-      scale = air;
-      rise = std::abs(glm::dot(w.d, glm::normalize(p - air_->center)));
+    const double ozone = air_->bottom + double(a.ozoneCenter);
+    for (double radius : {air_->top, ozone - a.ozoneHalfWidth, ozone, ozone + a.ozoneHalfWidth}) {
+      double tNear = 0.0, tFar = 0.0;
+      if (radius > air_->bottom && sphereRoots(o, d, air_->center, radius, &tNear, &tFar)) boundary(tNear), boundary(tFar);
+    }
+    const double h = altitude(p);
+    if (h < air_->top - air_->bottom) {
+      // Mie's pace while its extinction is at least a hundredth of Rayleigh's there.
+      const double mie = std::exp(-h / a.mieScaleHeight) * largest(a.mieScattering + a.mieAbsorption);
+      const double rayleigh = std::exp(-h / a.rayleighScaleHeight) * largest(a.rayleighScattering);
+      const double air = mie > 0.01 * rayleigh ? std::min(a.mieScaleHeight, a.rayleighScaleHeight) : a.rayleighScaleHeight;
+      if (air < scale) scale = air, rise = std::abs(glm::dot(d, glm::normalize(p - air_->center)));
     }
   }
   if (scale < kInfinity) end = std::min(end, t + scale / std::max(rise, kLevel));
   return end;
 }
 
-double Media::majorant(double t0, double t1, const Walk& w) const {
-  const int c = w.channel;
-  double sum = 0.0;
-  if (fog_) {
-    if (fog_->falloff == 0.0) {
-      sum += fog_->extinction[c];
-    } else {
-      const double lowest = std::min(w.o.y + t0 * w.d.y, w.o.y + t1 * w.d.y);
-      if (lowest < fog_->ceiling) sum += fog_->extinction[c] * std::exp(-fog_->falloff * lowest);
-    }
-  }
-  for (const Box& b : boxes_) {
-    double s0 = 0.0, s1 = 0.0;
-    slab(w.o, w.d, b.min, b.max, &s0, &s1);
-    if (s0 < s1 && s0 < t1 && s1 > t0) sum += b.extinction[c];
-  }
-  if (air_) {
-    const glm::dvec3 oc = w.o - air_->center;
-    const double closest = std::clamp(-glm::dot(oc, w.d), t0, t1);
-    const double lo = glm::length(oc + closest * w.d) - air_->bottom;
-    // A piece lies wholly inside the air or wholly outside it (pieceEnd).
-    if (lo < air_->top - air_->bottom) {
-      const double hi = t1 < kInfinity ? std::max(glm::length(oc + t0 * w.d), glm::length(oc + t1 * w.d)) - air_->bottom
-                                       : kInfinity;
-      const atmospheretext::Atmosphere& a = air_->text;
-      const glm::vec3 bound = atmospheretext::atmosphereDensityBound(a, float(lo), float(std::min(hi, 1e30)));
-      // float(lo) rounds; a bound a hair higher cannot fall short of the densities.
-      sum += double(atmospheretext::atmosphereExtinction(a, bound)[c]) * (1.0 + 1e-5);
-    }
-  }
-  return sum;
-}
-
-Media::Flight Media::track(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, int channel,
-                           Pcg32& rng) const {
-  Flight f;
-  bool ground = false;
-  const Walk w{o, d, channel, end(o, d, maxDistance, &ground)};
-  double t = 0.0;
-  while (t < w.end) {
-    const double pieceEnd = this->pieceEnd(t, w);
-    const double bound = majorant(t, pieceEnd, w);
-    while (bound > 0.0) {
-      const double next = t - std::log1p(-double(rng.uniform())) / bound;
-      if (next >= pieceEnd) break;
-      t = next;
-      const glm::dvec3 p = o + t * d;
-      const Coefficients k = at(p, channel);
-      if (double(rng.uniform()) * bound >= double(k.extinction)) continue;  // a null collision
-      f.distance = t;
-      if (!(k.scattering > 0.0f)) {
-        f.event = Event::Absorbed;
-        f.weight = 0.0f;
-        return f;
-      }
-      f.event = Event::Scattered;
-      f.weight = k.scattering / k.extinction;
-      f.phase = phaseAt(p, channel, rng.uniform());
-      return f;
-    }
-    t = pieceEnd;
-  }
-  f.distance = w.end;
-  if (ground) {
-    f.event = Event::Ground;
-    f.groundNormal = glm::normalize(o + w.end * d - air_->center);
-  }
-  return f;
-}
-
-// The optical depth of the fog and the boxes over [0, length] of o + t d in
-// `channel`, in closed form: a homogeneous fog's sigma length, a height fog's
-// integral of exp(-falloff y) up to its ceiling, each box's sigma times its chord.
-double Media::closedFormDepth(const glm::dvec3& o, const glm::dvec3& d, double length, int c) const {
-  double depth = 0.0;
-  if (fog_ && fog_->falloff == 0.0) depth += double(fog_->extinction[c]) * length;
+// The fog's and the boxes' optical depth over [a, b] of o + t d, in closed form: a
+// homogeneous fog's sigma (b - a), a height fog's integral of exp(-falloff y) below
+// its ceiling, each box's sigma times its chord.
+glm::dvec3 Media::closedFormDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const {
+  glm::dvec3 depth(0.0);
+  if (fog_ && fog_->falloff == 0.0) depth += glm::dvec3(fog_->extinction) * (b - a);
   if (fog_ && fog_->falloff > 0.0) {
-    // Where the ray is below the ceiling: [a, b].
-    double a = 0.0, b = length;
+    double lo = a, hi = b;  // below the ceiling
     if (d.y != 0.0) {
       const double crossing = (fog_->ceiling - o.y) / d.y;
-      if (d.y > 0.0) b = std::min(b, crossing);
-      if (d.y < 0.0) a = std::max(a, crossing);
+      if (d.y > 0.0) hi = std::min(hi, crossing);
+      if (d.y < 0.0) lo = std::max(lo, crossing);
     } else if (o.y >= fog_->ceiling) {
-      b = a;
+      hi = lo;
     }
-    if (b > a) {
-      // sigma exp(-k y(a)) (1 - exp(-k dy (b - a))) / (k dy), its limit (b - a) where
-      // dy -> 0: expm1 keeps it exact for nearly level rays.
-      const double k = fog_->falloff, x = k * d.y * (b - a);
-      const double start = double(fog_->extinction[c]) * std::exp(-k * (o.y + a * d.y));
-      depth += start * (b - a) * (x != 0.0 ? -std::expm1(-x) / x : 1.0);
+    if (hi > lo) {
+      // sigma exp(-k y(lo)) (1 - exp(-k dy (hi - lo))) / (k dy), its limit (hi - lo)
+      // where dy -> 0: expm1 keeps it exact for nearly level rays.
+      const double k = fog_->falloff, x = k * d.y * (hi - lo);
+      depth += glm::dvec3(fog_->extinction) * (std::exp(-k * (o.y + lo * d.y)) * (hi - lo) *
+                                               (x != 0.0 ? -std::expm1(-x) / x : 1.0));
     }
   }
   for (const Box& box : boxes_) {
     double t0 = 0.0, t1 = 0.0;
     slab(o, d, box.min, box.max, &t0, &t1);
-    t1 = std::min(t1, length);
-    if (t1 > t0) depth += double(box.extinction[c]) * (t1 - t0);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+    if (t1 > t0) depth += glm::dvec3(box.extinction) * (t1 - t0);
   }
   return depth;
 }
 
-// The air's part, by residual ratio tracking (Novak et al. 2014): along each piece,
-// the least density the piece can hold is taken in closed form, and only the rest,
-// between that and the most, is tracked.
-double Media::airTransmittance(const glm::dvec3& o, const glm::dvec3& d, double length, int channel, Pcg32& rng) const {
-  const Walk w{o, d, channel, length};
-  const glm::dvec3 oc = o - air_->center;
-  const atmospheretext::Atmosphere& a = air_->text;
-  double t = 0.0, through = 1.0;
-  while (t < length) {
-    const double pieceEnd = std::min(this->pieceEnd(t, w), length);
-    const double lo = glm::length(oc + std::clamp(-glm::dot(oc, d), t, pieceEnd) * d) - air_->bottom;
-    if (lo < air_->top - air_->bottom) {
-      const double hi = std::max(glm::length(oc + t * d), glm::length(oc + pieceEnd * d)) - air_->bottom;
-      const double most = double(atmospheretext::atmosphereExtinction(
-                              a, atmospheretext::atmosphereDensityBound(a, float(lo), float(hi)))[channel]) *
-                          (1.0 + 1e-5);
-      const double least = double(atmospheretext::atmosphereExtinction(
-                               a, atmospheretext::atmosphereDensityFloor(a, float(lo), float(hi)))[channel]) *
-                           (1.0 - 1e-5);
-      through *= std::exp(-least * (pieceEnd - t));
-      const double rate = most - least;
-      for (double s = t; rate > 0.0;) {
-        s -= std::log1p(-double(rng.uniform())) / rate;
-        if (s >= pieceEnd) break;
-        through *= 1.0 - (double(airAt(o + s * d, channel)) - least) / rate;
-      }
-    }
-    t = pieceEnd;
+// The air's optical depth over [a, b], within one piece: Gauss-Legendre.
+glm::dvec3 Media::airDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const {
+  if (!air_ || !(b > a)) return glm::dvec3(0.0);
+  const double half = 0.5 * (b - a), middle = 0.5 * (a + b);
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < 4; ++i) {
+    sum += kWeights[i] * (glm::dvec3(airExtinction(o + (middle - half * kNodes[i]) * d)) +
+                          glm::dvec3(airExtinction(o + (middle + half * kNodes[i]) * d)));
   }
-  return through;
+  return sum * half;
 }
 
-float Media::transmittance(const glm::dvec3& o, const glm::dvec3& d, double distance, int channel, Pcg32& rng) const {
+glm::dvec3 Media::opticalDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const {
+  glm::dvec3 depth = closedFormDepth(o, d, a, b);
+  if (!air_) return depth;
+  for (double t = a; t < b;) {
+    const double next = pieceEnd(o, d, t, b);
+    depth += airDepth(o, d, t, next);
+    t = next;
+  }
+  return depth;
+}
+
+// Where in [a, b], one piece, the optical depth of `channel` from a reaches `depth`
+// (less than the piece's): Newton's steps on it, kept within a shrinking bracket.
+double Media::solve(const glm::dvec3& o, const glm::dvec3& d, double a, double b, int c, double depth) const {
+  double lo = a, hi = b;
+  const double whole = closedFormDepth(o, d, a, b)[c] + airDepth(o, d, a, b)[c];
+  double s = a + (b - a) * std::clamp(depth / whole, 0.0, 1.0);
+  for (int i = 0; i < 40; ++i) {
+    const double f = closedFormDepth(o, d, a, s)[c] + airDepth(o, d, a, s)[c] - depth;
+    if (std::abs(f) <= 1e-12 * depth) break;
+    (f > 0.0 ? hi : lo) = s;
+    if (hi - lo <= 1e-13 * std::max(1.0, std::abs(s))) break;
+    const double sigma = double(at(o + s * d).extinction[c]);
+    double next = sigma > 0.0 ? s - f / sigma : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    s = next;
+  }
+  return s;
+}
+
+Media::Flight Media::fly(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, float uChannel, float u,
+                         float uPhase) const {
+  Flight f;
   bool ground = false;
-  const double length = end(o, d, distance, &ground);
-  if (ground) return 0.0f;
-  double through = std::exp(-closedFormDepth(o, d, length, channel));
-  if (air_ && through > 0.0) through *= airTransmittance(o, d, length, channel, rng);
-  return float(through);
+  const double e = end(o, d, maxDistance, &ground);
+  const int c = std::min(2, int(uChannel * 3.0f));
+  const double target = -std::log1p(-double(u));
+  glm::dvec3 tau(0.0);
+  double t = 0.0;
+  bool collided = false;
+  while (t < e && !collided) {
+    const double next = pieceEnd(o, d, t, e);
+    if (next == kInfinity) {
+      // Only a homogeneous fog lies ahead, for ever.
+      const glm::dvec3 rate = fog_ && fog_->falloff == 0.0 ? glm::dvec3(fog_->extinction) : glm::dvec3(0.0);
+      if (rate[c] > 0.0) {
+        const double s = t + (target - tau[c]) / rate[c];
+        tau += rate * (s - t), t = s, collided = true;
+      } else {
+        for (int k = 0; k < 3; ++k) tau[k] = rate[k] > 0.0 ? kInfinity : tau[k];
+        t = kInfinity;
+      }
+      break;
+    }
+    const glm::dvec3 piece = closedFormDepth(o, d, t, next) + airDepth(o, d, t, next);
+    if (tau[c] + piece[c] >= target) {
+      const double s = solve(o, d, t, next, c, target - tau[c]);
+      tau += closedFormDepth(o, d, t, s) + airDepth(o, d, t, s);
+      t = s, collided = true;
+    } else {
+      tau += piece, t = next;
+    }
+  }
+  const glm::dvec3 tr = glm::exp(-tau);
+  if (!collided) {
+    f.distance = e;
+    f.weight = mean(tr) > 0.0 ? glm::vec3(tr / mean(tr)) : glm::vec3(0.0f);
+    if (ground) {
+      f.event = Event::Ground;
+      f.groundNormal = glm::normalize(o + e * d - air_->center);
+    }
+    return f;
+  }
+  const glm::dvec3 p = o + t * d;
+  glm::vec3 scattering(0.0f);
+  f.event = Event::Scattered;
+  f.distance = t;
+  f.phase = phaseAt(p, uPhase, &scattering);
+  const double density = mean(glm::dvec3(at(p).extinction) * tr);
+  f.weight = density > 0.0 ? glm::vec3(glm::dvec3(scattering) * tr / density) : glm::vec3(0.0f);
+  return f;
+}
+
+glm::vec3 Media::transmittance(const glm::dvec3& o, const glm::dvec3& d, double distance) const {
+  bool ground = false;
+  const double e = end(o, d, distance, &ground);
+  if (ground) return glm::vec3(0.0f);
+  double finite = 0.0;
+  glm::dvec3 tau(0.0);
+  for (double t = 0.0; t < e;) {
+    const double next = pieceEnd(o, d, t, e);
+    if (next == kInfinity) {
+      const glm::dvec3 rate = fog_ && fog_->falloff == 0.0 ? glm::dvec3(fog_->extinction) : glm::dvec3(0.0);
+      for (int k = 0; k < 3; ++k) tau[k] = rate[k] > 0.0 ? kInfinity : tau[k];
+      break;
+    }
+    tau += airDepth(o, d, t, next);
+    finite = t = next;
+  }
+  return glm::vec3(glm::exp(-(tau + closedFormDepth(o, d, 0.0, finite))));
 }
 
 }  // namespace engine::rt

@@ -4,15 +4,14 @@
 // shaders/common/atmosphere.glsl in spherical shells over a planet whose surface
 // passes through y = 0) and boxes of fog (asset/scene_desc.h).
 //
-// A fog alone, homogeneous, is drawn analytically over the three channels at once
-// (medium.h). Anything else is tracked in one colour channel a path draws at its
-// start (the path's throughput is then three times that channel's): delta tracking
-// draws where it collides (Novak et al. 2018), against a majorant that bounds the
-// extinction over each piece of the ray: the exponential layers' at the piece's
-// lowest altitude, the ozone tent's at its peak where that lies in the piece, a
-// box's where the piece meets it; unbiased however loose the bound, the pieces keep
-// it tight. Shadow rays take the fog's and the boxes' optical depth in closed form
-// and the air's by residual ratio tracking (Novak et al. 2014).
+// Their optical depth along a ray is known, per channel: the fog's and the boxes' in
+// closed form, the air's by Gauss-Legendre quadrature over pieces of the ray short
+// enough that its densities are nearly polynomial there (far below 1e-6 relative;
+// Media.* test it against adaptive quadratures). So free flights are drawn as in a
+// homogeneous medium (medium.h): the distance by one channel chosen at random, by
+// inverting its optical depth, weighed over the three channels' densities (single
+// sample MIS over the channels); shadow rays take the transmittance itself. No
+// tracking noise, and no colour noise from paths that carry one channel.
 #include <optional>
 #include <vector>
 
@@ -21,7 +20,6 @@
 #include "asset/scene_desc.h"
 #include "core/atmosphere.h"
 #include "raytrace/medium.h"
-#include "raytrace/rng.h"
 
 namespace engine::rt {
 
@@ -37,34 +35,36 @@ class Media {
   static std::optional<Media> of(const FogDesc& fog, const AtmosphereDesc& atmosphere,
                                  const std::vector<MediumDesc>& boxes);
 
-  // A homogeneous fog alone: drawn analytically over all three channels.
+  // A homogeneous fog alone: medium.h's closed forms, as before any other medium.
   const std::optional<Medium>& homogeneous() const { return homogeneous_; }
-  bool tracked() const { return !homogeneous_.has_value(); }
   bool hasPlanet() const { return air_.has_value(); }
   glm::vec3 groundAlbedo() const { return air_ ? air_->groundAlbedo : glm::vec3(0.0f); }
 
-  enum class Event { Through, Scattered, Absorbed, Ground };
+  enum class Event { Through, Scattered, Ground };
   struct Flight {
     Event event = Event::Through;
     double distance = 0.0;  // to the collision, the ground, or maxDistance
-    float weight = 1.0f;    // the channel's throughput factor: the albedo at a scattering
+    // Scattered: the throughput's factor, scattering times transmittance over the
+    // distance's density; else transmittance over the chance of getting there.
+    glm::vec3 weight{1.0f};
     Phase phase;
     glm::dvec3 groundNormal{0.0};
   };
-  // Delta tracking in `channel` from o along the unit direction d, up to maxDistance
-  // (infinity: until the ray leaves every medium, or meets the planet's ground).
-  Flight track(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, int channel, Pcg32& rng) const;
-  // Ratio tracking: what reaches o + distance d of light from there, in `channel`;
-  // none where the planet is in the way.
-  float transmittance(const glm::dvec3& o, const glm::dvec3& d, double distance, int channel, Pcg32& rng) const;
+  // A free flight from o along the unit direction d, up to maxDistance (infinity:
+  // until the ray leaves every medium, or meets the planet's ground). `uChannel`
+  // picks the channel whose optical depth draws the distance, `u` draws it, `uPhase`
+  // the medium that scatters where several do.
+  Flight fly(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, float uChannel, float u, float uPhase) const;
+  // What reaches o of light from o + distance d (none where the planet is in the way).
+  glm::vec3 transmittance(const glm::dvec3& o, const glm::dvec3& d, double distance) const;
+  // The optical depth per channel over [a, b] of o + t d (b finite).
+  glm::dvec3 opticalDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
 
-  // At a point, in `channel`: the extinction and the scattering of all media there;
-  // and the phase of one of them, drawn by u in proportion to their scattering.
+  // At a point: the extinction and the scattering of all media there, per channel.
   struct Coefficients {
-    float extinction = 0.0f, scattering = 0.0f;
+    glm::vec3 extinction{0.0f}, scattering{0.0f};
   };
-  Coefficients at(const glm::dvec3& p, int channel) const;
-  Phase phaseAt(const glm::dvec3& p, int channel, float u) const;
+  Coefficients at(const glm::dvec3& p) const;
 
  private:
   struct Box {
@@ -84,19 +84,19 @@ class Media {
     double falloff;  // per metre; 0: homogeneous
     double ceiling;  // where a height fog has thinned a billionfold: none above
   };
-  struct Walk;
 
   double end(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, bool* ground) const;
-  double majorant(double t0, double t1, const Walk& walk) const;
-  double pieceEnd(double t, const Walk& walk) const;
-  // Calls f(scattering, phase) for each medium at p, in `channel`; f returns true to stop.
-  template <typename F>
-  void eachScatterer(const glm::dvec3& p, int channel, F&& f) const;
-  double closedFormDepth(const glm::dvec3& o, const glm::dvec3& d, double length, int channel) const;
-  double airTransmittance(const glm::dvec3& o, const glm::dvec3& d, double length, int channel, Pcg32& rng) const;
-  float airAt(const glm::dvec3& p, int channel) const;
+  double pieceEnd(const glm::dvec3& o, const glm::dvec3& d, double t, double end) const;
+  glm::dvec3 closedFormDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
+  glm::dvec3 airDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
+  glm::vec3 airExtinction(const glm::dvec3& p) const;
+  double solve(const glm::dvec3& o, const glm::dvec3& d, double a, double b, int channel, double depth) const;
+  Phase phaseAt(const glm::dvec3& p, float u, glm::vec3* scattering) const;
   std::optional<double> groundHit(const glm::dvec3& o, const glm::dvec3& d) const;
   double altitude(const glm::dvec3& p) const;
+  // Calls f(extinction, scattering, phase) for each medium at p.
+  template <typename F>
+  void eachMedium(const glm::dvec3& p, F&& f) const;
 
   std::optional<Medium> homogeneous_;
   std::optional<Fog> fog_;

@@ -113,7 +113,6 @@ class PathTracer {
     int passes = 0;              // through cut-away or transparent surfaces
     int depth = 0;
     float firstHit = -1.0f;  // the distance to the first surface the path scatters at; -1 none
-    int channel = -1;        // in tracked media, the colour channel the path carries (media.h)
     int scatterings = 0;     // in media
   };
   // A span's paths and their nearest hits, kept between calls so that no bounce
@@ -192,7 +191,7 @@ class PathTracer {
     if (path.absorption != glm::vec3(0.0f))
       beta *= glm::exp(-path.absorption * float(double(tHit) * glm::length(glm::dvec3(ray.d))));
     if constexpr (kMedium) {
-      if (media_->tracked()) return bounceInMedia(path, hit, v, counters);
+      if (!media_->homogeneous()) return bounceInMedia(path, hit, v, counters);
     }
     // In a homogeneous fog the ray may scatter before it gets there (medium.h).
     Medium::Flight flight;
@@ -250,7 +249,7 @@ class PathTracer {
     const glm::vec3 ns = glm::vec3(back ? -hit.ns : hit.ns);
     const glm::vec3 wo = -d;
     const Bsdf bsdf = pbr ? Bsdf::metallicRoughness(m, ns, wo, !back) : Bsdf::classic(m, ns, wo);
-    if (bsdf.hasDiffuseOrGlossy()) path.radiance += beta * directLight(hit, bsdf, ng, path, counters);
+    if (bsdf.hasDiffuseOrGlossy()) path.radiance += beta * directLight(hit, bsdf, ng, rng, counters);
     const glm::vec2 u = rng.uniform2();
     const BsdfSample s = bsdf.sample(u, rng.uniform());
     // A direction under the geometric surface would leak light through it; one
@@ -311,7 +310,7 @@ class PathTracer {
       if (!hitsArea(l, ray, d, tHit, &lightPdf, &distance)) continue;
       const glm::vec3 light = l.power * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, lightPdf));
       if constexpr (kMedium) {
-        sum += light * reachedWeight(distance);
+        sum += light * reachedWeight(ray, distance);
       } else {
         sum += light;
       }
@@ -331,23 +330,23 @@ class PathTracer {
     return sum + env_.radiance(d) * (countEmitters ? 1.0f : powerHeuristic(bsdfPdf, env_.pdf(d))) * escapeWeight;
   }
 
-  // What a flight that got `distance` metres on weighs: in a homogeneous fog, the
-  // transmittance over the chance of getting there (Medium::fly drew the distance by
-  // one channel's extinction, weighed over the three); tracked media leave the
-  // getting there to chance alone.
-  glm::vec3 reachedWeight(double distance) const {
-    if (!media_->homogeneous()) return glm::vec3(1.0f);
-    const glm::vec3 tr = media_->homogeneous()->transmittance(distance);
+  // What a flight that got `distance` metres along the ray weighs: the transmittance
+  // over the chance of getting there (the distance was drawn by one channel's
+  // optical depth, weighed over the three).
+  glm::vec3 reachedWeight(const Ray<T>& ray, double distance) const {
+    const glm::vec3 tr = media_->homogeneous()
+                             ? media_->homogeneous()->transmittance(distance)
+                             : media_->transmittance(glm::dvec3(ray.o), glm::normalize(glm::dvec3(ray.d)), distance);
     const float mean = (tr.x + tr.y + tr.z) / 3.0f;
     return mean > 0.0f ? tr / mean : glm::vec3(0.0f);
   }
 
   // Next-event estimation: one sample of every light and of the environment, each
   // with its shadow ray, weighed by MIS against the BSDF sample that could find it.
-  glm::vec3 directLight(const SurfaceInteraction<T>& si, const Bsdf& bsdf, const glm::vec3& ng, Path& path,
+  glm::vec3 directLight(const SurfaceInteraction<T>& si, const Bsdf& bsdf, const glm::vec3& ng, Pcg32& rng,
                         RayCounters& counters) const {
-    return sampleEveryLight(si, path.rng, [&](const LightSample<T>& ls, bool shadows) {
-      return kMedium ? shadeThroughMedium(si, ls, shadows, bsdf, ng, path, counters)
+    return sampleEveryLight(si, rng, [&](const LightSample<T>& ls, bool shadows) {
+      return kMedium ? shadeThroughMedium(si, ls, shadows, bsdf, ng, counters)
                      : shadeLight(si, ls, shadows, bsdf, ng, counters);
     });
   }
@@ -393,56 +392,45 @@ class PathTracer {
   // that is nothing). Kept apart and out of line: shade grown by it was no longer
   // inlined, which slowed scenes without a medium by 3 %.
   [[gnu::noinline]] glm::vec3 shadeThroughMedium(const SurfaceInteraction<T>& si, const LightSample<T>& ls,
-                                                 bool shadows, const Bsdf& bsdf, const glm::vec3& ng, Path& path,
+                                                 bool shadows, const Bsdf& bsdf, const glm::vec3& ng,
                                                  RayCounters& counters) const {
     const glm::vec3 lit = shadeLight(si, ls, shadows, bsdf, ng, counters);
     if (lit == glm::vec3(0.0f)) return lit;
-    return lit * mediumAlong(si.p, ls, path);
+    return lit * mediumAlong(si.p, ls);
   }
 
   // What the media let through from `from` to the light sample's end (all of it
   // without media; to a direction, what is left at infinity).
-  glm::vec3 mediumAlong(const Vec3<T>& from, const LightSample<T>& ls, Path& path) const {
+  glm::vec3 mediumAlong(const Vec3<T>& from, const LightSample<T>& ls) const {
     if constexpr (!kMedium) return glm::vec3(1.0f);
     const double distance = ls.toPoint ? glm::length(glm::dvec3(ls.target) - glm::dvec3(from))
                                        : std::numeric_limits<double>::infinity();
     if (media_->homogeneous()) return media_->homogeneous()->transmittance(distance);
     const glm::dvec3 dir = ls.toPoint ? (glm::dvec3(ls.target) - glm::dvec3(from)) / distance : glm::dvec3(ls.wi);
-    return glm::vec3(media_->transmittance(glm::dvec3(from), dir, distance, path.channel, path.rng));
+    return media_->transmittance(glm::dvec3(from), dir, distance);
   }
 
-  // bounce() in tracked media (media.h): the path carries one colour channel, drawn
-  // at its start; delta tracking finds where its ray collides before the surface, if
-  // it does, or the planet's ground where a ray that met no surface comes down.
+  // bounce() in media other than a homogeneous fog alone (media.h): where the ray
+  // scatters before the surface, if it does, or the planet's ground where a ray that
+  // met no surface comes down.
   [[gnu::noinline]] bool bounceInMedia(Path& path, const std::optional<SurfaceInteraction<T>>& hit, const Vec3<T>& v,
                                        RayCounters& counters) const {
-    if (path.channel < 0) {
-      path.channel = std::min(2, int(path.rng.uniform() * 3.0f));
-      glm::vec3 only(0.0f);
-      only[path.channel] = 3.0f;
-      path.beta *= only;
-    }
     const Ray<T>& ray = path.ray;
     const glm::vec3 d(v);
     const double length = glm::length(glm::dvec3(ray.d));
     // Without a surface the ray goes on through the air, to space or the ground.
     const double maxDistance =
         hit ? double(hit->t) * length : (space_ ? std::numeric_limits<double>::infinity() : double(ray.tMax) * length);
-    const Media::Flight f = media_->track(glm::dvec3(ray.o), glm::dvec3(v), maxDistance, path.channel, path.rng);
+    const float uChannel = path.rng.uniform(), u = path.rng.uniform();
+    const Media::Flight f = media_->fly(glm::dvec3(ray.o), glm::dvec3(v), maxDistance, uChannel, u, path.rng.uniform());
     const bool through = f.event == Media::Event::Through;
     const T tEnd = through ? (hit ? hit->t : ray.tMax) : T(f.distance / length);
-    path.radiance += path.beta * emittersAlong(ray, d, tEnd, !hit && through, path, glm::vec3(1.0f));
-    switch (f.event) {
-      case Media::Event::Absorbed:
-        return false;
-      case Media::Event::Scattered:
-        path.beta *= f.weight;
-        return scatter(path, ray(tEnd), d, f.phase, counters);
-      case Media::Event::Ground:
-        return ground(path, glm::dvec3(ray.o) + f.distance * glm::dvec3(v), f.groundNormal, v, counters);
-      case Media::Event::Through:
-        break;
-    }
+    path.radiance += path.beta * emittersAlong(ray, d, tEnd, !hit && through, path, f.weight);
+    path.beta *= f.weight;
+    if (path.beta == glm::vec3(0.0f)) return false;
+    if (f.event == Media::Event::Scattered) return scatter(path, ray(tEnd), d, f.phase, counters);
+    if (f.event == Media::Event::Ground)
+      return ground(path, glm::dvec3(ray.o) + f.distance * glm::dvec3(v), f.groundNormal, v, counters);
     return hit && surface(path, *hit, v, counters);
   }
 
@@ -473,7 +461,7 @@ class PathTracer {
     at.p = p;
     at.n = Vec3<T>(0);
     path.radiance += path.beta * sampleEveryLight(at, path.rng, [&](const LightSample<T>& ls, bool shadows) {
-      return shadeInMedium(at, ls, shadows, d, phase, path, counters);
+      return shadeInMedium(at, ls, shadows, d, phase, counters);
     });
     const glm::vec2 u = path.rng.uniform2();
     const glm::vec3 wi =
@@ -488,11 +476,11 @@ class PathTracer {
   }
 
   glm::vec3 shadeInMedium(const SurfaceInteraction<T>& at, const LightSample<T>& ls, bool shadows, const glm::vec3& d,
-                          Phase phase, Path& path, RayCounters& counters) const {
+                          Phase phase, RayCounters& counters) const {
     if (ls.value == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const float visible = shadows ? transmittance(at, ls, counters) : 1.0f;
     if (visible <= 0.0f) return glm::vec3(0.0f);
-    const glm::vec3 through = mediumAlong(at.p, ls, path);
+    const glm::vec3 through = mediumAlong(at.p, ls);
     if (through == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const float density = phaseValue(phase, glm::dot(d, ls.wi));
     const float weight = ls.pdf > 0.0f ? powerHeuristic(ls.pdf, density) : 1.0f;

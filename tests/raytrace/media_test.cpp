@@ -1,7 +1,7 @@
-// The path tracer's tracked media (raytrace/media.h): the atmosphere's layers, a
-// height fog and boxes, against closed forms and quadratures: the columns of air,
-// the trackers' transmittance and free flights, the single-scattered sky, a
-// volumetric white furnace, and an area light seen through a fog.
+// The path tracer's media (raytrace/media.h): the atmosphere's layers, a height fog
+// and boxes, against closed forms and quadratures: the columns of air, the
+// transmittance and the free flights, the single-scattered sky, a volumetric white
+// furnace, and an area light seen through a fog.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/phase.h"
+#include "raytrace/describe.h"
 #include "raytrace/integrator.h"
 #include "raytrace/media.h"
 #include "raytrace/rng.h"
@@ -29,14 +30,7 @@ engine::AtmosphereDesc earth() {
 }
 
 engine::FogDesc heightFog(glm::vec3 scattering, glm::vec3 absorption, float falloff, float g = 0.0f) {
-  engine::FogDesc fog;
-  fog.enabled = true;
-  fog.model = engine::FogModel::Volumetric;
-  fog.scattering = scattering;
-  fog.absorption = absorption;
-  fog.heightFalloff = falloff;
-  fog.anisotropy = g;
-  return fog;
+  return volumetricFog(scattering, absorption, g, falloff);
 }
 
 engine::MediumDesc box(glm::dvec3 min, glm::dvec3 max, glm::vec3 scattering, glm::vec3 absorption) {
@@ -55,7 +49,7 @@ double opticalDepth(const rt::Media& media, glm::dvec3 o, glm::dvec3 d, double l
   cuts.push_back(0.0);
   cuts.push_back(length);
   std::sort(cuts.begin(), cuts.end());
-  const auto extinction = [&](double t) { return double(media.at(o + t * d, channel).extinction); };
+  const auto extinction = [&](double t) { return double(media.at(o + t * d).extinction[channel]); };
   double sum = 0.0;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     const double a = std::clamp(cuts[i], 0.0, length), b = std::clamp(cuts[i + 1], 0.0, length);
@@ -84,7 +78,7 @@ TEST(Media, AtmosphereColumnsAreTheLayersClosedForms) {
   const engine::AtmosphereDesc a = earth();
   const std::optional<rt::Media> media = rt::Media::of(engine::FogDesc{}, a, {});
   ASSERT_TRUE(media);
-  EXPECT_TRUE(media->tracked());
+  EXPECT_FALSE(media->homogeneous());
   const double top = a.thickness;
   for (int c = 0; c < 3; ++c) {
     const double rayleigh = a.rayleighScattering[c] * a.rayleighScaleHeight * (1.0 - std::exp(-top / a.rayleighScaleHeight));
@@ -103,17 +97,12 @@ struct TrackedRay {
   double length;
 };
 
-// Ratio tracking's transmittance, the mean of 200000 estimates, against exp of the
-// quadrature's optical depth, per channel, along rays through Earth's air (level at
-// the ground, rising at 5 and 30 degrees, down from 3 km and level at 20 km), through
-// a height fog and through a box: within 4 standard errors, and 1e-7 of the
-// transmittance (the fog's and the box's are closed forms, exact but for the
-// densities' float rounding). Where the transmittance is above 1 %, the air's errors
-// are under 4e-3 of it (measured 3e-3 at most, level at the ground), so the test
-// sees a mistake of 1.6 %. (The tracker's noise, not the quadrature, sets that
-// figure: the optical depth it estimates is the closed form's to 1e-6,
-// AtmosphereColumnsAreTheLayersClosedForms.)
-TEST(Media, RatioTrackingIsTheQuadraturesTransmittance) {
+// The transmittance shadow rays take (closed forms, and the air's Gauss-Legendre
+// pieces) against exp of an adaptive quadrature's optical depth, per channel, along
+// rays through Earth's air (level at the ground, rising at 5 and 30 degrees, down
+// from 3 km and level at 20 km), through a height fog and through a box: within 1e-6
+// relative (the issue asks 1e-4; the densities are float, 6e-8).
+TEST(Media, TransmittanceIsTheQuadratures) {
   const double r = earth().planetRadius, top = r + earth().thickness;
   const auto rising = [](double degrees) {
     return glm::dvec3(std::cos(glm::radians(degrees)), std::sin(glm::radians(degrees)), 0.0);
@@ -126,62 +115,68 @@ TEST(Media, RatioTrackingIsTheQuadraturesTransmittance) {
   };
   std::vector<Case> cases;
   const auto air = rt::Media::of(engine::FogDesc{}, earth(), {});
-  cases.push_back({air, {"air, level", {0, 2, 0}, {1, 0, 0}, exitDistance({0, 2, 0}, {1, 0, 0}, top, r)}, {}});
-  cases.push_back({air, {"air, 5 degrees", {0, 2, 0}, rising(5), exitDistance({0, 2, 0}, rising(5), top, r)}, {}});
-  cases.push_back({air, {"air, 30 degrees", {0, 2, 0}, rising(30), exitDistance({0, 2, 0}, rising(30), top, r)}, {}});
-  cases.push_back({air, {"air, down from 3 km", {0, 3000, 0}, down, 50e3}, {}});
-  cases.push_back({air, {"air, level at 20 km", {0, 20e3, 0}, {0, 0, 1}, 600e3}, {}});
+  // The ozone tent's kinks, where the rays cross 10, 25 and 40 km.
+  const auto kinks = [&](glm::dvec3 o, glm::dvec3 d) {
+    std::vector<double> cuts;
+    for (double h : {10e3, 25e3, 40e3}) {
+      const glm::dvec3 oc = o - glm::dvec3(0.0, -r, 0.0);
+      const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - (r + h) * (r + h);
+      if (b * b - c >= 0.0) cuts.push_back(-b + std::sqrt(b * b - c)), cuts.push_back(-b - std::sqrt(b * b - c));
+    }
+    return cuts;
+  };
+  const auto airCase = [&](const char* name, glm::dvec3 o, glm::dvec3 d, double length) {
+    cases.push_back({air, {name, o, d, length}, kinks(o, d)});
+  };
+  airCase("air, level", {0, 2, 0}, {1, 0, 0}, exitDistance({0, 2, 0}, {1, 0, 0}, top, r));
+  airCase("air, 5 degrees", {0, 2, 0}, rising(5), exitDistance({0, 2, 0}, rising(5), top, r));
+  airCase("air, 30 degrees", {0, 2, 0}, rising(30), exitDistance({0, 2, 0}, rising(30), top, r));
+  airCase("air, down from 3 km", {0, 3000, 0}, down, 50e3);
+  airCase("air, level at 20 km", {0, 20e3, 0}, {0, 0, 1}, 600e3);
   const engine::FogDesc fog = heightFog(glm::vec3(0.005f, 0.01f, 0.02f), glm::vec3(0.002f), 0.1f);
   cases.push_back({rt::Media::of(fog, {}, {}), {"height fog, rising", {0, -5, 0}, rising(10), 2000.0}, {}});
   cases.push_back({rt::Media::of(fog, {}, {}), {"height fog, sinking", {0, 40, 0}, -rising(20), 150.0}, {}});
   const engine::MediumDesc b = box({1, -1, -1}, {3, 1, 1}, glm::vec3(0.3f, 0.6f, 0.9f), glm::vec3(0.2f));
   cases.push_back({rt::Media::of(engine::FogDesc{}, {}, {b}), {"box", {0, 0, 0}, rising(15), 10.0},
                    {1.0 / std::cos(glm::radians(15.0)), 1.0 / std::sin(glm::radians(15.0))}});
-  rt::Pcg32 rng(2026u, 12u);
-  const int n = 200000;
+  double worst = 0.0;
   for (const Case& k : cases) {
     ASSERT_TRUE(k.media) << k.ray.name;
+    const glm::vec3 tr = k.media->transmittance(k.ray.o, k.ray.d, k.ray.length);
     for (int c = 0; c < 3; ++c) {
       const double truth = std::exp(-opticalDepth(*k.media, k.ray.o, k.ray.d, k.ray.length, c, k.cuts));
-      double sum = 0.0, squares = 0.0;
-      for (int i = 0; i < n; ++i) {
-        const double t = k.media->transmittance(k.ray.o, k.ray.d, k.ray.length, c, rng);
-        sum += t;
-        squares += t * t;
-      }
-      const double mean = sum / n, error = std::sqrt(std::max(squares / n - mean * mean, 0.0) / (n - 1));
-      std::printf("%s, channel %d: %.6f +- %.2g, quadrature %.6f\n", k.ray.name, c, mean, error, truth);
-      EXPECT_NEAR(mean, truth, 4.0 * error + 1e-7 * truth) << k.ray.name << ", channel " << c;
-      if (truth > 0.01) {
-        EXPECT_LT(error, 4e-3 * truth) << k.ray.name << ", channel " << c;
-      }
+      std::printf("%s, channel %d: %.8f, quadrature %.8f\n", k.ray.name, c, double(tr[c]), truth);
+      EXPECT_NEAR(double(tr[c]) / truth, 1.0, 1e-6) << k.ray.name << ", channel " << c;
+      worst = std::max(worst, std::abs(double(tr[c]) / truth - 1.0));
     }
   }
+  std::printf("transmittance: within %.2g of the quadratures\n", worst);
 }
 
 // The planet's ground stops light: a ray down into it lets nothing through, and a
-// ray from above toward the ground ends there.
+// flight from above toward the ground ends there, on the planet's sphere.
 TEST(Media, TheGroundStopsWhatReachesIt) {
   const auto air = rt::Media::of(engine::FogDesc{}, earth(), {});
   rt::Pcg32 rng(7u, 1u);
   const glm::dvec3 o(0, 1000, 0), d = glm::normalize(glm::dvec3(1, -0.1, 0));
-  EXPECT_EQ(air->transmittance(o, d, std::numeric_limits<double>::infinity(), 1, rng), 0.0f);
+  EXPECT_EQ(air->transmittance(o, d, std::numeric_limits<double>::infinity()), glm::vec3(0.0f));
   int ground = 0;
   for (int i = 0; i < 1000; ++i) {
-    const rt::Media::Flight f = air->track(o, d, std::numeric_limits<double>::infinity(), 0, rng);
+    const rt::Media::Flight f =
+        air->fly(o, d, std::numeric_limits<double>::infinity(), rng.uniform(), rng.uniform(), rng.uniform());
     if (f.event == rt::Media::Event::Ground) {
       ++ground;
       EXPECT_NEAR(glm::length(o + f.distance * d - glm::dvec3(0, -earth().planetRadius, 0)), earth().planetRadius, 1e-3);
     }
   }
-  EXPECT_GT(ground, 800);  // about 10 km of air at the ground, red: 94 % get there
+  EXPECT_GT(ground, 800);  // about 10 km of air down to the ground: 80 to 94 % get there
 }
 
-// Delta tracking's free flights: the share of flights that collide before s is
-// 1 - T(s), and their weights (the albedo where they collide) sum to the integral
-// of sigma_s T over [0, s]; 400000 flights per channel along a rising ray through
-// Earth's air and a height fog, within 4 standard errors.
-TEST(Media, DeltaTrackingCollidesWhereTheExtinctionSays) {
+// Free flights per channel: over 400000 flights along a rising ray through Earth's
+// air and through a height fog, the weights of those that got past s average to the
+// transmittance T(s), and those of the flights that scattered before it to the
+// integral of sigma_s T over [0, s]; within 4 standard errors.
+TEST(Media, FlightsAreUnbiasedPerChannel) {
   const engine::FogDesc fog = heightFog(glm::vec3(0.02f, 0.01f, 0.0f), glm::vec3(0.005f, 0.0f, 0.01f), 0.02f);
   struct Case {
     const char* name;
@@ -195,71 +190,74 @@ TEST(Media, DeltaTrackingCollidesWhereTheExtinctionSays) {
   rt::Pcg32 rng(99u, 3u);
   const int n = 400000;
   for (const Case& k : cases) {
+    // The truth on a fine grid: tau by the trapezoid rule, the scattered integral by
+    // Simpson's over the same points.
+    const int steps = 20000;
+    const double h = k.s / steps;
+    glm::dvec3 tau(0.0), scattered(0.0), previous(k.media->at(k.o).extinction);
+    std::vector<glm::dvec3> f(steps + 1);
+    f[0] = glm::dvec3(k.media->at(k.o).scattering);
+    for (int i = 1; i <= steps; ++i) {
+      const rt::Media::Coefficients here = k.media->at(k.o + (i * h) * k.d);
+      tau += 0.5 * h * (previous + glm::dvec3(here.extinction));
+      previous = glm::dvec3(here.extinction);
+      f[std::size_t(i)] = glm::dvec3(here.scattering) * glm::exp(-tau);
+    }
+    for (int i = 0; i + 2 <= steps; i += 2) scattered += h / 3.0 * (f[i] + 4.0 * f[i + 1] + f[i + 2]);
+    const glm::dvec3 reached = glm::exp(-tau);
+    glm::dvec3 sums[2] = {glm::dvec3(0.0), glm::dvec3(0.0)}, squares[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (int i = 0; i < n; ++i) {
+      const rt::Media::Flight flight = k.media->fly(k.o, k.d, k.s, rng.uniform(), rng.uniform(), rng.uniform());
+      const int j = flight.event == rt::Media::Event::Scattered ? 1 : 0;
+      sums[j] += glm::dvec3(flight.weight);
+      squares[j] += glm::dvec3(flight.weight) * glm::dvec3(flight.weight);
+    }
     for (int c = 0; c < 3; ++c) {
-      // The truth on a fine grid: tau by the trapezoid rule, the weight's integral by
-      // Simpson's over the same points.
-      const int steps = 20000;
-      const double h = k.s / steps;
-      double tau = 0.0, scattered = 0.0, previous = k.media->at(k.o, c).extinction;
-      std::vector<double> f(steps + 1);
-      f[0] = double(k.media->at(k.o, c).scattering);
-      for (int i = 1; i <= steps; ++i) {
-        const rt::Media::Coefficients here = k.media->at(k.o + (i * h) * k.d, c);
-        tau += 0.5 * h * (previous + here.extinction);
-        previous = here.extinction;
-        f[std::size_t(i)] = double(here.scattering) * std::exp(-tau);
+      for (int j = 0; j < 2; ++j) {
+        const double mean = sums[j][c] / n, error = std::sqrt(std::max(squares[j][c] / n - mean * mean, 0.0) / (n - 1));
+        const double truth = j == 1 ? scattered[c] : reached[c];
+        std::printf("%s, channel %d, %s: %.5f +- %.2g (truth %.5f)\n", k.name, c, j ? "scattered" : "reached", mean,
+                    error, truth);
+        EXPECT_NEAR(mean, truth, 4.0 * error + 1e-5 * truth + 1e-9) << k.name << ", channel " << c << ", " << j;
       }
-      for (int i = 0; i + 2 <= steps; i += 2) scattered += h / 3.0 * (f[i] + 4.0 * f[i + 1] + f[i + 2]);
-      const double collide = 1.0 - std::exp(-tau);
-      int collided = 0;
-      double weights = 0.0, squares = 0.0;
-      for (int i = 0; i < n; ++i) {
-        const rt::Media::Flight flight = k.media->track(k.o, k.d, k.s, c, rng);
-        if (flight.event == rt::Media::Event::Through) continue;
-        ++collided;
-        weights += flight.weight;
-        squares += double(flight.weight) * flight.weight;
-      }
-      const double share = double(collided) / n, shareError = std::sqrt(collide * (1.0 - collide) / n);
-      const double mean = weights / n, meanError = std::sqrt(std::max(squares / n - mean * mean, 0.0) / (n - 1));
-      std::printf("%s, channel %d: collided %.5f (truth %.5f), weights %.5f (truth %.5f)\n", k.name, c, share, collide,
-                  mean, scattered);
-      EXPECT_NEAR(share, collide, 4.0 * shareError + 1e-6) << k.name << ", channel " << c;
-      EXPECT_NEAR(mean, scattered, 4.0 * meanError + 1e-5 * scattered + 1e-9) << k.name << ", channel " << c;
     }
   }
 }
 
-// The volumetric white furnace with tracked media: inside a closed black sphere that
-// emits 1, a height fog (2.5 per metre at y = 0, thinning e-fold every 2 m) and a box
-// of haze, all scattering and absorbing nothing (albedo 1, g 0.6 and 0): radiance 1
-// everywhere. 16 x 16 at 256 spp: the mean within 0.025 per channel; each pixel's
-// mean over its channels within 10 % (a path carries one channel, drawn at its
-// start, so a pixel's channels differ by which ones its paths drew; their mean does
-// not).
-TEST(Media, TrackedWhiteFurnaceIsOne) {
+// The volumetric white furnace with other media than a homogeneous fog: inside a
+// closed black sphere of radius 2 that emits 1, a height fog (1.2 per metre at y = 0,
+// thinning e-fold every 2 m) and a box of haze, all scattering and absorbing nothing
+// (albedo 1, g 0.6 and 0): radiance 1 everywhere. (Much denser, and the paths that
+// 1024 bounces cut short would take light away.) 16 x 16 at 256 spp: the mean within
+// 0.025 per channel; each pixel within 50 % (the box is coloured, so the flights'
+// weights differ by channel, and 256 paths leave a pixel noisy: measured 39 % at
+// most; a channel lost would be 100 %).
+TEST(Media, WhiteFurnaceIsOne) {
   rt::RtScene scene = emptyScene(lookAt({0.1, -0.2, 0.3}, {1, 0.5, 2}, 90.0));
   MaterialDesc wall = classic(glm::vec3(0.0f), 0.0f, 0.0f);
   wall.emission = glm::vec3(1.0f);
   scene.addSphere({0, 0, 0}, 2.0, scene.addMaterial(wall));
-  scene.setFog(heightFog(glm::vec3(2.5f), glm::vec3(0.0f), 0.5f, 0.6f));
-  scene.setMedia({box({-1, -1, -1}, {1, 0.5, 1.5}, glm::vec3(1.5f, 1.0f, 3.0f), glm::vec3(0.0f))});
-  const rt::RenderResult r = rt::Integrator(scene, pathSettings(16, 16, 256, 256)).render();
+  scene.setFog(heightFog(glm::vec3(1.2f), glm::vec3(0.0f), 0.5f, 0.6f));
+  scene.setMedia({box({-1, -1, -1}, {1, 0.5, 1.5}, glm::vec3(0.6f, 0.4f, 1.2f), glm::vec3(0.0f))});
+  const rt::RenderResult r = rt::Integrator(scene, pathSettings(16, 16, 256, 1024)).render();
   const glm::dvec3 mean = meanOf(r.image);
-  std::printf("tracked furnace: mean %.4f %.4f %.4f\n", mean.x, mean.y, mean.z);
+  std::printf("furnace: mean %.4f %.4f %.4f\n", mean.x, mean.y, mean.z);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], 1.0, 0.025);
-  for (const glm::vec3& p : r.image.pixels) ASSERT_NEAR((p.x + p.y + p.z) / 3.0f, 1.0, 0.1);
+  double worst = 0.0;
+  for (const glm::vec3& p : r.image.pixels) {
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(p[c]) - 1.0));
+  }
+  std::printf("furnace: worst pixel %.3f from 1\n", worst);
+  EXPECT_LT(worst, 0.5);
 }
 
 // An area light 5 m away, seen through a medium that only absorbs, by channel (0.1,
 // 0.15, 0.2 per metre): each pixel shows exp(-absorption * distance) of its radiance,
 // through a homogeneous fog (drawn over the three channels at once) and through a
 // box of the same fog (tracked). 16 x 16 at 1024 spp against the closed forms at the
-// pixel centres: within 2.5 % per channel, 4 standard errors of the box's noise (a
-// path carries one channel: a third of the 262144 paths each, reaching the light
-// with probability 0.35 in blue: 0.45 % from that, 0.3 % from how many drew it). A
-// light counted at the transmittance of its distance only when the flight got past
-// it would show exp(-2 absorption * distance): 40 to 60 % too dark.
+// pixel centres: within 1 % per channel (the flights' noise: measured 0.3 % at
+// most). A light counted at the transmittance of its distance only when the flight
+// got past it would show exp(-2 absorption * distance): 40 to 60 % too dark.
 TEST(Media, AnAreaLightThroughAnAbsorbingFogIsBeerLambert) {
   const glm::vec3 absorption(0.1f, 0.15f, 0.2f);
   for (bool tracked : {false, true}) {
@@ -279,20 +277,11 @@ TEST(Media, AnAreaLightThroughAnAbsorbingFogIsBeerLambert) {
     }
     const int side = 16;
     const rt::RenderResult r = rt::Integrator(scene, pathSettings(side, side, 1024)).render();
-    const double tanHalf = std::tan(20.0 * kPi / 180.0);
-    glm::dvec3 expected(0.0);
-    for (int y = 0; y < side; ++y) {
-      for (int x = 0; x < side; ++x) {
-        const double px = (2.0 * (x + 0.5) / side - 1.0) * tanHalf, py = (2.0 * (y + 0.5) / side - 1.0) * tanHalf;
-        const double distance = 5.0 * std::sqrt(1.0 + px * px + py * py);
-        for (int c = 0; c < 3; ++c) expected[c] += std::exp(-double(absorption[c]) * distance);
-      }
-    }
-    expected /= double(side * side);
+    const glm::dvec3 expected = beerLambertMean(side, 40.0, 5.0, absorption);
     const glm::dvec3 mean = meanOf(r.image);
     std::printf("%s: mean %.4f %.4f %.4f, closed form %.4f %.4f %.4f\n", tracked ? "box" : "fog", mean.x, mean.y,
                 mean.z, expected.x, expected.y, expected.z);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c] / expected[c], 1.0, 0.025) << (tracked ? "box" : "fog") << c;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c] / expected[c], 1.0, 0.01) << (tracked ? "box" : "fog") << c;
   }
 }
 
@@ -353,6 +342,28 @@ TEST(Media, SingleScatteredZenithIsItsIntegral) {
     EXPECT_NEAR(mean, truth, 4.0 * error) << "channel " << c;
     EXPECT_LT(error, 0.03 * truth) << "channel " << c;
   }
+}
+
+// --describe says which media each integrator draws: the path tracer the height fog,
+// the planet's air and the boxes; the Whitted tracer the fog's stand-in, and not the
+// rest.
+TEST(Media, DescribeSaysWhatEachTracerDraws) {
+  rt::RtScene scene = emptyScene(lookAt({0, 1, 0}, {0, 1, 1}));
+  scene.setFog(heightFog(glm::vec3(0.02f), glm::vec3(0.0f), 0.05f, 0.3f));
+  scene.setAtmosphere(earth());
+  scene.setMedia({box({0, 0, 0}, {1, 1, 1}, glm::vec3(0.1f), glm::vec3(0.0f))});
+  const std::string path = rt::describe(scene, pathSettings(8, 8, 1));
+  EXPECT_NE(path.find("fog: a height medium (extinction 0.02 0.02 0.02 /m at y = 0, albedo 1 1 1, g 0.3, thinning e-fold "
+                      "every 20 m)"),
+            std::string::npos)
+      << path;
+  EXPECT_NE(path.find("atmosphere: a planet of radius 6360 km under 100 km of air (Rayleigh, Mie, ozone), 1 box of fog"),
+            std::string::npos)
+      << path;
+  rt::RenderSettings whitted = pathSettings(8, 8, 1);
+  whitted.method = rt::Method::Whitted;
+  EXPECT_NE(rt::describe(scene, whitted).find(", fog (exponential), atmosphere and boxes of fog not drawn"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -21,13 +21,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 engine::FogDesc volumetric(glm::vec3 scattering, glm::vec3 absorption, float g = 0.0f) {
-  engine::FogDesc fog;
-  fog.enabled = true;
-  fog.model = engine::FogModel::Volumetric;
-  fog.scattering = scattering;
-  fog.absorption = absorption;
-  fog.anisotropy = g;
-  return fog;
+  return volumetricFog(scattering, absorption, g);
 }
 
 // The volumetric white furnace: inside a closed black sphere that emits 1, a medium
@@ -63,16 +57,7 @@ TEST(Medium, AbsorptionIsBeerLambertPerChannel) {
   scene.setFog(volumetric(glm::vec3(0.0f), absorption));
   const int side = 32;
   const rt::RenderResult r = rt::Integrator(scene, pathSettings(side, side, 512)).render();
-  const double tanHalf = std::tan(20.0 * kPi / 180.0);
-  glm::dvec3 expected(0.0);
-  for (int y = 0; y < side; ++y) {
-    for (int x = 0; x < side; ++x) {
-      const double px = (2.0 * (x + 0.5) / side - 1.0) * tanHalf, py = (2.0 * (y + 0.5) / side - 1.0) * tanHalf;
-      const double distance = 5.0 * std::sqrt(1.0 + px * px + py * py);
-      for (int c = 0; c < 3; ++c) expected[c] += std::exp(-double(absorption[c]) * distance);
-    }
-  }
-  expected /= double(side * side);
+  const glm::dvec3 expected = beerLambertMean(side, 40.0, 5.0, absorption);
   const glm::dvec3 mean = meanOf(r.image);
   std::printf("absorption: mean %.4f %.4f %.4f, closed form %.4f %.4f %.4f\n", mean.x, mean.y, mean.z, expected.x,
               expected.y, expected.z);

@@ -85,3 +85,33 @@ inline glm::dvec3 meanOf(const rt::Framebuffer& image) {
   for (const glm::vec3& p : image.pixels) sum += glm::dvec3(p);
   return sum / double(image.pixels.size());
 }
+
+// A volumetric fog of the given coefficients per metre, Henyey-Greenstein's g and
+// height falloff (0: homogeneous).
+inline engine::FogDesc volumetricFog(glm::vec3 scattering, glm::vec3 absorption, float g = 0.0f, float falloff = 0.0f) {
+  engine::FogDesc fog;
+  fog.enabled = true;
+  fog.model = engine::FogModel::Volumetric;
+  fog.scattering = scattering;
+  fog.absorption = absorption;
+  fog.anisotropy = g;
+  fog.heightFalloff = falloff;
+  return fog;
+}
+
+// What a camera at the origin looking along +z (vertical field fovy) sees, on
+// average over a side x side image, of a wall emitting 1 at z = `distance` through a
+// medium that only absorbs: exp(-absorption * the distance along each pixel
+// centre's ray), per channel.
+inline glm::dvec3 beerLambertMean(int side, double fovyDegrees, double distance, glm::vec3 absorption) {
+  const double tanHalf = std::tan(glm::radians(fovyDegrees) / 2.0);
+  glm::dvec3 sum(0.0);
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < side; ++x) {
+      const double px = (2.0 * (x + 0.5) / side - 1.0) * tanHalf, py = (2.0 * (y + 0.5) / side - 1.0) * tanHalf;
+      const double along = distance * std::sqrt(1.0 + px * px + py * py);
+      for (int c = 0; c < 3; ++c) sum[c] += std::exp(-double(absorption[c]) * along);
+    }
+  }
+  return sum / double(side * side);
+}
