@@ -94,6 +94,8 @@ std::string unsupported(const rt::RtScene& scene, const rt::RenderSettings& sett
   if (!rt::fitsGpuTextures(scene)) return "textures of more than 32768 texels a side are not supported";
   if (settings.method == rt::Method::Path && scene.fog().enabled && scene.fog().model == FogModel::Volumetric)
     return "a volumetric fog is not supported (the CPU path tracer renders it)";
+  if (settings.method == rt::Method::Path && (scene.atmosphere().enabled || !scene.media().empty()))
+    return "an atmosphere and boxes of fog are not supported (the CPU path tracer renders them)";
   // Both integrators draw every layer glTF has, with its textures.
   return {};
 }

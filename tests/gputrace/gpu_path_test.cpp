@@ -269,6 +269,16 @@ TEST(GpuPathSupport, DrawsEveryLayerAndRefusesInOneLine) {
   const rt::RtScene textured = test::layerTexturedRoom();
   EXPECT_EQ(gpurt::unsupported(textured, path), "");
   EXPECT_EQ(gpurt::unsupported(textured, whitted), "");
+  // Media are the CPU path tracer's; the Whitted tracer draws the fog's stand-in.
+  rt::RtScene air = layered;
+  AtmosphereDesc atmosphere;
+  atmosphere.enabled = true;
+  air.setAtmosphere(atmosphere);
+  EXPECT_EQ(gpurt::unsupported(air, path), "an atmosphere and boxes of fog are not supported (the CPU path tracer renders them)");
+  EXPECT_EQ(gpurt::unsupported(air, whitted), "");
+  rt::RtScene boxed = layered;
+  boxed.setMedia({MediumDesc{}});
+  EXPECT_EQ(gpurt::unsupported(boxed, path), "an atmosphere and boxes of fog are not supported (the CPU path tracer renders them)");
   path.precision = rt::Precision::Double;
   EXPECT_EQ(gpurt::unsupported(layered, path), "double precision is not supported");
 }

@@ -366,4 +366,51 @@ TEST(Media, DescribeSaysWhatEachTracerDraws) {
             std::string::npos);
 }
 
+// Single scattering of a sun in a box of fog, seen along a ray that crosses it: the
+// radiance is the integral over the box's chord of sigma_s T(0, t) p pi I T(t, sun)
+// (the light's way to the box's face in closed form). The mean of 200000 paths
+// against the quadrature, per channel: within 4 standard errors, each under 2 %.
+TEST(Media, SingleScatteredSunInABoxIsItsIntegral) {
+  const glm::vec3 sigmaS(0.12f, 0.2f, 0.3f), sigmaA(0.02f);
+  const glm::dvec3 lo(-3, -2, 1), hi(3, 2, 9);
+  rt::RtScene scene = emptyScene(lookAt({0, 0, 0}, {0, 0, 1}, 40.0));
+  scene.setMedia({box(lo, hi, sigmaS, sigmaA)});
+  LightDesc sun;
+  sun.type = LightType::Sun;
+  sun.direction = glm::normalize(glm::dvec3(0.25, 0.55, -0.8));
+  sun.intensity = 3.0f;
+  scene.addLight(sun);
+  rt::RenderSettings settings = pathSettings(1, 1, 1);
+  settings.mediumScatterings = 1;
+  rt::Integrator integrator(scene, settings);
+  const glm::dvec3 o(0, 0, 0), d(0, 0, 1), toSun(sun.direction);
+  const float cosine = float(glm::dot(-toSun, -d));
+  const int n = 200000;
+  glm::dvec3 sum(0.0), squares(0.0);
+  for (int i = 0; i < n; ++i) {
+    const glm::dvec3 v(integrator.traceRay(rt::Ray<double>{o, d, 1e30}, std::uint64_t(i) + 1));
+    sum += v;
+    squares += v * v;
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double t = double(sigmaS[c]) + double(sigmaA[c]);
+    const auto integrand = [&](double z) {
+      // From (0, 0, z) toward the sun to the box's faces: the nearest exit.
+      double exit = 1e30;
+      const glm::dvec3 p = o + z * d;
+      for (int k = 0; k < 3; ++k) {
+        if (toSun[k] > 0.0) exit = std::min(exit, (hi[k] - p[k]) / toSun[k]);
+        if (toSun[k] < 0.0) exit = std::min(exit, (lo[k] - p[k]) / toSun[k]);
+      }
+      return double(sigmaS[c]) * std::exp(-t * (z - lo.z)) * engine::brdf::phaseHenyeyGreenstein(cosine, 0.0f) * kPi *
+             sun.intensity * std::exp(-t * exit);
+    };
+    const double truth = engine::test::integrate(integrand, lo.z, hi.z, 1e-9);
+    const double mean = sum[c] / n, error = std::sqrt(std::max(squares[c] / n - mean * mean, 0.0) / (n - 1));
+    std::printf("sun in a box, channel %d: %.5f +- %.5f against the quadrature's %.5f\n", c, mean, error, truth);
+    EXPECT_NEAR(mean, truth, 4.0 * error) << "channel " << c;
+    EXPECT_LT(error, 0.02 * truth) << "channel " << c;
+  }
+}
+
 }  // namespace
