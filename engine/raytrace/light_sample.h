@@ -33,7 +33,7 @@ struct LightSample {
 // Whether the ray crosses the rectangle's emitting side before tHit; its
 // solid-angle density as a light sample there, and its distance.
 template <typename T>
-bool hitsArea(const PathLight& l, const Ray<T>& ray, const glm::vec3& d, T tHit, float* pdf, double* distance) {
+inline bool hitsArea(const PathLight& l, const Ray<T>& ray, const glm::vec3& d, T tHit, float* pdf, double* distance) {
   if (l.area <= 0.0f) return false;
   const float cosLight = -glm::dot(d, l.normal);
   if (cosLight <= 0.0f) return false;
@@ -51,7 +51,7 @@ bool hitsArea(const PathLight& l, const Ray<T>& ray, const glm::vec3& d, T tHit,
 
 // False when the light cannot reach the point (behind an area light, at the light).
 template <typename T>
-bool sampleLight(const SurfaceInteraction<T>& si, const PathLight& l, glm::vec2 u, LightSample<T>& ls) {
+[[gnu::always_inline]] inline bool sampleLight(const SurfaceInteraction<T>& si, const PathLight& l, glm::vec2 u, LightSample<T>& ls) {
   switch (l.type) {
     case LightType::Sun:
       if (l.cosMax < 1.0f) {

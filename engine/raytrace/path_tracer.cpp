@@ -345,7 +345,7 @@ class PathTracer {
   // with its shadow ray, weighed by MIS against the BSDF sample that could find it.
   glm::vec3 directLight(const SurfaceInteraction<T>& si, const Bsdf& bsdf, const glm::vec3& ng, Pcg32& rng,
                         RayCounters& counters) const {
-    return sampleEveryLight(si, rng, [&](const LightSample<T>& ls, bool shadows) {
+    return sampleEveryLight(si, rng, [&](const LightSample<T>& ls, bool shadows) __attribute__((always_inline)) {
       return kMedium ? shadeThroughMedium(si, ls, shadows, bsdf, ng, counters)
                      : shadeLight(si, ls, shadows, bsdf, ng, counters);
     });

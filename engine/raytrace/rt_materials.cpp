@@ -104,7 +104,12 @@ brdf::BaseValues RtMaterials::baseAt(int material, const HitUv& uv, float footpr
   const int slots[3] = {e.texture, e.metallicRoughnessTexture, e.emissiveTexture};
   glm::vec4 texel[3] = {};
   bool present[3] = {};
-  for (int k = 0; k < 3; ++k) present[k] = texelAt(textures_, slots[k], uv, footprint, texel[k]);
+  // Not through texelAt: written so, the loop took a third more instructions
+  // (callgrind, the room).
+  for (int k = 0; k < 3; ++k) {
+    present[k] = slots[k] >= 0;
+    if (present[k]) texel[k] = textures_[size_t(slots[k])].sampleRgba(uv, footprint);
+  }
   brdf::BaseValues v;
   v.albedo = m.color;
   v.metallic = m.metallic;
