@@ -19,10 +19,12 @@ constexpr double kFogCeilingDepth = 20.72;
 // scale heights (a level ray's altitude grows by another half of one in them).
 constexpr double kLevel = 0.05;
 
-// Gauss-Legendre's eight nodes on [-1, 1] (the positive half) and their weights:
-// exact for polynomials of degree 15.
-constexpr double kNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-constexpr double kWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+// Gauss-Legendre's four nodes on [-1, 1] (the positive half) and their weights:
+// exact for polynomials of degree 7. Over a piece a scale height of altitude long
+// that is within 1.4e-7 of adaptive quadratures (Media.TransmittanceIsTheQuadratures,
+// float densities), as eight nodes were, at half the cost.
+constexpr double kNodes[2] = {0.3399810435848563, 0.8611363115940526};
+constexpr double kWeights[2] = {0.6521451548625461, 0.3478548451374538};
 
 double mean(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
 double largest(const glm::vec3& v) { return double(std::max({v.x, v.y, v.z})); }
@@ -160,15 +162,34 @@ double Media::end(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, 
   return *ground ? *g : maxDistance;
 }
 
-// The end of the piece of o + t d from t on (at most `end`) over which every
+// The end of the piece of the line from t on (at most `end`) over which every
 // medium's extinction is smooth: boxes' faces, a height fog's ceiling, the air's top
 // and the ozone tent's kinks bound it; a height fog and the air pace it (a scale
 // height of altitude, at the rate the ray rises there). Infinity where nothing does:
 // only a homogeneous fog lies ahead.
-double Media::pieceEnd(const glm::dvec3& o, const glm::dvec3& d, double t, double end) const {
+Media::Line Media::lineOf(const glm::dvec3& o, const glm::dvec3& d) const {
+  Line line{o, d, {}, 0};
+  if (fog_ && fog_->falloff > 0.0 && d.y != 0.0) line.cuts[line.count++] = (fog_->ceiling - o.y) / d.y;
+  if (air_) {
+    const atmospheretext::Atmosphere& a = air_->text;
+    const double ozone = air_->bottom + double(a.ozoneCenter);
+    for (double radius : {air_->top, ozone - a.ozoneHalfWidth, ozone, ozone + a.ozoneHalfWidth}) {
+      double tNear = 0.0, tFar = 0.0;
+      if (radius > air_->bottom && sphereRoots(o, d, air_->center, radius, &tNear, &tFar)) {
+        line.cuts[line.count++] = tNear;
+        line.cuts[line.count++] = tFar;
+      }
+    }
+  }
+  return line;
+}
+
+double Media::pieceEnd(const Line& line, double t, double end) const {
+  const glm::dvec3 &o = line.o, &d = line.d;
   const auto boundary = [&](double at) {
     if (at > t) end = std::min(end, at);
   };
+  for (int i = 0; i < line.count; ++i) boundary(line.cuts[i]);
   for (const Box& b : boxes_) {
     double t0 = 0.0, t1 = 0.0;
     slab(o, d, b.min, b.max, &t0, &t1);
@@ -176,17 +197,9 @@ double Media::pieceEnd(const glm::dvec3& o, const glm::dvec3& d, double t, doubl
   }
   const glm::dvec3 p = o + t * d;
   double scale = kInfinity, rise = 0.0;
-  if (fog_ && fog_->falloff > 0.0) {
-    if (d.y != 0.0) boundary((fog_->ceiling - o.y) / d.y);
-    if (p.y < fog_->ceiling) scale = 1.0 / fog_->falloff, rise = std::abs(d.y);
-  }
+  if (fog_ && fog_->falloff > 0.0 && p.y < fog_->ceiling) scale = 1.0 / fog_->falloff, rise = std::abs(d.y);
   if (air_) {
     const atmospheretext::Atmosphere& a = air_->text;
-    const double ozone = air_->bottom + double(a.ozoneCenter);
-    for (double radius : {air_->top, ozone - a.ozoneHalfWidth, ozone, ozone + a.ozoneHalfWidth}) {
-      double tNear = 0.0, tFar = 0.0;
-      if (radius > air_->bottom && sphereRoots(o, d, air_->center, radius, &tNear, &tFar)) boundary(tNear), boundary(tFar);
-    }
     const double h = altitude(p);
     if (h < air_->top - air_->bottom) {
       // Mie's pace while its extinction is at least a hundredth of Rayleigh's there.
@@ -237,7 +250,7 @@ glm::dvec3 Media::airDepth(const glm::dvec3& o, const glm::dvec3& d, double a, d
   if (!air_ || !(b > a)) return glm::dvec3(0.0);
   const double half = 0.5 * (b - a), middle = 0.5 * (a + b);
   glm::dvec3 sum(0.0);
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < 2; ++i) {
     sum += kWeights[i] * (glm::dvec3(airExtinction(o + (middle - half * kNodes[i]) * d)) +
                           glm::dvec3(airExtinction(o + (middle + half * kNodes[i]) * d)));
   }
@@ -247,8 +260,9 @@ glm::dvec3 Media::airDepth(const glm::dvec3& o, const glm::dvec3& d, double a, d
 glm::dvec3 Media::opticalDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const {
   glm::dvec3 depth = closedFormDepth(o, d, a, b);
   if (!air_) return depth;
+  const Line line = lineOf(o, d);
   for (double t = a; t < b;) {
-    const double next = pieceEnd(o, d, t, b);
+    const double next = pieceEnd(line, t, b);
     depth += airDepth(o, d, t, next);
     t = next;
   }
@@ -284,8 +298,9 @@ Media::Flight Media::fly(const glm::dvec3& o, const glm::dvec3& d, double maxDis
   glm::dvec3 tau(0.0);
   double t = 0.0;
   bool collided = false;
+  const Line line = lineOf(o, d);
   while (t < e && !collided) {
-    const double next = pieceEnd(o, d, t, e);
+    const double next = pieceEnd(line, t, e);
     if (next == kInfinity) {
       // Only a homogeneous fog lies ahead, for ever.
       const glm::dvec3 rate = fog_ && fog_->falloff == 0.0 ? glm::dvec3(fog_->extinction) : glm::dvec3(0.0);
@@ -333,8 +348,9 @@ glm::vec3 Media::transmittance(const glm::dvec3& o, const glm::dvec3& d, double 
   if (ground) return glm::vec3(0.0f);
   double finite = 0.0;
   glm::dvec3 tau(0.0);
+  const Line line = lineOf(o, d);
   for (double t = 0.0; t < e;) {
-    const double next = pieceEnd(o, d, t, e);
+    const double next = pieceEnd(line, t, e);
     if (next == kInfinity) {
       const glm::dvec3 rate = fog_ && fog_->falloff == 0.0 ? glm::dvec3(fog_->extinction) : glm::dvec3(0.0);
       for (int k = 0; k < 3; ++k) tau[k] = rate[k] > 0.0 ? kInfinity : tau[k];

@@ -5,7 +5,7 @@
 // passes through y = 0) and boxes of fog (asset/scene_desc.h).
 //
 // Their optical depth along a ray is known, per channel: the fog's and the boxes' in
-// closed form, the air's by Gauss-Legendre quadrature over pieces of the ray short
+// closed form, the air's by four-point Gauss-Legendre quadrature over pieces of the ray short
 // enough that its densities are nearly polynomial there (far below 1e-6 relative;
 // Media.* test it against adaptive quadratures). So free flights are drawn as in a
 // homogeneous medium (medium.h): the distance by one channel chosen at random, by
@@ -86,7 +86,15 @@ class Media {
   };
 
   double end(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, bool* ground) const;
-  double pieceEnd(const glm::dvec3& o, const glm::dvec3& d, double t, double end) const;
+  // A ray and where it crosses a height fog's ceiling, the air's top and the ozone
+  // tent's kinks: found once a ray, for every piece of it.
+  struct Line {
+    glm::dvec3 o, d;
+    double cuts[9];
+    int count;
+  };
+  Line lineOf(const glm::dvec3& o, const glm::dvec3& d) const;
+  double pieceEnd(const Line& line, double t, double end) const;
   glm::dvec3 closedFormDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
   glm::dvec3 airDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
   glm::vec3 airExtinction(const glm::dvec3& p) const;

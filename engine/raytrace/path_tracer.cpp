@@ -362,7 +362,8 @@ class PathTracer {
       LightSample<T> ls;
       if (sampleLight(at, l, u, ls)) sum += shadeSample(ls, l.shadows);
     }
-    if (!env_.black()) {
+    // Beyond a planet's air is black space, whatever the sky says.
+    if (!env_.black() && !space_) {
       const glm::vec2 u = rng.uniform2();
       LightSample<T> ls;
       ls.wi = env_.sample(u, &ls.pdf);

@@ -413,4 +413,24 @@ TEST(Media, SingleScatteredSunInABoxIsItsIntegral) {
   }
 }
 
+// Beyond a planet's air is black space: a scene's sky, gradient or not, neither
+// shows nor lights anything there (it had lit the air as an environment light). The
+// same bytes with the sky on and off; the sun's light through the air is there.
+TEST(Media, BeyondTheAirIsBlackWhateverTheSky) {
+  rt::RtScene dark = emptyScene(lookAt({0, 2, 0}, {0, 2.3, 1}, 90.0));
+  dark.setAtmosphere(earth());
+  LightDesc sun;
+  sun.type = LightType::Sun;
+  sun.direction = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
+  sun.intensity = 10.0f;
+  dark.addLight(sun);
+  rt::RtScene gradient = dark;
+  engine::SkyDesc sky;
+  gradient.setSky(sky);
+  const rt::RenderSettings settings = pathSettings(8, 8, 4);
+  const rt::RenderResult a = rt::Integrator(dark, settings).render(), b = rt::Integrator(gradient, settings).render();
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+  EXPECT_GT(meanOf(a.image).z, meanOf(a.image).x);  // a blue sky
+}
+
 }  // namespace
