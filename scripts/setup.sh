@@ -8,7 +8,7 @@ BUILD="$ROOT/build"
 PACKAGES=(
   build-essential cmake pkg-config
   libglfw3-dev libglm-dev libtinygltf-dev libosmesa6-dev libegl-dev libegl1 libgl1-mesa-dri
-  libstb-dev python3-glad nlohmann-json3-dev libcli11-dev libtbb-dev libdraco-dev libmeshoptimizer-dev
+  libstb-dev libtinyexr-dev python3-glad nlohmann-json3-dev libcli11-dev libtbb-dev libdraco-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev libembree-dev
   xvfb xauth
   python3 clang libclang-rt-14-dev

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <regex>
 
+#include "core/float_image_io.h"
+
 namespace engine {
 
 void addCommonOptions(CLI::App& app, CommonOptions& o) {
@@ -23,7 +25,9 @@ void addCommonOptions(CLI::App& app, CommonOptions& o) {
                  "Frames to run at the fixed step, the last one at --time (default: 1 "
                  "offscreen; in a window, until it is closed)")
       ->check(CLI::Range(0, 10000000));
-  app.add_option("--screenshot", o.run.screenshot, "Write the last frame to this PNG");
+  app.add_option("--screenshot", o.run.screenshot,
+                 "Write the last frame to this file: .png as shown, .exr or .pfm its linear radiance (float, before "
+                 "exposure, tone map and output curve)");
   app.add_flag("--screenshot-window", o.run.screenshotWindow,
                "Window with --frames: the screenshot is the whole window, its panel included");
   app.add_option("--msaa", o.msaa, "Multisample anti-aliasing samples (default 1)")
@@ -47,6 +51,19 @@ Status checkWritable(const std::string& path, const std::string& what) {
     }
   }
   std::remove(probe.c_str());
+  return Ok{};
+}
+
+Status checkScreenshotName(const std::string& path, bool wholeWindow) {
+  const bool linear = floatFormatForName(path).has_value();
+  if (!linear && lowerCaseExtension(path) != ".png") {
+    return makeError("--screenshot " + path + ": the name must end in .png (the frame as shown), .exr or .pfm (its "
+                     "linear radiance)");
+  }
+  if (linear && wholeWindow) {
+    return makeError("--screenshot-window --screenshot " + path + ": the whole window (panel included) exists only "
+                     "as display values; write it as .png");
+  }
   return Ok{};
 }
 
@@ -80,6 +97,7 @@ Status finishCommonOptions(CommonOptions& o, int argc, char** argv) {
     o.assetDir = env ? env : ENGINE_DEFAULT_ASSET_DIR;
   }
   if (!o.run.screenshot.empty()) {
+    if (auto s = checkScreenshotName(o.run.screenshot, o.run.screenshotWindow); !s) return s;
     if (auto s = checkWritable(o.run.screenshot, "--screenshot"); !s) return s;
   }
   if (!o.run.benchFile.empty()) {

@@ -37,6 +37,11 @@ Status finishCommonOptions(CommonOptions& options, int argc, char** argv);
 // The backend the options ask for: Window unless --offscreen was given.
 Backend chosenBackend(const CommonOptions& options);
 
+// --screenshot's name picks its format: .png, or .exr / .pfm for the linear image
+// (core/float_image_io.h); any other name, or a float format for the whole window
+// (--screenshot-window), is an error.
+Status checkScreenshotName(const std::string& path, bool wholeWindow);
+
 // Checks that `path` can be written without leaving anything behind.
 Status checkWritable(const std::string& path, const std::string& what);
 

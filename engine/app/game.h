@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/linear_image.h"
 #include "core/result.h"
 #include "render/camera.h"
 
@@ -44,6 +45,10 @@ class Game {
   // triangles...), for `--bench`. Read with the context current, after the frame.
   using Counters = std::vector<std::pair<std::string, double>>;
   virtual Counters frameCounters() { return {}; }
+  // The last frame's linear radiance, before exposure, tone map and output curve,
+  // top row first: what --screenshot F.exr or F.pfm writes. Read with the context
+  // current, after the frame. A game without one says why.
+  virtual Result<FloatImage> linearFrame() { return makeError("this program has no linear image of its frames"); }
 };
 
 }  // namespace engine

@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include "app/frame_stats.h"
+#include "core/float_image_io.h"
 #include "gl/debug.h"
 
 namespace engine {
@@ -31,6 +32,20 @@ Result<RunSetup> startRun(Backend backend, Game& game, const RunOptions& options
   return setup;
 }
 
+Status writeScreenshot(const std::string& path, Game& game, const Image& frame) {
+  if (!floatFormatForName(path)) return writePng(path, frame);
+  auto linear = game.linearFrame();
+  if (!linear) return makeError(path + ": " + linear.error().message);
+  // A game that drew other views after the frame (the trade panel's comparison)
+  // would hand back one of another size.
+  if (linear->width != frame.width || linear->height != frame.height) {
+    return makeError(path + ": the linear image is " + std::to_string(linear->width) + "x" +
+                     std::to_string(linear->height) + ", the frame " + std::to_string(frame.width) + "x" +
+                     std::to_string(frame.height));
+  }
+  return writeFloatImage(path, *linear);
+}
+
 Status finishRun(const GlContext& context, const RunOptions& options, Game& game,
                  std::vector<double> frameMs, const Image* lastFrame) {
   if (!options.benchFile.empty()) {
@@ -47,7 +62,7 @@ Status finishRun(const GlContext& context, const RunOptions& options, Game& game
     if (auto s = writeBenchJson(options.benchFile, report); !s) return s;
   }
   if (!options.screenshot.empty() && lastFrame) {
-    if (auto s = writePng(options.screenshot, *lastFrame); !s) return s;
+    if (auto s = writeScreenshot(options.screenshot, game, *lastFrame); !s) return s;
   }
   return Ok{};
 }

@@ -39,6 +39,10 @@ struct RunSetup {
 // before this returns an error.
 Result<RunSetup> startRun(Backend backend, Game& game, const RunOptions& options);
 
+// The screenshot in the format its name asks for: `frame` as PNG, or the game's
+// linear frame (Game::linearFrame, of the frame's size) as OpenEXR or PFM.
+Status writeScreenshot(const std::string& path, Game& game, const Image& frame);
+
 // Writes the bench JSON (with the game's counters of the last frame) and the
 // screenshot, as the options ask. Call it while the RunSetup lives.
 Status finishRun(const GlContext& context, const RunOptions& options, Game& game,

@@ -165,21 +165,35 @@ Result<Image> readPng(const std::string& path) {
   return decodePng(bytes, path);
 }
 
-Status writePng(const std::string& path, const Image& image) {
-  if (image.empty()) return makeError(path + ": refusing to write an empty image");
+Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes, const std::string& format) {
   const std::string tmp = path + ".tmp";
-  if (!stbi_write_png(tmp.c_str(), image.width, image.height, 4, image.pixels.data(),
-                      image.width * 4)) {
+  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  out.close();  // a failed open, write or close leaves the stream failed
+  if (!out) {
     std::remove(tmp.c_str());
-    return makeError(path + ": cannot write PNG (is the folder there and writable?)");
+    return makeError(path + ": cannot write " + format + " (is the folder there and writable?)");
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     std::remove(tmp.c_str());
-    return makeError(path + ": cannot write PNG: " + ec.message());
+    return makeError(path + ": cannot write " + format + ": " + ec.message());
   }
   return Ok{};
+}
+
+Status writePng(const std::string& path, const Image& image) {
+  if (image.empty()) return makeError(path + ": refusing to write an empty image");
+  // stbi_write_png encodes to memory and writes that: the same bytes come here.
+  std::vector<std::uint8_t> encoded;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    out->insert(out->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+  };
+  if (!stbi_write_png_to_func(append, &encoded, image.width, image.height, 4, image.pixels.data(), image.width * 4))
+    return makeError(path + ": cannot encode PNG");
+  return writeFileAtomically(path, encoded, "PNG");
 }
 
 Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold, const PixelMask* mask) {

@@ -73,6 +73,9 @@ std::span<const std::uint8_t> withFullPalette(std::span<const std::uint8_t> byte
 // Writes to a temporary file beside `path` and renames it, so a failure never
 // leaves a half-written PNG behind.
 Status writePng(const std::string& path, const Image& image);
+// The same for any encoded image: `bytes` into a temporary beside `path`, renamed
+// over it once complete. Errors name the file and `format` ("PNG", "OpenEXR").
+Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes, const std::string& format);
 
 // Comparison over the RGB channels (alpha is ignored: it carries no picture).
 struct ImageDiff {

@@ -20,27 +20,6 @@ bool hasPngSignature(const std::string& path) {
   return in.read(head, 8) && std::equal(head, head + 8, kSignature);
 }
 
-Status checkSize(const std::string& path, long long width, long long height) {
-  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide)
-    return makeError(path + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
-                     " pixels; each side must be in [1, " + std::to_string(kMaxImageSide) + "]");
-  if (std::uint64_t(width) * std::uint64_t(height) > kMaxLinearImagePixels)
-    return makeError(path + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
-                     " pixels, over the limit of " + std::to_string(kMaxLinearImagePixels) + " pixels");
-  return Ok{};
-}
-
-Result<std::vector<std::uint8_t>> readBytes(const std::string& path) {
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return makeError(path + ": cannot read image: " + ec.message());
-  std::vector<std::uint8_t> bytes(static_cast<size_t>(size));
-  std::ifstream in(path, std::ios::binary);
-  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
-    return makeError(path + ": cannot read image: cannot read the file");
-  return bytes;
-}
-
 // Where a Radiance file's pixels begin: after the header's blank line and the
 // resolution line ("-Y height +X width", the only layout stb reads).
 Result<std::size_t> hdrDataStart(std::span<const std::uint8_t> bytes, const std::string& path) {
@@ -96,7 +75,7 @@ Status checkHdrData(std::span<const std::uint8_t> bytes, std::size_t at, int wid
 }
 
 Result<FloatImage> decodeHdr(const std::string& path, const ImageInfo& info) {
-  auto bytes = readBytes(path);
+  auto bytes = readImageBytes(path);
   if (!bytes) return bytes.error();
   auto start = hdrDataStart(*bytes, path);
   if (!start) return start.error();
@@ -132,7 +111,28 @@ Result<FloatImage> decodePngToLinear(const std::string& path) {
 
 }  // namespace
 
-Result<ImageInfo> readHdrOrPngInfo(const std::string& path) {
+Status checkLinearImageSize(const std::string& path, long long width, long long height) {
+  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide)
+    return makeError(path + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
+                     " pixels; each side must be in [1, " + std::to_string(kMaxImageSide) + "]");
+  if (std::uint64_t(width) * std::uint64_t(height) > kMaxLinearImagePixels)
+    return makeError(path + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
+                     " pixels, over the limit of " + std::to_string(kMaxLinearImagePixels) + " pixels");
+  return Ok{};
+}
+
+Result<std::vector<std::uint8_t>> readImageBytes(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return makeError(path + ": cannot read image: " + ec.message());
+  std::vector<std::uint8_t> bytes(static_cast<size_t>(size));
+  std::ifstream in(path, std::ios::binary);
+  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+    return makeError(path + ": cannot read image: cannot read the file");
+  return bytes;
+}
+
+Status checkImageFile(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return makeError(path + ": no such file");
   if (!std::filesystem::is_regular_file(path, ec)) return makeError(path + ": not a regular file");
@@ -142,6 +142,11 @@ Result<ImageInfo> readHdrOrPngInfo(const std::string& path) {
   if (size > kMaxImageFileBytes)
     return makeError(path + ": cannot read image: " + std::to_string(size) + " bytes, the limit is " +
                      std::to_string(kMaxImageFileBytes));
+  return Ok{};
+}
+
+Result<ImageInfo> readHdrOrPngInfo(const std::string& path) {
+  if (auto s = checkImageFile(path); !s) return s.error();
   ImageInfo info;
   int channels = 0;
   if (stbi_is_hdr(path.c_str())) {
@@ -153,7 +158,7 @@ Result<ImageInfo> readHdrOrPngInfo(const std::string& path) {
     info.format = ImageFormat::Png;
     // The PNG checks of core/image.h (a 0x0 size, chunks past the end, a claimed size
     // the file cannot hold), before stb looks at it.
-    auto bytes = readBytes(path);
+    auto bytes = readImageBytes(path);
     if (!bytes) return bytes.error();
     if (auto s = checkPngHeader(*bytes, path); !s) return s.error();
     if (!stbi_info_from_memory(bytes->data(), int(bytes->size()), &info.width, &info.height, &channels))
@@ -161,7 +166,7 @@ Result<ImageInfo> readHdrOrPngInfo(const std::string& path) {
   } else {
     return makeError(path + ": neither a Radiance .hdr nor a PNG image");
   }
-  if (auto s = checkSize(path, info.width, info.height); !s) return s.error();
+  if (auto s = checkLinearImageSize(path, info.width, info.height); !s) return s.error();
   return info;
 }
 

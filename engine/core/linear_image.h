@@ -37,6 +37,15 @@ struct ImageInfo {
   int height = 0;
 };
 
+// The checks every linear image reader makes before decoding (here and in
+// core/float_image_io.h). checkImageFile: the file is there, a regular file, not
+// empty and within kMaxImageFileBytes. checkLinearImageSize: each side in
+// [1, kMaxImageSide] and at most kMaxLinearImagePixels. Errors name the file.
+Status checkImageFile(const std::string& path);
+Status checkLinearImageSize(const std::string& path, long long width, long long height);
+// The whole file (after checkImageFile).
+Result<std::vector<std::uint8_t>> readImageBytes(const std::string& path);
+
 // What the file is, from its header alone (nothing is decoded): a Radiance .hdr or a
 // PNG whose size is at least 1 x 1 and within the limits. Errors name the file: no
 // such file, an empty file, neither format, 0 pixels, too large.

@@ -45,4 +45,13 @@ Image toImage(const Framebuffer& framebuffer, const RenderDesc& render) {
   return image;
 }
 
+FloatImage toFloatImage(const Framebuffer& framebuffer) {
+  FloatImage image;
+  image.width = framebuffer.width;
+  image.height = framebuffer.height;
+  image.rgb.reserve(framebuffer.pixels.size() * 3);
+  for (const glm::vec3& c : framebuffer.pixels) image.rgb.insert(image.rgb.end(), {c.r, c.g, c.b});
+  return image;
+}
+
 }  // namespace engine::rt

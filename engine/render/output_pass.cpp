@@ -36,6 +36,30 @@ bool takesDirectFrame(const gl::FramebufferLayout& l, int width, int height) {
          l.depthType == GL_FLOAT;
 }
 
+// The HDR target's texels (RGBA, bottom row first, `samples` x `samples` a pixel) as
+// the frame's pixels (RGB, top row first), each the mean of its samples.
+FloatImage framePixels(const std::vector<float>& rgba, int width, int height, int samples) {
+  FloatImage image;
+  image.width = width / samples;
+  image.height = height / samples;
+  image.rgb.assign(std::size_t(image.width) * std::size_t(image.height) * 3, 0.0f);
+  const float weight = 1.0f / float(samples * samples);  // 1 without supersampling: the texels as they are
+  for (int y = 0; y < image.height; ++y) {
+    const int below = (image.height - 1 - y) * samples;
+    for (int x = 0; x < image.width; ++x) {
+      float* out = &image.rgb[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 3];
+      for (int sy = 0; sy < samples; ++sy) {
+        for (int sx = 0; sx < samples; ++sx) {
+          const float* texel = &rgba[(std::size_t(below + sy) * std::size_t(width) + std::size_t(x * samples + sx)) * 4];
+          for (int c = 0; c < 3; ++c) out[c] += texel[c];
+        }
+      }
+      for (int c = 0; c < 3; ++c) out[c] *= weight;
+    }
+  }
+  return image;
+}
+
 }  // namespace
 
 std::vector<std::string> displayDefines(const RenderDesc& render) {
@@ -175,6 +199,18 @@ void OutputPass::finish() {
   emptyVao_.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   stats_->drawCalls += 1;
+}
+
+Result<FloatImage> OutputPass::readLinear() const {
+  if (direct_) {
+    return makeError("the rasterizer drew this frame without its HDR target (direct output), so it has no linear "
+                     "image");
+  }
+  if (!hdr_ || targetWidth_ == 0) return makeError("the rasterizer has drawn no frame yet");
+  std::vector<float> rgba(std::size_t(targetWidth_) * std::size_t(targetHeight_) * 4);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glGetTextureImage(hdr_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
+  return framePixels(rgba, targetWidth_, targetHeight_, render_.supersample);
 }
 
 std::string OutputPass::describe() const {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "asset/scene_desc.h"
+#include "core/linear_image.h"
 #include "core/result.h"
 #include "gl/resources.h"
 #include "gl/shader.h"
@@ -49,6 +50,12 @@ class OutputPass {
   // The world drawn: into the caller's framebuffer, tone mapped (the post pass),
   // copied, or nothing more where it was drawn there.
   void finish();
+  // The last frame's linear radiance as drawn, before exposure, tone map and curve:
+  // the HDR target read back (RGBA16F: the half floats the post pass reads, exact
+  // as float) at the caller's size, top row first. A supersampled pixel is the mean
+  // of its N x N samples, as light adds (the post pass averages after the tone map).
+  // An error under direct output, which has no HDR target.
+  Result<FloatImage> readLinear() const;
   std::string describe() const;
 
  private:

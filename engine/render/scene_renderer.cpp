@@ -193,6 +193,8 @@ std::string debugViewList() {
   return list;
 }
 
+Result<FloatImage> SceneRenderer::readLinear() const { return impl_->output->readLinear(); }
+
 const terrain::LodSelection* SceneRenderer::mainTerrainSelection() const {
   return impl_->terrain ? &impl_->terrain->mainSelection() : nullptr;
 }

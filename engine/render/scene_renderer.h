@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "asset/scene_desc.h"
+#include "core/linear_image.h"
 #include "core/result.h"
 #include "anim/clip.h"
 #include "render/camera.h"
@@ -109,6 +110,9 @@ class SceneRenderer {
   void setPose(int instance, const Pose& pose);
   // Draws the frame into the framebuffer bound now, of `width` x `height` pixels.
   Status render(const Camera& camera, int width, int height);
+  // The last frame's linear radiance (OutputPass::readLinear): needs the HDR target,
+  // which a renderer made with options.hdrTarget always has.
+  Result<FloatImage> readLinear() const;
 
   // The camera the scene file describes, for the window's controls.
   Camera initialCamera() const;

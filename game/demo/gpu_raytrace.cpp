@@ -93,7 +93,7 @@ engine::Status GpuTraceGame::traceBand(double time) {
     if (auto s = scene_->setTime(time); !s) return s;
     poses_->update(*scene_, *tracer_);
   }
-  const bool summed = passes_ > 1 && !animate_;
+  const bool summed = this->summed();
   engine::rt::RenderSettings pass = settings_;
   if (summed) {
     pass.firstSample = done_;
@@ -126,6 +126,20 @@ engine::Status GpuTraceGame::traceBand(double time) {
   std::fprintf(stderr, "\rGPU %s: pass %d of %d", tracer, done_, passes_);
   if (done_ == passes_) std::fputc('\n', stderr);
   return engine::Ok{};
+}
+
+engine::Result<engine::FloatImage> GpuTraceGame::linearFrame() {
+  engine::rt::Framebuffer mean(settings_.width, settings_.height);
+  for (int y = 0; y < settings_.height; ++y) {
+    // The rows the pass under way has traced hold one sample more.
+    const int samples = summed() ? done_ + (y < row_ ? 1 : 0) : 1;
+    if (samples == 0) continue;
+    for (int x = 0; x < settings_.width; ++x) {
+      const glm::vec3& sum = sum_[std::size_t(y) * std::size_t(settings_.width) + std::size_t(x)];
+      mean.at(x, y) = summed() ? sum / float(samples) : sum;
+    }
+  }
+  return engine::rt::toFloatImage(mean);
 }
 
 engine::Status GpuTraceGame::render(const engine::FrameInfo& frame) {

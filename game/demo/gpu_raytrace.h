@@ -49,9 +49,14 @@ class GpuTraceGame final : public engine::Game {
   engine::Status render(const engine::FrameInfo& frame) override;
   engine::Camera& camera() override { return camera_; }
   void shutdown() override;
+  // The mean of each pixel's passes so far, as the texture shows it encoded.
+  engine::Result<engine::FloatImage> linearFrame() override;
 
  private:
   engine::Status traceBand(double time);
+  // Whether passes add up to one image (the path tracer's samples, still), rather
+  // than each standing alone (the Whitted tracer's one pass, an animated pass).
+  bool summed() const { return passes_ > 1 && !animate_; }
 
   engine::SceneDesc desc_;
   double time_;

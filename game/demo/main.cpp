@@ -12,11 +12,13 @@
 
 #include "app/cli.h"
 #include "asset/scene_file.h"
+#include "core/float_image_io.h"
 #include "gpu_raytrace.h"
 #include "gputrace/gpu_tracer.h"
 #include "raytrace/describe.h"
 #include "raytrace/progress_bar.h"
 #include "raytrace/scene_builder.h"
+#include "raytrace/tone_map.h"
 #include "raytrace_game.h"
 #include "scene_game.h"
 #include "soak_game.h"
@@ -35,6 +37,12 @@ struct RaytraceOptions {
   engine::rt::RenderSettings settings;
 };
 
+// The traced frame as its name asks: encoded (PNG), or the linear framebuffer.
+engine::Status writeTraced(const std::string& path, const engine::rt::RaytraceRun& run) {
+  if (!engine::floatFormatForName(path)) return engine::writePng(path, run.image);
+  return engine::writeFloatImage(path, engine::rt::toFloatImage(run.result.image));
+}
+
 // Offscreen ray tracing needs no GL context on the CPU: trace, encode, write. On the
 // GPU (--device gpu) it opens an offscreen one.
 int runRaytraceOffscreen(const engine::SceneDesc& scene, const engine::CommonOptions& options,
@@ -45,7 +53,7 @@ int runRaytraceOffscreen(const engine::SceneDesc& scene, const engine::CommonOpt
   auto run = gpu ? demo::gpuRaytraceScene(scene, time, settings, engine::chosenBackend(options), options.shaderDir)
                  : engine::rt::raytraceScene(scene, time, settings);
   if (!run) return fail(engine::kExitBadInput, run.error().message);
-  if (auto s = engine::writePng(options.run.screenshot, run->image); !s) return fail(engine::kExitBadInput, s.error().message);
+  if (auto s = writeTraced(options.run.screenshot, *run); !s) return fail(engine::kExitBadInput, s.error().message);
   const auto& r = run->result.rays;
   const double mrays = run->result.seconds > 0.0 ? double(r.total()) / run->result.seconds / 1e6 : 0.0;
   std::fprintf(stderr, "%s%s %dx%d, spp %d: %.3f s, %.2f Mrays/s (%llu primary, %llu shadow, %llu %s); "
@@ -239,6 +247,8 @@ int main(int argc, char** argv) {
   }
   render.rotations = rotations == "nlerp" ? engine::QuatInterpolation::Nlerp : engine::QuatInterpolation::Slerp;
   render.msaaOverride = options.msaaGiven ? options.run.msaa : 0;
+  // A float screenshot is the HDR target read back: direct output has none.
+  if (engine::floatFormatForName(options.run.screenshot)) render.hdrTarget = true;
   options.run.targetSamples = 1;
   if (rt.animate && mode == "raster") {
     return fail(engine::kExitBadInput, "--animate: only with --mode raytrace or pathtrace (the rasterizer always animates)");

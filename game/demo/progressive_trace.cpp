@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "app/game.h"
 #include "raytrace/progress_bar.h"
@@ -136,6 +137,15 @@ int ProgressiveTrace::passesDone() const {
   return least;
 }
 
+void ProgressiveTrace::forEachTile(const std::function<void(const TileSpan&)>& visit) const {
+  for (int tile = 0; tile < tilesX_ * tilesY_; ++tile) {
+    std::lock_guard<std::mutex> lock(tileLocks_[size_t(tile)]);
+    const int x0 = (tile % tilesX_) * kTile, y0 = (tile / tilesX_) * kTile;
+    visit({x0, std::min(x0 + kTile, settings_.width), y0, std::min(y0 + kTile, settings_.height),
+           tilePasses_[size_t(tile)].load(std::memory_order_acquire)});
+  }
+}
+
 std::optional<double> ProgressiveTrace::noisePsnr() const {
   if (passesDone() < 2) return std::nullopt;
   const auto& render = scene_->render();
@@ -144,14 +154,10 @@ std::optional<double> ProgressiveTrace::noisePsnr() const {
   };
   double squares = 0.0;
   std::size_t count = 0;
-  for (int tile = 0; tile < tilesX_ * tilesY_; ++tile) {
-    std::lock_guard<std::mutex> lock(tileLocks_[size_t(tile)]);
-    const int passes = tilePasses_[size_t(tile)].load(std::memory_order_acquire);
-    const float odd = float(passes / 2), even = float(passes - passes / 2);
-    const int x0 = (tile % tilesX_) * kTile, y0 = (tile / tilesX_) * kTile;
-    const int x1 = std::min(x0 + kTile, settings_.width), y1 = std::min(y0 + kTile, settings_.height);
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
+  forEachTile([&](const TileSpan& t) {
+    const float odd = float(t.passes / 2), even = float(t.passes - t.passes / 2);
+    for (int y = t.y0; y < t.y1; ++y) {
+      for (int x = t.x0; x < t.x1; ++x) {
         const std::size_t i = size_t(y) * size_t(settings_.width) + size_t(x);
         const glm::vec3 evenMean = (sum_[i] - oddSum_[i]) / even, oddMean = oddSum_[i] / odd;
         for (int k = 0; k < 3; ++k) {
@@ -161,7 +167,7 @@ std::optional<double> ProgressiveTrace::noisePsnr() const {
         count += 3;
       }
     }
-  }
+  });
   // Each half holds half the samples: twice the variance of the whole, so their
   // difference has four times the whole's mean squared error.
   const double mse = squares / double(std::max<std::size_t>(count, 1)) / 4.0;
@@ -170,16 +176,24 @@ std::optional<double> ProgressiveTrace::noisePsnr() const {
 
 engine::Image ProgressiveTrace::snapshot() const {
   engine::Image image(settings_.width, settings_.height);
-  for (int tile = 0; tile < tilesX_ * tilesY_; ++tile) {
-    std::lock_guard<std::mutex> lock(tileLocks_[size_t(tile)]);
-    const int x0 = (tile % tilesX_) * kTile, y0 = (tile / tilesX_) * kTile;
-    const int x1 = std::min(x0 + kTile, settings_.width), y1 = std::min(y0 + kTile, settings_.height);
-    for (int y = y0; y < y1; ++y) {
+  forEachTile([&](const TileSpan& t) {
+    for (int y = t.y0; y < t.y1; ++y) {
       const size_t row = size_t(y) * size_t(settings_.width);
-      std::copy(&pixels_[(row + size_t(x0)) * 4], &pixels_[(row + size_t(x1)) * 4], image.at(x0, y));
+      std::copy(&pixels_[(row + size_t(t.x0)) * 4], &pixels_[(row + size_t(t.x1)) * 4], image.at(t.x0, y));
     }
-  }
+  });
   return image;
+}
+
+engine::FloatImage ProgressiveTrace::linearSnapshot() const {
+  engine::rt::Framebuffer mean(settings_.width, settings_.height);
+  forEachTile([&](const TileSpan& t) {
+    if (t.passes == 0) return;  // black, as the encoded image
+    for (int y = t.y0; y < t.y1; ++y) {
+      for (int x = t.x0; x < t.x1; ++x) mean.at(x, y) = sum_[size_t(y) * size_t(settings_.width) + size_t(x)] / float(t.passes);
+    }
+  });
+  return engine::rt::toFloatImage(mean);
 }
 
 }  // namespace demo

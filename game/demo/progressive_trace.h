@@ -8,6 +8,7 @@
 // tile's rows as render() does: the Whitted packets, the path tracer's batches). Used by
 // demo --mode raytrace|pathtrace in a window and by the trade panel's reference.
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/linear_image.h"
 #include "core/result.h"
 #include "gl/resources.h"
 #include "raytrace/integrator.h"
@@ -59,10 +61,19 @@ class ProgressiveTrace {
   std::optional<double> noisePsnr() const;
   // A copy of the encoded image as it stands.
   engine::Image snapshot() const;
+  // The linear image as it stands: each pixel the mean of its samples so far, before
+  // exposure, tone map and curve (the path tracer's offscreen framebuffer once done).
+  engine::FloatImage linearSnapshot() const;
 
  private:
   ProgressiveTrace() = default;
   struct Progress;
+  struct TileSpan {
+    int x0, x1, y0, y1;
+    int passes;  // finished
+  };
+  // Calls `visit` with every tile, under the tile's lock.
+  void forEachTile(const std::function<void(const TileSpan&)>& visit) const;
   void traceTiles();
   void tracePass(int pass, Progress& progress);
 

@@ -21,6 +21,7 @@ class RaytraceGame final : public engine::Game {
   engine::Status render(const engine::FrameInfo& frame) override;
   engine::Camera& camera() override { return camera_; }
   void shutdown() override;
+  engine::Result<engine::FloatImage> linearFrame() override { return trace_->linearSnapshot(); }
 
  private:
   engine::SceneDesc desc_;

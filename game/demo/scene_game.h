@@ -69,6 +69,7 @@ class SceneGame final : public engine::Game {
     renderer_.reset();
   }
   Counters frameCounters() override;
+  engine::Result<engine::FloatImage> linearFrame() override { return renderer_->readLinear(); }
   bool wantsUi() const override { return panel_; }
   void drawUi() override;
 

@@ -35,6 +35,7 @@ class SoakGame final : public engine::Game {
   engine::Camera& camera() override { return scene_->camera(); }
   void shutdown() override { scene_.reset(); }
   bool finished() const override { return finished_; }
+  engine::Result<engine::FloatImage> linearFrame() override { return scene_->linearFrame(); }
 
   const std::vector<SoakSample>& samples() const { return samples_; }
   // One line per sample and a summary: first and last RSS and GL object counts.

@@ -1,15 +1,20 @@
 // imgdiff A B: compares two images and exits 1 when over a limit, 2 on bad input.
 // Two PNGs: max and mean absolute difference over RGB, PSNR, share of pixels over a
-// threshold, SSIM, and with --flip the mean LDR-FLIP. Two Radiance .hdr files: the
-// mean HDR-FLIP (--flip), the only figure that reads light beyond [0, 1]. --mask
-// restricts every figure to the pixels a mask image selects.
+// threshold, SSIM, and with --flip the mean LDR-FLIP. Two linear images (Radiance
+// .hdr, OpenEXR, PFM, in any pair): max and mean absolute difference and PSNR over
+// the linear values, and with --flip the mean HDR-FLIP, the figure that reads light
+// beyond [0, 1] as a viewer would. --mask restricts every figure to the pixels a
+// mask image selects.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
 #include "core/flip.h"
+#include "core/float_image_io.h"
 #include "core/image.h"
 #include "core/linear_image.h"
 #include "core/pixel_mask.h"
@@ -35,9 +40,47 @@ int fail(const std::string& message) {
   return 2;
 }
 
-bool isRadiance(const std::string& path) {
+// Linear light: an OpenEXR or PFM file (by content, else by name), or a Radiance
+// .hdr (by content).
+bool isLinear(const std::string& path) {
+  if (isFloatImageFile(path)) return true;
   auto info = readHdrOrPngInfo(path);
   return info && info->format == ImageFormat::Hdr;
+}
+
+Result<FloatImage> readLinear(const std::string& path) {
+  return isFloatImageFile(path) ? readFloatImage(path) : readLinearImage(path);
+}
+
+struct LinearDiff {
+  double maxAbs = 0.0, meanAbs = 0.0, psnr = 0.0;
+};
+
+// Over the linear RGB values of the pixels counted. The PSNR's peak is the
+// reference's (A's) brightest channel there, 1 where A is black: an HDR image has
+// no white to measure against, and its own peak keeps the figure independent of the
+// images' scale.
+LinearDiff compareLinear(const FloatImage& a, const FloatImage& b, const PixelMask* mask) {
+  LinearDiff d;
+  double sumAbs = 0.0, sumSquares = 0.0, peak = 0.0;
+  std::size_t channels = 0;
+  for (std::size_t i = 0; i < std::size_t(a.width) * std::size_t(a.height); ++i) {
+    if (!counts(mask, i)) continue;
+    for (std::size_t c = i * 3; c < i * 3 + 3; ++c) {
+      // Equal values differ by 0, infinities too (inf - inf is NaN).
+      const double diff = a.rgb[c] == b.rgb[c] ? 0.0 : std::abs(double(a.rgb[c]) - double(b.rgb[c]));
+      d.maxAbs = std::max(d.maxAbs, diff);
+      sumAbs += diff;
+      sumSquares += diff * diff;
+      peak = std::max(peak, double(a.rgb[c]));
+    }
+    channels += 3;
+  }
+  const double mse = channels ? sumSquares / double(channels) : 0.0;
+  d.meanAbs = channels ? sumAbs / double(channels) : 0.0;
+  if (peak <= 0.0) peak = 1.0;
+  d.psnr = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(peak * peak / mse);
+  return d;
 }
 
 // The mask of --mask for images of this size, or none.
@@ -54,14 +97,10 @@ std::string maskText(const std::optional<PixelMask>& mask) {
   return mask ? " mask_pixels " + std::to_string(mask->count) : "";
 }
 
-// Writes the map of --flip-map, if asked; false (after saying why) on failure.
-bool writeFlipMap(const Options& o, const FlipMap& map) {
-  if (o.flipMapPath.empty()) return true;
-  if (auto s = writePng(o.flipMapPath, flipMapImage(map)); !s) {
-    fail(s.error().message);
-    return false;
-  }
-  return true;
+// Writes the map of --flip-map, if asked.
+Status writeFlipMap(const Options& o, const FlipMap& map) {
+  if (o.flipMapPath.empty()) return Ok{};
+  return writePng(o.flipMapPath, flipMapImage(map));
 }
 
 std::string sizeMismatch(const Options& o, int width, int height, int otherWidth, int otherHeight) {
@@ -70,7 +109,7 @@ std::string sizeMismatch(const Options& o, int width, int height, int otherWidth
 }
 
 // The two images, of one size, and the mask for that size: what every comparison
-// starts from. `read` is readPng or readLinearImage.
+// starts from. `read` is readPng or readLinear.
 template <typename Picture>
 struct Inputs {
   Picture a, b;
@@ -116,7 +155,9 @@ int comparePngs(const Options& o) {
   if (!o.diffPath.empty()) {
     if (auto s = writePng(o.diffPath, diffImage(imageA, imageB)); !s) return fail(s.error().message);
   }
-  if (flipMap && !writeFlipMap(o, *flipMap)) return 2;
+  if (flipMap) {
+    if (auto s = writeFlipMap(o, *flipMap); !s) return fail(s.error().message);
+  }
   bool over = false;
   if (o.maxMean && d->meanAbs > *o.maxMean) over = true;
   if (o.maxAbs && d->maxAbs > *o.maxAbs) over = true;
@@ -126,24 +167,45 @@ int comparePngs(const Options& o) {
   return over ? 1 : 0;
 }
 
-// Two .hdr files: HDR-FLIP alone (the 8-bit figures would clip what makes them HDR).
-int compareRadiance(const Options& o) {
-  if (!o.wantsFlip()) return fail(o.a + ": Radiance .hdr images are compared by HDR-FLIP only; add --flip");
-  if (!o.diffPath.empty() || o.maxMean || o.maxAbs || o.minPsnr)
-    return fail("--diff, --max-mean, --max-abs and --min-psnr are for PNG images, not Radiance .hdr");
-  auto in = readInputs<FloatImage>(o, readLinearImage);
-  if (!in) return fail(in.error().message);
+struct HdrFlipFigure {
+  double mean = 0.0;
+  ExposureRange exposures;
+};
+
+// The pair's mean HDR-FLIP over the pixels counted, its map written when asked.
+Result<HdrFlipFigure> meanHdrFlip(const Options& o, const Inputs<FloatImage>& in) {
   HdrFlipOptions options;
   options.ppd = o.ppd;
   options.toneMapper = o.toneMapper;
-  auto result = hdrFlip(in->a, in->b, options);
-  if (!result) return fail(result.error().message);
-  auto mean = flipMean(result->map, in->maskOrNull());
-  if (!mean) return fail(mean.error().message);
-  const ExposureRange& e = result->exposures;
-  std::printf("hdr_flip %.6f exposures %.4f %.4f %d%s\n", *mean, e.start, e.stop, e.count, maskText(in->mask).c_str());
-  if (!writeFlipMap(o, result->map)) return 2;
-  const bool over = o.maxFlip && *mean > *o.maxFlip;
+  auto result = hdrFlip(in.a, in.b, options);
+  if (!result) return result.error();
+  auto mean = flipMean(result->map, in.maskOrNull());
+  if (!mean) return mean.error();
+  if (auto s = writeFlipMap(o, result->map); !s) return s.error();
+  return HdrFlipFigure{*mean, result->exposures};
+}
+
+// Two linear images: their values' differences and PSNR, and HDR-FLIP with --flip
+// (the 8-bit figures and the difference image would clip what makes them HDR).
+int compareRadiance(const Options& o) {
+  if (!o.diffPath.empty() || o.maxMean || o.maxAbs)
+    return fail("--diff, --max-mean and --max-abs are for PNG images, not linear ones (.hdr, .exr, .pfm)");
+  auto in = readInputs<FloatImage>(o, readLinear);
+  if (!in) return fail(in.error().message);
+  const LinearDiff d = compareLinear(in->a, in->b, in->maskOrNull());
+  std::optional<HdrFlipFigure> flip;
+  if (o.wantsFlip()) {
+    auto figure = meanHdrFlip(o, *in);
+    if (!figure) return fail(figure.error().message);
+    flip = *figure;
+  }
+  std::printf("max_abs %.6g mean_abs %.6g psnr %.2f", d.maxAbs, d.meanAbs, d.psnr);
+  if (flip) {
+    const ExposureRange& e = flip->exposures;
+    std::printf(" hdr_flip %.6f exposures %.4f %.4f %d", flip->mean, e.start, e.stop, e.count);
+  }
+  std::printf("%s\n", maskText(in->mask).c_str());
+  const bool over = (o.minPsnr && d.psnr < *o.minPsnr) || (flip && o.maxFlip && flip->mean > *o.maxFlip);
   if (over) std::printf("over the limit\n");
   return over ? 1 : 0;
 }
@@ -151,19 +213,20 @@ int compareRadiance(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Compare two images (PNG, or Radiance .hdr with --flip); exit 1 when a limit is exceeded, 2 on bad "
-               "input.",
+  CLI::App app{"Compare two images (PNGs, or linear images: Radiance .hdr, OpenEXR, PFM); exit 1 when a limit is "
+               "exceeded, 2 on bad input.",
                "imgdiff"};
   Options o;
   app.add_option("A", o.a, "First image (the reference, for FLIP)")->required();
   app.add_option("B", o.b, "Second image")->required();
   app.add_option("--max-mean", o.maxMean, "Largest mean absolute difference allowed (0..255)");
   app.add_option("--max-abs", o.maxAbs, "Largest single channel difference allowed (0..255)");
-  app.add_option("--min-psnr", o.minPsnr, "Smallest PSNR allowed, dB");
+  app.add_option("--min-psnr", o.minPsnr, "Smallest PSNR allowed, dB (linear images: over their values, the "
+                                         "reference's brightest channel the peak)");
   app.add_option("--threshold", o.threshold, "Channel difference counted as 'over'")->capture_default_str();
   app.add_option("--diff", o.diffPath, "Write a difference image (x4 gain) here");
   app.add_flag("--flip", o.flip,
-               "Also print the mean FLIP (LDR-FLIP of PNGs, HDR-FLIP of .hdr files), in [0, 1], 0 when equal");
+               "Also print the mean FLIP (LDR-FLIP of PNGs, HDR-FLIP of linear images), in [0, 1], 0 when equal");
   app.add_option("--flip-map", o.flipMapPath, "Write FLIP's per-pixel error here as a grey PNG (implies --flip)");
   app.add_option("--max-flip", o.maxFlip, "Largest mean FLIP allowed (implies --flip)");
   app.add_option("--ppd", o.ppd, "FLIP's pixels per degree of the viewer (default 67.02: 0.7 m from a 0.7 m wide "
@@ -188,12 +251,14 @@ int main(int argc, char** argv) {
   o.toneMapper = toneMapper == "reinhard" ? ToneMapper::Reinhard
                  : toneMapper == "hable"  ? ToneMapper::Hable
                                           : ToneMapper::Aces;
-  const bool radianceA = isRadiance(o.a), radianceB = isRadiance(o.b);
-  if (radianceA != radianceB) {
-    const std::string& other = radianceA ? o.b : o.a;
+  const bool linearA = isLinear(o.a), linearB = isLinear(o.b);
+  if (linearA != linearB) {
+    // A file that cannot be read is the error to report, not the pair's mismatch.
+    const std::string &linear = linearA ? o.a : o.b, &other = linearA ? o.b : o.a;
+    if (auto image = readLinear(linear); !image) return fail(image.error().message);
     if (auto info = readHdrOrPngInfo(other); !info) return fail(info.error().message);
-    return fail((radianceA ? o.a : o.b) + " is a Radiance .hdr and " + other +
-                " is not; compare two PNGs or two .hdr files");
+    return fail(linear + " is a linear image and " + other +
+                " is not; compare two PNGs or two linear images (.hdr, .exr, .pfm)");
   }
-  return radianceA ? compareRadiance(o) : comparePngs(o);
+  return linearA ? compareRadiance(o) : comparePngs(o);
 }

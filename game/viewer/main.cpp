@@ -11,6 +11,7 @@
 #include "app/cli.h"
 #include "asset/gltf_loader.h"
 #include "asset/material_variants.h"
+#include "core/float_image_io.h"
 #include "viewer_scene.h"
 
 namespace {
@@ -131,6 +132,7 @@ int main(int argc, char** argv) {
   settings.variant = variantIndex;
   settings.camera = camera;
   settings.debugView = *view;
+  settings.hdrTarget = engine::floatFormatForName(options.run.screenshot).has_value();
   // The scene renderer multisamples its own HDR target; the runner's target then
   // only receives the tone-mapped result.
   settings.msaa = options.run.msaa;

@@ -147,6 +147,7 @@ Status ViewerScene::buildRenderer() {
   options.shaderDir = shaderDir_;
   options.debugView = settings_.debugView;
   options.gpuCullingOverride = settings_.gpuCulling;
+  options.hdrTarget = settings_.hdrTarget;
   auto renderer = SceneRenderer::create(std::move(scene).value(), options);
   if (!renderer) return renderer.error();
   renderer_ = std::move(renderer).value();

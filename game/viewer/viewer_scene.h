@@ -43,6 +43,8 @@ struct ViewerSettings {
   // GPU culling (render.gpu_culling) for the one-model scene: the golden test of
   // culling draws the viewer's goldens with it on and off; the viewer has no flag.
   bool gpuCulling = false;
+  // Keep the HDR target (SceneRenderOptions::hdrTarget) for a float screenshot.
+  bool hdrTarget = false;
 };
 
 class ViewerScene final : public engine::Game {
@@ -57,6 +59,7 @@ class ViewerScene final : public engine::Game {
   void shutdown() override;
   bool wantsUi() const override { return true; }
   void drawUi() override;
+  engine::Result<engine::FloatImage> linearFrame() override { return renderer_->readLinear(); }
 
   // The scene the model was placed in, and what the renderer built for it.
   const engine::SceneDesc& sceneDesc() const { return desc_; }

@@ -100,6 +100,28 @@ case "$CASE" in
     rm -f "$WORK/$CASE/diff.png" "$WORK/$CASE/flip.png"
     expect 2 "$pattern" -- "$BIN/imgdiff" "${args[@]}" --flip --diff "$WORK/$CASE/diff.png" --flip-map "$WORK/$CASE/flip.png"
     [ ! -e "$WORK/$CASE/diff.png" ] && [ ! -e "$WORK/$CASE/flip.png" ] || { echo "FAIL: an image was written"; exit 1; } ;;
+  # Float images (imgdiff): an OpenEXR written from the specification reads as the
+  # PFM of the same pixels; broken ones are refused naming the file.
+  good_float_images) expect 0 "^max_abs 0 mean_abs 0 psnr inf$" -- "$BIN/imgdiff" good.exr good.pfm ;;
+  truncated_exr) expect 2 "^imgdiff: truncated\.exr: cannot read OpenEXR: " -- "$BIN/imgdiff" truncated.exr good.exr ;;
+  truncated_pfm) expect 2 "^imgdiff: truncated\.pfm: cannot read PFM: 100 bytes of pixels, 4x4 RGB needs 192 \(truncated\)$" -- \
+    "$BIN/imgdiff" good.pfm truncated.pfm ;;
+  wrong_size_pfm) expect 2 "^imgdiff: wrong_size\.pfm: cannot read PFM: 200 bytes of pixels, 4x4 RGB needs 192$" -- \
+    "$BIN/imgdiff" wrong_size.pfm good.pfm ;;
+  not_an_image_exr) expect 2 "^imgdiff: not_an_image\.exr: neither an OpenEXR nor a PFM image$" -- \
+    "$BIN/imgdiff" not_an_image.exr good.exr ;;
+  # --screenshot's name picks the format: one it cannot write, or a float image
+  # where it cannot go, is refused before anything renders.
+  screenshot_unwritable_exr)
+    expect 2 "^demo: --screenshot /nonexistent/dir/a\.exr: cannot write there" -- \
+      "$BIN/demo" --offscreen --size 64x64 --screenshot /nonexistent/dir/a.exr ;;
+  screenshot_bad_extension)
+    rm -f "$WORK/$CASE/shot.jpg"
+    expect 2 "^demo: --screenshot .*/shot\.jpg: the name must end in \.png \(the frame as shown\), \.exr or \.pfm" -- \
+      "$BIN/demo" --offscreen --size 64x64 --screenshot "$WORK/$CASE/shot.jpg"
+    [ ! -e "$WORK/$CASE/shot.jpg" ] || { echo "FAIL: wrote shot.jpg"; exit 1; }
+    expect 2 "^viewer: --screenshot .*/shot\.tga: the name must end in" -- \
+      "$BIN/viewer" good.glb --offscreen --size 64x64 --screenshot "$WORK/$CASE/shot.tga" ;;
   scene_fovy_string) scene scene_fovy_string.json "scene_fovy_string\.json: /camera/fovy: expected a number" ;;
   scene_models_number) scene scene_models_number.json "scene_models_number\.json: /models: expected an array" ;;
   scene_model_path_number) scene scene_model_path_number.json "scene_model_path_number\.json: /models/0/path: expected a string" ;;

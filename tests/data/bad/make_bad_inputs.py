@@ -73,6 +73,39 @@ def png(width, height, rows=None):
             chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
 
 
+def pfm(width, height, pixels):
+    """A colour PFM, little-endian (scale -1), rows bottom to top; `pixels` RGB
+    triples top row first."""
+    rows = [pixels[y * width:(y + 1) * width] for y in range(height)]
+    data = b"".join(struct.pack("<%df" % (3 * width), *[c for p in row for c in p]) for row in reversed(rows))
+    return b"PF\n%d %d\n-1.0\n" % (width, height) + data
+
+
+def exr(width, height, pixels):
+    """An uncompressed scanline OpenEXR of float B, G, R channels, written from the
+    specification rather than by tinyexr (the reader must take files it did not
+    write); `pixels` RGB triples top row first."""
+    def attr(name, kind, data):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+    channels = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in "BGR") + b"\0"
+    box = struct.pack("<iiii", 0, 0, width - 1, height - 1)
+    header = (b"\x76\x2f\x31\x01" + struct.pack("<I", 2) + attr("channels", "chlist", channels) +
+              attr("compression", "compression", b"\0") + attr("dataWindow", "box2i", box) +
+              attr("displayWindow", "box2i", box) + attr("lineOrder", "lineOrder", b"\0") +
+              attr("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+              attr("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0)) +
+              attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+    lines, offsets = [], []
+    at = len(header) + 8 * height
+    for y in range(height):
+        row = pixels[y * width:(y + 1) * width]
+        data = b"".join(struct.pack("<%df" % width, *[p[k] for p in row]) for k in (2, 1, 0))
+        offsets.append(at)
+        lines.append(struct.pack("<ii", y, len(data)) + data)
+        at += len(lines[-1])
+    return header + struct.pack("<%dQ" % height, *offsets) + b"".join(lines)
+
+
 def main(out):
     os.makedirs(out, exist_ok=True)
 
@@ -196,6 +229,18 @@ def main(out):
     write("mask_small.png", png(2, 2, [b"\xff" * 8] * 2))
     write("mask_black.png", png(4, 4, [b"\x00\x00\x00\xff" * 4] * 4))
     write("other_size.png", png(4, 3, [b"\x80\x40\x20\xff" * 4] * 3))
+
+    # Float images for imgdiff: the same 4x4 pixels (up to 1e30) as OpenEXR and as
+    # PFM, which must read alike; each cut short, a PFM with bytes to spare, a file
+    # named .exr that is text.
+    light = [(0.5 * x, 2.0 ** y, 1e30 if x == y else 0.0) for y in range(4) for x in range(4)]
+    good_exr, good_pfm = exr(4, 4, light), pfm(4, 4, light)
+    write("good.exr", good_exr)
+    write("good.pfm", good_pfm)
+    write("truncated.exr", good_exr[:len(good_exr) - 20])
+    write("truncated.pfm", good_pfm[:len(good_pfm) - 4 * 4 * 12 + 100])  # 100 bytes of 192
+    write("wrong_size.pfm", good_pfm + b"\0" * 8)
+    write("not_an_image.exr", "this is not an image\n")
 
     def with_image(data):
         def edit(m):
