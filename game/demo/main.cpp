@@ -207,6 +207,9 @@ int main(int argc, char** argv) {
                                   "Ray tracing: bounces after the first hit (raytrace: mirror recursion; pathtrace: "
                                   "0 is direct light only; default 5, pathtrace 16)")
                        ->check(CLI::Range(0, 64));
+  app.add_option("--medium-scatterings", rt.settings.mediumScatterings,
+                 "Path tracing: scatterings in media a path may take (1: single scattering; default: any)")
+      ->check(CLI::Range(0, 1000000));
   app.add_option("--threads", rt.settings.threads, "Ray tracing: worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024))->capture_default_str();
   app.add_option("--seed", rt.settings.seed, "Ray tracing: random seed")->capture_default_str();

@@ -413,7 +413,10 @@ PY
     expect 0 "BVH groups: static \([0-9]+ triangles\), character\.gltf x4 \(7856 triangles each\), behind the ground \([0-9]+ triangles\)" \
       -- "$BIN/demo" "$SRC/assets/scenes/demo.json" --mode raytrace --describe
     expect 2 "--device gpu: double precision is not supported" -- "$BIN/demo" "$SRC/assets/scenes/cornell.json" \
-      --mode raytrace --device gpu --rt-precision double --describe ;;
+      --mode raytrace --device gpu --rt-precision double --describe
+    # The media's truth (raytrace/media.h): single scattering on request.
+    expect 0 "1 box of fog, 1 scattering\(s\) at most" -- "$BIN/demo" "$SRC/assets/scenes/shafts_truth.json" \
+      --mode pathtrace --medium-scatterings 1 --describe ;;
   scene_unknown_clip)
     printf '{"models": [{"path": "%s/assets/models/character.gltf", "clip": "Run"}]}' "$SRC" > clip.json
     expect 2 'clip\.json: /models/0/clip: no clip "Run" in character\.gltf; clips are: Idle, Walk, Wave' -- \

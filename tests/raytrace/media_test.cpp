@@ -360,6 +360,9 @@ TEST(Media, DescribeSaysWhatEachTracerDraws) {
   EXPECT_NE(path.find("atmosphere: a planet of radius 6360 km under 100 km of air (Rayleigh, Mie, ozone), 1 box of fog"),
             std::string::npos)
       << path;
+  rt::RenderSettings single = pathSettings(8, 8, 1);
+  single.mediumScatterings = 1;
+  EXPECT_NE(rt::describe(scene, single).find("1 box of fog, 1 scattering(s) at most"), std::string::npos);
   rt::RenderSettings whitted = pathSettings(8, 8, 1);
   whitted.method = rt::Method::Whitted;
   EXPECT_NE(rt::describe(scene, whitted).find(", fog (exponential), atmosphere and boxes of fog not drawn"),
