@@ -32,7 +32,7 @@ FloatImage extremeImage(int width, int height, std::uint32_t seed) {
   for (int i = 0; i < width * height * 3; ++i) image.rgb.push_back(mantissa(rng) * std::pow(10.0f, float(exponent(rng))));
   const float extremes[] = {0.0f, -0.0f, 1e-40f, std::numeric_limits<float>::min(), 6e4f, 65504.0f, 1e30f,
                             std::numeric_limits<float>::infinity()};
-  for (std::size_t i = 0; i < std::size(extremes) && i < image.rgb.size(); ++i) image.rgb[i * 2] = extremes[i];
+  for (std::size_t i = 0; i < std::size(extremes) && i * 2 < image.rgb.size(); ++i) image.rgb[i * 2] = extremes[i];
   return image;
 }
 
