@@ -1,7 +1,7 @@
 // The physically based sky's tables (render/atmosphere_tables.h) on the GL: the
 // transmittance table against the C++ quadrature of the shared text's extinction
-// along the same rays, and the rebuilds (only when the sun or the camera's place
-// moves).
+// along the same rays, the rebuilds (only when the sun or the camera's place moves),
+// and what --describe says of them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,12 +9,36 @@
 
 #include "../support/gl_test.h"
 #include "../support/quadrature.h"
+#include "asset/scene_file.h"
 #include "render/atmosphere_tables.h"
+#include "render/camera.h"
+#include "render/render_target.h"
+#include "render/scene_renderer.h"
 
 using namespace engine;
 using engine::test::GlTest;
 
 namespace {
+
+constexpr const char* kSkyScene = R"({
+  "camera": {"position": [0, 1.7, 0], "direction": [0, 0, -1], "fovy": 70, "far": 20000},
+  "lights": [{"type": "sun", "direction": [0.4, 0.17, -0.9], "intensity": 10, "angle": 0.53}],
+  "primitives": [{"type": "sphere", "center": [0, 1, -10], "radius": 1, "material": "m"}],
+  "materials": {"m": {"color": [0.5, 0.5, 0.5], "roughness": 0.5}},
+  "atmosphere": {},
+  "render": {"ibl_size": 16}
+})";
+
+std::unique_ptr<SceneRenderer> rendererFor(const std::string& text) {
+  auto scene = parseScene(text, "sky.json");
+  EXPECT_TRUE(scene.ok()) << scene.error().message;
+  if (!scene) return nullptr;
+  SceneRenderOptions options;
+  options.shaderDir = test::shaderDir();
+  auto renderer = SceneRenderer::create(*scene, options);
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  return renderer.ok() ? std::move(renderer).value() : nullptr;
+}
 
 // The transmittance along (altitude, mu) to the top of the air by adaptive Simpson
 // over the ray in double: the reference the table and atmosphereTransmittance share.
@@ -105,4 +129,47 @@ TEST_P(SkyTables, SkyViewIsRebuiltOnlyWhenTheSunOrThePlaceMoves) {
   EXPECT_TRUE(t.update(glm::normalize(glm::vec3(0.3f, 0.6f, -0.8f)), illuminance, glm::dvec3(0.0, 1.7, 0.0)));
   EXPECT_TRUE(t.update(glm::normalize(glm::vec3(0.3f, 0.6f, -0.8f)), illuminance, glm::dvec3(0.0, 500.0, 0.0)));
   EXPECT_EQ(t.skyBuilds(), 3);
+}
+
+// Through the renderer: frames of a still scene build the sky once (at load); the
+// time of day's knob rebuilds it at the next frame, and the sun's colour that
+// shades follows the air (redder at 2 degrees than at 60).
+TEST_P(SkyTables, TheTimeOfDayRebuildsTheSky) {
+  auto renderer = rendererFor(kSkyScene);
+  ASSERT_NE(renderer, nullptr);
+  auto target = RenderTarget::create(64, 64, 1);
+  ASSERT_TRUE(target.ok());
+  target->bind();
+  const Camera camera = renderer->initialCamera();
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(renderer->render(camera, 64, 64).ok());
+  const AtmosphereTables* tables = renderer->atmosphereTables();
+  ASSERT_NE(tables, nullptr);
+  EXPECT_EQ(tables->skyBuilds(), 1);
+  renderer->setSunElevation(60.0);
+  EXPECT_NEAR(renderer->sunElevationDegrees(), 60.0, 1e-5);  // kept as float
+  ASSERT_TRUE(renderer->render(camera, 64, 64).ok());
+  EXPECT_EQ(tables->skyBuilds(), 2);
+  const glm::vec3 high = tables->sunTransmittance();
+  renderer->setSunElevation(2.0);
+  ASSERT_TRUE(renderer->render(camera, 64, 64).ok());
+  const glm::vec3 low = tables->sunTransmittance();
+  // exp(-(tau_blue - tau_red) / sin(elevation)) with the default layers' zenith
+  // depths: 0.79 at 60 degrees, 1e-3 at 2 (through 20 air masses).
+  EXPECT_GT(high.b / high.r, 0.7f);
+  EXPECT_LT(low.b / low.r, 0.05f);
+}
+
+// --describe lists the tables with their sizes where the scene has an atmosphere,
+// and no table where it has none.
+TEST_P(SkyTables, DescribeListsTheTables) {
+  auto sky = rendererFor(kSkyScene);
+  ASSERT_NE(sky, nullptr);
+  EXPECT_NE(sky->describe().find("atmosphere(transmittance 256x64, multi-scattering 32x32, sky-view 192x108, "
+                                 "aerial-perspective 32x32x32)"),
+            std::string::npos)
+      << sky->describe();
+  auto plain = rendererFor(R"({"lights": [{"type": "sun", "direction": [0, 1, 0]}],
+                               "sky": {"zenith": [0.1, 0.3, 1.0]}})");
+  ASSERT_NE(plain, nullptr);
+  EXPECT_EQ(plain->describe().find("atmosphere"), std::string::npos) << plain->describe();
 }
