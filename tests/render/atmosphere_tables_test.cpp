@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../support/gl_test.h"
+#include "../support/renderer_for.h"
 #include "../support/quadrature.h"
 #include "asset/scene_file.h"
 #include "render/atmosphere_tables.h"
@@ -29,16 +30,7 @@ constexpr const char* kSkyScene = R"({
   "render": {"ibl_size": 16}
 })";
 
-std::unique_ptr<SceneRenderer> rendererFor(const std::string& text) {
-  auto scene = parseScene(text, "sky.json");
-  EXPECT_TRUE(scene.ok()) << scene.error().message;
-  if (!scene) return nullptr;
-  SceneRenderOptions options;
-  options.shaderDir = test::shaderDir();
-  auto renderer = SceneRenderer::create(*scene, options);
-  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
-  return renderer.ok() ? std::move(renderer).value() : nullptr;
-}
+std::unique_ptr<SceneRenderer> rendererFor(const std::string& text) { return test::rendererFor(text, "sky.json"); }
 
 // The transmittance along (altitude, mu) to the top of the air by adaptive Simpson
 // over the ray in double: the reference the table and atmosphereTransmittance share.
