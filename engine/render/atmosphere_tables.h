@@ -48,7 +48,8 @@ class AtmosphereTables {
   bool update(const glm::vec3& sunDirection, const glm::vec3& sunIlluminance, const glm::dvec3& camera);
   // Whether update would rebuild.
   bool stale(const glm::vec3& sunDirection, const glm::vec3& sunIlluminance, const glm::dvec3& camera) const;
-  // The aerial-perspective volume for the camera's view (camera-relative).
+  // The aerial-perspective volume for the camera's view (camera-relative), where
+  // the view or the sky-view table changed since the last.
   void updateAerialPerspective(const glm::mat4& viewProjection);
 
   // sky.frag's atmosphere variant: the sky-view table and where it was made from.
@@ -62,6 +63,7 @@ class AtmosphereTables {
   const gl::Texture& transmittanceTable() const { return transmittance_; }
   const gl::Texture& skyViewTable() const { return skyView_; }
   int skyBuilds() const { return skyBuilds_; }
+  int aerialBuilds() const { return aerialBuilds_; }
   // "atmosphere(transmittance 256x64, multi-scattering 32x32, sky-view 192x108,
   // aerial-perspective 32x32x32)".
   std::string describe() const;
@@ -84,6 +86,10 @@ class AtmosphereTables {
   PlanetPlace place_;
   float muSun_ = 0.0f;
   int skyBuilds_ = 0;
+  // What the aerial-perspective volume was built for.
+  bool aerialBuilt_ = false;
+  glm::mat4 aerialViewProjection_{1.0f};
+  int aerialSkyBuild_ = 0, aerialBuilds_ = 0;
   double buildMs_ = 0.0;
 };
 

@@ -123,8 +123,8 @@ TEST_P(SkyTables, SkyViewIsRebuiltOnlyWhenTheSunOrThePlaceMoves) {
   EXPECT_EQ(t.skyBuilds(), 3);
 }
 
-// Through the renderer: frames of a still scene build the sky once (at load); the
-// time of day's knob rebuilds it at the next frame, and the sun's colour that
+// Through the renderer: frames of a still scene build the sky once (at load) and the
+// aerial perspective once; the time of day's knob rebuilds both at the next frame, and the sun's colour that
 // shades follows the air (redder at 2 degrees than at 60).
 TEST_P(SkyTables, TheTimeOfDayRebuildsTheSky) {
   auto renderer = rendererFor(kSkyScene);
@@ -137,10 +137,12 @@ TEST_P(SkyTables, TheTimeOfDayRebuildsTheSky) {
   const AtmosphereTables* tables = renderer->atmosphereTables();
   ASSERT_NE(tables, nullptr);
   EXPECT_EQ(tables->skyBuilds(), 1);
+  EXPECT_EQ(tables->aerialBuilds(), 1);  // the same view three times
   renderer->setSunElevation(60.0);
   EXPECT_NEAR(renderer->sunElevationDegrees(), 60.0, 1e-5);  // kept as float
   ASSERT_TRUE(renderer->render(camera, 64, 64).ok());
   EXPECT_EQ(tables->skyBuilds(), 2);
+  EXPECT_EQ(tables->aerialBuilds(), 2);
   const glm::vec3 high = tables->sunTransmittance();
   renderer->setSunElevation(2.0);
   ASSERT_TRUE(renderer->render(camera, 64, 64).ok());
