@@ -13,6 +13,7 @@
 #include "asset/scene_file.h"
 #include "render/atmosphere_tables.h"
 #include "render/camera.h"
+#include "render/ibl.h"
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
 
@@ -124,8 +125,10 @@ TEST_P(SkyTables, SkyViewIsRebuiltOnlyWhenTheSunOrThePlaceMoves) {
 }
 
 // Through the renderer: frames of a still scene build the sky once (at load) and the
-// aerial perspective once; the time of day's knob rebuilds both at the next frame, and the sun's colour that
-// shades follows the air (redder at 2 degrees than at 60).
+// aerial perspective once; the time of day's knob rebuilds both at the next frame,
+// the ambient's environment with them (brighter at 60 degrees than at 10, bluer
+// overhead than at 2), and the sun's colour that shades follows the air (redder at
+// 2 degrees than at 60).
 TEST_P(SkyTables, TheTimeOfDayRebuildsTheSky) {
   auto renderer = rendererFor(kSkyScene);
   ASSERT_NE(renderer, nullptr);
@@ -138,15 +141,19 @@ TEST_P(SkyTables, TheTimeOfDayRebuildsTheSky) {
   ASSERT_NE(tables, nullptr);
   EXPECT_EQ(tables->skyBuilds(), 1);
   EXPECT_EQ(tables->aerialBuilds(), 1);  // the same view three times
+  const auto skyAbove = [&] { return renderer->environmentLighting()->sh().irradiance(glm::vec3(0.0f, 1.0f, 0.0f)); };
+  const glm::vec3 morning = skyAbove();
   renderer->setSunElevation(60.0);
   EXPECT_NEAR(renderer->sunElevationDegrees(), 60.0, 1e-5);  // kept as float
   ASSERT_TRUE(renderer->render(camera, 64, 64).ok());
   EXPECT_EQ(tables->skyBuilds(), 2);
   EXPECT_EQ(tables->aerialBuilds(), 2);
-  const glm::vec3 high = tables->sunTransmittance();
+  const glm::vec3 high = tables->sunTransmittance(), midday = skyAbove();
   renderer->setSunElevation(2.0);
   ASSERT_TRUE(renderer->render(camera, 64, 64).ok());
-  const glm::vec3 low = tables->sunTransmittance();
+  const glm::vec3 low = tables->sunTransmittance(), sunset = skyAbove();
+  EXPECT_GT(midday.g, 1.5f * morning.g);
+  EXPECT_GT(midday.b / midday.r, sunset.b / sunset.r);
   // exp(-(tau_blue - tau_red) / sin(elevation)) with the default layers' zenith
   // depths: 0.78 at 60 degrees, 0.02 at 2 (through 20 air masses).
   EXPECT_GT(high.b / high.r, 0.7f);
