@@ -17,6 +17,9 @@
 #include "common/material.glsl"
 #include "common/direct_light.glsl"
 #include "common/fog.glsl"
+#ifdef AERIAL_PERSPECTIVE
+#include "common/aerial_perspective.glsl"
+#endif
 #ifdef TRANSMISSION
 #include "common/transmission.glsl"
 #endif
@@ -91,6 +94,9 @@ void main() {
 #ifdef FOG
   unlit = applyFog(unlit, length(v_position), u_fog.rgb, u_fog.w);
 #endif
+#ifdef AERIAL_PERSPECTIVE
+  unlit = applyAerialPerspective(unlit, v_position);
+#endif
   o_color = targetColor(unlit, base.a);
   return;
 #endif
@@ -146,6 +152,9 @@ void main() {
 #endif
 #ifdef FOG
   color = applyFog(color, length(v_position), u_fog.rgb, u_fog.w);
+#endif
+#ifdef AERIAL_PERSPECTIVE
+  color = applyAerialPerspective(color, v_position);
 #endif
   o_color = targetColor(color, base.a);
 }

@@ -256,9 +256,10 @@ inline glm::vec3 ambientSkyColor(const SceneDesc& scene) {
   return scene.sky.enabled ? scene.sky.zenith * 0.35f + scene.sky.horizon * 0.15f : glm::vec3(scene.ambient);
 }
 // The PBR ambient the rasterizer draws `scene` with: the scene's choice, else IBL
-// where there is a sky to light with.
+// where there is a sky to light with (a planet's air is one).
 inline Ambient ambientOf(const SceneDesc& scene) {
-  return scene.render.ambient.value_or(scene.sky.enabled ? Ambient::Ibl : Ambient::Hemisphere);
+  return scene.render.ambient.value_or(scene.sky.enabled || scene.atmosphere.enabled ? Ambient::Ibl
+                                                                                      : Ambient::Hemisphere);
 }
 inline glm::vec3 ambientGroundColor(const SceneDesc& scene) {
   return scene.sky.enabled ? scene.sky.ground * 0.3f : glm::vec3(scene.ambient);

@@ -90,6 +90,17 @@ inline constexpr unsigned kCullCounters = 15;
 // frame for every program that writes display values, on a unit no other program
 // samples.
 inline constexpr unsigned kDisplayTable = 30;
+// The physically based sky (render/atmosphere_tables.h): its compute passes read the
+// transmittance, multiple-scattering and ground-irradiance tables on these units and
+// write each table through one image unit; sky.frag reads the sky-view table where
+// the sky image's unit would be (its atmosphere variant has no image); the
+// surfaces read the aerial-perspective volume on a unit no other program samples.
+inline constexpr unsigned kSkyTransmittance = 0;
+inline constexpr unsigned kSkyMultiScattering = 1;
+inline constexpr unsigned kSkyGroundIrradiance = 2;
+inline constexpr unsigned kSkyTableImage = 0;
+inline constexpr unsigned kSkyView = 9;
+inline constexpr unsigned kAerialPerspective = 31;
 // The GPU ray tracer (shaders/rt/): the flattened scene (gputrace/gpu_layout.h),
 // its materials and lights, and what a kernel reads and writes.
 inline constexpr unsigned kRtNodes = 0;
@@ -118,7 +129,7 @@ struct Define {
   const char* name;
   unsigned value;
 };
-inline constexpr std::array<Define, 69> kDefines{{
+inline constexpr std::array<Define, 75> kDefines{{
     {"UNIT_BASE_COLOR", kBaseColor},
     {"UNIT_NORMAL", kNormal},
     {"UNIT_METALLIC_ROUGHNESS", kMetallicRoughness},
@@ -167,6 +178,12 @@ inline constexpr std::array<Define, 69> kDefines{{
     {"IMAGE_HIZ_LEVEL", kHiZLevelImage},
     {"UNIT_HIZ", kHiZ},
     {"UNIT_DISPLAY_TABLE", kDisplayTable},
+    {"UNIT_SKY_TRANSMITTANCE", kSkyTransmittance},
+    {"UNIT_SKY_MULTI_SCATTERING", kSkyMultiScattering},
+    {"UNIT_SKY_GROUND_IRRADIANCE", kSkyGroundIrradiance},
+    {"IMAGE_SKY_TABLE", kSkyTableImage},
+    {"UNIT_SKY_VIEW", kSkyView},
+    {"UNIT_AERIAL_PERSPECTIVE", kAerialPerspective},
     {"BUFFER_CULL_CLUSTERS", kCullClusters},
     {"BUFFER_CULL_JOBS", kCullJobs},
     {"BUFFER_CULL_COMMANDS", kCullCommands},

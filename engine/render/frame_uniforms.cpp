@@ -50,7 +50,7 @@ void FrameUniforms::fill(const glm::dvec3& eye, const glm::mat4& viewProjection)
   frame.u_sunDirection = glm::vec4(0.0f);
   if (const auto& sun = lights_.sun) {
     frame.u_sunDirection = glm::vec4(glm::vec3(sun->direction), 1.0f);
-    frame.u_sunColor = glm::vec4(sun->color * sun->intensity, 0.0f);
+    frame.u_sunColor = glm::vec4(sun->color * sun->intensity * sunTransmittance_, 0.0f);
   }
   if (sun_) sun_->fill(frame);
   frame.u_counts = glm::ivec4(int(lights_.others.size()), 0, 0, 0);

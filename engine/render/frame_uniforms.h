@@ -47,6 +47,13 @@ class FrameUniforms {
   // Shadow passes use only their own light matrix, but every scene program declares
   // the block: it stays bound.
   void bind() const;
+  // The sun as it reaches the scene through a planet's air (its transmittance,
+  // render/atmosphere_tables.h), and turned for the time of day; 1 and the
+  // light's own direction otherwise.
+  void setSunTransmittance(const glm::vec3& transmittance) { sunTransmittance_ = transmittance; }
+  void setSunDirection(const glm::vec3& direction) {
+    if (lights_.sun) lights_.sun->direction = glm::dvec3(direction);
+  }
 
  private:
   const SceneDesc& scene_;
@@ -55,6 +62,7 @@ class FrameUniforms {
   const SunShadowPass* sun_;
   const PointShadowPass* point_;
   const EnvironmentLighting* environment_;
+  glm::vec3 sunTransmittance_{1.0f};
   FrameBlock block_;
   gl::Buffer ubo_;
 };

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "asset/scene_file.h"
@@ -128,6 +129,13 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   // Bound for the shadow passes too; filled once the sun's matrices exist.
   frame->bind();
   timers.collect();
+  if (AtmosphereTables* air = sky->atmosphere()) {
+    // Before anything draws the sky or lit surfaces: the probes' views do too.
+    const auto update = [&] { return sky->updateAtmosphere(cameraPosition, glm::mat4(viewProjection)); };
+    if (auto s = timers.time("aerial-perspective", update); !s) return s;
+    air->bindAerialPerspective();
+    frame->setSunTransmittance(air->sunTransmittance());
+  }
   const bool staticScene = gpu->characters().empty();  // nothing moves
   if (gpu->skinPrograms() && !staticScene) {
     if (auto s = timers.time("skinning", [&] { return gpu->deform(*stats); }); !s) return s;
@@ -167,6 +175,27 @@ Status SceneRenderer::Impl::renderFrame(const Camera& camera, int width, int hei
   applyPassState(kCallerState);
   return Ok{};
 }
+
+double SceneRenderer::sunElevationDegrees() const {
+  const auto& sun = impl_->frame->lights().sun;
+  if (!sun) return std::nan("");
+  return glm::degrees(std::asin(std::clamp(glm::normalize(sun->direction).y, -1.0, 1.0)));
+}
+
+void SceneRenderer::setSunElevation(double degrees) {
+  const auto& sun = impl_->frame->lights().sun;
+  if (!sun) return;
+  // The azimuth kept; straight up or down has none, and the sun then rises in -z.
+  glm::dvec3 across(sun->direction.x, 0.0, sun->direction.z);
+  across = glm::length(across) > 1e-9 ? glm::normalize(across) : glm::dvec3(0.0, 0.0, -1.0);
+  const double e = glm::radians(degrees);
+  const glm::dvec3 direction = across * std::cos(e) + glm::dvec3(0.0, std::sin(e), 0.0);
+  impl_->frame->setSunDirection(glm::vec3(direction));
+  impl_->sky->setSunDirection(glm::vec3(direction));
+  if (impl_->sun) impl_->sun->setDirection(direction);
+}
+
+const AtmosphereTables* SceneRenderer::atmosphereTables() const { return impl_->sky->atmosphere(); }
 
 CullStats SceneRenderer::cullStats() const { return impl_->culling ? impl_->culling->counters() : CullStats{}; }
 

@@ -21,6 +21,8 @@
 
 namespace engine {
 
+class AtmosphereTables;
+
 namespace terrain {
 struct LodSelection;
 }
@@ -128,6 +130,15 @@ class SceneRenderer {
   // Every pass's GPU time, in the order the frame draws them.
   std::vector<PassTime> passTimes() const;
   const SceneDesc& scene() const;
+  // The time of day, with a planet's atmosphere: the sun's elevation in degrees
+  // above the horizontal, its azimuth kept. Turns the shaded light, its shadows and
+  // the sky, whose tables and environment are rebuilt at the next frame. NaN
+  // without a sun.
+  double sunElevationDegrees() const;
+  void setSunElevation(double degrees);
+  // The atmosphere's tables (render/atmosphere_tables.h), null without an
+  // atmosphere. For tests and tools.
+  const AtmosphereTables* atmosphereTables() const;
   // The PBR ambient's image-based lighting (render/ibl.h): null for the hemisphere
   // ambient and classic shading. For tests and tools.
   const EnvironmentLighting* environmentLighting() const;

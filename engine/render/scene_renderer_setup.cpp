@@ -61,9 +61,11 @@ Status SceneRenderer::Impl::init(std::shared_ptr<Scene> source, const SceneRende
   // The PCF kernel too, so that its loops unroll (common/shadows.glsl).
   if (sunShadows || pointShadows) defines.push_back("PCF_RADIUS " + std::to_string(pcfRadius));
   if (scene.fog.enabled) defines.push_back("FOG 1");
+  if (scene.atmosphere.enabled) defines.push_back("AERIAL_PERSPECTIVE 1");
   // What of a fragment's position the lighting reads beyond its direction: the
   // deferred characters' surface then keeps its distance (common/surface.glsl).
-  const bool surfacePosition = sunShadows || pointShadows || !lights.others.empty() || scene.fog.enabled;
+  const bool surfacePosition =
+      sunShadows || pointShadows || !lights.others.empty() || scene.fog.enabled || scene.atmosphere.enabled;
   if (surfacePosition) defines.push_back("SURFACE_POSITION 1");
   int iblSize = 0;
   if (render.shading == Shading::Pbr) {

@@ -44,6 +44,8 @@ class SunShadowPass {
   // terrain is `terrain`'s). Draws what `draws` collects of `gpu`.
   static Result<std::unique_ptr<SunShadowPass>> create(const LightDesc& sun, int size, bool farMap, GpuScene& gpu,
                                                        SceneDraws& draws, TerrainPass* terrain, SceneStats* stats);
+  // Turns the light toward `direction` (toward the sun) for the next maps.
+  void setDirection(const glm::dvec3& direction) { direction_ = glm::normalize(direction); }
 
   // The maps around two spheres relative to the GPU scene's eye (characters
   // placed for it): the near one of everything, the far one of the terrain alone.

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cfloat>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -115,6 +116,15 @@ engine::SceneRenderOptions effective(const engine::SceneRenderOptions& o, const 
   return e;
 }
 
+// With a planet's atmosphere and a sun: the sun's elevation, live (the sky's
+// tables and the ambient's environment are rebuilt at the next frame).
+void timeOfDay(engine::SceneRenderer& renderer) {
+  if (!renderer.scene().atmosphere.enabled) return;
+  float elevation = float(renderer.sunElevationDegrees());
+  if (std::isnan(elevation)) return;
+  if (ImGui::SliderFloat("sun elevation", &elevation, -10.0f, 90.0f, "%.1f deg")) renderer.setSunElevation(elevation);
+}
+
 void knobs(SceneGame& game) {
   const engine::SceneDesc& scene = game.renderer()->scene();
   engine::SceneRenderOptions o = effective(game.options(), scene);
@@ -143,6 +153,7 @@ void knobs(SceneGame& game) {
     o.rotations = *rotations;
   }
   if (changed) (void)game.applyOptions(o);  // a failure shows in the panel
+  timeOfDay(*game.renderer());
 }
 
 void timeControls(SceneGame& game) {

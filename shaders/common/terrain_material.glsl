@@ -11,6 +11,9 @@
 #include "common/shadows.glsl"
 #include "common/direct_light.glsl"
 #include "common/fog.glsl"
+#ifdef AERIAL_PERSPECTIVE
+#include "common/aerial_perspective.glsl"
+#endif
 #include "common/output.glsl"
 #include "common/terrain_layers.glsl"
 
@@ -35,6 +38,9 @@ vec3 terrainColor(vec3 position, vec3 n, float height, vec2 uv, vec2 lod) {
   vec3 color = shadeAmbient(s) + shadeDirectLight(s, n);
 #ifdef FOG
   color = applyFog(color, length(position), u_fog.rgb, u_fog.w);
+#endif
+#ifdef AERIAL_PERSPECTIVE
+  color = applyAerialPerspective(color, position);
 #endif
   return color;
 }

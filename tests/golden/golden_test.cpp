@@ -34,6 +34,7 @@ enum class SceneKind {
   RobotWalk,
   RobotWaveDqs,
   Materials,
+  Sky,     // assets/scenes/sky.json, its sun at GoldenCase::sunElevation
   Sample,  // a Khronos sample model in the viewer (GoldenCase::model, under ../shared/gltf-samples)
 };
 
@@ -45,6 +46,7 @@ struct GoldenCase {
   int supersample = 0;
   int pcf = 0;          // 0: the scene's own; 1: hard shadows
   const char* model = nullptr;  // SceneKind::Sample: the path under ../shared/gltf-samples
+  double sunElevation = 0.0;    // SceneKind::Sky: degrees
 };
 
 // The default scene (PBR, sun shadows with PCF, sky, fog, four skinned robots) at
@@ -67,6 +69,13 @@ const GoldenCase kCases[] = {{"demo_t0.5", SceneKind::Demo, 0.5},
                              {"robot_walk_t0.3", SceneKind::RobotWalk, 0.3},
                              {"robot_wave_dqs_t0.6", SceneKind::RobotWaveDqs, 0.6},
                              {"materials", SceneKind::Materials, 0.0},
+                             // The physically based sky (docs/sky.md) at sunset, morning and
+                             // midday; each was looked at beside the path tracer's (2 and 10
+                             // degrees: the red and the yellow of a low sun, the ball's long
+                             // shadow; 30: a blue sky whitening to the horizon).
+                             {"sky_sun2", SceneKind::Sky, 0.0, 0, 0, 0, nullptr, 2.0},
+                             {"sky_sun10", SceneKind::Sky, 0.0, 0, 0, 0, nullptr, 10.0},
+                             {"sky_sun30", SceneKind::Sky, 0.0, 0, 0, 0, nullptr, 30.0},
                              // Khronos's texture tests in the viewer, as their screenshots
                              // show them: TEXCOORD_1 (the emissive logo), KHR_texture_transform
                              // (offset, rotation, scale; clamped samplers), wrap modes. The
@@ -114,11 +123,13 @@ std::unique_ptr<Game> makeScene(const GoldenCase& c) {
     const char* file = c.scene == SceneKind::Demo      ? "/scenes/demo.json"
                        : c.scene == SceneKind::Cornell   ? "/scenes/cornell.json"
                        : c.scene == SceneKind::Materials ? "/scenes/materials.json"
+                       : c.scene == SceneKind::Sky       ? "/scenes/sky.json"
                                                          : "/scenes/terrain.json";
     auto scene = loadSceneFile(kAssets + file);
     if (!scene) return nullptr;
     if (c.scene == SceneKind::TerrainOverview) test::useTerrainOverview(*scene);
     if (c.scene == SceneKind::TerrainLowSun) test::useTerrainLowSun(*scene);
+    if (c.scene == SceneKind::Sky) test::useSunElevation(*scene, c.sunElevation);
     SceneRenderOptions options;
     options.shaderDir = kShaders;
     options.msaaOverride = c.msaa;

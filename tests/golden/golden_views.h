@@ -3,6 +3,7 @@
 // terrain_overview and terrain_low_sun cases, which the culling and deferred-terrain
 // tests draw again) and where a failed comparison leaves its two images.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <filesystem>
@@ -34,6 +35,15 @@ inline void useTerrainOverview(SceneDesc& scene) {
 // the far slopes facing the sun stay lit.
 inline void useTerrainLowSun(SceneDesc& scene) {
   scene.lights[0].direction = glm::normalize(glm::dvec3(-0.95, 0.2, 0.2));
+}
+
+// sky.json's sun at `degrees` above the horizon, its azimuth kept (25 degrees right
+// of the view).
+inline void useSunElevation(SceneDesc& scene, double degrees) {
+  const glm::dvec3 d = scene.lights[0].direction;
+  const glm::dvec3 across = glm::normalize(glm::dvec3(d.x, 0.0, d.z));
+  const double e = glm::radians(degrees);
+  scene.lights[0].direction = across * std::cos(e) + glm::dvec3(0.0, std::sin(e), 0.0);
 }
 
 // `game`'s frame at `time` as golden_test.cpp draws it: 640x360, the third frame of

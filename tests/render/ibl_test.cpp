@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "../support/gl_test.h"
+#include "../support/renderer_for.h"
 #include "asset/scene_file.h"
 #include "core/ibl_sampling.h"
 #include "raytrace/environment.h"
@@ -28,16 +29,7 @@ constexpr const char* kSkyScene = R"({
   "render": {"ambient": "ibl", "ibl_size": 32}
 })";
 
-std::unique_ptr<SceneRenderer> rendererFor(const std::string& text) {
-  auto scene = parseScene(text, "ibl.json");
-  EXPECT_TRUE(scene.ok()) << scene.error().message;
-  if (!scene) return nullptr;
-  SceneRenderOptions options;
-  options.shaderDir = test::shaderDir();
-  auto renderer = SceneRenderer::create(*scene, options);
-  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
-  return renderer.ok() ? std::move(renderer).value() : nullptr;
-}
+std::unique_ptr<SceneRenderer> rendererFor(const std::string& text) { return test::rendererFor(text, "ibl.json"); }
 
 std::vector<glm::vec3> readLevel(const gl::Texture& cube, int level, int size) {
   std::vector<glm::vec3> texels(size_t(6 * size * size));
