@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "asset/scene_file.h"
+#include "raytrace/integrator.h"
 #include "raytrace/rt_scene.h"
 #include "raytrace/scene_builder.h"
 
@@ -114,4 +115,18 @@ inline glm::dvec3 beerLambertMean(int side, double fovyDegrees, double distance,
     }
   }
   return sum / double(side * side);
+}
+
+// The path tracer's image of `scene` (w x h at spp) is the same bytes on one thread
+// and on two, another seed gives another, and it is not black.
+inline void expectSeedAloneNotThreads(const rt::RtScene& scene, int w, int h, int spp) {
+  rt::RenderSettings one = pathSettings(w, h, spp), two = one, other = one;
+  one.threads = 1;
+  two.threads = 2;
+  other.seed = 7;
+  const rt::RenderResult a = rt::Integrator(scene, one).render(), b = rt::Integrator(scene, two).render(),
+                         c = rt::Integrator(scene, other).render();
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+  EXPECT_NE(a.image.pixels, c.image.pixels);
+  EXPECT_GT(meanOf(a.image).x, 0.0);
 }
