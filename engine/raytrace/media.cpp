@@ -27,6 +27,10 @@ constexpr double kNodes[2] = {0.3399810435848563, 0.8611363115940526};
 constexpr double kWeights[2] = {0.6521451548625461, 0.3478548451374538};
 
 double mean(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
+// Infinite optical depth in the channels a tail of fog extinguishes.
+void addTail(glm::dvec3& tau, const glm::dvec3& rate) {
+  for (int k = 0; k < 3; ++k) tau[k] = rate[k] > 0.0 ? kInfinity : tau[k];
+}
 double largest(const glm::vec3& v) { return double(std::max({v.x, v.y, v.z})); }
 
 // The parameter interval of the ray o + t d inside the box (empty: lo >= hi).
@@ -257,26 +261,24 @@ glm::dvec3 Media::airDepth(const glm::dvec3& o, const glm::dvec3& d, double a, d
   return sum * half;
 }
 
-glm::dvec3 Media::opticalDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const {
-  glm::dvec3 depth = closedFormDepth(o, d, a, b);
-  if (!air_) return depth;
-  const Line line = lineOf(o, d);
-  for (double t = a; t < b;) {
-    const double next = pieceEnd(line, t, b);
-    depth += airDepth(o, d, t, next);
-    t = next;
-  }
-  return depth;
+// The optical depth over [a, b] within one piece: the closed forms and the air's.
+glm::dvec3 Media::pieceDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const {
+  return closedFormDepth(o, d, a, b) + airDepth(o, d, a, b);
+}
+
+// What extinguishes light past the last piece, for ever: a homogeneous fog's, if any.
+glm::dvec3 Media::tailRate() const {
+  return fog_ && fog_->falloff == 0.0 ? glm::dvec3(fog_->extinction) : glm::dvec3(0.0);
 }
 
 // Where in [a, b], one piece, the optical depth of `channel` from a reaches `depth`
 // (less than the piece's): Newton's steps on it, kept within a shrinking bracket.
 double Media::solve(const glm::dvec3& o, const glm::dvec3& d, double a, double b, int c, double depth) const {
   double lo = a, hi = b;
-  const double whole = closedFormDepth(o, d, a, b)[c] + airDepth(o, d, a, b)[c];
+  const double whole = pieceDepth(o, d, a, b)[c];
   double s = a + (b - a) * std::clamp(depth / whole, 0.0, 1.0);
   for (int i = 0; i < 40; ++i) {
-    const double f = closedFormDepth(o, d, a, s)[c] + airDepth(o, d, a, s)[c] - depth;
+    const double f = pieceDepth(o, d, a, s)[c] - depth;
     if (std::abs(f) <= 1e-12 * depth) break;
     (f > 0.0 ? hi : lo) = s;
     if (hi - lo <= 1e-13 * std::max(1.0, std::abs(s))) break;
@@ -303,20 +305,20 @@ Media::Flight Media::fly(const glm::dvec3& o, const glm::dvec3& d, double maxDis
     const double next = pieceEnd(line, t, e);
     if (next == kInfinity) {
       // Only a homogeneous fog lies ahead, for ever.
-      const glm::dvec3 rate = fog_ && fog_->falloff == 0.0 ? glm::dvec3(fog_->extinction) : glm::dvec3(0.0);
+      const glm::dvec3 rate = tailRate();
       if (rate[c] > 0.0) {
         const double s = t + (target - tau[c]) / rate[c];
         tau += rate * (s - t), t = s, collided = true;
       } else {
-        for (int k = 0; k < 3; ++k) tau[k] = rate[k] > 0.0 ? kInfinity : tau[k];
+        addTail(tau, rate);
         t = kInfinity;
       }
       break;
     }
-    const glm::dvec3 piece = closedFormDepth(o, d, t, next) + airDepth(o, d, t, next);
+    const glm::dvec3 piece = pieceDepth(o, d, t, next);
     if (tau[c] + piece[c] >= target) {
       const double s = solve(o, d, t, next, c, target - tau[c]);
-      tau += closedFormDepth(o, d, t, s) + airDepth(o, d, t, s);
+      tau += pieceDepth(o, d, t, s);
       t = s, collided = true;
     } else {
       tau += piece, t = next;
@@ -343,6 +345,7 @@ Media::Flight Media::fly(const glm::dvec3& o, const glm::dvec3& d, double maxDis
 }
 
 glm::vec3 Media::transmittance(const glm::dvec3& o, const glm::dvec3& d, double distance) const {
+  if (homogeneous_) return homogeneous_->transmittance(distance);
   bool ground = false;
   const double e = end(o, d, distance, &ground);
   if (ground) return glm::vec3(0.0f);
@@ -352,8 +355,7 @@ glm::vec3 Media::transmittance(const glm::dvec3& o, const glm::dvec3& d, double 
   for (double t = 0.0; t < e;) {
     const double next = pieceEnd(line, t, e);
     if (next == kInfinity) {
-      const glm::dvec3 rate = fog_ && fog_->falloff == 0.0 ? glm::dvec3(fog_->extinction) : glm::dvec3(0.0);
-      for (int k = 0; k < 3; ++k) tau[k] = rate[k] > 0.0 ? kInfinity : tau[k];
+      addTail(tau, tailRate());
       break;
     }
     tau += airDepth(o, d, t, next);

@@ -55,10 +55,9 @@ class Media {
   // picks the channel whose optical depth draws the distance, `u` draws it, `uPhase`
   // the medium that scatters where several do.
   Flight fly(const glm::dvec3& o, const glm::dvec3& d, double maxDistance, float uChannel, float u, float uPhase) const;
-  // What reaches o of light from o + distance d (none where the planet is in the way).
+  // What reaches o of light from o + distance d (none where the planet is in the way;
+  // a homogeneous fog alone: medium.h's closed form).
   glm::vec3 transmittance(const glm::dvec3& o, const glm::dvec3& d, double distance) const;
-  // The optical depth per channel over [a, b] of o + t d (b finite).
-  glm::dvec3 opticalDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
 
   // At a point: the extinction and the scattering of all media there, per channel.
   struct Coefficients {
@@ -97,6 +96,8 @@ class Media {
   double pieceEnd(const Line& line, double t, double end) const;
   glm::dvec3 closedFormDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
   glm::dvec3 airDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
+  glm::dvec3 pieceDepth(const glm::dvec3& o, const glm::dvec3& d, double a, double b) const;
+  glm::dvec3 tailRate() const;
   glm::vec3 airExtinction(const glm::dvec3& p) const;
   double solve(const glm::dvec3& o, const glm::dvec3& d, double a, double b, int channel, double depth) const;
   Phase phaseAt(const glm::dvec3& p, float u, glm::vec3* scattering) const;

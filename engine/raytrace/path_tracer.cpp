@@ -334,9 +334,7 @@ class PathTracer {
   // over the chance of getting there (the distance was drawn by one channel's
   // optical depth, weighed over the three).
   glm::vec3 reachedWeight(const Ray<T>& ray, double distance) const {
-    const glm::vec3 tr = media_->homogeneous()
-                             ? media_->homogeneous()->transmittance(distance)
-                             : media_->transmittance(glm::dvec3(ray.o), glm::normalize(glm::dvec3(ray.d)), distance);
+    const glm::vec3 tr = media_->transmittance(glm::dvec3(ray.o), glm::normalize(glm::dvec3(ray.d)), distance);
     const float mean = (tr.x + tr.y + tr.z) / 3.0f;
     return mean > 0.0f ? tr / mean : glm::vec3(0.0f);
   }
@@ -406,7 +404,6 @@ class PathTracer {
     if constexpr (!kMedium) return glm::vec3(1.0f);
     const double distance = ls.toPoint ? glm::length(glm::dvec3(ls.target) - glm::dvec3(from))
                                        : std::numeric_limits<double>::infinity();
-    if (media_->homogeneous()) return media_->homogeneous()->transmittance(distance);
     const glm::dvec3 dir = ls.toPoint ? (glm::dvec3(ls.target) - glm::dvec3(from)) / distance : glm::dvec3(ls.wi);
     return media_->transmittance(glm::dvec3(from), dir, distance);
   }
